@@ -1,0 +1,125 @@
+#pragma once
+/// \file
+/// MapBuilder<d>: the factory of paper section 3.1, the mutable form of a map.
+///
+/// Usage (d = 2):
+///   MapBuilder<2> b(s1, s2);
+///   for each S2 vertex v with a preimage:   b.add_vertex_preimage(v, {element, local});
+///   for each S1 vertex w not on an S2 vertex: b.add_ghost_node(w, {s2_element, s2_local});
+///   for each S2 edge e:  b.add_edge(e)                      (preimage inside one S1 element)
+///                    or  b.add_edge(e, crossings)           (preimage crosses S1 edges)
+///   or simply b.add_target_element(t) for S2 triangles whose edges stay inside S1 elements;
+///   PlMap<2> map = std::move(b).finalize();
+///
+/// Nodes on S1 vertices and edges are entered once and copied onto every incident element at
+/// finalize(). Positions closer than `BuilderOptions::snap_tolerance` (in local coordinates, hence
+/// relative to the element size) to a corner or an edge are snapped there; this is the single
+/// snapping rule of plmap.
+///
+/// finalize() computes, per S1 element, a constrained triangulation of the nodes with the graph
+/// edges and the element boundary as constraints (exact predicates), keeps the faces that map
+/// into one S2 element with the map's orientation as regions, derives each node's cyclic
+/// neighbour order from the regions around it (a purely combinatorial step, no angles are
+/// compared), builds the edge arrays, and the compact query form.
+
+#include <plmap/core/pl_map.hpp>
+
+#include <limits>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace plmap {
+
+struct BuilderOptions {
+  /// Local coordinates within this distance of a corner or edge are snapped onto it. Also the
+  /// threshold below which an image barycentric coordinate on S2 is set to zero.
+  double snap_tolerance = 1e-10;
+  /// Orientation of the map: 0 = decide by majority of the candidate regions (default),
+  /// +1 = orientation preserving, -1 = orientation reversing.
+  int orientation = 0;
+};
+
+/// Where the preimage of an S2 edge crosses an S1 edge (d = 2).
+struct EdgeCrossing {
+  Index domain_edge = invalid_index;  ///< the S1 edge crossed
+  /// Position on the S1 edge, 0 at its smaller-index vertex and 1 at the larger. A value within
+  /// the snap tolerance of 0 or 1 means the preimage passes through that S1 vertex; a ghost node
+  /// is created there unless one exists.
+  double domain_parameter = 0.5;
+  /// Position of the image on the S2 edge (0 at its smaller-index vertex). NaN (the default):
+  /// chosen proportional to the arc length of the preimage polyline in world coordinates.
+  double target_parameter = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// Where the preimage of an S2 segment passes an S1 vertex (d = 1).
+struct VertexCrossing {
+  Index domain_vertex = invalid_index;
+  /// Position of the image on the S2 segment (0 at its first corner); NaN: by arc length.
+  double target_parameter = std::numeric_limits<double>::quiet_NaN();
+};
+
+template <int d>
+  requires SurfaceDimension<d>
+class MapBuilder {
+ public:
+  /// Handle of a node entered into the builder (not of its per-element copies).
+  using NodeHandle = Index;
+
+  MapBuilder(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
+             BuilderOptions options = {});
+  ~MapBuilder();
+  MapBuilder(MapBuilder&&) noexcept;
+  MapBuilder& operator=(MapBuilder&&) noexcept;
+
+  const Surface<d>& domain() const;
+  const Surface<d>& target() const;
+
+  /// The preimage of S2 vertex `target_vertex` is the point `at` of S1. Becomes a corner,
+  /// touching (d = 2) or interior node depending on where `at` lies after snapping.
+  NodeHandle add_vertex_preimage(Index target_vertex, const SurfacePoint<d>& at);
+  /// The preimage of S2 vertex `target_vertex` is S1 vertex `domain_vertex` (a corner node).
+  NodeHandle add_vertex_preimage_at_vertex(Index target_vertex, Index domain_vertex);
+  /// The preimage of `target_vertex` lies on S1 edge `domain_edge` at parameter t (0 at its
+  /// smaller-index vertex). d = 2 only.
+  NodeHandle add_vertex_preimage_on_edge(Index target_vertex, Index domain_edge, double t)
+    requires(d == 2);
+
+  /// S1 vertex `domain_vertex` maps to `image` on S2, which is not an S2 vertex (a ghost node).
+  /// If `image` snaps onto an S2 vertex that has no preimage yet, a corner node is made instead.
+  NodeHandle add_ghost_node(Index domain_vertex, const SurfacePoint<d>& image);
+
+  /// Inserts the preimage of S2 edge `target_edge` (d = 2), which lies in one S1 element or
+  /// along one S1 edge: the preimages of both its vertices must exist.
+  void add_edge(Index target_edge)
+    requires(d == 2);
+  /// Inserts the preimage of S2 edge `target_edge` that crosses the given S1 edges, listed in
+  /// order from the preimage of the edge's smaller-index vertex to the larger.
+  void add_edge(Index target_edge, std::span<const EdgeCrossing> crossings)
+    requires(d == 2);
+  /// Inserts the preimage of S2 segment `target_element` (d = 1), passing the listed S1
+  /// vertices in order from the preimage of its corner 0 to corner 1.
+  void add_edge(Index target_element, std::span<const VertexCrossing> crossings = {})
+    requires(d == 1);
+  /// Inserts the edges of S2 element `target_element` that are not present yet; each must lie
+  /// in one S1 element (use add_edge with crossings otherwise).
+  void add_target_element(Index target_element);
+
+  /// Node handle of the preimage of an S2 vertex, if entered.
+  std::optional<NodeHandle> vertex_preimage(Index target_vertex) const;
+  /// True if the preimage of this S2 edge (d = 2) / segment (d = 1) was inserted.
+  bool has_edge(Index target_edge) const;
+
+  /// Builds the compact map. The builder is left empty.
+  PlMap<d> finalize() &&;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+extern template class MapBuilder<1>;
+extern template class MapBuilder<2>;
+
+}  // namespace plmap

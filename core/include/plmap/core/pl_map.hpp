@@ -1,0 +1,142 @@
+#pragma once
+/// \file
+/// PlMap<d>: the finalized, compact form of a piecewise-linear map Xi: D ⊂ S1 -> S2.
+///
+/// The map is stored as the preimage of S2's edge graph on S1 (paper section 2.2): on every S1
+/// element a plane graph of nodes whose regions (after the triangular closure) are triangles
+/// (d = 2) or intervals (d = 1). Everything lives in flat arrays grouped by S1 element, so a
+/// query touches a few contiguous cache lines and no per-node heap allocation exists.
+///
+/// A PlMap is immutable. It is produced by MapBuilder::finalize() or by loading a map file; the
+/// raw arrays (MapData) are public so that verify/ can inspect them and tests can corrupt them.
+
+#include <plmap/core/node_type.hpp>
+#include <plmap/core/surface.hpp>
+#include <plmap/core/types.hpp>
+
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace plmap {
+
+/// y = A x + b between local coordinates, stored as the d x (d+1) matrix [A | b].
+template <int d>
+using AffineMap = Eigen::Matrix<double, d, d + 1>;
+
+template <int d>
+LocalPoint<d> apply(const AffineMap<d>& m, const LocalPoint<d>& x) {
+  return m.template leftCols<d>() * x + m.col(d);
+}
+
+/// Whether a graph edge is the preimage of (a piece of) an S2 edge, or was added by the
+/// triangular closure (including pieces of the S1 element boundary).
+enum class GraphEdgeKind : std::uint8_t { closure = 0, target_edge = 1 };
+
+/// The raw arrays of a finalized map. Index conventions:
+/// - Nodes are numbered globally; the nodes of S1 element T are [node_begin[T], node_begin[T+1]).
+///   A node on a shared corner or edge has one copy (one index) per incident element.
+/// - Regions are numbered globally; those of T are [region_begin[T], region_begin[T+1]).
+/// - All node indices stored in neighbour lists, edge arrays and region corners refer to nodes
+///   of the same element.
+template <int d>
+struct MapData {
+  // ---- nodes -------------------------------------------------------------------------------
+  std::vector<Index> node_begin;            ///< size |T1| + 1
+  std::vector<LocalPoint<d>> node_position;  ///< local coordinates on the S1 element
+  std::vector<NodeType> node_type;
+  /// For corner and ghost nodes the corner of the element (0..d), for touching and intersection
+  /// nodes the local edge (0..2), for interior nodes -1.
+  std::vector<std::int8_t> node_location;
+  /// Image on S2: an S2 element and local coordinates on it (any element containing the point).
+  std::vector<SurfacePoint<d>> node_image;
+  /// The S2 vertex of corner, touching and interior nodes; the S2 edge of intersection nodes;
+  /// invalid_index for ghost nodes.
+  std::vector<Index> node_target;
+
+  // ---- neighbours in counter-clockwise order (d = 1: by increasing position) ------------------
+  std::vector<Index> neighbor_begin;  ///< size node count + 1
+  std::vector<Index> neighbor;
+  std::vector<GraphEdgeKind> neighbor_edge_kind;
+
+  // ---- d = 2: nodes on the closed local edges, ordered from corner k to corner (k+1) mod 3 ----
+  std::vector<Index> edge_node_begin;  ///< size 3 |T1| + 1, entry 3T + k
+  std::vector<Index> edge_node;
+
+  // ---- regions (triangles for d = 2, intervals for d = 1) -------------------------------------
+  std::vector<Index> region_begin;  ///< size |T1| + 1
+  /// Corners (node indices), counter-clockwise on the S1 element (d = 1: increasing position).
+  std::vector<std::array<Index, d + 1>> region_corners;
+  /// Region across the side opposite corner i on the same element, or invalid_index.
+  std::vector<std::array<Index, d + 1>> region_neighbors;
+  /// The S2 element all corners map into.
+  std::vector<Index> region_target;
+  /// Local coordinates on the S1 element -> local coordinates on region_target.
+  std::vector<AffineMap<d>> region_map;
+  /// Per S1 element: the region a point-location walk starts from (invalid if no regions).
+  std::vector<Index> start_region;
+
+  /// +1 if the map preserves the orientation of the element frames, -1 if it reverses it (as for
+  /// two bodies in contact whose normals face each other).
+  int orientation = 1;
+
+  friend bool operator==(const MapData&, const MapData&) = default;
+};
+
+template <int d>
+  requires SurfaceDimension<d>
+class PlMap {
+ public:
+  static constexpr int dimension = d;
+
+  /// Takes ownership of the arrays; throws InvalidMapError if their sizes do not fit the
+  /// surfaces (a cheap structural check; verify/ does the full one).
+  PlMap(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
+        MapData<d> data);
+
+  const Surface<d>& domain() const { return *domain_; }
+  const Surface<d>& target() const { return *target_; }
+  const std::shared_ptr<const Surface<d>>& domain_ptr() const { return domain_; }
+  const std::shared_ptr<const Surface<d>>& target_ptr() const { return target_; }
+  const MapData<d>& data() const { return data_; }
+
+  Index node_count() const { return static_cast<Index>(data_.node_type.size()); }
+  Index region_count() const { return static_cast<Index>(data_.region_target.size()); }
+  Index nodes_begin(Index element) const { return data_.node_begin[element]; }
+  Index nodes_end(Index element) const { return data_.node_begin[element + 1]; }
+  Index regions_begin(Index element) const { return data_.region_begin[element]; }
+  Index regions_end(Index element) const { return data_.region_begin[element + 1]; }
+
+  /// Neighbours of node n in counter-clockwise order.
+  std::span<const Index> neighbors(Index n) const {
+    return {data_.neighbor.data() + data_.neighbor_begin[n],
+            data_.neighbor.data() + data_.neighbor_begin[n + 1]};
+  }
+  /// Nodes on local edge k of element t, from corner k to corner (k+1) mod 3 (d = 2).
+  std::span<const Index> edge_nodes(Index t, int k) const
+    requires(d == 2)
+  {
+    const std::size_t i = 3 * static_cast<std::size_t>(t) + k;
+    return {data_.edge_node.data() + data_.edge_node_begin[i],
+            data_.edge_node.data() + data_.edge_node_begin[i + 1]};
+  }
+
+  /// World position of node n on S1 and of its image on S2.
+  WorldPoint<d> node_domain_world(Index n) const;
+  WorldPoint<d> node_target_world(Index n) const;
+  /// S1 element that owns node n (binary search on node_begin).
+  Index node_element(Index n) const;
+
+  /// Bytes held by the flat arrays (capacity, not counting the two surfaces).
+  std::size_t memory_bytes() const;
+
+ private:
+  std::shared_ptr<const Surface<d>> domain_;
+  std::shared_ptr<const Surface<d>> target_;
+  MapData<d> data_;
+};
+
+extern template class PlMap<1>;
+extern template class PlMap<2>;
+
+}  // namespace plmap

@@ -1,0 +1,39 @@
+#pragma once
+/// \file
+/// Robust orientation predicate for combinatorial decisions in local (planar) coordinates.
+///
+/// plmap never decides "which side of a line" by a raw floating-point sign: orient2d returns the
+/// exact sign of the determinant for the given doubles. The fast path is the classic static
+/// error bound on the double evaluation (inline, a few flops); only when the bound cannot
+/// certify the sign does it call the exact predicate of CGAL (Epick), out of line.
+
+#include <plmap/core/types.hpp>
+
+#include <cmath>
+
+namespace plmap {
+
+namespace detail {
+/// Exact orientation via CGAL; used when the floating-point filter is inconclusive.
+int orient2d_exact(double ax, double ay, double bx, double by, double cx, double cy);
+}  // namespace detail
+
+/// +1 if a, b, c are counter-clockwise, -1 if clockwise, 0 if exactly collinear.
+inline int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const double detleft = (a.x() - c.x()) * (b.y() - c.y());
+  const double detright = (a.y() - c.y()) * (b.x() - c.x());
+  const double det = detleft - detright;
+  // Bound on the rounding error of det (Shewchuk's ccwerrboundA = (3 + 16 eps) eps).
+  constexpr double error_factor = 3.3306690738754716e-16;
+  const double bound = error_factor * (std::abs(detleft) + std::abs(detright));
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  return detail::orient2d_exact(a.x(), a.y(), b.x(), b.y(), c.x(), c.y());
+}
+
+/// Exact sign of a . b - style comparisons are not needed elsewhere; for segments:
+/// true if the closed segments [p, q] and [r, s] share a point other than a common endpoint.
+bool segments_cross_properly(const Eigen::Vector2d& p, const Eigen::Vector2d& q,
+                             const Eigen::Vector2d& r, const Eigen::Vector2d& s);
+
+}  // namespace plmap

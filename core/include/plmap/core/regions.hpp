@@ -1,0 +1,46 @@
+#pragma once
+/// \file
+/// The regions of a map as remote intersections: for mortar and contact methods, the pieces
+/// T1 ∩ Xi^{-1}(T2) over which integrals of products of S1 and S2 functions are exact.
+
+#include <plmap/core/pl_map.hpp>
+
+#include <vector>
+
+namespace plmap {
+
+/// One region: a triangle (d = 2) or segment (d = 1) on an S1 element that Xi maps affinely
+/// into one S2 element. Corners are listed in the same order on both sides.
+template <int d>
+struct RemoteIntersection {
+  Index region = invalid_index;
+  Index domain_element = invalid_index;
+  Index target_element = invalid_index;
+  std::array<LocalPoint<d>, d + 1> domain_local;
+  std::array<LocalPoint<d>, d + 1> target_local;
+  std::array<WorldPoint<d>, d + 1> domain_world;
+  std::array<WorldPoint<d>, d + 1> target_world;
+
+  /// Length/area of the region on S1 and of its image on S2.
+  double domain_measure() const;
+  double target_measure() const;
+};
+
+/// The remote intersection of one region.
+template <int d>
+RemoteIntersection<d> remote_intersection(const PlMap<d>& map, Index region);
+
+/// All regions, in region order.
+template <int d>
+std::vector<RemoteIntersection<d>> remote_intersections(const PlMap<d>& map);
+
+/// Total measure covered on both sides.
+struct CoveredMeasure {
+  double domain = 0.0;  ///< measure of D on S1 (sum of region measures)
+  double target = 0.0;  ///< measure of Xi(D) on S2
+};
+
+template <int d>
+CoveredMeasure covered_measure(const PlMap<d>& map);
+
+}  // namespace plmap

@@ -1,0 +1,1115 @@
+// The map factory (paper section 3.1): collects nodes and edge preimages on S1, then finalize()
+// turns them into the compact PlMap.
+//
+// Internally every node is entered once, at its place on S1: an S1 vertex, a point of an S1 edge
+// (parameter along the edge from its smaller-index vertex) or a point inside an S1 element. Its
+// image is kept as a "support": the S2 vertices with non-zero barycentric weight. Supports make
+// the question "which S2 elements contain this image?" exact and cheap, and they let an image be
+// re-expressed on any of those elements without rounding.
+
+#include <plmap/core/element_transfer.hpp>
+#include <plmap/core/errors.hpp>
+#include <plmap/core/map_builder.hpp>
+#include <plmap/core/predicates.hpp>
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <fmt/format.h>
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace plmap {
+
+namespace {
+
+enum class PlaceKind : std::uint8_t { vertex, edge, element };
+
+/// A point of S1: a vertex, a point on an edge (d = 2; parameter from the smaller-index vertex),
+/// or a point inside an element.
+template <int d>
+struct Place {
+  PlaceKind kind = PlaceKind::vertex;
+  Index index = invalid_index;
+  double t = 0.0;                            // kind == edge
+  LocalPoint<d> local = LocalPoint<d>::Zero();  // kind == element
+};
+
+/// Image of a node on S2 as the S2 vertices carrying its barycentric weight.
+template <int d>
+struct Support {
+  int count = 0;
+  std::array<Index, d + 1> vertex{};
+  std::array<double, d + 1> weight{};
+  Index element = invalid_index;  // an S2 element containing the image (for the stored form)
+};
+
+enum class BuilderNodeKind : std::uint8_t { vertex_preimage, ghost, intersection };
+
+template <int d>
+struct BuilderNode {
+  Place<d> place;
+  BuilderNodeKind kind;
+  Index target;  // S2 vertex / S2 edge / invalid
+  Support<d> image;
+};
+
+/// A straight piece of an S2 edge's preimage between two nodes: inside element `where`, or (d = 2)
+/// along S1 edge `where`.
+struct Segment {
+  Index a, b;
+  Index target_edge;
+  bool along_edge;
+  Index where;
+};
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<int, Kernel>;
+using FaceBaseInfo = CGAL::Triangulation_face_base_with_info_2<int, Kernel>;
+using FaceBase = CGAL::Constrained_triangulation_face_base_2<Kernel, FaceBaseInfo>;
+using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
+// Constraints may pass through vertices (we detect and reject that ourselves) but never need a
+// constructed intersection point: crossing graph edges raise an exception.
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
+    Kernel, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
+
+/// Per S1 element, the outcome of the triangulation step, kept between the two passes of
+/// finalize() (the second pass needs the map's orientation, which the first pass votes on).
+struct ElementTriangulation {
+  std::vector<Index> slots;  // builder node of each slot (node order of the element)
+  std::vector<std::array<int, 3>> triangles;  // slots, ccw; -1 never appears (virtual faces dropped)
+  std::vector<std::array<int, 3>> triangle_neighbors;  // triangle index across side i, or -1
+  std::vector<int> triangle_component;
+  struct Component {
+    Index target = invalid_index;
+    int sign = 0;
+  };
+  std::vector<Component> components;
+  // neighbour lists per slot in ccw order, with a flag telling whether the edge is a graph edge;
+  // closure edges are filtered after regions are known.
+  std::vector<std::vector<std::pair<int, bool>>> slot_neighbors;
+  std::array<std::vector<int>, 3> edge_slots;  // along local edges, corners included
+  int centroid_triangle = -1;
+};
+
+}  // namespace
+
+template <int d>
+  requires SurfaceDimension<d>
+struct MapBuilder<d>::Impl {
+  std::shared_ptr<const Surface<d>> s1, s2;
+  BuilderOptions options;
+  std::vector<BuilderNode<d>> nodes;
+  std::vector<Index> preimage_of_target_vertex;  // per S2 vertex
+  std::vector<Index> node_at_domain_vertex;      // per S1 vertex
+  std::vector<Segment> segments;
+  std::vector<char> edge_inserted;  // per S2 edge (d = 2) or S2 element (d = 1)
+
+  Impl(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
+       BuilderOptions opt)
+      : s1(std::move(domain)), s2(std::move(target)), options(opt) {
+    if (!s1 || !s2) throw BuilderError("MapBuilder needs two surfaces");
+    if (!(options.snap_tolerance >= 0.0 && options.snap_tolerance < 0.1))
+      throw BuilderError(fmt::format("snap_tolerance {} is outside [0, 0.1)", options.snap_tolerance));
+    if (options.orientation < -1 || options.orientation > 1)
+      throw BuilderError("orientation must be -1, 0 (automatic) or +1");
+    preimage_of_target_vertex.assign(s2->vertex_count(), invalid_index);
+    node_at_domain_vertex.assign(s1->vertex_count(), invalid_index);
+    edge_inserted.assign(s2->edge_count(), 0);
+  }
+
+  double tol() const { return options.snap_tolerance; }
+
+  // ---- argument checks ----------------------------------------------------------------------
+  void check_s1_element(Index t) const {
+    if (t < 0 || t >= s1->element_count())
+      throw BuilderError(fmt::format("S1 element {} does not exist (S1 has {} elements)", t,
+                                     s1->element_count()));
+  }
+  void check_s2_element(Index t) const {
+    if (t < 0 || t >= s2->element_count())
+      throw BuilderError(fmt::format("S2 element {} does not exist (S2 has {} elements)", t,
+                                     s2->element_count()));
+  }
+  void check_s1_vertex(Index v) const {
+    if (v < 0 || v >= s1->vertex_count())
+      throw BuilderError(fmt::format("S1 vertex {} does not exist (S1 has {} vertices)", v,
+                                     s1->vertex_count()));
+  }
+  void check_s2_vertex(Index v) const {
+    if (v < 0 || v >= s2->vertex_count())
+      throw BuilderError(fmt::format("S2 vertex {} does not exist (S2 has {} vertices)", v,
+                                     s2->vertex_count()));
+  }
+  void check_s2_edge(Index e) const {
+    if (e < 0 || e >= s2->edge_count())
+      throw BuilderError(fmt::format("S2 edge {} does not exist (S2 has {} edges)", e, s2->edge_count()));
+  }
+
+  /// Barycentric coordinates of a local point, validated and with the snapping rule applied:
+  /// weights within the tolerance of 0 become 0 (and the rest is renormalised).
+  Barycentric<d> snapped_barycentric(const LocalPoint<d>& xi, const char* what, Index element) const {
+    if (!xi.allFinite())
+      throw BuilderError(fmt::format("{} on element {}: local coordinates are not finite", what, element));
+    Barycentric<d> b = barycentric_from_local<d>(xi);
+    for (int k = 0; k <= d; ++k) {
+      if (b(k) < -tol())
+        throw BuilderError(fmt::format("{}: local coordinates ({}) lie outside element {}", what,
+                                       fmt::join(xi.data(), xi.data() + d, ", "), element));
+      if (b(k) <= tol()) b(k) = 0.0;
+    }
+    b /= b.sum();
+    return b;
+  }
+
+  /// Place on S1 of a point given on an element, after snapping.
+  Place<d> place_of(const SurfacePoint<d>& p, const char* what) const {
+    check_s1_element(p.element);
+    const Barycentric<d> b = snapped_barycentric(p.local, what, p.element);
+    int nonzero = 0;
+    std::array<int, d + 1> which{};
+    for (int k = 0; k <= d; ++k)
+      if (b(k) > 0.0) which[nonzero++] = k;
+    const auto& corners = s1->element(p.element);
+    Place<d> place;
+    if (nonzero == 1) {
+      place.kind = PlaceKind::vertex;
+      place.index = corners[which[0]];
+    } else if (d == 2 && nonzero == 2) {
+      if constexpr (d == 2) {
+        const Index u = corners[which[0]], v = corners[which[1]];
+        place.kind = PlaceKind::edge;
+        place.index = s1->find_edge(u, v);
+        // parameter from the smaller-index vertex
+        place.t = u < v ? b(which[1]) : b(which[0]);
+      }
+    } else {
+      place.kind = PlaceKind::element;
+      place.index = p.element;
+      place.local = local_from_barycentric<d>(b);
+    }
+    return place;
+  }
+
+  /// Image support of a point given on S2, after snapping.
+  Support<d> support_of(const SurfacePoint<d>& p, const char* what) const {
+    check_s2_element(p.element);
+    if (!p.local.allFinite())
+      throw BuilderError(fmt::format("{}: image coordinates on S2 element {} are not finite", what, p.element));
+    Barycentric<d> b = barycentric_from_local<d>(p.local);
+    for (int k = 0; k <= d; ++k) {
+      if (b(k) < -tol())
+        throw BuilderError(fmt::format("{}: image coordinates lie outside S2 element {}", what, p.element));
+      if (b(k) <= tol()) b(k) = 0.0;
+    }
+    b /= b.sum();
+    Support<d> s;
+    s.element = p.element;
+    for (int k = 0; k <= d; ++k)
+      if (b(k) > 0.0) {
+        s.vertex[s.count] = s2->element(p.element)[k];
+        s.weight[s.count] = b(k);
+        ++s.count;
+      }
+    return s;
+  }
+
+  Support<d> vertex_support(Index v) const {
+    Support<d> s;
+    s.count = 1;
+    s.vertex[0] = v;
+    s.weight[0] = 1.0;
+    const auto star = s2->vertex_elements(v);
+    if (star.empty()) throw BuilderError(fmt::format("S2 vertex {} belongs to no element", v));
+    s.element = star.front();
+    return s;
+  }
+
+  /// Support of the point at parameter tau along the S2 edge (d = 2: edge index, tau from its
+  /// smaller vertex) or S2 segment (d = 1: element index, tau = local coordinate).
+  Support<d> edge_support(Index e, double tau) const {
+    Index u, v, element;
+    if constexpr (d == 2) {
+      const auto ev = s2->edge_vertices(e);
+      u = ev[0];
+      v = ev[1];
+      element = s2->edge_elements(e).front().element;
+    } else {
+      u = s2->element(e)[0];
+      v = s2->element(e)[1];
+      element = e;
+    }
+    Support<d> s;
+    s.element = element;
+    s.count = 2;
+    s.vertex[0] = u;
+    s.weight[0] = 1.0 - tau;
+    s.vertex[1] = v;
+    s.weight[1] = tau;
+    return s;
+  }
+
+  // ---- node entry -----------------------------------------------------------------------------
+  Index new_node(const Place<d>& place, BuilderNodeKind kind, Index target, const Support<d>& image) {
+    const auto id = static_cast<Index>(nodes.size());
+    nodes.push_back({place, kind, target, image});
+    if (place.kind == PlaceKind::vertex) node_at_domain_vertex[place.index] = id;
+    if (kind == BuilderNodeKind::vertex_preimage) preimage_of_target_vertex[target] = id;
+    return id;
+  }
+
+  Index add_vertex_preimage(Index target_vertex, const Place<d>& place) {
+    check_s2_vertex(target_vertex);
+    if (preimage_of_target_vertex[target_vertex] != invalid_index)
+      throw BuilderError(fmt::format("S2 vertex {} already has a preimage (node {})", target_vertex,
+                                     preimage_of_target_vertex[target_vertex]));
+    if (place.kind == PlaceKind::vertex && node_at_domain_vertex[place.index] != invalid_index)
+      throw BuilderError(fmt::format(
+          "S1 vertex {} already carries a node; cannot also be the preimage of S2 vertex {}",
+          place.index, target_vertex));
+    return new_node(place, BuilderNodeKind::vertex_preimage, target_vertex,
+                    vertex_support(target_vertex));
+  }
+
+  Index add_ghost_node(Index domain_vertex, const Support<d>& image) {
+    check_s1_vertex(domain_vertex);
+    if (image.count == 1) {
+      // The image is an S2 vertex: this is a corner node, not a ghost.
+      const Index tv = image.vertex[0];
+      const Index existing = preimage_of_target_vertex[tv];
+      if (existing != invalid_index) {
+        const auto& n = nodes[existing];
+        if (n.place.kind == PlaceKind::vertex && n.place.index == domain_vertex) return existing;
+        throw BuilderError(fmt::format(
+            "ghost node at S1 vertex {} maps onto S2 vertex {}, which already has a preimage",
+            domain_vertex, tv));
+      }
+      Place<d> place;
+      place.kind = PlaceKind::vertex;
+      place.index = domain_vertex;
+      return add_vertex_preimage(tv, place);
+    }
+    if (node_at_domain_vertex[domain_vertex] != invalid_index)
+      throw BuilderError(fmt::format("S1 vertex {} already carries a node", domain_vertex));
+    Place<d> place;
+    place.kind = PlaceKind::vertex;
+    place.index = domain_vertex;
+    return new_node(place, BuilderNodeKind::ghost, invalid_index, image);
+  }
+
+  // ---- geometry of places ----------------------------------------------------------------------
+  WorldPoint<d> world_of(const Place<d>& p) const {
+    switch (p.kind) {
+      case PlaceKind::vertex: return s1->vertex(p.index);
+      case PlaceKind::edge:
+        if constexpr (d == 2) {
+          const auto ev = s1->edge_vertices(p.index);
+          return (1.0 - p.t) * s1->vertex(ev[0]) + p.t * s1->vertex(ev[1]);
+        }
+        break;
+      case PlaceKind::element: return s1->world_position(p.index, p.local);
+    }
+    return WorldPoint<d>::Zero();
+  }
+
+  static bool same_place(const Place<d>& a, const Place<d>& b) {
+    return a.kind == b.kind && a.index == b.index && a.t == b.t && a.local == b.local;
+  }
+
+  /// S1 elements containing a place (sorted).
+  std::vector<Index> elements_of(const Place<d>& p) const {
+    switch (p.kind) {
+      case PlaceKind::vertex: {
+        auto s = s1->vertex_elements(p.index);
+        return {s.begin(), s.end()};
+      }
+      case PlaceKind::edge: {
+        std::vector<Index> out;
+        if constexpr (d == 2)
+          for (const auto& inc : s1->edge_elements(p.index)) out.push_back(inc.element);
+        return out;
+      }
+      case PlaceKind::element: return {p.index};
+    }
+    return {};
+  }
+
+  /// Where the straight segment between two places lies: along an S1 edge, or in one element.
+  Segment locate_segment(Index a, Index b, Index target_edge) const {
+    const Place<d>& pa = nodes[a].place;
+    const Place<d>& pb = nodes[b].place;
+    if constexpr (d == 2) {
+      // along an S1 edge?
+      auto edge_through = [&](const Place<d>& p, const Place<d>& q) -> Index {
+        if (p.kind == PlaceKind::edge && q.kind == PlaceKind::edge)
+          return p.index == q.index ? p.index : invalid_index;
+        if (p.kind == PlaceKind::vertex && q.kind == PlaceKind::vertex) return s1->find_edge(p.index, q.index);
+        if (p.kind == PlaceKind::vertex && q.kind == PlaceKind::edge) {
+          const auto ev = s1->edge_vertices(q.index);
+          return (ev[0] == p.index || ev[1] == p.index) ? q.index : invalid_index;
+        }
+        return invalid_index;
+      };
+      Index along = edge_through(pa, pb);
+      if (along == invalid_index) along = edge_through(pb, pa);
+      if (along != invalid_index) return {a, b, target_edge, true, along};
+    }
+    const auto ea = elements_of(pa), eb = elements_of(pb);
+    std::vector<Index> common;
+    std::set_intersection(ea.begin(), ea.end(), eb.begin(), eb.end(), std::back_inserter(common));
+    if (common.empty())
+      throw BuilderError(fmt::format(
+          "the preimage of S2 {} {} jumps between points that share no S1 element "
+          "(missing or misordered crossings?)",
+          d == 2 ? "edge" : "segment", target_edge));
+    if (common.size() > 1)
+      throw BuilderError(fmt::format(
+          "the preimage of S2 {} {} has a piece whose S1 element is ambiguous (elements {} and {})",
+          d == 2 ? "edge" : "segment", target_edge, common[0], common[1]));
+    return {a, b, target_edge, false, common.front()};
+  }
+
+  // ---- edge entry -----------------------------------------------------------------------------
+  struct CrossingPlace {
+    Place<d> place;
+    double target_parameter;
+  };
+
+  void insert_edge_preimage(Index target_edge, Index u, Index v, std::vector<CrossingPlace> crossings) {
+    if (edge_inserted[target_edge])
+      throw BuilderError(fmt::format("the preimage of S2 {} {} was already inserted",
+                                     d == 2 ? "edge" : "segment", target_edge));
+    const Index a = preimage_of_target_vertex[u], b = preimage_of_target_vertex[v];
+    if (a == invalid_index || b == invalid_index)
+      throw BuilderError(fmt::format("cannot insert S2 {} {}: S2 vertex {} has no preimage yet",
+                                     d == 2 ? "edge" : "segment", target_edge, a == invalid_index ? u : v));
+    // Drop repeated consecutive places (a crossing through a vertex given as two edge ends).
+    std::vector<CrossingPlace> cs;
+    for (auto& c : crossings) {
+      if (!cs.empty() && same_place(cs.back().place, c.place)) continue;
+      cs.push_back(c);
+    }
+    // Arc-length parameters for crossings without a given image position.
+    std::vector<WorldPoint<d>> pts;
+    pts.push_back(world_of(nodes[a].place));
+    for (const auto& c : cs) pts.push_back(world_of(c.place));
+    pts.push_back(world_of(nodes[b].place));
+    std::vector<double> arc(pts.size(), 0.0);
+    for (std::size_t i = 1; i < pts.size(); ++i) arc[i] = arc[i - 1] + (pts[i] - pts[i - 1]).norm();
+    if (!cs.empty() && !(arc.back() > 0.0))
+      throw BuilderError(fmt::format("the preimage of S2 {} {} has zero length",
+                                     d == 2 ? "edge" : "segment", target_edge));
+
+    std::vector<Index> chain{a};
+    for (std::size_t i = 0; i < cs.size(); ++i) {
+      double tau = cs[i].target_parameter;
+      if (std::isnan(tau)) tau = arc[i + 1] / arc.back();
+      if (!(tau > 0.0 && tau < 1.0))
+        throw BuilderError(fmt::format(
+            "crossing {} of S2 {} {}: image parameter {} is not strictly between its end vertices", i,
+            d == 2 ? "edge" : "segment", target_edge, tau));
+      const Place<d>& p = cs[i].place;
+      Index node;
+      if (p.kind == PlaceKind::vertex) {
+        node = node_at_domain_vertex[p.index];
+        if (node == invalid_index) {
+          node = new_node(p, BuilderNodeKind::ghost, invalid_index, edge_support(target_edge, tau));
+        } else if (nodes[node].kind != BuilderNodeKind::ghost) {
+          throw BuilderError(fmt::format(
+              "the preimage of S2 {} {} passes through S1 vertex {}, which is the preimage of S2 "
+              "vertex {}",
+              d == 2 ? "edge" : "segment", target_edge, p.index, nodes[node].target));
+        }
+      } else {
+        node = new_node(p, BuilderNodeKind::intersection, target_edge, edge_support(target_edge, tau));
+      }
+      chain.push_back(node);
+    }
+    chain.push_back(b);
+    for (std::size_t i = 0; i + 1 < chain.size(); ++i)
+      segments.push_back(locate_segment(chain[i], chain[i + 1], target_edge));
+    edge_inserted[target_edge] = 1;
+  }
+};
+
+// ==== public interface ============================================================================
+
+template <int d>
+  requires SurfaceDimension<d>
+MapBuilder<d>::MapBuilder(std::shared_ptr<const Surface<d>> domain,
+                          std::shared_ptr<const Surface<d>> target, BuilderOptions options)
+    : impl_(std::make_unique<Impl>(std::move(domain), std::move(target), options)) {}
+
+template <int d>
+  requires SurfaceDimension<d>
+MapBuilder<d>::~MapBuilder() = default;
+template <int d>
+  requires SurfaceDimension<d>
+MapBuilder<d>::MapBuilder(MapBuilder&&) noexcept = default;
+template <int d>
+  requires SurfaceDimension<d>
+MapBuilder<d>& MapBuilder<d>::operator=(MapBuilder&&) noexcept = default;
+
+template <int d>
+  requires SurfaceDimension<d>
+const Surface<d>& MapBuilder<d>::domain() const {
+  return *impl_->s1;
+}
+template <int d>
+  requires SurfaceDimension<d>
+const Surface<d>& MapBuilder<d>::target() const {
+  return *impl_->s2;
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+typename MapBuilder<d>::NodeHandle MapBuilder<d>::add_vertex_preimage(Index target_vertex,
+                                                                    const SurfacePoint<d>& at) {
+  return impl_->add_vertex_preimage(target_vertex, impl_->place_of(at, "vertex preimage"));
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+typename MapBuilder<d>::NodeHandle MapBuilder<d>::add_vertex_preimage_at_vertex(Index target_vertex,
+                                                                              Index domain_vertex) {
+  impl_->check_s1_vertex(domain_vertex);
+  Place<d> p;
+  p.kind = PlaceKind::vertex;
+  p.index = domain_vertex;
+  return impl_->add_vertex_preimage(target_vertex, p);
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+typename MapBuilder<d>::NodeHandle MapBuilder<d>::add_vertex_preimage_on_edge(Index target_vertex,
+                                                                            Index domain_edge, double t)
+  requires(d == 2)
+{
+  if (domain_edge < 0 || domain_edge >= impl_->s1->edge_count())
+    throw BuilderError(fmt::format("S1 edge {} does not exist", domain_edge));
+  if (!(t >= -impl_->tol() && t <= 1.0 + impl_->tol()))
+    throw BuilderError(fmt::format("parameter {} on S1 edge {} is outside [0, 1]", t, domain_edge));
+  Place<d> p;
+  const auto ev = impl_->s1->edge_vertices(domain_edge);
+  if (t <= impl_->tol()) {
+    p.kind = PlaceKind::vertex;
+    p.index = ev[0];
+  } else if (t >= 1.0 - impl_->tol()) {
+    p.kind = PlaceKind::vertex;
+    p.index = ev[1];
+  } else {
+    p.kind = PlaceKind::edge;
+    p.index = domain_edge;
+    p.t = t;
+  }
+  return impl_->add_vertex_preimage(target_vertex, p);
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+typename MapBuilder<d>::NodeHandle MapBuilder<d>::add_ghost_node(Index domain_vertex,
+                                                               const SurfacePoint<d>& image) {
+  return impl_->add_ghost_node(domain_vertex, impl_->support_of(image, "ghost node image"));
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void MapBuilder<d>::add_edge(Index target_edge)
+  requires(d == 2)
+{
+  add_edge(target_edge, std::span<const EdgeCrossing>{});
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void MapBuilder<d>::add_edge(Index target_edge, std::span<const EdgeCrossing> crossings)
+  requires(d == 2)
+{
+  auto& im = *impl_;
+  im.check_s2_edge(target_edge);
+  std::vector<typename Impl::CrossingPlace> places;
+  places.reserve(crossings.size());
+  for (std::size_t i = 0; i < crossings.size(); ++i) {
+    const auto& c = crossings[i];
+    if (c.domain_edge < 0 || c.domain_edge >= im.s1->edge_count())
+      throw BuilderError(fmt::format("crossing {} of S2 edge {}: S1 edge {} does not exist", i,
+                                     target_edge, c.domain_edge));
+    if (!(c.domain_parameter >= -im.tol() && c.domain_parameter <= 1.0 + im.tol()))
+      throw BuilderError(fmt::format("crossing {} of S2 edge {}: parameter {} is outside [0, 1]", i,
+                                     target_edge, c.domain_parameter));
+    Place<d> p;
+    const auto ev = im.s1->edge_vertices(c.domain_edge);
+    if (c.domain_parameter <= im.tol()) {
+      p.kind = PlaceKind::vertex;
+      p.index = ev[0];
+    } else if (c.domain_parameter >= 1.0 - im.tol()) {
+      p.kind = PlaceKind::vertex;
+      p.index = ev[1];
+    } else {
+      p.kind = PlaceKind::edge;
+      p.index = c.domain_edge;
+      p.t = c.domain_parameter;
+    }
+    places.push_back({p, c.target_parameter});
+  }
+  const auto ev = im.s2->edge_vertices(target_edge);
+  im.insert_edge_preimage(target_edge, ev[0], ev[1], std::move(places));
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void MapBuilder<d>::add_edge(Index target_element, std::span<const VertexCrossing> crossings)
+  requires(d == 1)
+{
+  auto& im = *impl_;
+  im.check_s2_element(target_element);
+  std::vector<typename Impl::CrossingPlace> places;
+  for (std::size_t i = 0; i < crossings.size(); ++i) {
+    im.check_s1_vertex(crossings[i].domain_vertex);
+    Place<d> p;
+    p.kind = PlaceKind::vertex;
+    p.index = crossings[i].domain_vertex;
+    places.push_back({p, crossings[i].target_parameter});
+  }
+  const auto& c = im.s2->element(target_element);
+  im.insert_edge_preimage(target_element, c[0], c[1], std::move(places));
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void MapBuilder<d>::add_target_element(Index target_element) {
+  impl_->check_s2_element(target_element);
+  if constexpr (d == 2) {
+    for (int k = 0; k < 3; ++k) {
+      const Index e = impl_->s2->element_edge(target_element, k);
+      if (!impl_->edge_inserted[e]) add_edge(e);
+    }
+  } else {
+    if (!impl_->edge_inserted[target_element]) add_edge(target_element);
+  }
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+std::optional<typename MapBuilder<d>::NodeHandle> MapBuilder<d>::vertex_preimage(Index target_vertex) const {
+  impl_->check_s2_vertex(target_vertex);
+  const Index n = impl_->preimage_of_target_vertex[target_vertex];
+  if (n == invalid_index) return std::nullopt;
+  return n;
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+bool MapBuilder<d>::has_edge(Index target_edge) const {
+  if (target_edge < 0 || target_edge >= static_cast<Index>(impl_->edge_inserted.size()))
+    throw BuilderError(fmt::format("S2 edge {} does not exist", target_edge));
+  return impl_->edge_inserted[target_edge] != 0;
+}
+
+// ==== finalize ====================================================================================
+
+namespace {
+
+/// S2 elements that contain every support vertex of `s`.
+template <int d>
+std::vector<Index> candidate_elements(const Surface<d>& s2, const Support<d>& s) {
+  std::vector<Index> out;
+  for (Index t : s2.vertex_elements(s.vertex[0])) {
+    bool all = true;
+    for (int i = 1; i < s.count; ++i) all = all && s2.local_corner(t, s.vertex[i]) >= 0;
+    if (all) out.push_back(t);
+  }
+  return out;
+}
+
+template <int d>
+bool support_in_element(const Surface<d>& s2, const Support<d>& s, Index t) {
+  for (int i = 0; i < s.count; ++i)
+    if (s2.local_corner(t, s.vertex[i]) < 0) return false;
+  return true;
+}
+
+/// Local coordinates of a support on an S2 element that contains it (exact transfer).
+template <int d>
+LocalPoint<d> support_local(const Surface<d>& s2, const Support<d>& s, Index t) {
+  Barycentric<d> b = Barycentric<d>::Zero();
+  for (int i = 0; i < s.count; ++i) b(s2.local_corner(t, s.vertex[i])) = s.weight[i];
+  return local_from_barycentric<d>(b);
+}
+
+template <int d>
+AffineMap<d> affine_through(const std::array<LocalPoint<d>, d + 1>& from,
+                            const std::array<LocalPoint<d>, d + 1>& to) {
+  Eigen::Matrix<double, d + 1, d + 1> x;
+  Eigen::Matrix<double, d, d + 1> y;
+  for (int i = 0; i <= d; ++i) {
+    x.col(i).template head<d>() = from[i];
+    x(d, i) = 1.0;
+    y.col(i) = to[i];
+  }
+  return y * x.inverse();
+}
+
+}  // namespace
+
+template <int d>
+  requires SurfaceDimension<d>
+PlMap<d> MapBuilder<d>::finalize() && {
+  auto impl = std::move(impl_);
+  auto& im = *impl;
+  const Surface<d>& s1 = *im.s1;
+  const Surface<d>& s2 = *im.s2;
+  const Index n1 = s1.element_count();
+
+  // Bucket nodes and segments by where they live.
+  std::vector<std::vector<Index>> interior_nodes(n1);
+  std::vector<std::vector<Index>> edge_nodes(d == 2 ? s1.edge_count() : 0);
+  for (Index n = 0; n < static_cast<Index>(im.nodes.size()); ++n) {
+    const auto& p = im.nodes[n].place;
+    if (p.kind == PlaceKind::element) interior_nodes[p.index].push_back(n);
+    if (p.kind == PlaceKind::edge) edge_nodes[p.index].push_back(n);
+  }
+  for (auto& list : edge_nodes) {
+    std::sort(list.begin(), list.end(),
+              [&](Index a, Index b) { return im.nodes[a].place.t < im.nodes[b].place.t; });
+    for (std::size_t i = 1; i < list.size(); ++i)
+      if (im.nodes[list[i]].place.t == im.nodes[list[i - 1]].place.t)
+        throw BuilderError(fmt::format("two nodes at the same point of S1 edge {}",
+                                       im.nodes[list[i]].place.index));
+  }
+  std::vector<std::vector<Index>> element_segments(n1);
+  std::vector<std::vector<Index>> edge_segments(d == 2 ? s1.edge_count() : 0);
+  for (Index s = 0; s < static_cast<Index>(im.segments.size()); ++s) {
+    const auto& seg = im.segments[s];
+    if (seg.along_edge)
+      edge_segments[seg.where].push_back(s);
+    else
+      element_segments[seg.where].push_back(s);
+  }
+
+  MapData<d> m;
+  m.node_begin.assign(n1 + 1, 0);
+  m.region_begin.assign(n1 + 1, 0);
+  m.start_region.assign(n1, invalid_index);
+  m.neighbor_begin.push_back(0);
+
+  if constexpr (d == 1) {
+    // ---- polylines: nodes sorted along each segment; regions between nodes joined by an edge --
+    struct Slot {
+      Index node;
+      double s;
+    };
+    std::vector<Slot> slots;
+    int votes = 0;
+    struct PendingRegion {
+      Index a, b, target;
+    };
+    std::vector<std::vector<PendingRegion>> element_regions(n1);
+    std::vector<std::vector<Slot>> element_slots(n1);
+    for (Index t = 0; t < n1; ++t) {
+      slots.clear();
+      const auto& c = s1.element(t);
+      if (Index n = im.node_at_domain_vertex[c[0]]; n != invalid_index) slots.push_back({n, 0.0});
+      for (Index n : interior_nodes[t]) slots.push_back({n, im.nodes[n].place.local(0)});
+      if (Index n = im.node_at_domain_vertex[c[1]]; n != invalid_index) slots.push_back({n, 1.0});
+      std::sort(slots.begin(), slots.end(), [](const Slot& x, const Slot& y) { return x.s < y.s; });
+      for (std::size_t i = 1; i < slots.size(); ++i)
+        if (slots[i].s == slots[i - 1].s)
+          throw BuilderError(fmt::format("two nodes at the same point of S1 element {}", t));
+      auto slot_of = [&](Index node) {
+        for (std::size_t i = 0; i < slots.size(); ++i)
+          if (slots[i].node == node) return static_cast<int>(i);
+        return -1;
+      };
+      for (Index sidx : element_segments[t]) {
+        const auto& seg = im.segments[sidx];
+        int i = slot_of(seg.a), j = slot_of(seg.b);
+        if (i > j) std::swap(i, j);
+        if (i < 0 || j != i + 1)
+          throw BuilderError(fmt::format(
+              "the preimage of S2 segment {} passes over another node on S1 element {}",
+              seg.target_edge, t));
+        const auto& na = im.nodes[slots[i].node].image;
+        const auto& nb = im.nodes[slots[j].node].image;
+        const double ya = support_local<1>(s2, na, seg.target_edge)(0);
+        const double yb = support_local<1>(s2, nb, seg.target_edge)(0);
+        votes += yb > ya ? 1 : -1;
+        element_regions[t].push_back({i, j, seg.target_edge});
+      }
+      element_slots[t] = slots;
+    }
+    m.orientation = im.options.orientation != 0 ? im.options.orientation : (votes >= 0 ? 1 : -1);
+    for (Index t = 0; t < n1; ++t) {
+      const auto& sl = element_slots[t];
+      auto& regs = element_regions[t];
+      std::sort(regs.begin(), regs.end(), [](const auto& x, const auto& y) { return x.a < y.a; });
+      const Index base = static_cast<Index>(m.node_type.size());
+      std::vector<char> left(sl.size(), 0), right(sl.size(), 0);
+      for (const auto& r : regs) {
+        right[r.a] = 1;
+        left[r.b] = 1;
+      }
+      for (std::size_t i = 0; i < sl.size(); ++i) {
+        const auto& bn = im.nodes[sl[i].node];
+        LocalPoint<1> pos;
+        pos(0) = sl[i].s;
+        m.node_position.push_back(pos);
+        const bool at_corner = bn.place.kind == PlaceKind::vertex;
+        m.node_type.push_back(bn.kind == BuilderNodeKind::ghost ? NodeType::ghost
+                              : at_corner                       ? NodeType::corner
+                                                                : NodeType::interior);
+        m.node_location.push_back(at_corner ? static_cast<std::int8_t>(sl[i].s == 0.0 ? 0 : 1) : -1);
+        m.node_image.push_back({bn.image.element, support_local<1>(s2, bn.image, bn.image.element)});
+        m.node_target.push_back(bn.kind == BuilderNodeKind::vertex_preimage ? bn.target : invalid_index);
+        if (left[i]) {
+          m.neighbor.push_back(base + static_cast<Index>(i) - 1);
+          m.neighbor_edge_kind.push_back(GraphEdgeKind::target_edge);
+        }
+        if (right[i]) {
+          m.neighbor.push_back(base + static_cast<Index>(i) + 1);
+          m.neighbor_edge_kind.push_back(GraphEdgeKind::target_edge);
+        }
+        m.neighbor_begin.push_back(static_cast<Index>(m.neighbor.size()));
+      }
+      m.node_begin[t + 1] = static_cast<Index>(m.node_type.size());
+      const Index rbase = static_cast<Index>(m.region_target.size());
+      for (std::size_t k = 0; k < regs.size(); ++k) {
+        const auto& r = regs[k];
+        const Index r_id = rbase + static_cast<Index>(k);
+        m.region_corners.push_back({base + r.a, base + r.b});
+        // neighbour opposite corner 0 lies beyond corner 1 (the next region), and vice versa
+        const Index next = (k + 1 < regs.size() && regs[k + 1].a == r.b) ? r_id + 1 : invalid_index;
+        const Index prev = (k > 0 && regs[k - 1].b == r.a) ? r_id - 1 : invalid_index;
+        m.region_neighbors.push_back({next, prev});
+        m.region_target.push_back(r.target);
+        std::array<LocalPoint<1>, 2> from, to;
+        from[0](0) = sl[r.a].s;
+        from[1](0) = sl[r.b].s;
+        to[0] = support_local<1>(s2, im.nodes[sl[r.a].node].image, r.target);
+        to[1] = support_local<1>(s2, im.nodes[sl[r.b].node].image, r.target);
+        m.region_map.push_back(affine_through<1>(from, to));
+        if (m.start_region[t] == invalid_index || (sl[r.a].s <= 0.5 && sl[r.b].s >= 0.5))
+          m.start_region[t] = r_id;
+      }
+      m.region_begin[t + 1] = static_cast<Index>(m.region_target.size());
+    }
+  } else {
+    // ---- triangle surfaces: a constrained triangulation per S1 element ------------------------
+    std::vector<ElementTriangulation> tri(n1);
+    long long votes = 0;
+    const std::array<LocalPoint<2>, 3> ref = {reference_corner<2>(0), reference_corner<2>(1),
+                                              reference_corner<2>(2)};
+    auto node_local = [&](Index node, Index t) -> LocalPoint<2> {
+      const auto& p = im.nodes[node].place;
+      if (p.kind == PlaceKind::vertex) return ref[s1.local_corner(t, p.index)];
+      if (p.kind == PlaceKind::element) return p.local;
+      for (int k = 0; k < 3; ++k)
+        if (s1.element_edge(t, k) == p.index) {
+          const double s = s1.local_edge_is_forward(t, k) ? p.t : 1.0 - p.t;
+          return (1.0 - s) * ref[k] + s * ref[(k + 1) % 3];
+        }
+      return LocalPoint<2>::Zero();
+    };
+
+    Cdt cdt;
+    for (Index t = 0; t < n1; ++t) {
+      auto& et = tri[t];
+      // slots: present corners, then edge nodes along edges 0, 1, 2, then interior nodes
+      std::array<int, 3> corner_slot{-1, -1, -1};
+      for (int k = 0; k < 3; ++k) {
+        const Index n = im.node_at_domain_vertex[s1.element(t)[k]];
+        if (n != invalid_index) {
+          corner_slot[k] = static_cast<int>(et.slots.size());
+          et.slots.push_back(n);
+        }
+      }
+      std::array<std::vector<int>, 3> edge_inner;
+      for (int k = 0; k < 3; ++k) {
+        const auto& list = edge_nodes[s1.element_edge(t, k)];
+        const bool fwd = s1.local_edge_is_forward(t, k);
+        for (std::size_t i = 0; i < list.size(); ++i) {
+          const Index n = fwd ? list[i] : list[list.size() - 1 - i];
+          edge_inner[k].push_back(static_cast<int>(et.slots.size()));
+          et.slots.push_back(n);
+        }
+      }
+      for (Index n : interior_nodes[t]) et.slots.push_back(n);
+      const int ns = static_cast<int>(et.slots.size());
+      for (int k = 0; k < 3; ++k) {
+        auto& es = et.edge_slots[k];
+        if (corner_slot[k] >= 0) es.push_back(corner_slot[k]);
+        es.insert(es.end(), edge_inner[k].begin(), edge_inner[k].end());
+        if (corner_slot[(k + 1) % 3] >= 0) es.push_back(corner_slot[(k + 1) % 3]);
+      }
+      if (ns == 0) continue;
+
+      // Triangulate. Missing corners become "virtual" vertices (info < 0): faces touching them
+      // lie outside D.
+      cdt.clear();
+      std::vector<Cdt::Vertex_handle> vh(ns);
+      std::array<Cdt::Vertex_handle, 3> corner_vh;
+      for (int k = 0; k < 3; ++k) {
+        if (corner_slot[k] >= 0) continue;
+        corner_vh[k] = cdt.insert(Kernel::Point_2(ref[k](0), ref[k](1)));
+        corner_vh[k]->info() = -1 - k;
+      }
+      for (int i = 0; i < ns; ++i) {
+        const LocalPoint<2> x = node_local(et.slots[i], t);
+        const auto before = cdt.number_of_vertices();
+        vh[i] = cdt.insert(Kernel::Point_2(x(0), x(1)));
+        if (cdt.number_of_vertices() == before)
+          throw BuilderError(fmt::format("two nodes coincide on S1 element {} at local ({}, {})", t,
+                                         x(0), x(1)));
+        vh[i]->info() = i;
+      }
+      for (int k = 0; k < 3; ++k)
+        if (corner_slot[k] >= 0) corner_vh[k] = vh[corner_slot[k]];
+
+      // constraints: the element boundary between consecutive points, and the graph edges
+      std::vector<std::pair<int, int>> graph_pairs;
+      auto add_graph = [&](Index sidx) {
+        const auto& seg = im.segments[sidx];
+        int a = -1, b = -1;
+        for (int i = 0; i < ns; ++i) {
+          if (et.slots[i] == seg.a) a = i;
+          if (et.slots[i] == seg.b) b = i;
+        }
+        graph_pairs.emplace_back(std::min(a, b), std::max(a, b));
+      };
+      for (Index sidx : element_segments[t]) add_graph(sidx);
+      for (int k = 0; k < 3; ++k)
+        for (Index sidx : edge_segments[s1.element_edge(t, k)]) add_graph(sidx);
+      std::sort(graph_pairs.begin(), graph_pairs.end());
+      graph_pairs.erase(std::unique(graph_pairs.begin(), graph_pairs.end()), graph_pairs.end());
+      try {
+        for (int k = 0; k < 3; ++k) {
+          std::vector<Cdt::Vertex_handle> chain{corner_vh[k]};
+          for (int i : edge_inner[k]) chain.push_back(vh[i]);
+          chain.push_back(corner_vh[(k + 1) % 3]);
+          for (std::size_t i = 0; i + 1 < chain.size(); ++i) cdt.insert_constraint(chain[i], chain[i + 1]);
+        }
+        for (const auto& [a, b] : graph_pairs) cdt.insert_constraint(vh[a], vh[b]);
+      } catch (const Cdt::Intersection_of_constraints_exception&) {
+        throw BuilderError(fmt::format("graph edges cross each other on S1 element {}", t));
+      }
+      for (const auto& [a, b] : graph_pairs)
+        if (!cdt.is_edge(vh[a], vh[b]))
+          throw BuilderError(fmt::format(
+              "a graph edge on S1 element {} passes through another node (or its endpoints coincide)", t));
+
+      // number the finite faces, then flood-fill them into components between constraints
+      int nf = 0;
+      for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) f->info() = nf++;
+      std::vector<int> component(nf, -1);
+      std::vector<Cdt::Face_handle> face_of(nf);
+      for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) face_of[f->info()] = f;
+      int ncomp = 0;
+      std::vector<int> stack;
+      for (int f0 = 0; f0 < nf; ++f0) {
+        if (component[f0] >= 0) continue;
+        component[f0] = ncomp;
+        stack.push_back(f0);
+        while (!stack.empty()) {
+          const auto f = face_of[stack.back()];
+          stack.pop_back();
+          for (int i = 0; i < 3; ++i) {
+            if (f->is_constrained(i)) continue;
+            const auto g = f->neighbor(i);
+            if (cdt.is_infinite(g) || component[g->info()] >= 0) continue;
+            component[g->info()] = ncomp;
+            stack.push_back(g->info());
+          }
+        }
+        ++ncomp;
+      }
+      // classify components: virtual corner → outside; else common S2 element and image sign
+      std::vector<char> has_virtual(ncomp, 0);
+      std::vector<std::vector<int>> comp_faces(ncomp);
+      for (int f = 0; f < nf; ++f) {
+        comp_faces[component[f]].push_back(f);
+        for (int i = 0; i < 3; ++i)
+          if (face_of[f]->vertex(i)->info() < 0) has_virtual[component[f]] = 1;
+      }
+      et.components.assign(ncomp, {});
+      std::vector<int> comp_nodes;
+      for (int c = 0; c < ncomp; ++c) {
+        if (has_virtual[c]) continue;
+        comp_nodes.clear();
+        for (int f : comp_faces[c])
+          for (int i = 0; i < 3; ++i) comp_nodes.push_back(face_of[f]->vertex(i)->info());
+        std::sort(comp_nodes.begin(), comp_nodes.end());
+        comp_nodes.erase(std::unique(comp_nodes.begin(), comp_nodes.end()), comp_nodes.end());
+        // node with the smallest candidate set first
+        int best = comp_nodes[0];
+        for (int i : comp_nodes)
+          if (im.nodes[et.slots[i]].image.count > im.nodes[et.slots[best]].image.count) best = i;
+        double best_area = 0.0;
+        for (Index cand : candidate_elements<2>(s2, im.nodes[et.slots[best]].image)) {
+          bool all = true;
+          for (int i : comp_nodes) all = all && support_in_element<2>(s2, im.nodes[et.slots[i]].image, cand);
+          if (!all) continue;
+          for (int k = 0; k < 3; ++k) all = all && im.edge_inserted[s2.element_edge(cand, k)];
+          if (!all) continue;
+          double area = 0.0;
+          for (int f : comp_faces[c]) {
+            std::array<LocalPoint<2>, 3> y;
+            for (int i = 0; i < 3; ++i)
+              y[i] = support_local<2>(s2, im.nodes[et.slots[face_of[f]->vertex(i)->info()]].image, cand);
+            area += (y[1] - y[0])(0) * (y[2] - y[0])(1) - (y[1] - y[0])(1) * (y[2] - y[0])(0);
+          }
+          if (std::abs(area) > std::abs(best_area)) {
+            best_area = area;
+            et.components[c].target = cand;
+          }
+        }
+        if (et.components[c].target != invalid_index) {
+          et.components[c].sign = best_area > 0 ? 1 : -1;
+          votes += et.components[c].sign * static_cast<long long>(comp_faces[c].size());
+        }
+      }
+      // keep faces (in CDT face order) with real vertices only
+      std::vector<int> face_to_triangle(nf, -1);
+      for (int f = 0; f < nf; ++f) {
+        if (has_virtual[component[f]]) continue;
+        face_to_triangle[f] = static_cast<int>(et.triangles.size());
+        et.triangles.push_back({face_of[f]->vertex(0)->info(), face_of[f]->vertex(1)->info(),
+                                face_of[f]->vertex(2)->info()});
+        et.triangle_component.push_back(component[f]);
+      }
+      for (int f = 0; f < nf; ++f) {
+        if (face_to_triangle[f] < 0) continue;
+        std::array<int, 3> nb{-1, -1, -1};
+        for (int i = 0; i < 3; ++i) {
+          const auto g = face_of[f]->neighbor(i);
+          if (!cdt.is_infinite(g)) nb[i] = face_to_triangle[g->info()];
+        }
+        et.triangle_neighbors.push_back(nb);
+      }
+      {
+        const auto f = cdt.locate(Kernel::Point_2(1.0 / 3.0, 1.0 / 3.0));
+        if (!cdt.is_infinite(f)) et.centroid_triangle = face_to_triangle[f->info()];
+      }
+      // neighbours in ccw order: circulate the triangulation around each node (combinatorial)
+      et.slot_neighbors.assign(ns, {});
+      for (int i = 0; i < ns; ++i) {
+        auto& out = et.slot_neighbors[i];
+        auto circ = cdt.incident_vertices(vh[i]), done = circ;
+        std::vector<int> ring;
+        int infinite_at = -1;
+        do {
+          if (cdt.is_infinite(circ))
+            infinite_at = static_cast<int>(ring.size());
+          else
+            ring.push_back(circ->info());
+        } while (++circ != done);
+        // Boundary nodes start after the outside; interior nodes at their smallest neighbour.
+        std::size_t start = 0;
+        if (infinite_at >= 0)
+          start = static_cast<std::size_t>(infinite_at) % std::max<std::size_t>(ring.size(), 1);
+        else
+          start = static_cast<std::size_t>(std::min_element(ring.begin(), ring.end()) - ring.begin());
+        for (std::size_t k = 0; k < ring.size(); ++k) {
+          const int j = ring[(start + k) % ring.size()];
+          if (j < 0) continue;  // virtual corner
+          const bool graph = std::binary_search(graph_pairs.begin(), graph_pairs.end(),
+                                                std::make_pair(std::min(i, j), std::max(i, j)));
+          out.emplace_back(j, graph);
+        }
+      }
+    }
+
+    m.orientation = im.options.orientation != 0 ? im.options.orientation : (votes >= 0 ? 1 : -1);
+
+    // ---- assemble the flat arrays ----------------------------------------------------------------
+    m.edge_node_begin.push_back(0);
+    for (Index t = 0; t < n1; ++t) {
+      auto& et = tri[t];
+      const Index base = static_cast<Index>(m.node_type.size());
+      const Index rbase = static_cast<Index>(m.region_target.size());
+      const int ns = static_cast<int>(et.slots.size());
+      // regions: triangles of components with a target element and the map's orientation
+      std::vector<Index> triangle_region(et.triangles.size(), invalid_index);
+      Index nr = 0;
+      for (std::size_t f = 0; f < et.triangles.size(); ++f) {
+        const auto& comp = et.components[et.triangle_component[f]];
+        if (comp.target != invalid_index && comp.sign == m.orientation) triangle_region[f] = rbase + nr++;
+      }
+      // per slot: which neighbours border a region (for closure edges)
+      std::vector<std::vector<int>> region_adjacent(ns);
+      for (std::size_t f = 0; f < et.triangles.size(); ++f) {
+        if (triangle_region[f] == invalid_index) continue;
+        for (int i = 0; i < 3; ++i) {
+          const int a = et.triangles[f][i], b = et.triangles[f][(i + 1) % 3];
+          region_adjacent[a].push_back(b);
+          region_adjacent[b].push_back(a);
+        }
+      }
+      for (int i = 0; i < ns; ++i) {
+        const auto& bn = im.nodes[et.slots[i]];
+        const LocalPoint<2> x = node_local(et.slots[i], t);
+        m.node_position.push_back(x);
+        int location = -1;
+        NodeType type = NodeType::interior;
+        if (bn.place.kind == PlaceKind::vertex) {
+          location = s1.local_corner(t, bn.place.index);
+          type = bn.kind == BuilderNodeKind::ghost ? NodeType::ghost : NodeType::corner;
+        } else if (bn.place.kind == PlaceKind::edge) {
+          for (int k = 0; k < 3; ++k)
+            if (s1.element_edge(t, k) == bn.place.index) location = k;
+          type = bn.kind == BuilderNodeKind::intersection ? NodeType::intersection : NodeType::touching;
+        }
+        m.node_type.push_back(type);
+        m.node_location.push_back(static_cast<std::int8_t>(location));
+        m.node_image.push_back({bn.image.element, support_local<2>(s2, bn.image, bn.image.element)});
+        m.node_target.push_back(bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target);
+        const auto& adj = region_adjacent[i];
+        for (const auto& [j, graph] : et.slot_neighbors[i]) {
+          if (!graph && std::find(adj.begin(), adj.end(), j) == adj.end()) continue;
+          m.neighbor.push_back(base + j);
+          m.neighbor_edge_kind.push_back(graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure);
+        }
+        m.neighbor_begin.push_back(static_cast<Index>(m.neighbor.size()));
+      }
+      m.node_begin[t + 1] = static_cast<Index>(m.node_type.size());
+      for (int k = 0; k < 3; ++k) {
+        for (int s : et.edge_slots[k]) m.edge_node.push_back(base + s);
+        m.edge_node_begin.push_back(static_cast<Index>(m.edge_node.size()));
+      }
+      for (std::size_t f = 0; f < et.triangles.size(); ++f) {
+        if (triangle_region[f] == invalid_index) continue;
+        const Index target = et.components[et.triangle_component[f]].target;
+        std::array<Index, 3> corners, neighbors;
+        std::array<LocalPoint<2>, 3> from, to;
+        for (int i = 0; i < 3; ++i) {
+          const int s = et.triangles[f][i];
+          corners[i] = base + s;
+          const int g = et.triangle_neighbors[f][i];
+          neighbors[i] = g >= 0 ? triangle_region[g] : invalid_index;
+          from[i] = m.node_position[base + s];
+          to[i] = support_local<2>(s2, im.nodes[et.slots[s]].image, target);
+        }
+        m.region_corners.push_back(corners);
+        m.region_neighbors.push_back(neighbors);
+        m.region_target.push_back(target);
+        m.region_map.push_back(affine_through<2>(from, to));
+      }
+      m.region_begin[t + 1] = static_cast<Index>(m.region_target.size());
+      if (m.region_begin[t + 1] > m.region_begin[t]) {
+        const int ct = et.centroid_triangle;
+        m.start_region[t] = (ct >= 0 && triangle_region[ct] != invalid_index) ? triangle_region[ct]
+                                                                              : m.region_begin[t];
+      }
+      et = ElementTriangulation{};  // release memory early
+    }
+  }
+  return PlMap<d>(im.s1, im.s2, std::move(m));
+}
+
+template class MapBuilder<1>;
+template class MapBuilder<2>;
+
+}  // namespace plmap

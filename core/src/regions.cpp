@@ -1,0 +1,76 @@
+#include <plmap/core/regions.hpp>
+
+#include <Eigen/Geometry>
+
+namespace plmap {
+
+namespace {
+
+template <int d>
+double simplex_measure(const std::array<WorldPoint<d>, d + 1>& c) {
+  if constexpr (d == 1)
+    return (c[1] - c[0]).norm();
+  else
+    return 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm();
+}
+
+}  // namespace
+
+template <int d>
+double RemoteIntersection<d>::domain_measure() const {
+  return simplex_measure<d>(domain_world);
+}
+
+template <int d>
+double RemoteIntersection<d>::target_measure() const {
+  return simplex_measure<d>(target_world);
+}
+
+template <int d>
+RemoteIntersection<d> remote_intersection(const PlMap<d>& map, Index region) {
+  const auto& m = map.data();
+  RemoteIntersection<d> ri;
+  ri.region = region;
+  ri.domain_element = map.node_element(m.region_corners[region][0]);
+  ri.target_element = m.region_target[region];
+  for (int i = 0; i <= d; ++i) {
+    const Index n = m.region_corners[region][i];
+    ri.domain_local[i] = m.node_position[n];
+    // The corner's image expressed on the region's common S2 element: through the affine map,
+    // which the builder made exact at the corners.
+    ri.target_local[i] = apply<d>(m.region_map[region], ri.domain_local[i]);
+    ri.domain_world[i] = map.domain().world_position(ri.domain_element, ri.domain_local[i]);
+    ri.target_world[i] = map.target().world_position(ri.target_element, ri.target_local[i]);
+  }
+  return ri;
+}
+
+template <int d>
+std::vector<RemoteIntersection<d>> remote_intersections(const PlMap<d>& map) {
+  std::vector<RemoteIntersection<d>> out;
+  out.reserve(map.region_count());
+  for (Index r = 0; r < map.region_count(); ++r) out.push_back(remote_intersection(map, r));
+  return out;
+}
+
+template <int d>
+CoveredMeasure covered_measure(const PlMap<d>& map) {
+  CoveredMeasure c;
+  for (Index r = 0; r < map.region_count(); ++r) {
+    const auto ri = remote_intersection(map, r);
+    c.domain += ri.domain_measure();
+    c.target += ri.target_measure();
+  }
+  return c;
+}
+
+template struct RemoteIntersection<1>;
+template struct RemoteIntersection<2>;
+template RemoteIntersection<1> remote_intersection(const PlMap<1>&, Index);
+template RemoteIntersection<2> remote_intersection(const PlMap<2>&, Index);
+template std::vector<RemoteIntersection<1>> remote_intersections(const PlMap<1>&);
+template std::vector<RemoteIntersection<2>> remote_intersections(const PlMap<2>&);
+template CoveredMeasure covered_measure(const PlMap<1>&);
+template CoveredMeasure covered_measure(const PlMap<2>&);
+
+}  // namespace plmap

@@ -1,0 +1,253 @@
+#include <plmap/core/errors.hpp>
+#include <plmap/core/surface.hpp>
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace plmap {
+
+namespace {
+
+// An element whose measure is below this fraction of (longest surface edge)^d is degenerate.
+// Relative, so that scaling the surface never changes the verdict.
+constexpr double degenerate_measure_fraction = 1e-14;
+
+template <int d>
+double measure_of(const std::array<WorldPoint<d>, d + 1>& c) {
+  if constexpr (d == 1) {
+    return (c[1] - c[0]).norm();
+  } else {
+    return 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm();
+  }
+}
+
+}  // namespace
+
+template <int d>
+  requires SurfaceDimension<d>
+Surface<d>::Surface(std::vector<WorldPoint<d>> vertices, std::vector<ElementCorners<d>> elements)
+    : vertices_(std::move(vertices)), elements_(std::move(elements)) {
+  validate();
+  build_adjacency();
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void Surface<d>::validate() const {
+  const auto nv = static_cast<Index>(vertices_.size());
+  if (vertices_.size() > static_cast<std::size_t>(std::numeric_limits<Index>::max()) ||
+      elements_.size() > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
+    throw InvalidSurfaceError("surface too large for 32-bit indices");
+  for (Index v = 0; v < nv; ++v) {
+    if (!vertices_[v].allFinite())
+      throw InvalidSurfaceError(fmt::format("vertex {} has a non-finite coordinate", v));
+  }
+  for (std::size_t t = 0; t < elements_.size(); ++t) {
+    const auto& e = elements_[t];
+    for (int k = 0; k <= d; ++k) {
+      if (e[k] < 0 || e[k] >= nv)
+        throw InvalidSurfaceError(fmt::format(
+            "element {} refers to vertex {}, but the surface has {} vertices", t, e[k], nv));
+      for (int j = 0; j < k; ++j)
+        if (e[j] == e[k])
+          throw InvalidSurfaceError(
+              fmt::format("element {} uses vertex {} twice", t, e[k]));
+    }
+  }
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void Surface<d>::build_adjacency() {
+  const auto nv = static_cast<Index>(vertices_.size());
+  const auto nt = static_cast<Index>(elements_.size());
+
+  if (nv > 0) {
+    box_min_ = box_max_ = vertices_[0];
+    for (const auto& p : vertices_) {
+      box_min_ = box_min_.cwiseMin(p);
+      box_max_ = box_max_.cwiseMax(p);
+    }
+  }
+
+  // vertex -> elements (CSR)
+  vertex_element_begin_.assign(nv + 1, 0);
+  for (const auto& e : elements_)
+    for (Index v : e) ++vertex_element_begin_[v + 1];
+  std::partial_sum(vertex_element_begin_.begin(), vertex_element_begin_.end(),
+                   vertex_element_begin_.begin());
+  vertex_element_.resize(vertex_element_begin_.back());
+  {
+    std::vector<Index> fill(vertex_element_begin_.begin(), vertex_element_begin_.end() - 1);
+    for (Index t = 0; t < nt; ++t)
+      for (Index v : elements_[t]) vertex_element_[fill[v]++] = t;
+  }
+
+  max_edge_length_ = 0.0;
+  for (const auto& e : elements_)
+    for (int k = 0; k <= d; ++k)
+      for (int j = k + 1; j <= d; ++j)
+        max_edge_length_ = std::max(max_edge_length_, (vertices_[e[k]] - vertices_[e[j]]).norm());
+
+  const double min_measure = degenerate_measure_fraction * std::pow(max_edge_length_, d);
+  for (Index t = 0; t < nt; ++t) {
+    const double m = element_measure(t);
+    if (!(m > min_measure))
+      throw InvalidSurfaceError(fmt::format(
+          "element {} is degenerate: its {} is {:g} (surface scale {:g})", t,
+          d == 1 ? "length" : "area", m, max_edge_length_));
+  }
+
+  if constexpr (d == 1) {
+    // duplicate segments (either orientation)
+    std::vector<std::pair<std::array<Index, 2>, Index>> keys(nt);
+    for (Index t = 0; t < nt; ++t) {
+      auto k = elements_[t];
+      if (k[0] > k[1]) std::swap(k[0], k[1]);
+      keys[t] = {k, t};
+    }
+    std::sort(keys.begin(), keys.end());
+    for (std::size_t i = 1; i < keys.size(); ++i)
+      if (keys[i].first == keys[i - 1].first)
+        throw InvalidSurfaceError(fmt::format("elements {} and {} join the same two vertices",
+                                              keys[i - 1].second, keys[i].second));
+    boundary_vertex_.assign(nv, false);
+    for (Index v = 0; v < nv; ++v)
+      boundary_vertex_[v] = vertex_element_begin_[v + 1] - vertex_element_begin_[v] == 1;
+  } else {
+    // duplicate triangles (same vertex set)
+    std::vector<std::pair<std::array<Index, 3>, Index>> keys(nt);
+    for (Index t = 0; t < nt; ++t) {
+      auto k = elements_[t];
+      std::sort(k.begin(), k.end());
+      keys[t] = {k, t};
+    }
+    std::sort(keys.begin(), keys.end());
+    for (std::size_t i = 1; i < keys.size(); ++i)
+      if (keys[i].first == keys[i - 1].first)
+        throw InvalidSurfaceError(fmt::format("elements {} and {} have the same three vertices",
+                                              keys[i - 1].second, keys[i].second));
+
+    // edges: sort (min, max, element, local edge) records
+    struct Record {
+      Index a, b, t;
+      int k;
+    };
+    std::vector<Record> rec;
+    rec.reserve(3 * static_cast<std::size_t>(nt));
+    for (Index t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k) {
+        Index a = elements_[t][k], b = elements_[t][(k + 1) % 3];
+        if (a > b) std::swap(a, b);
+        rec.push_back({a, b, t, k});
+      }
+    std::sort(rec.begin(), rec.end(), [](const Record& x, const Record& y) {
+      return std::tie(x.a, x.b, x.t) < std::tie(y.a, y.b, y.t);
+    });
+    edges_.clear();
+    element_edges_.assign(nt, {invalid_index, invalid_index, invalid_index});
+    edge_incidence_begin_.clear();
+    edge_incidence_.clear();
+    edge_incidence_.reserve(rec.size());
+    for (std::size_t i = 0; i < rec.size(); ++i) {
+      if (i == 0 || rec[i].a != rec[i - 1].a || rec[i].b != rec[i - 1].b) {
+        edge_incidence_begin_.push_back(static_cast<Index>(edge_incidence_.size()));
+        edges_.push_back({rec[i].a, rec[i].b});
+      }
+      const auto e = static_cast<Index>(edges_.size() - 1);
+      element_edges_[rec[i].t][rec[i].k] = e;
+      edge_incidence_.push_back({rec[i].t, rec[i].k});
+    }
+    edge_incidence_begin_.push_back(static_cast<Index>(edge_incidence_.size()));
+
+    boundary_vertex_.assign(nv, false);
+    for (Index e = 0; e < static_cast<Index>(edges_.size()); ++e)
+      if (edge_incidence_begin_[e + 1] - edge_incidence_begin_[e] == 1) {
+        boundary_vertex_[edges_[e][0]] = true;
+        boundary_vertex_[edges_[e][1]] = true;
+      }
+  }
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+Index Surface<d>::edge_count() const {
+  if constexpr (d == 1)
+    return element_count();
+  else
+    return static_cast<Index>(edges_.size());
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+WorldPoint<d> Surface<d>::world_position(Index t, const LocalPoint<d>& xi) const {
+  const auto& c0 = corner(t, 0);
+  WorldPoint<d> x = c0;
+  for (int i = 0; i < d; ++i) x += xi(i) * (corner(t, i + 1) - c0);
+  return x;
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+double Surface<d>::element_measure(Index t) const {
+  std::array<WorldPoint<d>, d + 1> c;
+  for (int k = 0; k <= d; ++k) c[k] = corner(t, k);
+  return measure_of<d>(c);
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+double Surface<d>::measure() const {
+  double m = 0.0;
+  for (Index t = 0; t < element_count(); ++t) m += element_measure(t);
+  return m;
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+WorldPoint<d> Surface<d>::element_normal(Index t) const {
+  if constexpr (d == 1) {
+    const WorldPoint<1> s = corner(t, 1) - corner(t, 0);
+    return WorldPoint<1>(s.y(), -s.x()).normalized();
+  } else {
+    return (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0)).normalized();
+  }
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+int Surface<d>::local_corner(Index t, Index v) const {
+  for (int k = 0; k <= d; ++k)
+    if (elements_[t][k] == v) return k;
+  return -1;
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+Index Surface<d>::find_edge(Index a, Index b) const
+  requires(d == 2)
+{
+  if (a > b) std::swap(a, b);
+  for (Index t : vertex_elements(a)) {
+    for (int k = 0; k < 3; ++k) {
+      const Index e = element_edges_[t][k];
+      if (edges_[e][0] == a && edges_[e][1] == b) return e;
+    }
+  }
+  return invalid_index;
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+bool Surface<d>::is_boundary_vertex(Index v) const {
+  return boundary_vertex_[v];
+}
+
+template class Surface<1>;
+template class Surface<2>;
+
+}  // namespace plmap

@@ -1,0 +1,209 @@
+// Unit tests of the map factory (MapBuilder) on small hand-made configurations where the
+// expected graph is known exactly.
+#include <plmap/core/errors.hpp>
+#include <plmap/core/map_builder.hpp>
+#include <plmap/core/regions.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+using namespace plmap;
+
+namespace {
+
+std::shared_ptr<const Surface<2>> make_surface(std::vector<WorldPoint<2>> v,
+                                               std::vector<ElementCorners<2>> e) {
+  return std::make_shared<const Surface<2>>(std::move(v), std::move(e));
+}
+
+WorldPoint<2> P(double x, double y) { return {x, y, 0.0}; }
+
+// Unit square split along the diagonal 0-2.
+std::shared_ptr<const Surface<2>> square_diag02() {
+  return make_surface({P(0, 0), P(1, 0), P(1, 1), P(0, 1)}, {{0, 1, 2}, {0, 2, 3}});
+}
+// Unit square split along the other diagonal 1-3.
+std::shared_ptr<const Surface<2>> square_diag13() {
+  return make_surface({P(0, 0), P(1, 0), P(1, 1), P(0, 1)}, {{0, 1, 3}, {1, 2, 3}});
+}
+
+int count_type(const PlMap<2>& m, NodeType t) {
+  return static_cast<int>(std::count(m.data().node_type.begin(), m.data().node_type.end(), t));
+}
+
+}  // namespace
+
+TEST(MapBuilder, IdentityMapHasOneRegionPerElement) {
+  auto s = square_diag02();
+  MapBuilder<2> b(s, s);
+  for (Index v = 0; v < s->vertex_count(); ++v) b.add_vertex_preimage_at_vertex(v, v);
+  for (Index t = 0; t < s->element_count(); ++t) b.add_target_element(t);
+  const PlMap<2> m = std::move(b).finalize();
+  EXPECT_EQ(m.region_count(), 2);
+  EXPECT_EQ(m.node_count(), 6);  // three corner copies per element
+  EXPECT_EQ(count_type(m, NodeType::corner), 6);
+  EXPECT_EQ(m.data().orientation, 1);
+  for (Index r = 0; r < m.region_count(); ++r) {
+    const auto ri = remote_intersection(m, r);
+    EXPECT_EQ(ri.domain_element, ri.target_element);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(ri.domain_local[i], ri.target_local[i]);
+  }
+  const auto c = covered_measure(m);
+  EXPECT_DOUBLE_EQ(c.domain, 1.0);
+  EXPECT_DOUBLE_EQ(c.target, 1.0);
+  // every corner has both other corners as neighbours, all along S2 edges
+  for (Index n = 0; n < m.node_count(); ++n) {
+    ASSERT_EQ(m.neighbors(n).size(), 2u);
+    for (Index i = m.data().neighbor_begin[n]; i < m.data().neighbor_begin[n + 1]; ++i)
+      EXPECT_EQ(m.data().neighbor_edge_kind[i], GraphEdgeKind::target_edge);
+  }
+  // edge arrays hold the two corners, from corner k to corner k+1
+  for (Index t = 0; t < 2; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const auto en = m.edge_nodes(t, k);
+      ASSERT_EQ(en.size(), 2u);
+      EXPECT_EQ(m.data().node_location[en[0]], k);
+      EXPECT_EQ(m.data().node_location[en[1]], (k + 1) % 3);
+    }
+}
+
+TEST(MapBuilder, InteriorNodeSplitsElementIntoThreeRegions) {
+  auto s1 = make_surface({P(0, 0), P(1, 0), P(0, 1)}, {{0, 1, 2}});
+  auto s2 = make_surface({P(0, 0), P(1, 0), P(0, 1), P(0.25, 0.25)}, {{0, 1, 3}, {1, 2, 3}, {2, 0, 3}});
+  MapBuilder<2> b(s1, s2);
+  for (Index v = 0; v < 3; ++v) b.add_vertex_preimage_at_vertex(v, v);
+  b.add_vertex_preimage(3, {0, LocalPoint<2>(0.25, 0.25)});
+  for (Index t = 0; t < 3; ++t) b.add_target_element(t);
+  const PlMap<2> m = std::move(b).finalize();
+  EXPECT_EQ(m.region_count(), 3);
+  EXPECT_EQ(count_type(m, NodeType::interior), 1);
+  const auto c = covered_measure(m);
+  EXPECT_NEAR(c.domain, 0.5, 1e-15);
+  EXPECT_NEAR(c.target, 0.5, 1e-15);
+  // the interior node sees all three corners, counter-clockwise
+  const Index interior = 3;
+  ASSERT_EQ(m.data().node_type[interior], NodeType::interior);
+  EXPECT_EQ(m.neighbors(interior).size(), 3u);
+}
+
+TEST(MapBuilder, CrossingDiagonalsMakeIntersectionNodes) {
+  auto s1 = square_diag02();
+  auto s2 = square_diag13();
+  MapBuilder<2> b(s1, s2);
+  for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
+  const Index diag13 = s2->find_edge(1, 3);
+  const Index diag02 = s1->find_edge(0, 2);
+  for (Index e = 0; e < s2->edge_count(); ++e) {
+    if (e == diag13) {
+      const EdgeCrossing c{diag02, 0.5};
+      b.add_edge(e, std::span(&c, 1));
+    } else {
+      b.add_edge(e);
+    }
+  }
+  const PlMap<2> m = std::move(b).finalize();
+  EXPECT_EQ(count_type(m, NodeType::intersection), 2);  // one copy per S1 triangle
+  EXPECT_EQ(m.region_count(), 4);
+  const auto c = covered_measure(m);
+  EXPECT_NEAR(c.domain, 1.0, 1e-15);
+  EXPECT_NEAR(c.target, 1.0, 1e-15);
+  // the intersection node maps to the centre of the square
+  for (Index n = 0; n < m.node_count(); ++n)
+    if (m.data().node_type[n] == NodeType::intersection) {
+      EXPECT_NEAR((m.node_target_world(n) - P(0.5, 0.5)).norm(), 0.0, 1e-15);
+      EXPECT_NEAR((m.node_domain_world(n) - P(0.5, 0.5)).norm(), 0.0, 1e-15);
+    }
+}
+
+TEST(MapBuilder, EdgeThroughAnS1VertexCreatesAGhostNodeAndRunsAlongEdges) {
+  // S1: unit square with a centre vertex (4 triangles); S2: unit square, diagonal 0-2, which runs
+  // along the S1 edges 0-4 and 4-2 through the centre vertex 4.
+  auto s1 = make_surface({P(0, 0), P(1, 0), P(1, 1), P(0, 1), P(0.5, 0.5)},
+                         {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}});
+  auto s2 = square_diag02();
+  MapBuilder<2> b(s1, s2);
+  for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
+  const Index diag = s2->find_edge(0, 2);
+  for (Index e = 0; e < s2->edge_count(); ++e) {
+    if (e == diag) {
+      const EdgeCrossing c{s1->find_edge(0, 4), 1.0};
+      b.add_edge(e, std::span(&c, 1));
+    } else {
+      b.add_edge(e);
+    }
+  }
+  const PlMap<2> m = std::move(b).finalize();
+  EXPECT_EQ(count_type(m, NodeType::ghost), 4);  // the centre, once per S1 triangle
+  EXPECT_EQ(m.region_count(), 4);
+  const auto c = covered_measure(m);
+  EXPECT_NEAR(c.domain, 1.0, 1e-15);
+  EXPECT_NEAR(c.target, 1.0, 1e-15);
+  for (Index n = 0; n < m.node_count(); ++n)
+    if (m.data().node_type[n] == NodeType::ghost) {
+      EXPECT_NEAR((m.node_target_world(n) - P(0.5, 0.5)).norm(), 0.0, 1e-15);
+    }
+}
+
+TEST(MapBuilder, PartialCoverageLeavesTheRestOutsideD) {
+  // S2 covers only the lower-right triangle of S1's first element.
+  auto s1 = square_diag02();
+  auto s2 = make_surface({P(0, 0), P(1, 0), P(1, 0.5)}, {{0, 1, 2}});
+  MapBuilder<2> b(s1, s2);
+  b.add_vertex_preimage_at_vertex(0, 0);
+  b.add_vertex_preimage_at_vertex(1, 1);
+  b.add_vertex_preimage(2, {0, LocalPoint<2>(0.5, 0.5)});  // on S1 edge 1-2
+  b.add_target_element(0);
+  const PlMap<2> m = std::move(b).finalize();
+  EXPECT_EQ(m.region_count(), 1);
+  EXPECT_EQ(count_type(m, NodeType::touching), 1);
+  EXPECT_NEAR(covered_measure(m).domain, 0.25, 1e-15);
+  EXPECT_EQ(m.data().start_region[1], invalid_index);
+}
+
+TEST(MapBuilder, RejectsInconsistentInput) {
+  auto s = square_diag02();
+  {
+    MapBuilder<2> b(s, s);
+    b.add_vertex_preimage_at_vertex(0, 0);
+    EXPECT_THROW(b.add_vertex_preimage_at_vertex(0, 1), BuilderError);  // second preimage
+    EXPECT_THROW(b.add_vertex_preimage_at_vertex(1, 0), BuilderError);  // vertex taken
+    EXPECT_THROW(b.add_vertex_preimage_at_vertex(7, 1), BuilderError);  // no such S2 vertex
+    EXPECT_THROW(b.add_target_element(0), BuilderError);                 // missing preimages
+    EXPECT_THROW(b.add_vertex_preimage(1, {0, LocalPoint<2>(2.0, 0.0)}), BuilderError);
+    EXPECT_THROW(b.add_vertex_preimage(1, {0, LocalPoint<2>(NAN, 0.0)}), BuilderError);
+  }
+  {
+    // S2's diagonal 1-3 inserted without its crossing with S1's diagonal 0-2
+    auto s2 = square_diag13();
+    MapBuilder<2> b(s, s2);
+    for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
+    EXPECT_THROW(b.add_edge(s2->find_edge(1, 3)), BuilderError);
+  }
+}
+
+TEST(MapBuilder, PolylineWithGhostNode) {
+  auto s1 = std::make_shared<const Surface<1>>(
+      std::vector<WorldPoint<1>>{{0, 0}, {1, 0}, {2, 0}}, std::vector<ElementCorners<1>>{{0, 1}, {1, 2}});
+  auto s2 = std::make_shared<const Surface<1>>(
+      std::vector<WorldPoint<1>>{{0, 0}, {0.5, 0}, {2, 0}}, std::vector<ElementCorners<1>>{{0, 1}, {1, 2}});
+  MapBuilder<1> b(s1, s2);
+  b.add_vertex_preimage_at_vertex(0, 0);
+  b.add_vertex_preimage(1, {0, LocalPoint<1>(0.5)});
+  b.add_vertex_preimage_at_vertex(2, 2);
+  b.add_edge(0);
+  const VertexCrossing through{1};
+  b.add_edge(1, std::span(&through, 1));
+  const PlMap<1> m = std::move(b).finalize();
+  EXPECT_EQ(m.region_count(), 3);
+  const auto c = covered_measure(m);
+  EXPECT_NEAR(c.domain, 2.0, 1e-15);
+  EXPECT_NEAR(c.target, 2.0, 1e-15);
+  int ghosts = 0;
+  for (Index n = 0; n < m.node_count(); ++n)
+    if (m.data().node_type[n] == NodeType::ghost) {
+      ++ghosts;
+      EXPECT_NEAR((m.node_target_world(n) - WorldPoint<1>(1, 0)).norm(), 0.0, 1e-15);
+    }
+  EXPECT_EQ(ghosts, 2);
+}
