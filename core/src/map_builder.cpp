@@ -107,7 +107,9 @@ struct MapBuilder<d>::Impl {
   std::vector<Index> preimage_of_target_vertex;  // per S2 vertex
   std::vector<Index> node_at_domain_vertex;      // per S1 vertex
   std::vector<Segment> segments;
-  std::vector<char> edge_inserted;  // per S2 edge (d = 2) or S2 element (d = 1)
+  // per S2 edge (d = 2) or S2 element (d = 1): not inserted, inserted whole, or in pieces
+  std::vector<char> edge_inserted;
+  static constexpr char edge_complete = 1, edge_partial = 2;
 
   Impl(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
        BuilderOptions opt)
@@ -379,39 +381,55 @@ struct MapBuilder<d>::Impl {
     double target_parameter;
   };
 
-  void insert_edge_preimage(Index target_edge, Index u, Index v, std::vector<CrossingPlace> crossings) {
-    if (edge_inserted[target_edge])
-      throw BuilderError(fmt::format("the preimage of S2 {} {} was already inserted",
-                                     d == 2 ? "edge" : "segment", target_edge));
-    const Index a = preimage_of_target_vertex[u], b = preimage_of_target_vertex[v];
-    if (a == invalid_index || b == invalid_index)
-      throw BuilderError(fmt::format("cannot insert S2 {} {}: S2 vertex {} has no preimage yet",
-                                     d == 2 ? "edge" : "segment", target_edge, a == invalid_index ? u : v));
+  /// Inserts the preimage of S2 edge `target_edge` = (u, v), or a piece of it: the chain starts
+  /// at the preimage of u (from_u) or at the first crossing, and ends at the preimage of v (to_v)
+  /// or at the last crossing.
+  void insert_edge_preimage(Index target_edge, Index u, Index v, std::vector<CrossingPlace> crossings,
+                            bool from_u = true, bool to_v = true) {
+    const char* noun = d == 2 ? "edge" : "segment";
+    const bool piece = !from_u || !to_v;
+    if (edge_inserted[target_edge] == edge_complete || (edge_inserted[target_edge] && !piece))
+      throw BuilderError(fmt::format("the preimage of S2 {} {} was already inserted", noun, target_edge));
+    const Index a = from_u ? preimage_of_target_vertex[u] : invalid_index;
+    const Index b = to_v ? preimage_of_target_vertex[v] : invalid_index;
+    if ((from_u && a == invalid_index) || (to_v && b == invalid_index))
+      throw BuilderError(fmt::format("cannot insert S2 {} {}: S2 vertex {} has no preimage yet", noun,
+                                     target_edge, from_u && a == invalid_index ? u : v));
     // Drop repeated consecutive places (a crossing through a vertex given as two edge ends).
     std::vector<CrossingPlace> cs;
     for (auto& c : crossings) {
       if (!cs.empty() && same_place(cs.back().place, c.place)) continue;
       cs.push_back(c);
     }
-    // Arc-length parameters for crossings without a given image position.
-    std::vector<WorldPoint<d>> pts;
-    pts.push_back(world_of(nodes[a].place));
-    for (const auto& c : cs) pts.push_back(world_of(c.place));
-    pts.push_back(world_of(nodes[b].place));
-    std::vector<double> arc(pts.size(), 0.0);
-    for (std::size_t i = 1; i < pts.size(); ++i) arc[i] = arc[i - 1] + (pts[i] - pts[i - 1]).norm();
-    if (!cs.empty() && !(arc.back() > 0.0))
-      throw BuilderError(fmt::format("the preimage of S2 {} {} has zero length",
-                                     d == 2 ? "edge" : "segment", target_edge));
+    if (static_cast<int>(cs.size()) + from_u + to_v < 2)
+      throw BuilderError(fmt::format("a piece of the preimage of S2 {} {} needs two distinct points",
+                                     noun, target_edge));
+    // Arc-length image parameters for crossings of complete edges that have none given.
+    std::vector<double> arc(cs.size() + 2, 0.0);
+    if (!piece) {
+      std::vector<WorldPoint<d>> pts;
+      pts.push_back(world_of(nodes[a].place));
+      for (const auto& c : cs) pts.push_back(world_of(c.place));
+      pts.push_back(world_of(nodes[b].place));
+      for (std::size_t i = 1; i < pts.size(); ++i) arc[i] = arc[i - 1] + (pts[i] - pts[i - 1]).norm();
+      if (!cs.empty() && !(arc.back() > 0.0))
+        throw BuilderError(fmt::format("the preimage of S2 {} {} has zero length", noun, target_edge));
+    }
 
-    std::vector<Index> chain{a};
+    std::vector<Index> chain;
+    if (from_u) chain.push_back(a);
     for (std::size_t i = 0; i < cs.size(); ++i) {
       double tau = cs[i].target_parameter;
-      if (std::isnan(tau)) tau = arc[i + 1] / arc.back();
+      if (std::isnan(tau)) {
+        if (piece)
+          throw BuilderError(fmt::format(
+              "crossing {} of a piece of S2 {} {} needs its image parameter", i, noun, target_edge));
+        tau = arc[i + 1] / arc.back();
+      }
       if (!(tau > 0.0 && tau < 1.0))
         throw BuilderError(fmt::format(
             "crossing {} of S2 {} {}: image parameter {} is not strictly between its end vertices", i,
-            d == 2 ? "edge" : "segment", target_edge, tau));
+            noun, target_edge, tau));
       const Place<d>& p = cs[i].place;
       Index node;
       if (p.kind == PlaceKind::vertex) {
@@ -422,17 +440,17 @@ struct MapBuilder<d>::Impl {
           throw BuilderError(fmt::format(
               "the preimage of S2 {} {} passes through S1 vertex {}, which is the preimage of S2 "
               "vertex {}",
-              d == 2 ? "edge" : "segment", target_edge, p.index, nodes[node].target));
+              noun, target_edge, p.index, nodes[node].target));
         }
       } else {
         node = new_node(p, BuilderNodeKind::intersection, target_edge, edge_support(target_edge, tau));
       }
       chain.push_back(node);
     }
-    chain.push_back(b);
+    if (to_v) chain.push_back(b);
     for (std::size_t i = 0; i + 1 < chain.size(); ++i)
       segments.push_back(locate_segment(chain[i], chain[i + 1], target_edge));
-    edge_inserted[target_edge] = 1;
+    edge_inserted[target_edge] = piece ? edge_partial : edge_complete;
   }
 };
 
@@ -524,13 +542,11 @@ void MapBuilder<d>::add_edge(Index target_edge)
   add_edge(target_edge, std::span<const EdgeCrossing>{});
 }
 
-template <int d>
-  requires SurfaceDimension<d>
-void MapBuilder<d>::add_edge(Index target_edge, std::span<const EdgeCrossing> crossings)
-  requires(d == 2)
-{
-  auto& im = *impl_;
-  im.check_s2_edge(target_edge);
+namespace {
+
+template <int d, class Impl>
+std::vector<typename Impl::CrossingPlace> crossing_places(const Impl& im, Index target_edge,
+                                                          std::span<const EdgeCrossing> crossings) {
   std::vector<typename Impl::CrossingPlace> places;
   places.reserve(crossings.size());
   for (std::size_t i = 0; i < crossings.size(); ++i) {
@@ -556,8 +572,44 @@ void MapBuilder<d>::add_edge(Index target_edge, std::span<const EdgeCrossing> cr
     }
     places.push_back({p, c.target_parameter});
   }
+  return places;
+}
+
+template <int d, class Impl>
+std::vector<typename Impl::CrossingPlace> crossing_places(const Impl& im,
+                                                          std::span<const VertexCrossing> crossings) {
+  std::vector<typename Impl::CrossingPlace> places;
+  for (const auto& c : crossings) {
+    im.check_s1_vertex(c.domain_vertex);
+    Place<d> p;
+    p.kind = PlaceKind::vertex;
+    p.index = c.domain_vertex;
+    places.push_back({p, c.target_parameter});
+  }
+  return places;
+}
+
+}  // namespace
+
+template <int d>
+  requires SurfaceDimension<d>
+void MapBuilder<d>::add_edge(Index target_edge, std::span<const EdgeCrossing> crossings)
+  requires(d == 2)
+{
+  add_edge_piece(target_edge, crossings, true, true);
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void MapBuilder<d>::add_edge_piece(Index target_edge, std::span<const EdgeCrossing> crossings,
+                                   bool starts_at_first_vertex, bool ends_at_second_vertex)
+  requires(d == 2)
+{
+  auto& im = *impl_;
+  im.check_s2_edge(target_edge);
   const auto ev = im.s2->edge_vertices(target_edge);
-  im.insert_edge_preimage(target_edge, ev[0], ev[1], std::move(places));
+  im.insert_edge_preimage(target_edge, ev[0], ev[1], crossing_places<d>(im, target_edge, crossings),
+                          starts_at_first_vertex, ends_at_second_vertex);
 }
 
 template <int d>
@@ -565,18 +617,20 @@ template <int d>
 void MapBuilder<d>::add_edge(Index target_element, std::span<const VertexCrossing> crossings)
   requires(d == 1)
 {
+  add_edge_piece(target_element, crossings, true, true);
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void MapBuilder<d>::add_edge_piece(Index target_element, std::span<const VertexCrossing> crossings,
+                                   bool starts_at_first_vertex, bool ends_at_second_vertex)
+  requires(d == 1)
+{
   auto& im = *impl_;
   im.check_s2_element(target_element);
-  std::vector<typename Impl::CrossingPlace> places;
-  for (std::size_t i = 0; i < crossings.size(); ++i) {
-    im.check_s1_vertex(crossings[i].domain_vertex);
-    Place<d> p;
-    p.kind = PlaceKind::vertex;
-    p.index = crossings[i].domain_vertex;
-    places.push_back({p, crossings[i].target_parameter});
-  }
   const auto& c = im.s2->element(target_element);
-  im.insert_edge_preimage(target_element, c[0], c[1], std::move(places));
+  im.insert_edge_preimage(target_element, c[0], c[1], crossing_places<d>(im, crossings),
+                          starts_at_first_vertex, ends_at_second_vertex);
 }
 
 template <int d>
@@ -720,10 +774,13 @@ PlMap<d> MapBuilder<d>::finalize() && {
       for (std::size_t i = 1; i < slots.size(); ++i)
         if (slots[i].s == slots[i - 1].s)
           throw BuilderError(fmt::format("two nodes at the same point of S1 element {}", t));
+      // nodes per segment are few except in stress tests; binary search keeps it O(n log n)
+      std::vector<std::pair<Index, int>> slot_index(slots.size());
+      for (std::size_t i = 0; i < slots.size(); ++i) slot_index[i] = {slots[i].node, static_cast<int>(i)};
+      std::sort(slot_index.begin(), slot_index.end());
       auto slot_of = [&](Index node) {
-        for (std::size_t i = 0; i < slots.size(); ++i)
-          if (slots[i].node == node) return static_cast<int>(i);
-        return -1;
+        const auto it = std::lower_bound(slot_index.begin(), slot_index.end(), std::make_pair(node, -1));
+        return it != slot_index.end() && it->first == node ? it->second : -1;
       };
       for (Index sidx : element_segments[t]) {
         const auto& seg = im.segments[sidx];
@@ -871,13 +928,21 @@ PlMap<d> MapBuilder<d>::finalize() && {
 
       // constraints: the element boundary between consecutive points, and the graph edges
       std::vector<std::pair<int, int>> graph_pairs;
+      // builder node -> slot, sorted for lookup (elements may carry thousands of nodes)
+      std::vector<std::pair<Index, int>> slot_of(ns);
+      for (int i = 0; i < ns; ++i) slot_of[i] = {et.slots[i], i};
+      std::sort(slot_of.begin(), slot_of.end());
+      auto find_slot = [&](Index node) {
+        const auto it = std::lower_bound(slot_of.begin(), slot_of.end(), std::make_pair(node, -1));
+        return it != slot_of.end() && it->first == node ? it->second : -1;
+      };
       auto add_graph = [&](Index sidx) {
         const auto& seg = im.segments[sidx];
-        int a = -1, b = -1;
-        for (int i = 0; i < ns; ++i) {
-          if (et.slots[i] == seg.a) a = i;
-          if (et.slots[i] == seg.b) b = i;
-        }
+        const int a = find_slot(seg.a), b = find_slot(seg.b);
+        if (a < 0 || b < 0)
+          throw BuilderError(fmt::format(
+              "internal: a piece of the preimage of S2 edge {} lacks an endpoint on S1 element {}",
+              seg.target_edge, t));
         graph_pairs.emplace_back(std::min(a, b), std::max(a, b));
       };
       for (Index sidx : element_segments[t]) add_graph(sidx);

@@ -207,3 +207,38 @@ TEST(MapBuilder, PolylineWithGhostNode) {
     }
   EXPECT_EQ(ghosts, 2);
 }
+
+TEST(MapBuilder, EdgePiecesCoverUpToTheDomainBoundary) {
+  // S2 is a triangle A B C with B outside the unit square S1; the edges A-B and B-C leave S1
+  // through its right side x = 1, so they are inserted as pieces up to that boundary.
+  auto s1 = square_diag02();
+  auto s2 = make_surface({P(0.3, 0.2), P(1.5, 0.2), P(0.3, 0.7)}, {{0, 1, 2}});
+  MapBuilder<2> b(s1, s2);
+  b.add_vertex_preimage(0, {0, LocalPoint<2>(0.1, 0.2)});  // A = c0 + 0.1 (c1 - c0) + 0.2 (c2 - c0)
+  b.add_vertex_preimage(2, {1, LocalPoint<2>(0.3, 0.4)});  // C on element (0, 2, 3)
+  const Index right = s1->find_edge(1, 2), diag = s1->find_edge(0, 2);
+  const double s_bc = (1.5 - 1.0) / 1.2;          // where B-C enters S1
+  const double s_x = 1.3 / 1.7;                   // where B-C crosses the diagonal
+  const double x_diag = 1.5 - 1.2 * s_x;
+  {
+    const EdgeCrossing exit{right, 0.2, (1.0 - 0.3) / 1.2};
+    b.add_edge_piece(s2->find_edge(0, 1), std::span(&exit, 1), true, false);
+  }
+  {
+    const std::array<EdgeCrossing, 2> path{EdgeCrossing{right, 0.2 + 0.5 * s_bc, s_bc},
+                                           EdgeCrossing{diag, x_diag, s_x}};
+    b.add_edge_piece(s2->find_edge(1, 2), path, false, true);
+  }
+  {
+    const EdgeCrossing through{diag, 0.3};
+    b.add_edge(s2->find_edge(0, 2), std::span(&through, 1));
+  }
+  EXPECT_THROW(b.add_edge(s2->find_edge(0, 1)), BuilderError);  // already inserted in pieces
+  const PlMap<2> m = std::move(b).finalize();
+  const double expected = 0.7 * (0.5 + 0.5 * s_bc) / 2.0;  // trapezoid x in [0.3, 1]
+  const auto c = covered_measure(m);
+  EXPECT_NEAR(c.domain, expected, 1e-14);
+  EXPECT_NEAR(c.target, expected, 1e-14);
+  EXPECT_EQ(count_type(m, NodeType::ghost), 0);
+  EXPECT_EQ(count_type(m, NodeType::intersection), 2 + 2 * 2);  // two on x = 1, two diagonal crossings twice
+}

@@ -102,6 +102,19 @@ class MapBuilder {
   /// vertices in order from the preimage of its corner 0 to corner 1.
   void add_edge(Index target_element, std::span<const VertexCrossing> crossings = {})
     requires(d == 1);
+
+  /// Inserts a piece of an S2 edge's preimage where the map is defined on only part of the edge
+  /// (it leaves S1 through S1's boundary, or D ends): the piece starts at the preimage of the
+  /// edge's first vertex if `starts_at_first_vertex`, else at crossings.front(), and ends at the
+  /// preimage of the second vertex if `ends_at_second_vertex`, else at crossings.back().
+  /// Crossings are in order from the first vertex's side, and every crossing must give its
+  /// target_parameter. An S2 edge may consist of several disjoint pieces.
+  void add_edge_piece(Index target_edge, std::span<const EdgeCrossing> crossings,
+                      bool starts_at_first_vertex, bool ends_at_second_vertex)
+    requires(d == 2);
+  void add_edge_piece(Index target_element, std::span<const VertexCrossing> crossings,
+                      bool starts_at_first_vertex, bool ends_at_second_vertex)
+    requires(d == 1);
   /// Inserts the edges of S2 element `target_element` that are not present yet; each must lie
   /// in one S1 element (use add_edge with crossings otherwise).
   void add_target_element(Index target_element);
