@@ -1,0 +1,57 @@
+#pragma once
+/// \file
+/// The plmap map file (`.plmap`): both surfaces and the compact map (MapData) in one versioned,
+/// line-oriented text file. The full specification is docs/map-format.md.
+///
+/// Doubles are written in the shortest decimal form that reads back to the same IEEE value, so
+/// a file is exact: load(save(m)).data() == m.data(), and save -> load -> save reproduces the
+/// file byte for byte.
+///
+/// Loading never trusts the file: every count is bounded by the bytes left in the file before
+/// anything is allocated, every syntax error is a ParseError naming the file, line and section,
+/// and the surfaces and the map then pass the constructors' checks (InvalidSurfaceError,
+/// InvalidMapError, with the file name prepended). Structural invariants beyond index ranges are
+/// for verify/ to check.
+
+#include <plmap/core/pl_map.hpp>
+
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <variant>
+
+namespace plmap {
+
+/// The first token of every map file.
+inline constexpr std::string_view map_file_magic = "plmap-map";
+/// The format version this build writes and the only one it reads.
+inline constexpr int map_file_version = 1;
+
+/// A map of either dimension, as returned by the dimension-agnostic loader.
+using AnyPlMap = std::variant<PlMap<1>, PlMap<2>>;
+
+/// Writes the map file to `out`. Throws InvalidMapError if the map holds a non-finite number
+/// (such a file could not be read back exactly).
+template <int d>
+void write_map(std::ostream& out, const PlMap<d>& map);
+
+/// Writes the map file atomically: `path` is replaced only once the new file is complete.
+template <int d>
+void save_map(const std::filesystem::path& path, const PlMap<d>& map);
+
+/// Parses a map file held in memory. `source_name` is used in error messages (the file name).
+AnyPlMap parse_map(std::string_view content, const std::string& source_name);
+
+/// Loads a map file of either dimension.
+AnyPlMap load_map(const std::filesystem::path& path);
+
+/// Loads a map file that must have dimension d; a file of the other dimension is a ParseError.
+template <int d>
+PlMap<d> load_map(const std::filesystem::path& path);
+
+/// Reads only the header and returns the dimension (1 or 2) declared there. Throws ParseError
+/// if the file is not a plmap map file of a supported version.
+int map_file_dimension(const std::filesystem::path& path);
+
+}  // namespace plmap
