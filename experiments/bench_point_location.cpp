@@ -1,0 +1,355 @@
+// Evaluation throughput of the point locators (docs/benchmarks.md, "Evaluation throughput").
+//
+// For maps whose elements carry about 10, 100 and 1000 regions, and for a femur-like map
+// (PSurface's femur case: about 500 coarse triangles and 8,900 graph nodes), measures
+// evaluations per second of Xi for every registered locator, on one thread and on all threads,
+// and the "floor": the cost of the same query stream when the region is already known (one
+// stored affine map plus the world position on S2). Prints a markdown table, fits the growth
+// exponent of (locator - floor) time with the number of regions per element, reports the memory
+// of the compact form per node and per region, and PSurface 2.0's per-node memory from the sizes
+// of its node types. Optionally writes everything as JSON.
+//
+// Usage: bench_point_location [--queries N] [--femur path/to/femur.off] [--json out.json]
+//                             [--quick]
+
+#include "../tests/strategies/refinement_maps.hpp"
+
+#include <plmap/core/evaluation.hpp>
+#include <plmap/strategies/point_locator_registry.hpp>
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
+#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
+#include <CGAL/boost/graph/IO/OFF.h>
+
+#define PSURFACE_STANDALONE
+#include <psurface/Domains.h>
+#include <psurface/Node.h>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using namespace plmap;
+using Json = nlohmann::json;
+
+// ---- clocks ------------------------------------------------------------------------------------
+
+double seconds(clockid_t clock) {
+  timespec ts{};
+  clock_gettime(clock, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+struct Timing {
+  double wall = 0;  ///< seconds per query, wall clock
+  double cpu = 0;   ///< seconds per query, CPU time of the process (all threads)
+};
+
+/// Runs work(count) (which processes the first `count` queries) until the measurement is long
+/// enough to trust, and returns the best of three repetitions per query. CPU time makes the
+/// single-thread figures robust against other processes on a shared machine.
+template <class Work>
+Timing measure(Work&& work, std::size_t available, double target_seconds) {
+  std::size_t count = std::min<std::size_t>(available, 4096);
+  const double t0 = seconds(CLOCK_PROCESS_CPUTIME_ID);
+  work(count);
+  const double probe = std::max(1e-9, (seconds(CLOCK_PROCESS_CPUTIME_ID) - t0) / double(count));
+  count = std::clamp<std::size_t>(std::size_t(target_seconds / probe), 4096, available);
+  Timing best{1e30, 1e30};
+  for (int rep = 0; rep < 3; ++rep) {
+    const double w0 = seconds(CLOCK_MONOTONIC), c0 = seconds(CLOCK_PROCESS_CPUTIME_ID);
+    work(count);
+    const double w1 = seconds(CLOCK_MONOTONIC), c1 = seconds(CLOCK_PROCESS_CPUTIME_ID);
+    best.wall = std::min(best.wall, (w1 - w0) / double(count));
+    best.cpu = std::min(best.cpu, (c1 - c0) / double(count));
+  }
+  return best;
+}
+
+// ---- maps --------------------------------------------------------------------------------------
+
+struct Case {
+  std::string name;
+  testing::RefinementMap<2> refinement;
+};
+
+/// The femur of CGAL's data set simplified to about `faces` triangles by edge collapse.
+std::shared_ptr<const Surface<2>> coarse_femur(const std::string& path, std::size_t faces) {
+  using Kernel = CGAL::Simple_cartesian<double>;
+  using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+  Mesh mesh;
+  if (!CGAL::IO::read_OFF(path, mesh) || mesh.number_of_faces() == 0)
+    throw Error(fmt::format("{}: cannot read the femur mesh", path));
+  namespace SMS = CGAL::Surface_mesh_simplification;
+  // CGAL 5.5 stops on the edge count; a closed triangle mesh has 3/2 edges per face.
+  SMS::edge_collapse(mesh, SMS::Count_stop_predicate<Mesh>(faces * 3 / 2));
+  mesh.collect_garbage();
+  std::vector<WorldPoint<2>> vertices;
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    vertices.push_back({p.x(), p.y(), p.z()});
+  }
+  std::vector<ElementCorners<2>> triangles;
+  for (auto f : mesh.faces()) {
+    ElementCorners<2> c;
+    int k = 0;
+    for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) c[k++] = Index(v.idx());
+    triangles.push_back(c);
+  }
+  return std::make_shared<const Surface<2>>(std::move(vertices), std::move(triangles));
+}
+
+/// Random query points, uniform over the elements (uniform in each reference triangle).
+std::vector<SurfacePoint<2>> random_queries(const Surface<2>& s1, std::size_t n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::uniform_int_distribution<Index> element(0, s1.element_count() - 1);
+  std::vector<SurfacePoint<2>> q(n);
+  for (auto& p : q) {
+    double x = u(rng), y = u(rng);
+    if (x + y > 1) x = 1 - x, y = 1 - y;
+    p = {element(rng), LocalPoint<2>(x, y)};
+  }
+  return q;
+}
+
+// ---- one case ----------------------------------------------------------------------------------
+
+Json run_case(const Case& c, std::size_t query_count, unsigned all_threads, double target_seconds) {
+  const PlMap<2>& map = *c.refinement.map;
+  const auto& s1 = map.domain();
+  const auto queries = random_queries(s1, query_count, 12345);
+  std::vector<Evaluation<2>> out(queries.size());
+
+  // The true regions, for the floor (and a check that every locator finds every query).
+  std::vector<Index> region(queries.size());
+  {
+    std::vector<Evaluation<2>> ref(queries.size());
+    evaluate_batch<2>(map, queries, ref, point_location::StraightWalk{}, all_threads);
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      if (!ref[i].in_domain) throw Error("benchmark query outside D; the maps cover S1");
+      region[i] = ref[i].region;
+    }
+  }
+
+  auto floor_work = [&](unsigned threads) {
+    return [&, threads](std::size_t count) {
+      auto chunk = [&](std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) out[i] = evaluate_in_region(map, region[i], queries[i].local);
+      };
+      if (threads <= 1) return chunk(0, count);
+      std::vector<std::jthread> pool;
+      const std::size_t step = (count + threads - 1) / threads;
+      for (unsigned k = 0; k < threads; ++k)
+        pool.emplace_back(chunk, std::min(count, k * step), std::min(count, (k + 1) * step));
+    };
+  };
+
+  const double regions_per_element = double(map.region_count()) / s1.element_count();
+  const double nodes_per_element = double(map.node_count()) / s1.element_count();
+  Json result = {{"case", c.name},
+                 {"elements", s1.element_count()},
+                 {"target_elements", map.target().element_count()},
+                 {"nodes", map.node_count()},
+                 {"regions", map.region_count()},
+                 {"regions_per_element", regions_per_element},
+                 {"nodes_per_element", nodes_per_element},
+                 {"memory_bytes", map.memory_bytes()},
+                 {"bytes_per_node", double(map.memory_bytes()) / map.node_count()},
+                 {"bytes_per_region", double(map.memory_bytes()) / map.region_count()}};
+  {
+    // memory_bytes() counts capacity; the sizes show what the data needs, split into the
+    // per-node arrays (the graph) and the per-region arrays (the query form).
+    const auto& m = map.data();
+    auto b = [](const auto& v) { return double(v.size() * sizeof(v[0])); };
+    const double node_part = b(m.node_begin) + b(m.node_position) + b(m.node_type) +
+                             b(m.node_location) + b(m.node_image) + b(m.node_target) +
+                             b(m.neighbor_begin) + b(m.neighbor) + b(m.neighbor_edge_kind) +
+                             b(m.edge_node_begin) + b(m.edge_node);
+    const double region_part = b(m.region_begin) + b(m.region_corners) + b(m.region_neighbors) +
+                               b(m.region_target) + b(m.region_map) + b(m.start_region);
+    result["size_bytes_graph_per_node"] = node_part / map.node_count();
+    result["size_bytes_regions_per_region"] = region_part / map.region_count();
+    result["size_bytes_total_per_node"] = (node_part + region_part) / map.node_count();
+  }
+
+  const Timing floor1 = measure(floor_work(1), queries.size(), target_seconds);
+  const Timing floor_all = measure(floor_work(all_threads), queries.size(), target_seconds);
+  result["floor"] = {{"evals_per_cpu_s_1thread", 1 / floor1.cpu},
+                     {"evals_per_s_all_threads", 1 / floor_all.wall},
+                     {"evals_per_cpu_s_all_threads", 1 / floor_all.cpu}};
+
+  for (const auto name : point_locator_names<2>()) {
+    Timing one, all;
+    with_point_locator<2>(name, [&](auto& locator) {
+      auto work = [&](unsigned threads) {
+        return [&, threads](std::size_t count) {
+          evaluate_batch<2>(map, std::span(queries).first(count), std::span(out).first(count),
+                            locator, threads);
+        };
+      };
+      one = measure(work(1), queries.size(), target_seconds);
+      all = measure(work(all_threads), queries.size(), target_seconds);
+      // Correctness of what was timed: every query was found, in a region containing it.
+      for (std::size_t i = 0; i < std::min<std::size_t>(queries.size(), 4096); ++i)
+        if (!out[i].in_domain) throw Error(fmt::format("{} lost query {}", name, i));
+    });
+    result["locators"][std::string(name)] = {
+        {"evals_per_cpu_s_1thread", 1 / one.cpu},
+        {"evals_per_s_all_threads", 1 / all.wall},
+        {"evals_per_cpu_s_all_threads", 1 / all.cpu},
+        {"ratio_to_floor_1thread", one.cpu / floor1.cpu},
+        {"seconds_above_floor_1thread", one.cpu - floor1.cpu}};
+  }
+  return result;
+}
+
+/// Least-squares slope of log(y) against log(x).
+double fit_exponent(const std::vector<double>& x, const std::vector<double>& y) {
+  const std::size_t n = x.size();
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double lx = std::log(x[i]), ly = std::log(std::max(y[i], 1e-15));
+    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+/// Per-node memory of PSurface 2.0's graph for the same graph, from the sizes of its types (the
+/// library offers no memory query): each node is a psurface::Node<float> inside a
+/// std::vector<Node> per triangle (capacity = size assumed), owns a heap std::vector of
+/// NeighborReference (degree entries; glibc malloc rounds a request r up to max(32, r + 8
+/// rounded to 16) bytes), and nodes on triangle edges appear in the per-triangle edgePoints
+/// arrays (4 bytes per entry). Triangle records (DomainTriangle) are counted per element.
+Json psurface_memory_estimate(const PlMap<2>& map) {
+  const auto& m = map.data();
+  auto malloc_chunk = [](std::size_t request) {
+    return request == 0 ? std::size_t(0) : std::max<std::size_t>(32, (request + 8 + 15) / 16 * 16);
+  };
+  std::size_t bytes = 0;
+  for (Index n = 0; n < map.node_count(); ++n) {
+    // PSurface's neighbour lists include the triangular-closure edges, as ours do, so the
+    // degree is the same.
+    const std::size_t degree = std::size_t(m.neighbor_begin[n + 1] - m.neighbor_begin[n]);
+    bytes += sizeof(psurface::Node<float>) + malloc_chunk(degree * sizeof(psurface::Node<float>::NeighborReference));
+  }
+  bytes += m.edge_node.size() * sizeof(int);
+  const std::size_t per_triangle = sizeof(psurface::DomainTriangle<float>);
+  bytes += per_triangle * std::size_t(map.domain().element_count());
+  return {{"sizeof_node_float", sizeof(psurface::Node<float>)},
+          {"sizeof_neighbor_reference", sizeof(psurface::Node<float>::NeighborReference)},
+          {"sizeof_domain_triangle", per_triangle},
+          {"bytes", bytes},
+          {"bytes_per_node", double(bytes) / map.node_count()}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::size_t query_count = 1 << 20;
+  std::string femur_path, json_path;
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--queries" && i + 1 < argc) query_count = std::stoul(argv[++i]);
+    else if (a == "--femur" && i + 1 < argc) femur_path = argv[++i];
+    else if (a == "--json" && i + 1 < argc) json_path = argv[++i];
+    else if (a == "--quick") quick = true;
+    else {
+      fmt::print(stderr, "usage: {} [--queries N] [--femur femur.off] [--json out.json] [--quick]\n", argv[0]);
+      return 2;
+    }
+  }
+  const double target_seconds = quick ? 0.05 : 0.4;
+  const unsigned all_threads = std::max(1u, std::thread::hardware_concurrency());
+
+  try {
+    // Growth series: k x k sub-triangles per element, S1 sized so that every map has about
+    // 50,000 regions (similar cache footprint).
+    std::vector<int> ks = quick ? std::vector<int>{3, 10} : std::vector<int>{3, 6, 10, 18, 32};
+    std::vector<Case> cases;
+    for (int k : ks) {
+      const int grid = std::max(3, int(std::lround(std::sqrt(50000.0 / (2.0 * k * k)))));
+      cases.push_back({fmt::format("grid{}x{}, {}x{} refinement", grid, grid, k, k),
+                       testing::refine(testing::bumpy_grid(grid), k, 0.2, 100 + k)});
+    }
+    const std::size_t growth_cases = cases.size();
+    if (!femur_path.empty()) {
+      const auto femur = coarse_femur(femur_path, 500);
+      for (int k : {4, 5})
+        cases.push_back({fmt::format("femur {} tris, {}x{} refinement", femur->element_count(), k, k),
+                         testing::refine(femur, k, 0.2, 200 + k)});
+    }
+
+    Json report;
+    report["threads"] = all_threads;
+    report["queries"] = query_count;
+    for (const auto& c : cases) {
+      fmt::print(stderr, "measuring {} ...\n", c.name);
+      report["cases"].push_back(run_case(c, query_count, all_threads, target_seconds));
+    }
+    // Growth exponents of the time above the floor against regions per element.
+    for (const auto name : point_locator_names<2>()) {
+      std::vector<double> x, y;
+      for (std::size_t i = 0; i < growth_cases; ++i) {
+        const Json& r = report["cases"][i];
+        x.push_back(r["regions_per_element"].get<double>());
+        y.push_back(r["locators"][std::string(name)]["seconds_above_floor_1thread"].get<double>());
+      }
+      report["growth_exponent"][std::string(name)] = fit_exponent(x, y);
+    }
+    report["psurface_memory_estimate"] = psurface_memory_estimate(*cases.back().refinement.map);
+    report["psurface_memory_estimate"]["case"] = cases.back().name;
+
+    // ---- markdown ----
+    fmt::print("| map | regions/elem | nodes | locator | Meval/CPU-s (1 thr) | Meval/s ({} thr) | ratio to floor |\n", all_threads);
+    fmt::print("|---|---:|---:|---|---:|---:|---:|\n");
+    for (const auto& r : report["cases"]) {
+      const auto& f = r["floor"];
+      fmt::print("| {} | {:.0f} | {} | floor (region known) | {:.2f} | {:.2f} | 1.00 |\n",
+                 r["case"].get<std::string>(), r["regions_per_element"].get<double>(),
+                 r["nodes"].get<long>(), f["evals_per_cpu_s_1thread"].get<double>() / 1e6,
+                 f["evals_per_s_all_threads"].get<double>() / 1e6);
+      for (const auto& [name, l] : r["locators"].items())
+        fmt::print("| | | | {} | {:.2f} | {:.2f} | {:.2f} |\n", name,
+                   l["evals_per_cpu_s_1thread"].get<double>() / 1e6,
+                   l["evals_per_s_all_threads"].get<double>() / 1e6,
+                   l["ratio_to_floor_1thread"].get<double>());
+    }
+    fmt::print("\nGrowth exponent of (locator - floor) CPU time vs regions per element:");
+    for (const auto& [name, e] : report["growth_exponent"].items())
+      fmt::print(" {} {:.2f};", name, e.get<double>());
+    fmt::print("\n\n| map | memory_bytes() | per node | per region | by size: graph/node | "
+               "regions/region | total/node |\n|---|---:|---:|---:|---:|---:|---:|\n");
+    for (const auto& r : report["cases"])
+      fmt::print("| {} | {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} |\n",
+                 r["case"].get<std::string>(), r["memory_bytes"].get<long>(),
+                 r["bytes_per_node"].get<double>(), r["bytes_per_region"].get<double>(),
+                 r["size_bytes_graph_per_node"].get<double>(),
+                 r["size_bytes_regions_per_region"].get<double>(),
+                 r["size_bytes_total_per_node"].get<double>());
+    const auto& ps = report["psurface_memory_estimate"];
+    fmt::print("\nPSurface 2.0 estimate for '{}': {:.1f} bytes/node (sizeof Node<float> = {}, "
+               "DomainTriangle<float> = {})\n",
+               ps["case"].get<std::string>(), ps["bytes_per_node"].get<double>(),
+               ps["sizeof_node_float"].get<long>(), ps["sizeof_domain_triangle"].get<long>());
+    if (!json_path.empty()) std::ofstream(json_path) << report.dump(2) << "\n";
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "bench_point_location: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

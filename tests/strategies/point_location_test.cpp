@@ -1,0 +1,394 @@
+// Point locators: every locator agrees with brute force, reports points outside D as outside,
+// handles queries exactly on nodes and region sides, and evaluate_batch does not depend on the
+// number of threads.
+
+#include "refinement_maps.hpp"
+
+#include <plmap/core/evaluation.hpp>
+#include <plmap/core/errors.hpp>
+#include <plmap/strategies/point_locator_registry.hpp>
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <random>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace plmap {
+namespace {
+
+using point_location::Bisection;
+using point_location::BrownFaigleWalk;
+using point_location::BruteForce;
+using point_location::StraightWalk;
+using point_location::detail::region_contains;
+
+// ---- the maps under test ---------------------------------------------------------------------
+
+// Drops a scattered fifth of the sub-triangles: D ∩ T has holes and is not convex, so walks
+// meet sides without neighbours in the middle of the element.
+bool drop_some(Index element, int sub) { return (sub * 7 + element * 3) % 5 == 0; }
+// Keeps only the sub-triangles of the lower left part of the first element of each pair.
+bool drop_most(Index element, int sub) { return element % 2 == 1 || sub % 9 > 2; }
+
+const std::vector<testing::RefinementMap<2>>& maps2() {
+  static const std::vector<testing::RefinementMap<2>> maps = [] {
+    std::vector<testing::RefinementMap<2>> m;
+    m.push_back(testing::refine(testing::two_triangles(), 1, 0.0, 1));       // S1 itself
+    m.push_back(testing::refine(testing::two_triangles(), 6, 0.2, 2));       // S2: refinement
+    m.push_back(testing::refine(testing::bumpy_grid(3), 11, 0.2, 3));        // 121 per element
+    m.push_back(testing::refine(testing::two_triangles(), 9, 0.15, 4, drop_some));  // holes
+    m.push_back(testing::refine(testing::bumpy_grid(2), 7, 0.1, 5, drop_most));    // partial
+    return m;
+  }();
+  return maps;
+}
+
+const std::vector<testing::RefinementMap<1>>& maps1() {
+  static const std::vector<testing::RefinementMap<1>> maps = [] {
+    std::vector<testing::RefinementMap<1>> m;
+    m.push_back(testing::refine(testing::zigzag_curve(3), 1, 0.0, 1));
+    m.push_back(testing::refine(testing::zigzag_curve(4), 13, 0.3, 2));
+    m.push_back(testing::refine(testing::zigzag_curve(5), 40, 0.3, 3,
+                                [](Index e, int s) { return (s + e) % 4 == 0 || s < 3; }));
+    return m;
+  }();
+  return maps;
+}
+
+/// Random local coordinates on an element, a little beyond it so that some queries are outside.
+LocalPoint<2> random_query(std::mt19937_64& rng, Index& element, Index elements) {
+  std::uniform_real_distribution<double> u(-0.1, 1.1);
+  element = std::uniform_int_distribution<Index>(0, elements - 1)(rng);
+  return {u(rng), u(rng)};
+}
+
+/// The locator's answer is right: found exactly when brute force finds a region, and then the
+/// returned region belongs to the element and contains the point.
+template <int d, class Locator>
+::testing::AssertionResult agrees_with_brute_force(Locator& locator, const PlMap<d>& map,
+                                                   Index element, const LocalPoint<d>& p) {
+  const RegionLocation<d> got = locator.locate(map, element, p);
+  const RegionLocation<d> reference = BruteForce<d>{}.locate(map, element, p);
+  if (got.found() != reference.found())
+    return ::testing::AssertionFailure()
+           << "element " << element << " point (" << p.transpose() << "): found " << got.found()
+           << ", brute force " << reference.found();
+  if (!got.found()) return ::testing::AssertionSuccess();
+  if (got.region < map.regions_begin(element) || got.region >= map.regions_end(element))
+    return ::testing::AssertionFailure() << "region " << got.region << " not on element " << element;
+  if (!region_contains(map.data(), got.region, p))
+    return ::testing::AssertionFailure()
+           << "region " << got.region << " does not contain (" << p.transpose() << ")";
+  return ::testing::AssertionSuccess();
+}
+
+// ---- d = 2 -------------------------------------------------------------------------------------
+
+TEST(PointLocation, TestMapsHaveTheExpectedRegions) {
+  const auto& m = maps2();
+  EXPECT_EQ(m[0].map->region_count(), 2);
+  EXPECT_EQ(m[1].map->region_count(), 2 * 36);
+  EXPECT_EQ(m[2].map->region_count(), 18 * 121);
+  EXPECT_EQ(m[3].map->region_count(), 2 * 81 - Index(m[3].holes.size()));
+  EXPECT_GT(m[3].holes.size(), 10u);
+  EXPECT_GT(m[4].holes.size(), 100u);
+}
+
+RC_GTEST_PROP(PointLocation, WalksAgreeWithBruteForceOnRandomQueries, ()) {
+  const auto which = *rc::gen::inRange<std::size_t>(0, maps2().size());
+  const auto seed = *rc::gen::arbitrary<std::uint64_t>();
+  const PlMap<2>& map = *maps2()[which].map;
+  std::mt19937_64 rng(seed);
+  BrownFaigleWalk brown_faigle(seed);
+  StraightWalk straight;
+  for (int q = 0; q < 100; ++q) {
+    Index element;
+    const LocalPoint<2> p = random_query(rng, element, map.domain().element_count());
+    RC_ASSERT(agrees_with_brute_force<2>(brown_faigle, map, element, p));
+    RC_ASSERT(agrees_with_brute_force<2>(straight, map, element, p));
+  }
+}
+
+RC_GTEST_PROP(PointLocation, PointsInsideTheElementAreInsideWhenCovered, ()) {
+  // On fully covered elements (maps 0..2) every point of the closed reference triangle is in D.
+  const auto which = *rc::gen::inRange<std::size_t>(0, 3);
+  const PlMap<2>& map = *maps2()[which].map;
+  const auto element = *rc::gen::inRange<Index>(0, map.domain().element_count());
+  // Dyadic coordinates with x + y < 1 exactly: strictly below the slanted edge, whose nodes may
+  // sit one ulp inside it (see QueriesOnRegionSidesFindARegionContainingThem).
+  const int xi = *rc::gen::inRange(0, 1 << 20);
+  const double x = xi / double(1 << 20);
+  const double y = *rc::gen::inRange(0, (1 << 20) - xi) / double(1 << 20);
+  BrownFaigleWalk brown_faigle;
+  RC_ASSERT(brown_faigle.locate(map, element, {x, y}).found());
+  RC_ASSERT(StraightWalk{}.locate(map, element, {x, y}).found());
+}
+
+TEST(PointLocation, PointsOutsideDAreReportedOutside) {
+  for (std::size_t which : {3u, 4u}) {
+    const auto& rm = maps2()[which];
+    BrownFaigleWalk brown_faigle;
+    for (const auto& hole : rm.holes) {
+      EXPECT_FALSE(brown_faigle.locate(*rm.map, hole.element, hole.local).found());
+      EXPECT_FALSE(StraightWalk{}.locate(*rm.map, hole.element, hole.local).found());
+      EXPECT_FALSE(BruteForce<2>{}.locate(*rm.map, hole.element, hole.local).found());
+    }
+  }
+  // Outside the element itself.
+  const PlMap<2>& map = *maps2()[1].map;
+  BrownFaigleWalk brown_faigle;
+  for (const LocalPoint<2>& p : {LocalPoint<2>(-0.01, 0.3), LocalPoint<2>(0.3, -1e-300),
+                                 LocalPoint<2>(0.5, 0.5000001), LocalPoint<2>(2, 2)}) {
+    EXPECT_FALSE(brown_faigle.locate(map, 0, p).found()) << p.transpose();
+    EXPECT_FALSE(StraightWalk{}.locate(map, 0, p).found()) << p.transpose();
+  }
+}
+
+TEST(PointLocation, QueriesOnNodesFindARegionAndEvaluateToTheNodeImage) {
+  for (const auto& rm : maps2()) {
+    const PlMap<2>& map = *rm.map;
+    BrownFaigleWalk brown_faigle;
+    StraightWalk straight;
+    for (Index t = 0; t < map.domain().element_count(); ++t)
+      for (Index n = map.nodes_begin(t); n < map.nodes_end(t); ++n) {
+        const LocalPoint<2>& p = map.data().node_position[n];
+        if (!BruteForce<2>{}.locate(map, t, p).found()) continue;  // isolated ghost node
+        ASSERT_TRUE(agrees_with_brute_force<2>(brown_faigle, map, t, p));
+        ASSERT_TRUE(agrees_with_brute_force<2>(straight, map, t, p));
+        const Evaluation<2> e = evaluate(map, SurfacePoint<2>{t, p}, brown_faigle);
+        ASSERT_TRUE(e.in_domain);
+        const double scale = map.target().max_edge_length();
+        EXPECT_LE((e.world - map.node_target_world(n)).norm(), 1e-12 * scale)
+            << "node " << n << " on element " << t;
+      }
+  }
+}
+
+TEST(PointLocation, QueriesOnRegionSidesFindARegionContainingThem) {
+  for (const auto& rm : maps2()) {
+    const PlMap<2>& map = *rm.map;
+    const MapData<2>& m = map.data();
+    BrownFaigleWalk brown_faigle;
+    StraightWalk straight;
+    for (Index t = 0; t < map.domain().element_count(); ++t)
+      for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
+        for (int side = 0; side < 3; ++side) {
+          const auto& a = m.node_position[m.region_corners[r][(side + 1) % 3]];
+          const auto& b = m.node_position[m.region_corners[r][(side + 2) % 3]];
+          for (double s : {0.5, 0.25, 1.0 / 3.0}) {
+            const LocalPoint<2> p = a + s * (b - a);
+            ASSERT_TRUE(agrees_with_brute_force<2>(brown_faigle, map, t, p));
+            ASSERT_TRUE(agrees_with_brute_force<2>(straight, map, t, p));
+            // On an interior side the rounded point is in one of the two regions sharing it.
+            if (m.region_neighbors[r][side] != invalid_index) {
+              ASSERT_TRUE(BruteForce<2>{}.locate(map, t, p).found());
+            }
+          }
+        }
+    // Points exactly on the element's edges in fully covered elements. On the axis-aligned
+    // local edges the nodes lie exactly on the edge, so these points are in D. On the slanted
+    // edge x + y = 1 the builder may store a node one ulp off the line, so a point exactly on
+    // the edge can be (exactly) outside every region: only agreement is required there.
+    if (&rm - maps2().data() <= 2)
+      for (double s : {0.0, 0.125, 0.25, 0.5, 0.75, 1.0}) {
+        for (const LocalPoint<2>& p : {LocalPoint<2>(s, 0), LocalPoint<2>(0, s)}) {
+          ASSERT_TRUE(brown_faigle.locate(map, 0, p).found()) << p.transpose();
+          ASSERT_TRUE(straight.locate(map, 0, p).found()) << p.transpose();
+        }
+        ASSERT_TRUE(agrees_with_brute_force<2>(brown_faigle, map, 0, LocalPoint<2>(s, 1 - s)));
+        ASSERT_TRUE(agrees_with_brute_force<2>(straight, map, 0, LocalPoint<2>(s, 1 - s)));
+      }
+  }
+}
+
+TEST(PointLocation, EvaluationInsideARegionMatchesTheInterpolatedCorners) {
+  // The image of a region's centroid is the mean of its corners' images (the map is affine).
+  const PlMap<2>& map = *maps2()[2].map;
+  const MapData<2>& m = map.data();
+  BrownFaigleWalk locator;
+  for (Index r = 0; r < map.region_count(); r += 7) {
+    const auto& c = m.region_corners[r];
+    const LocalPoint<2> centroid =
+        (m.node_position[c[0]] + m.node_position[c[1]] + m.node_position[c[2]]) / 3.0;
+    const Index t = map.node_element(c[0]);
+    const Evaluation<2> e = evaluate(map, SurfacePoint<2>{t, centroid}, locator);
+    ASSERT_TRUE(e.in_domain);
+    EXPECT_EQ(e.region, r);
+    const WorldPoint<2> expected =
+        (map.node_target_world(c[0]) + map.node_target_world(c[1]) + map.node_target_world(c[2])) /
+        3.0;
+    EXPECT_LE((e.world - expected).norm(), 1e-12);
+  }
+}
+
+template <int d, class Locator>
+void expect_batch_independent_of_threads(const PlMap<d>& map, const Locator& locator,
+                                         const std::vector<SurfacePoint<d>>& points) {
+  std::vector<Evaluation<d>> one(points.size()), two(points.size());
+  evaluate_batch<d>(map, points, one, locator, 1);
+  evaluate_batch<d>(map, points, two, locator, 2);
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    ASSERT_EQ(one[i].in_domain, two[i].in_domain) << i;
+    if (!one[i].in_domain) continue;
+    ++inside;
+    ASSERT_EQ(one[i].region, two[i].region) << i;
+    ASSERT_EQ(one[i].image, two[i].image) << i;
+    ASSERT_EQ(one[i].world, two[i].world) << i;
+  }
+  EXPECT_GT(inside, points.size() / 5);
+}
+
+TEST(PointLocation, BatchEvaluationDoesNotDependOnTheThreadCount) {
+  for (std::size_t which : {2u, 3u}) {
+    const PlMap<2>& map = *maps2()[which].map;
+    std::mt19937_64 rng(17);
+    std::vector<SurfacePoint<2>> points(5000);
+    for (auto& p : points) p.local = random_query(rng, p.element, map.domain().element_count());
+    expect_batch_independent_of_threads<2>(map, BrownFaigleWalk{}, points);
+    expect_batch_independent_of_threads<2>(map, StraightWalk{}, points);
+    expect_batch_independent_of_threads<2>(map, BruteForce<2>{}, points);
+  }
+  const PlMap<1>& curve = *maps1()[2].map;
+  std::mt19937_64 rng(18);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<SurfacePoint<1>> points(3000);
+  for (auto& p : points) {
+    p.element = std::uniform_int_distribution<Index>(0, curve.domain().element_count() - 1)(rng);
+    p.local(0) = u(rng);
+  }
+  expect_batch_independent_of_threads<1>(curve, Bisection{}, points);
+}
+
+TEST(PointLocation, DifferentSeedsGiveTheSameRegionsForInteriorPoints) {
+  const PlMap<2>& map = *maps2()[2].map;
+  std::mt19937_64 rng(5);
+  BrownFaigleWalk a(1), b(2);
+  for (int q = 0; q < 2000; ++q) {
+    Index element;
+    const LocalPoint<2> p = random_query(rng, element, map.domain().element_count());
+    EXPECT_EQ(a.locate(map, element, p).region, b.locate(map, element, p).region);
+  }
+}
+
+// ---- d = 1 -------------------------------------------------------------------------------------
+
+TEST(PointLocation, CurveRegionsAreSortedByPosition) {
+  // Bisection relies on this ordering of the builder's output.
+  for (const auto& rm : maps1()) {
+    const MapData<1>& m = rm.map->data();
+    for (Index t = 0; t < rm.map->domain().element_count(); ++t)
+      for (Index r = m.region_begin[t]; r + 1 < m.region_begin[t + 1]; ++r)
+        ASSERT_LE(m.node_position[m.region_corners[r][1]](0),
+                  m.node_position[m.region_corners[r + 1][0]](0));
+  }
+}
+
+RC_GTEST_PROP(PointLocation, BisectionAgreesWithBruteForce, ()) {
+  const auto which = *rc::gen::inRange<std::size_t>(0, maps1().size());
+  const PlMap<1>& map = *maps1()[which].map;
+  std::mt19937_64 rng(*rc::gen::arbitrary<std::uint64_t>());
+  std::uniform_real_distribution<double> u(-0.1, 1.1);
+  Bisection bisection;
+  for (int q = 0; q < 100; ++q) {
+    const Index element =
+        std::uniform_int_distribution<Index>(0, map.domain().element_count() - 1)(rng);
+    RC_ASSERT(agrees_with_brute_force<1>(bisection, map, element, LocalPoint<1>(u(rng))));
+  }
+}
+
+TEST(PointLocation, BisectionOnNodesGapsAndOutside) {
+  for (const auto& rm : maps1()) {
+    const PlMap<1>& map = *rm.map;
+    Bisection bisection;
+    for (Index t = 0; t < map.domain().element_count(); ++t) {
+      for (Index n = map.nodes_begin(t); n < map.nodes_end(t); ++n) {
+        const LocalPoint<1>& p = map.data().node_position[n];
+        ASSERT_TRUE(agrees_with_brute_force<1>(bisection, map, t, p));
+        if (bisection.locate(map, t, p).found()) {
+          const Evaluation<1> e = evaluate(map, SurfacePoint<1>{t, p}, bisection);
+          EXPECT_LE((e.world - map.node_target_world(n)).norm(), 1e-12);
+        }
+      }
+      EXPECT_FALSE(bisection.locate(map, t, LocalPoint<1>(-1e-9)).found());
+      EXPECT_FALSE(bisection.locate(map, t, LocalPoint<1>(1.5)).found());
+      EXPECT_FALSE(
+          bisection.locate(map, t, LocalPoint<1>(std::numeric_limits<double>::quiet_NaN())).found());
+    }
+    for (const auto& hole : rm.holes) {
+      EXPECT_FALSE(bisection.locate(map, hole.element, hole.local).found());
+      EXPECT_FALSE(BruteForce<1>{}.locate(map, hole.element, hole.local).found());
+    }
+  }
+  EXPECT_GT(maps1()[2].holes.size(), 20u);
+}
+
+// ---- registry ----------------------------------------------------------------------------------
+
+TEST(PointLocatorRegistry, NamesDispatchToTheirTypes) {
+  auto type_of2 = [](std::string_view name) {
+    return with_point_locator<2>(name, [](auto& locator) -> std::string {
+      using L = std::decay_t<decltype(locator)>;
+      if constexpr (std::is_same_v<L, BrownFaigleWalk>) return "BrownFaigleWalk";
+      if constexpr (std::is_same_v<L, StraightWalk>) return "StraightWalk";
+      if constexpr (std::is_same_v<L, BruteForce<2>>) return "BruteForce";
+      return "other";
+    });
+  };
+  EXPECT_EQ(type_of2("brown-faigle"), "BrownFaigleWalk");
+  EXPECT_EQ(type_of2("straight-walk"), "StraightWalk");
+  EXPECT_EQ(type_of2("brute-force"), "BruteForce");
+  auto type_of1 = [](std::string_view name) {
+    return with_point_locator<1>(name, [](auto& locator) -> std::string {
+      using L = std::decay_t<decltype(locator)>;
+      if constexpr (std::is_same_v<L, Bisection>) return "Bisection";
+      if constexpr (std::is_same_v<L, BruteForce<1>>) return "BruteForce";
+      return "other";
+    });
+  };
+  EXPECT_EQ(type_of1("bisection"), "Bisection");
+  EXPECT_EQ(type_of1("brute-force"), "BruteForce");
+  EXPECT_EQ(default_point_locator_name<2>(), "brown-faigle");
+  EXPECT_EQ(default_point_locator_name<1>(), "bisection");
+  EXPECT_EQ(point_locator_names<2>().size(), 3u);
+  EXPECT_EQ(point_locator_names<1>().size(), 2u);
+}
+
+TEST(PointLocatorRegistry, EveryRegisteredLocatorEvaluatesCorrectly) {
+  const PlMap<2>& map = *maps2()[3].map;
+  std::mt19937_64 rng(3);
+  std::vector<SurfacePoint<2>> points(2000);
+  for (auto& p : points) p.local = random_query(rng, p.element, map.domain().element_count());
+  std::vector<Evaluation<2>> reference(points.size());
+  evaluate_batch<2>(map, points, reference, BruteForce<2>{}, 1);
+  for (const auto name : point_locator_names<2>()) {
+    std::vector<Evaluation<2>> out(points.size());
+    with_point_locator<2>(name, [&](auto& locator) { evaluate_batch<2>(map, points, out, locator, 2); });
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      ASSERT_EQ(out[i].in_domain, reference[i].in_domain) << name << " query " << i;
+      if (out[i].in_domain) {
+        ASSERT_LE((out[i].world - reference[i].world).norm(), 1e-12) << name;
+      }
+    }
+  }
+}
+
+TEST(PointLocatorRegistry, UnknownNamesListTheValidOnes) {
+  try {
+    with_point_locator<2>("kirkpatrick", [](auto&) {});
+    FAIL() << "no exception";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("kirkpatrick"), std::string::npos) << what;
+    for (const auto name : point_locator_names<2>())
+      EXPECT_NE(what.find(name), std::string::npos) << what;
+  }
+  EXPECT_THROW(with_point_locator<1>("brown-faigle", [](auto&) {}), Error);
+  EXPECT_NO_THROW(with_point_locator<1>("bisection", [](auto&) {}));
+}
+
+}  // namespace
+}  // namespace plmap

@@ -1,0 +1,248 @@
+// Valid maps pass every check of plmap::verify, and the report's numbers are right.
+
+#include "test_check_support.hpp"
+
+#include <plmap/core/map_builder.hpp>
+#include <plmap/verify/check.hpp>
+#include <plmap/verify/report_json.hpp>
+
+#include <gtest/gtest.h>
+
+namespace plmap {
+namespace {
+
+using namespace plmap::test;
+
+template <int d>
+void expect_valid(const PlMap<d>& map, VerifyOptions options = {}) {
+  const VerificationReport report = verify(map, options);
+  EXPECT_TRUE(report.ok()) << summary(report);
+  EXPECT_EQ(report.checks.size(), 7u);
+  for (const auto& c : report.checks) EXPECT_FALSE(c.skipped) << c.name;
+}
+
+VerifyOptions parametrization() {
+  VerifyOptions o;
+  o.expect_parametrization = true;
+  return o;
+}
+
+TEST(VerifyValid, IdentityOfTwoTriangles) { expect_valid(identity_square(), parametrization()); }
+TEST(VerifyValid, TouchingNodeOnSharedEdge) { expect_valid(centre_fan(), parametrization()); }
+TEST(VerifyValid, MidpointRefinement) { expect_valid(midpoint_refinement(), parametrization()); }
+TEST(VerifyValid, IntersectionNodeOnSharedEdge) { expect_valid(crossed_diagonals(), parametrization()); }
+TEST(VerifyValid, CurveRefinement) { expect_valid(curve_refinement(), parametrization()); }
+TEST(VerifyValid, CurveWithGhostNodes) { expect_valid(curve_with_ghost(), parametrization()); }
+
+TEST(VerifyValid, ScaleInvariant) {
+  for (double scale : {1e-6, 1e6}) {
+    expect_valid(centre_fan(scale), parametrization());
+    expect_valid(identity_square(scale), parametrization());
+  }
+}
+
+TEST(VerifyValid, PartialDomainIsNotAParametrization) {
+  // Drop the regions of element 1: still a valid map on D = element 0, but not onto S2.
+  const PlMap<2> full = identity_square();
+  const PlMap<2> half = modified<2>(full, [](MapData<2>& m) {
+    m.region_corners.resize(1);
+    m.region_neighbors.resize(1);
+    m.region_target.resize(1);
+    m.region_map.resize(1);
+    m.region_begin[2] = 1;
+    m.start_region[1] = invalid_index;
+  });
+  expect_valid(half);
+  const VerificationReport report = verify(half, parametrization());
+  EXPECT_GT(report.violation_count("coverage", "not_a_parametrization"), 0u) << summary(report);
+}
+
+TEST(VerifyQuality, IdentityHasConditionOne) {
+  const VerificationReport report = verify(centre_fan());
+  ASSERT_TRUE(report.quality.has_value());
+  EXPECT_NEAR(report.quality->kappa_max, 1.0, 1e-12);
+  EXPECT_EQ(report.quality->region_count, 4);
+  EXPECT_EQ(report.quality->degenerate_count, 0);
+  EXPECT_EQ(report.quality->histogram.at(0), 4u);
+}
+
+TEST(VerifyQuality, StretchedTargetHasConditionTwo) {
+  // Same local data, S2 stretched by 2 along x: every region's linear piece is diag(2, 1).
+  const PlMap<2> base = identity_square();
+  auto stretched = make_surface<2>({w2(0, 0), w2(2, 0), w2(2, 1), w2(0, 1)}, {{0, 1, 2}, {0, 2, 3}});
+  const PlMap<2> map(base.domain_ptr(), stretched, base.data());
+  const VerificationReport report = verify(map);
+  EXPECT_TRUE(report.ok()) << summary(report);
+  ASSERT_TRUE(report.quality.has_value());
+  EXPECT_NEAR(report.quality->kappa_max, 2.0, 1e-12);
+  EXPECT_NEAR(report.quality->stretch_max, 2.0, 1e-12);
+  EXPECT_NEAR(report.quality->stretch_min, 1.0, 1e-12);
+  for (double q : report.quality->quantiles) EXPECT_NEAR(q, 2.0, 1e-12);
+
+  VerifyOptions strict;
+  strict.max_condition = 1.5;
+  const VerificationReport flagged = check_quality(map, strict);
+  EXPECT_EQ(flagged.violation_count("quality", "condition"), 2u) << summary(flagged);
+}
+
+TEST(VerifyQuality, CurveConditionIsOneAndStretchIsTheLengthRatio) {
+  const QualityReport q = compute_quality(curve_refinement());
+  EXPECT_EQ(q.kappa_max, 1.0);
+  EXPECT_NEAR(q.stretch_min, 1.0, 1e-12);
+  EXPECT_NEAR(q.stretch_max, 1.0, 1e-12);
+}
+
+TEST(VerifyReport, JsonAndSummaryNameTheChecks) {
+  const VerificationReport good = verify(identity_square());
+  const nlohmann::json j = to_json(good);
+  EXPECT_TRUE(j.at("ok").get<bool>());
+  for (const char* name : {"structure", "plane_graph", "minimal_embedding", "map", "continuity",
+                           "coverage", "quality"})
+    EXPECT_TRUE(j.at("checks").contains(name)) << name;
+  EXPECT_TRUE(j.contains("quality"));
+  EXPECT_NE(summary(good).find("OK"), std::string::npos);
+
+  const PlMap<2> bad = modified<2>(identity_square(), [](MapData<2>& m) { m.region_target[0] = 1; });
+  const VerificationReport report = verify(bad);
+  const nlohmann::json jb = to_json(report);
+  EXPECT_FALSE(jb.at("ok").get<bool>());
+  EXPECT_GT(jb.at("checks").at("map").at("violation_count").get<std::size_t>(), 0u);
+  const auto& first = jb.at("checks").at("map").at("violations").at(0);
+  EXPECT_EQ(first.at("check"), "map");
+  EXPECT_FALSE(first.at("message").get<std::string>().empty());
+  EXPECT_NE(summary(report).find("FAILED"), std::string::npos);
+}
+
+TEST(VerifyReport, StoredViolationsAreCappedButAllCounted) {
+  VerifyOptions o;
+  o.max_reported_per_rule = 1;
+  // Every region maps to the wrong S2 element: several region_corner_image violations.
+  const PlMap<2> bad = modified<2>(centre_fan(), [](MapData<2>& m) {
+    for (auto& t : m.region_target) t = (t + 2) % 4;
+  });
+  const VerificationReport report = check_map(bad, o);
+  const CheckResult* map = report.find("map");
+  ASSERT_NE(map, nullptr);
+  EXPECT_GT(map->rule_counts.at("region_corner_image"), 1u);
+  EXPECT_EQ(std::count_if(map->violations.begin(), map->violations.end(),
+                          [](const Violation& v) { return v.rule == "region_corner_image"; }),
+            1);
+}
+
+// ---- maps made by MapBuilder ------------------------------------------------------------------
+
+/// An n x n grid of the unit square (scaled), each cell split along its (i,j)-(i+1,j+1) diagonal.
+std::shared_ptr<const Surface<2>> grid(int n, double scale = 1.0) {
+  std::vector<WorldPoint<2>> v;
+  std::vector<ElementCorners<2>> e;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) v.push_back(w2(double(i) / n, double(j) / n) * scale);
+  auto id = [&](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      e.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      e.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return make_surface<2>(std::move(v), std::move(e));
+}
+
+TEST(VerifyBuilder, IdentityMapOfAGrid) {
+  auto s = grid(4);
+  MapBuilder<2> b(s, s);
+  for (Index v = 0; v < s->vertex_count(); ++v) b.add_vertex_preimage_at_vertex(v, v);
+  for (Index t = 0; t < s->element_count(); ++t) b.add_target_element(t);
+  const PlMap<2> map = std::move(b).finalize();
+  expect_valid(map, parametrization());
+  EXPECT_NEAR(compute_quality(map).kappa_max, 1.0, 1e-9);
+}
+
+TEST(VerifyBuilder, RefinementOfTheSquare) {
+  for (double scale : {1e-6, 1.0, 1e6}) {
+    // S1: the square as two triangles; S2: a 4 x 4 grid whose diagonals lie along S1's.
+    auto s1 = square(scale);
+    auto s2 = grid(4, scale);
+    MapBuilder<2> b(s1, s2);
+    for (Index v = 0; v < s2->vertex_count(); ++v) {
+      const WorldPoint<2> x = s2->vertex(v) / scale;
+      // Element 0 = (0,0),(1,0),(1,1): local (x - y, y); element 1 = (0,0),(1,1),(0,1): (x, y - x).
+      if (x.x() >= x.y())
+        b.add_vertex_preimage(v, {0, lp<2>(x.x() - x.y(), x.y())});
+      else
+        b.add_vertex_preimage(v, {1, lp<2>(x.x(), x.y() - x.x())});
+    }
+    for (Index t = 0; t < s2->element_count(); ++t) b.add_target_element(t);
+    const PlMap<2> map = std::move(b).finalize();
+    expect_valid(map, parametrization());
+  }
+}
+
+TEST(VerifyBuilder, CurveRefinement) {
+  auto s1 = make_surface<1>({w1(0), w1(1), w1(1, 1)}, {{0, 1}, {1, 2}});
+  auto s2 = make_surface<1>({w1(0), w1(0.25), w1(1), w1(1, 0.5), w1(1, 1)},
+                            {{0, 1}, {1, 2}, {2, 3}, {3, 4}});
+  MapBuilder<1> b(s1, s2);
+  b.add_vertex_preimage_at_vertex(0, 0);
+  b.add_vertex_preimage(1, {0, lp<1>(0.25)});
+  b.add_vertex_preimage_at_vertex(2, 1);
+  b.add_vertex_preimage(3, {1, lp<1>(0.5)});
+  b.add_vertex_preimage_at_vertex(4, 2);
+  for (Index t = 0; t < s2->element_count(); ++t) b.add_edge(t);
+  const PlMap<1> map = std::move(b).finalize();
+  expect_valid(map, parametrization());
+}
+
+}  // namespace
+}  // namespace plmap
+
+namespace plmap {
+namespace {
+
+using namespace plmap::test;
+
+TEST(VerifyBuilder, IntersectionNodesFromCrossings) {
+  // S1 split along 0-2, S2 along 1-3: the S2 diagonal crosses the S1 diagonal at its middle.
+  auto s1 = square();
+  auto s2 = make_surface<2>({w2(0, 0), w2(1, 0), w2(1, 1), w2(0, 1)}, {{0, 1, 3}, {1, 2, 3}});
+  MapBuilder<2> b(s1, s2);
+  for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
+  const EdgeCrossing crossing{s1->find_edge(0, 2), 0.5};
+  for (Index e = 0; e < s2->edge_count(); ++e) {
+    const auto ends = s2->edge_vertices(e);
+    if (ends[0] == 1 && ends[1] == 3)
+      b.add_edge(e, std::span<const EdgeCrossing>(&crossing, 1));
+    else
+      b.add_edge(e);
+  }
+  const PlMap<2> map = std::move(b).finalize();
+  expect_valid(map, parametrization());
+  Index intersections = 0;
+  for (NodeType t : map.data().node_type) intersections += t == NodeType::intersection;
+  EXPECT_EQ(intersections, 2);  // one copy per element
+}
+
+TEST(VerifyBuilder, GhostNodeAtAVertexInsideATargetEdge) {
+  // S1: the square as a fan around its centre; S2: the square as two triangles. The centre of
+  // S1 maps onto the S2 diagonal: a ghost node in each of the four S1 elements.
+  auto s1 = make_surface<2>({w2(0, 0), w2(1, 0), w2(1, 1), w2(0, 1), w2(0.5, 0.5)},
+                            {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}});
+  auto s2 = square();
+  MapBuilder<2> b(s1, s2);
+  for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
+  b.add_ghost_node(4, {0, lp<2>(0.0, 0.5)});  // S2 element 0 = (0,0),(1,0),(1,1): centre at (0, 0.5)
+  const std::array<EdgeCrossing, 1> through_centre{EdgeCrossing{s1->find_edge(0, 4), 1.0}};
+  for (Index e = 0; e < s2->edge_count(); ++e) {
+    const auto ends = s2->edge_vertices(e);
+    if (ends[0] == 0 && ends[1] == 2)
+      b.add_edge(e, through_centre);
+    else
+      b.add_edge(e);
+  }
+  const PlMap<2> map = std::move(b).finalize();
+  expect_valid(map, parametrization());
+  Index ghosts = 0;
+  for (NodeType t : map.data().node_type) ghosts += t == NodeType::ghost;
+  EXPECT_EQ(ghosts, 4);
+}
+
+}  // namespace
+}  // namespace plmap
