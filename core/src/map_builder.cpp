@@ -109,7 +109,7 @@ struct MapBuilder<d>::Impl {
   std::vector<Segment> segments;
   // per S2 edge (d = 2) or S2 element (d = 1): not inserted, inserted whole, or in pieces
   std::vector<char> edge_inserted;
-  static constexpr char edge_complete = 1, edge_partial = 2;
+  static constexpr char edge_complete = 1, edge_partial = 2, edge_outside_domain = 3;
 
   Impl(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
        BuilderOptions opt)
@@ -388,6 +388,8 @@ struct MapBuilder<d>::Impl {
                             bool from_u = true, bool to_v = true) {
     const char* noun = d == 2 ? "edge" : "segment";
     const bool piece = !from_u || !to_v;
+    if (edge_inserted[target_edge] == edge_outside_domain)
+      throw BuilderError(fmt::format("S2 {} {} was declared outside the domain", noun, target_edge));
     if (edge_inserted[target_edge] == edge_complete || (edge_inserted[target_edge] && !piece))
       throw BuilderError(fmt::format("the preimage of S2 {} {} was already inserted", noun, target_edge));
     const Index a = from_u ? preimage_of_target_vertex[u] : invalid_index;
@@ -661,7 +663,19 @@ template <int d>
 bool MapBuilder<d>::has_edge(Index target_edge) const {
   if (target_edge < 0 || target_edge >= static_cast<Index>(impl_->edge_inserted.size()))
     throw BuilderError(fmt::format("S2 edge {} does not exist", target_edge));
-  return impl_->edge_inserted[target_edge] != 0;
+  const char state = impl_->edge_inserted[target_edge];
+  return state == Impl::edge_complete || state == Impl::edge_partial;
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void MapBuilder<d>::add_edge_outside_domain(Index target_edge) {
+  if (target_edge < 0 || target_edge >= static_cast<Index>(impl_->edge_inserted.size()))
+    throw BuilderError(fmt::format("S2 edge {} does not exist", target_edge));
+  if (impl_->edge_inserted[target_edge] == Impl::edge_complete ||
+      impl_->edge_inserted[target_edge] == Impl::edge_partial)
+    throw BuilderError(fmt::format("S2 edge {} has a preimage; it cannot lie outside the domain", target_edge));
+  impl_->edge_inserted[target_edge] = Impl::edge_outside_domain;
 }
 
 // ==== finalize ====================================================================================
@@ -706,6 +720,16 @@ AffineMap<d> affine_through(const std::array<LocalPoint<d>, d + 1>& from,
     y.col(i) = to[i];
   }
   return y * x.inverse();
+}
+
+/// The arrays grew by push_back; give back the slack so the map holds only what it needs.
+template <int d>
+void shrink_to_fit(MapData<d>& m) {
+  auto shrink = [](auto&... v) { (v.shrink_to_fit(), ...); };
+  shrink(m.node_begin, m.node_position, m.node_type, m.node_location, m.node_image, m.node_target,
+         m.neighbor_begin, m.neighbor, m.neighbor_edge_kind, m.edge_node_begin, m.edge_node,
+         m.region_begin, m.region_corners, m.region_neighbors, m.region_target, m.region_map,
+         m.start_region);
 }
 
 }  // namespace
@@ -867,7 +891,14 @@ PlMap<d> MapBuilder<d>::finalize() && {
       for (int k = 0; k < 3; ++k)
         if (s1.element_edge(t, k) == p.index) {
           const double s = s1.local_edge_is_forward(t, k) ? p.t : 1.0 - p.t;
-          return (1.0 - s) * ref[k] + s * ref[(k + 1) % 3];
+          // Points must lie exactly on their edge line, or exact predicates would see them
+          // a rounding step off it. Edges 0 (y = 0) and 2 (x = 0) are exact anyway; on edge 1
+          // (x + y = 1) the second coordinate is 1 - first, which is exact when first >= 1/2.
+          if (k == 0) return LocalPoint<2>(s, 0.0);
+          if (k == 2) return LocalPoint<2>(0.0, 1.0 - s);
+          if (s >= 0.5) return LocalPoint<2>(1.0 - s, s);
+          const double x = 1.0 - s;
+          return LocalPoint<2>(x, 1.0 - x);
         }
       return LocalPoint<2>::Zero();
     };
@@ -1171,6 +1202,7 @@ PlMap<d> MapBuilder<d>::finalize() && {
       et = ElementTriangulation{};  // release memory early
     }
   }
+  shrink_to_fit(m);
   return PlMap<d>(im.s1, im.s2, std::move(m));
 }
 

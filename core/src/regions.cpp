@@ -1,3 +1,4 @@
+#include <plmap/core/element_transfer.hpp>
 #include <plmap/core/regions.hpp>
 
 #include <Eigen/Geometry>
@@ -36,9 +37,10 @@ RemoteIntersection<d> remote_intersection(const PlMap<d>& map, Index region) {
   for (int i = 0; i <= d; ++i) {
     const Index n = m.region_corners[region][i];
     ri.domain_local[i] = m.node_position[n];
-    // The corner's image expressed on the region's common S2 element: through the affine map,
-    // which the builder made exact at the corners.
-    ri.target_local[i] = apply<d>(m.region_map[region], ri.domain_local[i]);
+    // The corner's image on the region's common S2 element, moved exactly through the shared
+    // vertices; the affine map would add rounding, which matters on sliver regions.
+    ri.target_local[i] = transfer_to_element(map.target(), m.node_image[n], ri.target_element)
+                             .value_or(apply<d>(m.region_map[region], ri.domain_local[i]));
     ri.domain_world[i] = map.domain().world_position(ri.domain_element, ri.domain_local[i]);
     ri.target_world[i] = map.target().world_position(ri.target_element, ri.target_local[i]);
   }

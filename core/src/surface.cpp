@@ -184,15 +184,6 @@ Index Surface<d>::edge_count() const {
 
 template <int d>
   requires SurfaceDimension<d>
-WorldPoint<d> Surface<d>::world_position(Index t, const LocalPoint<d>& xi) const {
-  const auto& c0 = corner(t, 0);
-  WorldPoint<d> x = c0;
-  for (int i = 0; i < d; ++i) x += xi(i) * (corner(t, i + 1) - c0);
-  return x;
-}
-
-template <int d>
-  requires SurfaceDimension<d>
 double Surface<d>::element_measure(Index t) const {
   std::array<WorldPoint<d>, d + 1> c;
   for (int k = 0; k <= d; ++k) c[k] = corner(t, k);

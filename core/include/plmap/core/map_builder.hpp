@@ -115,6 +115,10 @@ class MapBuilder {
   void add_edge_piece(Index target_element, std::span<const VertexCrossing> crossings,
                       bool starts_at_first_vertex, bool ends_at_second_vertex)
     requires(d == 1);
+  /// Declares that no part of S2 edge `target_edge` (d = 2) / segment (d = 1) lies over D (e.g.
+  /// it lies beyond S1's boundary), so that the regions of S2 elements having such an edge are
+  /// formed from the pieces of their other edges and S1's boundary. has_edge() stays false.
+  void add_edge_outside_domain(Index target_edge);
   /// Inserts the edges of S2 element `target_element` that are not present yet; each must lie
   /// in one S1 element (use add_edge with crossings otherwise).
   void add_target_element(Index target_element);

@@ -51,7 +51,14 @@ class Surface {
   /// Position of corner k of element t.
   const WorldPoint<d>& corner(Index t, int k) const { return vertices_[elements_[t][k]]; }
   /// World position of a point given by local coordinates on element t.
-  WorldPoint<d> world_position(Index t, const LocalPoint<d>& xi) const;
+  /// (Inline: it is part of every evaluation.)
+  WorldPoint<d> world_position(Index t, const LocalPoint<d>& xi) const {
+    const auto& c = elements_[t];
+    const WorldPoint<d>& c0 = vertices_[c[0]];
+    WorldPoint<d> x = c0;
+    for (int i = 0; i < d; ++i) x += xi(i) * (vertices_[c[i + 1]] - c0);
+    return x;
+  }
   /// Length (d = 1) or area (d = 2) of element t.
   double element_measure(Index t) const;
   /// Sum of all element measures.

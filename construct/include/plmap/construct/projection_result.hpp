@@ -1,0 +1,100 @@
+#pragma once
+/// \file
+/// What normal projection returns: the map, a report of what was built and what was not (with
+/// reasons and places), timings per phase, and the covered measures.
+
+#include <plmap/core/pl_map.hpp>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace plmap {
+
+enum class EdgeFailureReason {
+  /// The walk across S1 found no continuation inside S1: the projection is not continuous there
+  /// (paper Fig. 5 right), e.g. the next S1 element is hidden behind the current one.
+  discontinuity,
+  /// The solver of eq. (4) did not converge on an S1 edge where the walk had to continue.
+  solver_failure,
+  /// The continuation lies farther than the distance limit (or behind S1 when negative
+  /// distances are not allowed).
+  distance_limit,
+  /// The walk runs through an S1 vertex that is already the preimage of another S2 vertex.
+  vertex_conflict,
+  /// An endpoint of the edge has no preimage and the edge does not leave S1 through its
+  /// boundary either (e.g. the vertex is beyond the distance limit).
+  endpoint_without_preimage,
+  /// The walk did not end within the step limit.
+  walk_limit,
+  /// MapBuilder rejected the preimage (detail holds its message).
+  builder_rejected,
+};
+
+std::string_view to_string(EdgeFailureReason reason);
+
+/// An S2 edge (d = 2) or segment (d = 1) whose preimage is missing, completely or in part.
+template <int d>
+struct EdgeNotInserted {
+  Index target_edge = invalid_index;
+  EdgeFailureReason reason = EdgeFailureReason::discontinuity;
+  /// Where the walk stopped: an S1 element containing the point, the point on S1, and the
+  /// parameter along the S2 edge (0 at its smaller-index vertex) reached so far.
+  Index domain_element = invalid_index;
+  WorldPoint<d> domain_point = WorldPoint<d>::Zero();
+  double target_parameter = 0.0;
+  std::string detail;
+};
+
+/// Wall-clock seconds per phase.
+struct ProjectionTimings {
+  double setup = 0.0;  ///< directions, normals and search trees
+  double vertex_preimages = 0.0;
+  double ghost_nodes = 0.0;
+  double edge_walks = 0.0;  ///< boundary entries and walks (eq. 4)
+  double insertion = 0.0;   ///< entering nodes and edges into the builder
+  double finalize = 0.0;
+  double total = 0.0;
+};
+
+template <int d>
+struct ProjectionReport {
+  Index target_vertices = 0;
+  Index vertex_preimages = 0;  ///< S2 vertices with a preimage on S1
+  /// S2 vertices whose preimage was found but not entered: it fell onto an S1 vertex that
+  /// already carries another preimage.
+  Index vertex_conflicts = 0;
+  Index domain_vertices = 0;
+  Index ghost_nodes = 0;  ///< S1 vertices mapped into S2 (not onto an S2 vertex)
+  /// S1 vertices whose ray hits S2 exactly at an S2 vertex that has no preimage of its own: they
+  /// become that vertex's preimage.
+  Index vertices_mapped_by_ray = 0;
+  Index ghost_conflicts = 0;  ///< rays that hit an S2 vertex whose preimage lies elsewhere
+  Index target_edges = 0;
+  Index edges_inserted = 0;         ///< complete preimages
+  Index edges_partly_inserted = 0;  ///< edges inserted as one or more pieces
+  Index edge_pieces = 0;            ///< pieces entered (ending at S1's boundary)
+  Index boundary_entries = 0;       ///< points where S2 edges enter S1 across its boundary
+  Index edges_outside = 0;          ///< edges with no part over S1 (not a failure)
+  std::vector<EdgeNotInserted<d>> edges_not_inserted;
+  /// Solver calls and how many did not converge (eq. 3 and eq. 4 together).
+  long long solver_calls = 0;
+  long long solver_failures = 0;
+  ProjectionTimings seconds;
+};
+
+struct ProjectionMeasures {
+  double domain = 0.0;          ///< measure of S1
+  double target = 0.0;          ///< measure of S2
+  double covered_domain = 0.0;  ///< measure of D (the regions on S1)
+  double covered_target = 0.0;  ///< measure of Xi(D) on S2
+};
+
+template <int d>
+struct ProjectionResult {
+  PlMap<d> map;
+  ProjectionReport<d> report;
+  ProjectionMeasures measures;
+};
+
+}  // namespace plmap

@@ -1,0 +1,51 @@
+#include <plmap/construct/direction_field.hpp>
+#include <plmap/core/errors.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace plmap {
+
+template <int d>
+  requires SurfaceDimension<d>
+std::vector<WorldPoint<d>> averaged_vertex_normals(const Surface<d>& surface) {
+  std::vector<WorldPoint<d>> out(surface.vertex_count(), WorldPoint<d>::Zero());
+  for (Index v = 0; v < surface.vertex_count(); ++v) {
+    const auto star = surface.vertex_elements(v);
+    if (star.empty()) continue;
+    WorldPoint<d> sum = WorldPoint<d>::Zero();
+    for (Index t : star) sum += surface.element_measure(t) * surface.element_normal(t);
+    const double norm = sum.norm();
+    // Cancellation is judged relative to the weights, so the rule does not depend on the scale.
+    double weight = 0.0;
+    for (Index t : star) weight += surface.element_measure(t);
+    out[v] = norm > 1e-12 * weight ? WorldPoint<d>(sum / norm) : surface.element_normal(star.front());
+  }
+  return out;
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+std::vector<WorldPoint<d>> directions_from_values(const Surface<d>& surface, std::span<const double> values) {
+  const std::size_t n = static_cast<std::size_t>(surface.vertex_count());
+  if (values.size() != (d + 1) * n)
+    throw Error(fmt::format("projection directions: expected {} numbers ({} per vertex for {} vertices), got {}",
+                            (d + 1) * n, d + 1, n, values.size()));
+  std::vector<WorldPoint<d>> out(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    for (int k = 0; k <= d; ++k) out[v](k) = values[(d + 1) * v + k];
+    const double norm = out[v].norm();
+    if (!std::isfinite(norm) || norm == 0.0)
+      throw Error(fmt::format("projection direction at S1 vertex {} is zero or not finite", v));
+    out[v] /= norm;
+  }
+  return out;
+}
+
+template std::vector<WorldPoint<1>> averaged_vertex_normals<1>(const Surface<1>&);
+template std::vector<WorldPoint<2>> averaged_vertex_normals<2>(const Surface<2>&);
+template std::vector<WorldPoint<1>> directions_from_values<1>(const Surface<1>&, std::span<const double>);
+template std::vector<WorldPoint<2>> directions_from_values<2>(const Surface<2>&, std::span<const double>);
+
+}  // namespace plmap

@@ -1,0 +1,925 @@
+// Maps by normal projection (paper section 3.2). Phases:
+//  1. vertex preimages: for every S2 vertex q, solve eq. (3) on S1 elements, starting from the
+//     elements nearest to q (kd-tree) and walking across S1 towards the solution;
+//  2. ghost nodes: for every S1 vertex v without a node, cast the ray v + t nu(v) against S2,
+//     starting from the S2 elements nearest to v and walking across S2 towards the hit;
+//  3. edge preimages: walk across S1 along the preimage of every S2 edge, solving eq. (4) on the
+//     edges of the current S1 element(s). Walks start at the preimage of the edge's first vertex
+//     and at every point where the edge enters S1 across S1's boundary, and end at the preimage of
+//     the second vertex or where the edge leaves S1 across its boundary (then the piece is entered
+//     with MapBuilder::add_edge_piece).
+// Phases 1-3 compute into per-item slots, in parallel; the builder is then fed sequentially in
+// index order, so the result does not depend on the number of threads.
+
+#include <plmap/construct/direction_field.hpp>
+#include <plmap/construct/project.hpp>
+#include <plmap/core/errors.hpp>
+#include <plmap/core/map_builder.hpp>
+#include <plmap/core/regions.hpp>
+#include <plmap/solvers/projection_systems.hpp>
+#include <plmap/solvers/solver_kind.hpp>
+
+#include <fmt/format.h>
+#include <nanoflann.hpp>
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <thread>
+
+namespace plmap {
+
+std::string_view to_string(EdgeFailureReason reason) {
+  switch (reason) {
+    case EdgeFailureReason::discontinuity: return "discontinuity";
+    case EdgeFailureReason::solver_failure: return "solver_failure";
+    case EdgeFailureReason::distance_limit: return "distance_limit";
+    case EdgeFailureReason::vertex_conflict: return "vertex_conflict";
+    case EdgeFailureReason::endpoint_without_preimage: return "endpoint_without_preimage";
+    case EdgeFailureReason::walk_limit: return "walk_limit";
+    case EdgeFailureReason::builder_rejected: return "builder_rejected";
+  }
+  return "unknown";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// Runs f(i) for i in [0, n) on `threads` threads in contiguous blocks.
+template <class F>
+void parallel_for(Index n, unsigned threads, F&& f) {
+  if (threads <= 1 || n < 64) {
+    for (Index i = 0; i < n; ++i) f(i);
+    return;
+  }
+  std::vector<std::thread> pool;
+  const Index block = (n + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
+  for (unsigned k = 0; k < threads; ++k) {
+    const Index begin = static_cast<Index>(k) * block, end = std::min<Index>(n, begin + block);
+    if (begin >= end) break;
+    pool.emplace_back([&f, begin, end] {
+      for (Index i = begin; i < end; ++i) f(i);
+    });
+  }
+  for (auto& t : pool) t.join();
+}
+
+/// Element centroids as a nanoflann point cloud.
+template <int dim>
+struct PointCloud {
+  std::vector<Eigen::Matrix<double, dim, 1>> points;
+  std::size_t kdtree_get_point_count() const { return points.size(); }
+  double kdtree_get_pt(std::size_t i, std::size_t k) const { return points[i](static_cast<int>(k)); }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+
+template <int dim>
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud<dim>>,
+                                                   PointCloud<dim>, dim, std::uint32_t>;
+
+/// Centroids of a surface's elements, their kd-tree, and the largest centroid-to-corner distance.
+template <int d>
+struct ElementIndex {
+  PointCloud<d + 1> cloud;
+  std::unique_ptr<KdTree<d + 1>> tree;
+  double radius = 0.0;
+
+  explicit ElementIndex(const Surface<d>& s) {
+    cloud.points.resize(s.element_count());
+    for (Index t = 0; t < s.element_count(); ++t) {
+      WorldPoint<d> c = WorldPoint<d>::Zero();
+      for (int k = 0; k <= d; ++k) c += s.corner(t, k);
+      c /= d + 1;
+      cloud.points[t] = c;
+      for (int k = 0; k <= d; ++k) radius = std::max(radius, (s.corner(t, k) - c).norm());
+    }
+    tree = std::make_unique<KdTree<d + 1>>(d + 1, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  }
+
+  /// Up to `k` (<= 32) nearest elements, nearest first.
+  int nearest(const WorldPoint<d>& x, int k, std::array<std::uint32_t, 32>& out) const {
+    if (cloud.points.empty()) return 0;
+    std::array<double, 32> dist;
+    return static_cast<int>(tree->knnSearch(x.data(), static_cast<std::size_t>(k), out.data(), dist.data()));
+  }
+
+  std::vector<Index> within(const WorldPoint<d>& x, double r) const {
+    std::vector<std::pair<std::uint32_t, double>> hits;
+    if (!cloud.points.empty()) tree->radiusSearch(x.data(), r * r, hits, nanoflann::SearchParams());
+    std::vector<Index> out;
+    for (const auto& h : hits) out.push_back(static_cast<Index>(h.first));
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+};
+
+enum class PlaceKind : std::uint8_t { vertex, edge, element };
+
+/// A point of S1 after the builder's snapping rule: a vertex, a point of an edge (d = 2, parameter
+/// from the smaller-index vertex) or a point inside an element.
+template <int d>
+struct Place {
+  PlaceKind kind = PlaceKind::element;
+  Index index = invalid_index;
+  double t = 0.0;
+  LocalPoint<d> local = LocalPoint<d>::Zero();
+  friend bool operator==(const Place&, const Place&) = default;
+};
+
+enum class VertexState : std::uint8_t { free, corner, ghost };
+
+template <int d>
+using Crossing = std::conditional_t<d == 2, EdgeCrossing, VertexCrossing>;
+
+enum class WalkEnd : std::uint8_t { reached, left_boundary, failed };
+
+template <int d>
+struct WalkResult {
+  WalkEnd end = WalkEnd::failed;
+  std::vector<Crossing<d>> crossings;
+  EdgeFailureReason reason = EdgeFailureReason::discontinuity;
+  Place<d> stop;
+  double eta = 0.0;
+  int steps = 0;
+};
+
+template <int d>
+struct Piece {
+  std::vector<Crossing<d>> crossings;
+  bool from_first = true, to_second = true;
+};
+
+template <int d>
+struct EdgePlan {
+  std::vector<Piece<d>> pieces;
+  std::vector<EdgeNotInserted<d>> failures;
+  bool outside = false;
+};
+
+/// A point where an S2 edge crosses S1's boundary (d = 2: a boundary edge, d = 1: a boundary
+/// vertex); a walk from there may enter S1.
+template <int d>
+struct BoundaryEntry {
+  Place<d> place;
+  Crossing<d> crossing;
+  double eta;
+};
+
+template <int d, class Solver>
+class Projector {
+ public:
+  Projector(std::shared_ptr<const Surface<d>> s1, std::shared_ptr<const Surface<d>> s2,
+            const ProjectionOptions& options, Solver solver)
+      : s1_ptr_(std::move(s1)), s2_ptr_(std::move(s2)), s1_(*s1_ptr_), s2_(*s2_ptr_), opt_(options),
+        solver_(solver) {}
+
+  ProjectionResult<d> run() {
+    const auto t_total = Clock::now();
+    ProjectionReport<d> report;
+    auto t0 = Clock::now();
+    setup();
+    report.seconds.setup = seconds_since(t0);
+
+    // ---- 1. vertex preimages -------------------------------------------------------------------
+    t0 = Clock::now();
+    const Index n2v = s2_.vertex_count(), n1v = s1_.vertex_count();
+    std::vector<std::optional<SurfacePoint<d>>> preimage(n2v);
+    parallel_for(n2v, threads_, [&](Index q) { preimage[q] = find_vertex_preimage(q); });
+    report.seconds.vertex_preimages = seconds_since(t0);
+
+    t0 = Clock::now();
+    BuilderOptions bopt;
+    bopt.snap_tolerance = opt_.snap_tolerance;
+    bopt.orientation = opt_.orientation;
+    MapBuilder<d> builder(s1_ptr_, s2_ptr_, bopt);
+    target_place_.assign(n2v, std::nullopt);
+    vertex_state_.assign(n1v, VertexState::free);
+    vertex_image_.assign(n1v, std::nullopt);
+    report.target_vertices = n2v;
+    report.domain_vertices = n1v;
+    for (Index q = 0; q < n2v; ++q) {
+      if (!preimage[q]) continue;
+      const Place<d> place = place_of(*preimage[q]);
+      if (place.kind == PlaceKind::vertex && vertex_state_[place.index] != VertexState::free) {
+        ++report.vertex_conflicts;
+        continue;
+      }
+      builder.add_vertex_preimage(q, {preimage[q]->element, place_local(*preimage[q])});
+      target_place_[q] = place;
+      ++report.vertex_preimages;
+      if (place.kind == PlaceKind::vertex) {
+        vertex_state_[place.index] = VertexState::corner;
+        vertex_image_[place.index] = SurfacePoint<d>{s2_.vertex_elements(q).front(),
+                                                     local_of_corner(s2_, s2_.vertex_elements(q).front(), q)};
+      }
+    }
+    report.seconds.insertion += seconds_since(t0);
+
+    // ---- 2. ghost nodes ------------------------------------------------------------------------
+    t0 = Clock::now();
+    std::vector<std::optional<SurfacePoint<d>>> hit(n1v);
+    parallel_for(n1v, threads_, [&](Index v) {
+      if (vertex_state_[v] == VertexState::free) hit[v] = cast_ray(v);
+    });
+    report.seconds.ghost_nodes = seconds_since(t0);
+    t0 = Clock::now();
+    for (Index v = 0; v < n1v; ++v) {
+      if (!hit[v]) continue;
+      Barycentric<d> b = clean_barycentric(hit[v]->local);
+      int at_vertex = -1;
+      for (int k = 0; k <= d; ++k)
+        if (b(k) == 1.0) at_vertex = k;
+      const SurfacePoint<d> image{hit[v]->element, local_from_barycentric<d>(b)};
+      if (at_vertex >= 0) {
+        const Index q = s2_.element(hit[v]->element)[at_vertex];
+        if (target_place_[q]) {
+          ++report.ghost_conflicts;
+          continue;
+        }
+        builder.add_ghost_node(v, image);  // becomes the preimage of q (a corner node)
+        Place<d> p;
+        p.kind = PlaceKind::vertex;
+        p.index = v;
+        target_place_[q] = p;
+        vertex_state_[v] = VertexState::corner;
+        ++report.vertices_mapped_by_ray;
+        ++report.vertex_preimages;
+      } else {
+        builder.add_ghost_node(v, image);
+        vertex_state_[v] = VertexState::ghost;
+        ++report.ghost_nodes;
+      }
+      vertex_image_[v] = image;
+    }
+    report.seconds.insertion += seconds_since(t0);
+
+    // ---- 3. edge preimages ---------------------------------------------------------------------
+    t0 = Clock::now();
+    const Index n2e = s2_.edge_count();
+    entries_.assign(n2e, {});
+    find_boundary_entries();
+    for (const auto& list : entries_) report.boundary_entries += static_cast<Index>(list.size());
+    std::vector<EdgePlan<d>> plans(n2e);
+    parallel_for(n2e, threads_, [&](Index e) { plans[e] = plan_edge(e); });
+    report.seconds.edge_walks = seconds_since(t0);
+
+    t0 = Clock::now();
+    report.target_edges = n2e;
+    for (Index e = 0; e < n2e; ++e) {
+      auto& plan = plans[e];
+      if (plan.outside) {
+        ++report.edges_outside;
+        builder.add_edge_outside_domain(e);
+      }
+      bool whole = false;
+      int pieces = 0;
+      for (const auto& piece : plan.pieces) {
+        try {
+          if (piece.from_first && piece.to_second) {
+            if constexpr (d == 2)
+              builder.add_edge(e, std::span<const EdgeCrossing>(piece.crossings));
+            else
+              builder.add_edge(e, std::span<const VertexCrossing>(piece.crossings));
+            whole = true;
+          } else {
+            if constexpr (d == 2)
+              builder.add_edge_piece(e, std::span<const EdgeCrossing>(piece.crossings), piece.from_first,
+                                     piece.to_second);
+            else
+              builder.add_edge_piece(e, std::span<const VertexCrossing>(piece.crossings), piece.from_first,
+                                     piece.to_second);
+            ++pieces;
+          }
+        } catch (const BuilderError& error) {
+          EdgeNotInserted<d> f;
+          f.target_edge = e;
+          f.reason = EdgeFailureReason::builder_rejected;
+          f.detail = error.what();
+          plan.failures.push_back(std::move(f));
+        }
+      }
+      if (whole) ++report.edges_inserted;
+      if (pieces > 0) ++report.edges_partly_inserted;
+      report.edge_pieces += pieces;
+      for (auto& f : plan.failures) report.edges_not_inserted.push_back(std::move(f));
+    }
+    report.seconds.insertion += seconds_since(t0);
+
+    t0 = Clock::now();
+    PlMap<d> map = std::move(builder).finalize();
+    report.seconds.finalize = seconds_since(t0);
+
+    report.solver_calls = solver_calls_.load();
+    report.solver_failures = solver_failures_.load();
+    ProjectionMeasures measures;
+    measures.domain = s1_.measure();
+    measures.target = s2_.measure();
+    const CoveredMeasure covered = covered_measure(map);
+    measures.covered_domain = covered.domain;
+    measures.covered_target = covered.target;
+    report.seconds.total = seconds_since(t_total);
+    return ProjectionResult<d>{std::move(map), std::move(report), measures};
+  }
+
+ private:
+  // ---- set-up -------------------------------------------------------------------------------------
+  void setup() {
+    nu_ = opt_.directions.empty() ? averaged_vertex_normals(s1_)
+                                  : directions_from_values(s1_, std::span<const double>(opt_.directions));
+    if (opt_.normal_check != TargetNormalCheck::none) n2_ = averaged_vertex_normals(s2_);
+    const double diagonal = (s1_.bounding_box_max() - s1_.bounding_box_min()).norm();
+    limit_ = opt_.max_distance_is_relative ? opt_.max_distance * diagonal : opt_.max_distance;
+    if (!(limit_ >= 0.0)) throw Error(fmt::format("max_distance {} is not >= 0", opt_.max_distance));
+    seeds_ = std::clamp(opt_.search_seeds, 1, 32);
+    threads_ = opt_.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : opt_.threads;
+    index1_ = std::make_unique<ElementIndex<d>>(s1_);
+    index2_ = std::make_unique<ElementIndex<d>>(s2_);
+    walk_limit_ = 2 * static_cast<int>(s1_.element_count()) + 16;
+  }
+
+  // ---- helpers on places ------------------------------------------------------------------------
+  Barycentric<d> clean_barycentric(const LocalPoint<d>& xi) const {
+    Barycentric<d> b = barycentric_from_local<d>(xi);
+    for (int k = 0; k <= d; ++k)
+      if (b(k) <= opt_.snap_tolerance) b(k) = 0.0;
+    b /= b.sum();
+    for (int k = 0; k <= d; ++k)
+      if (b(k) >= 1.0 - opt_.snap_tolerance) {
+        b.setZero();
+        b(k) = 1.0;
+      }
+    return b;
+  }
+
+  LocalPoint<d> place_local(const SurfacePoint<d>& p) const {
+    return local_from_barycentric<d>(clean_barycentric(p.local));
+  }
+
+  static LocalPoint<d> local_of_corner(const Surface<d>& s, Index t, Index v) {
+    return reference_corner<d>(s.local_corner(t, v));
+  }
+
+  Place<d> place_of(const SurfacePoint<d>& p) const {
+    const Barycentric<d> b = clean_barycentric(p.local);
+    std::array<int, d + 1> which{};
+    int nonzero = 0;
+    for (int k = 0; k <= d; ++k)
+      if (b(k) > 0.0) which[nonzero++] = k;
+    Place<d> place;
+    const auto& c = s1_.element(p.element);
+    if (nonzero == 1) {
+      place.kind = PlaceKind::vertex;
+      place.index = c[which[0]];
+    } else if (nonzero == 2 && d == 2) {
+      if constexpr (d == 2) {
+        place.kind = PlaceKind::edge;
+        const Index u = c[which[0]], v = c[which[1]];
+        place.index = s1_.find_edge(u, v);
+        place.t = u < v ? b(which[1]) : b(which[0]);
+      }
+    } else {
+      place.kind = PlaceKind::element;
+      place.index = p.element;
+      place.local = local_from_barycentric<d>(b);
+    }
+    return place;
+  }
+
+  /// Place on S1 edge `edge` at parameter lambda (from its smaller vertex), snapped.
+  Place<d> edge_place(Index edge, double lambda) const
+    requires(d == 2)
+  {
+    Place<d> p;
+    const auto ev = s1_.edge_vertices(edge);
+    if (lambda <= opt_.snap_tolerance) {
+      p.kind = PlaceKind::vertex;
+      p.index = ev[0];
+    } else if (lambda >= 1.0 - opt_.snap_tolerance) {
+      p.kind = PlaceKind::vertex;
+      p.index = ev[1];
+    } else {
+      p.kind = PlaceKind::edge;
+      p.index = edge;
+      p.t = lambda;
+    }
+    return p;
+  }
+
+  void elements_of(const Place<d>& p, std::vector<Index>& out) const {
+    out.clear();
+    if (p.kind == PlaceKind::vertex) {
+      const auto star = s1_.vertex_elements(p.index);
+      out.assign(star.begin(), star.end());
+    } else if (p.kind == PlaceKind::edge) {
+      if constexpr (d == 2)
+        for (const auto& inc : s1_.edge_elements(p.index)) out.push_back(inc.element);
+    } else {
+      out.push_back(p.index);
+    }
+  }
+
+  WorldPoint<d> world_of(const Place<d>& p) const {
+    if (p.kind == PlaceKind::vertex) return s1_.vertex(p.index);
+    if constexpr (d == 2)
+      if (p.kind == PlaceKind::edge) {
+        const auto ev = s1_.edge_vertices(p.index);
+        return (1.0 - p.t) * s1_.vertex(ev[0]) + p.t * s1_.vertex(ev[1]);
+      }
+    return s1_.world_position(p.index, p.local);
+  }
+
+  bool distance_ok(double mu, double scale) const {
+    const double slack = 1e-9 * scale;
+    if (!opt_.allow_negative_distance && mu < -slack) return false;
+    return std::abs(mu) <= limit_ + slack;
+  }
+
+  double rank(double mu) const { return opt_.allow_negative_distance ? std::abs(mu) : std::max(mu, 0.0); }
+
+  bool normal_ok(const WorldPoint<d>& direction, const WorldPoint<d>& target_normal) const {
+    if (opt_.normal_check == TargetNormalCheck::none) return true;
+    const double c = direction.dot(target_normal);
+    return opt_.normal_check == TargetNormalCheck::facing ? c < 0.0 : c > 0.0;
+  }
+
+  /// The element across the facet opposite corner k of element t on surface s, if exactly one.
+  static Index across(const Surface<d>& s, Index t, int k) {
+    if constexpr (d == 2) {
+      const Index e = s.element_edge(t, (k + 1) % 3);
+      const auto inc = s.edge_elements(e);
+      if (inc.size() != 2) return invalid_index;
+      return inc[0].element == t ? inc[1].element : inc[0].element;
+    } else {
+      const Index w = s.element(t)[1 - k];
+      const auto star = s.vertex_elements(w);
+      if (star.size() != 2) return invalid_index;
+      return star[0] == t ? star[1] : star[0];
+    }
+  }
+
+  // ---- phase 1: eq. (3) ---------------------------------------------------------------------------
+  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q) {
+    const WorldPoint<d>& target = s2_.vertex(q);
+    std::array<std::uint32_t, 32> seeds;
+    const int count = index1_->nearest(target, seeds_, seeds);
+    std::optional<SurfacePoint<d>> best;
+    double best_rank = std::numeric_limits<double>::infinity();
+    std::array<Index, 64> visited;
+    int nvisited = 0;
+    long long calls = 0, failures = 0;
+    for (int s = 0; s < count; ++s) {
+      Index t = static_cast<Index>(seeds[s]);
+      for (int step = 0; step < 48 && t != invalid_index; ++step) {
+        if (std::find(visited.begin(), visited.begin() + nvisited, t) != visited.begin() + nvisited) break;
+        if (nvisited < 64) visited[nvisited++] = t;
+        VertexProjectionSystem<d> sys;
+        for (int k = 0; k <= d; ++k) {
+          sys.corners[k] = s1_.corner(t, k);
+          sys.directions[k] = nu_[s1_.element(t)[k]];
+        }
+        sys.target = target;
+        ++calls;
+        const auto r = solver_.solve(sys, sys.initial_guess());
+        if (!r.converged) {
+          ++failures;
+          break;
+        }
+        const LocalPoint<d> xi = r.x.template head<d>();
+        const Barycentric<d> b = barycentric_from_local<d>(xi);
+        int worst = 0;
+        for (int k = 1; k <= d; ++k)
+          if (b(k) < b(worst)) worst = k;
+        if (b(worst) >= -1e-9) {
+          const double mu = r.x(d);
+          WorldPoint<d> direction = sys.directions[0];
+          for (int k = 0; k < d; ++k) direction += xi(k) * (sys.directions[k + 1] - sys.directions[0]);
+          if (distance_ok(mu, sys.scale()) && (n2_.empty() || normal_ok(direction, n2_[q])) &&
+              rank(mu) < best_rank) {
+            best_rank = rank(mu);
+            Barycentric<d> bc = b.cwiseMax(0.0);
+            bc /= bc.sum();
+            best = SurfacePoint<d>{t, local_from_barycentric<d>(bc)};
+          }
+          break;
+        }
+        t = across(s1_, t, worst);
+      }
+    }
+    solver_calls_ += calls;
+    solver_failures_ += failures;
+    return best;
+  }
+
+  // ---- phase 2: rays from S1 vertices ---------------------------------------------------------------
+  std::optional<SurfacePoint<d>> cast_ray(Index v) {
+    const WorldPoint<d>& origin = s1_.vertex(v);
+    const WorldPoint<d>& direction = nu_[v];
+    if (direction.squaredNorm() == 0.0) return std::nullopt;
+    std::array<std::uint32_t, 32> seeds;
+    const int count = index2_->nearest(origin, seeds_, seeds);
+    std::optional<SurfacePoint<d>> best;
+    double best_rank = std::numeric_limits<double>::infinity();
+    std::array<Index, 64> visited;
+    int nvisited = 0;
+    for (int s = 0; s < count; ++s) {
+      Index t = static_cast<Index>(seeds[s]);
+      for (int step = 0; step < 48 && t != invalid_index; ++step) {
+        if (std::find(visited.begin(), visited.begin() + nvisited, t) != visited.begin() + nvisited) break;
+        if (nvisited < 64) visited[nvisited++] = t;
+        // origin + mu direction = c0 + sum_i y_i (c_{i+1} - c0): linear in (y, mu)
+        Eigen::Matrix<double, d + 1, d + 1> a;
+        double scale = 0.0;
+        for (int i = 0; i < d; ++i) {
+          a.col(i) = s2_.corner(t, i + 1) - s2_.corner(t, 0);
+          scale = std::max(scale, a.col(i).norm());
+        }
+        a.col(d) = -direction;
+        const double det = a.determinant();
+        if (!(std::abs(det) > 1e-12 * std::pow(scale, d))) break;  // ray parallel to the element
+        const Eigen::Matrix<double, d + 1, 1> x = a.partialPivLu().solve(origin - s2_.corner(t, 0));
+        const LocalPoint<d> y = x.template head<d>();
+        const Barycentric<d> b = barycentric_from_local<d>(y);
+        int worst = 0;
+        for (int k = 1; k <= d; ++k)
+          if (b(k) < b(worst)) worst = k;
+        if (b(worst) >= -1e-9) {
+          const double mu = x(d);
+          WorldPoint<d> target_normal = s2_.element_normal(t);
+          if (distance_ok(mu, scale) && normal_ok(direction, target_normal) && rank(mu) < best_rank) {
+            best_rank = rank(mu);
+            Barycentric<d> bc = b.cwiseMax(0.0);
+            bc /= bc.sum();
+            best = SurfacePoint<d>{t, local_from_barycentric<d>(bc)};
+          }
+          break;
+        }
+        t = across(s2_, t, worst);
+      }
+    }
+    return best;
+  }
+
+  // ---- phase 3: edges ------------------------------------------------------------------------------
+  std::array<Index, 2> target_edge_vertices(Index e) const {
+    if constexpr (d == 2)
+      return s2_.edge_vertices(e);
+    else
+      return {s2_.element(e)[0], s2_.element(e)[1]};
+  }
+
+  struct CrossingCandidate {
+    bool valid = false;
+    bool solver_failed = false;
+    bool beyond_limit = false;
+    double lambda = 0.0, mu = 0.0, eta = 0.0;
+  };
+
+  /// Eq. (4): where the projection of S2 edge (qa, qb) crosses S1 edge `edge` (d = 2).
+  CrossingCandidate solve_crossing(Index edge, const WorldPoint<d>& qa, const WorldPoint<d>& qb,
+                                   long long& calls, long long& failures) const
+    requires(d == 2)
+  {
+    CrossingCandidate c;
+    const auto ev = s1_.edge_vertices(edge);
+    EdgeCrossingSystem sys;
+    sys.edge = {s1_.vertex(ev[0]), s1_.vertex(ev[1])};
+    sys.directions = {nu_[ev[0]], nu_[ev[1]]};
+    sys.target = {qa, qb};
+    ++calls;
+    const auto r = solver_.solve(sys, sys.initial_guess());
+    if (!r.converged) {
+      ++failures;
+      c.solver_failed = true;
+      return c;
+    }
+    c.lambda = r.x(0);
+    c.mu = r.x(1);
+    c.eta = r.x(2);
+    // A (nearly) singular Jacobian at the solution means the S2 edge runs along the projection
+    // of the S1 edge: there is no isolated crossing (the walk passes the edge's end vertices).
+    {
+      const Eigen::Matrix3d j = sys.jacobian(r.x);
+      const double s = sys.scale();
+      if (!(std::abs(j.determinant()) > 1e-10 * s * s * j.col(1).norm())) return c;
+    }
+    if (c.lambda < -1e-9 || c.lambda > 1.0 + 1e-9) return c;
+    if (!distance_ok(c.mu, sys.scale())) {
+      c.beyond_limit = true;
+      return c;
+    }
+    c.lambda = std::clamp(c.lambda, 0.0, 1.0);
+    c.valid = true;
+    return c;
+  }
+
+  /// For d = 1: the ray from S1 vertex w meets the line of the S2 segment (qa, qb).
+  CrossingCandidate ray_crossing(Index w, const WorldPoint<d>& qa, const WorldPoint<d>& qb) const
+    requires(d == 1)
+  {
+    CrossingCandidate c;
+    Eigen::Matrix2d a;
+    a.col(0) = nu_[w];
+    a.col(1) = qa - qb;
+    const double scale = (qb - qa).norm();
+    if (!(std::abs(a.determinant()) > 1e-12 * scale)) return c;
+    const Eigen::Vector2d x = a.partialPivLu().solve(qa - s1_.vertex(w));
+    c.mu = x(0);
+    c.eta = x(1);
+    c.lambda = 0.0;
+    if (!distance_ok(c.mu, scale)) {
+      c.beyond_limit = true;
+      return c;
+    }
+    c.valid = true;
+    return c;
+  }
+
+  /// Walks along the preimage of S2 edge e from `start` (at parameter eta0) towards `end`.
+  WalkResult<d> walk(Index e, const Place<d>& start, double eta0, const std::optional<Place<d>>& end) const {
+    WalkResult<d> w;
+    const auto tv = target_edge_vertices(e);
+    const WorldPoint<d> qa = s2_.vertex(tv[0]), qb = s2_.vertex(tv[1]);
+    const double eta_slack = 1e-9;
+    Place<d> cur = start;
+    double eta = eta0;
+    std::vector<Index> cand, end_elements;
+    if (end) elements_of(*end, end_elements);
+    long long calls = 0, failures = 0;
+    for (w.steps = 0; w.steps < walk_limit_; ++w.steps) {
+      elements_of(cur, cand);
+      if (end) {
+        for (Index t : cand)
+          if (std::find(end_elements.begin(), end_elements.end(), t) != end_elements.end()) {
+            w.end = WalkEnd::reached;
+            solver_calls_ += calls;
+            solver_failures_ += failures;
+            return w;
+          }
+      }
+      bool solver_failed = false, beyond_limit = false;
+      double best_eta = std::numeric_limits<double>::infinity();
+      Place<d> best_place;
+      Crossing<d> best_crossing{};
+      for (Index t : cand) {
+        for (int k = 0; k <= d; ++k) {
+          CrossingCandidate c;
+          Place<d> place;
+          Crossing<d> crossing{};
+          if constexpr (d == 2) {
+            const Index edge = s1_.element_edge(t, k);
+            if (cur.kind == PlaceKind::edge && cur.index == edge) continue;
+            c = solve_crossing(edge, qa, qb, calls, failures);
+            if (!c.valid) {
+              solver_failed |= c.solver_failed;
+              beyond_limit |= c.beyond_limit;
+              continue;
+            }
+            place = edge_place(edge, c.lambda);
+            crossing = EdgeCrossing{edge, c.lambda, c.eta};
+          } else {
+            const Index vtx = s1_.element(t)[k];
+            if (cur.kind == PlaceKind::vertex && cur.index == vtx) continue;
+            c = ray_crossing(vtx, qa, qb);
+            if (!c.valid) {
+              beyond_limit |= c.beyond_limit;
+              continue;
+            }
+            place.kind = PlaceKind::vertex;
+            place.index = vtx;
+            crossing = VertexCrossing{vtx, c.eta};
+          }
+          if (!(c.eta > eta + eta_slack) || c.eta > 1.0 + eta_slack || c.eta >= best_eta || place == cur) continue;
+          best_eta = c.eta;
+          best_place = place;
+          best_crossing = crossing;
+        }
+      }
+      solver_calls_ += calls;
+      solver_failures_ += failures;
+      calls = failures = 0;
+      w.stop = cur;
+      w.eta = eta;
+      if (!std::isfinite(best_eta)) {
+        if (on_boundary(cur)) {  // the preimage leaves S1 here (possibly right at its start)
+          w.end = WalkEnd::left_boundary;
+          return w;
+        }
+        w.end = WalkEnd::failed;
+        w.reason = solver_failed  ? EdgeFailureReason::solver_failure
+                   : beyond_limit ? EdgeFailureReason::distance_limit
+                                  : EdgeFailureReason::discontinuity;
+        return w;
+      }
+      if (best_eta >= 1.0 - 1e-12) {
+        // The walk reaches the image of the second vertex, but that vertex has no preimage here.
+        w.end = WalkEnd::failed;
+        w.reason = EdgeFailureReason::endpoint_without_preimage;
+        w.stop = best_place;
+        w.eta = best_eta;
+        return w;
+      }
+      if (best_place.kind == PlaceKind::vertex && vertex_state_[best_place.index] == VertexState::corner) {
+        w.end = WalkEnd::failed;
+        w.reason = EdgeFailureReason::vertex_conflict;
+        w.stop = best_place;
+        w.eta = best_eta;
+        return w;
+      }
+      if constexpr (d == 2) best_crossing.target_parameter = best_eta;
+      w.crossings.push_back(best_crossing);
+      cur = best_place;
+      eta = best_eta;
+      if constexpr (d == 2) {
+        if (cur.kind == PlaceKind::edge && s1_.edge_elements(cur.index).size() == 1) {
+          w.end = WalkEnd::left_boundary;
+          w.stop = cur;
+          w.eta = eta;
+          return w;
+        }
+      }
+    }
+    w.end = WalkEnd::failed;
+    w.reason = EdgeFailureReason::walk_limit;
+    return w;
+  }
+
+  bool on_boundary(const Place<d>& p) const {
+    if (p.kind == PlaceKind::vertex) return s1_.is_boundary_vertex(p.index);
+    if constexpr (d == 2)
+      if (p.kind == PlaceKind::edge) return s1_.edge_elements(p.index).size() == 1;
+    return false;
+  }
+
+  EdgeNotInserted<d> failure(Index e, EdgeFailureReason reason, const Place<d>& at, double eta,
+                             std::string detail = {}) const {
+    EdgeNotInserted<d> f;
+    f.target_edge = e;
+    f.reason = reason;
+    std::vector<Index> els;
+    elements_of(at, els);
+    f.domain_element = els.empty() ? invalid_index : els.front();
+    f.domain_point = world_of(at);
+    f.target_parameter = eta;
+    f.detail = std::move(detail);
+    return f;
+  }
+
+  EdgePlan<d> plan_edge(Index e) const {
+    EdgePlan<d> plan;
+    const auto tv = target_edge_vertices(e);
+    const auto& pa = target_place_[tv[0]];
+    const auto& pb = target_place_[tv[1]];
+    bool reached_second = false;
+    // Pieces are disjoint intervals of the edge parameter; an entry inside an interval already
+    // walked is where that walk left S1 (or a re-detection of it), not a new piece.
+    double covered_until = -1.0;
+    if (pa) {
+      WalkResult<d> w = walk(e, *pa, 0.0, pb);
+      if (w.end == WalkEnd::failed) {
+        plan.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+        covered_until = w.eta;
+      } else {
+        const bool reached = w.end == WalkEnd::reached;
+        reached_second |= reached;
+        covered_until = reached ? 1.0 : w.eta;
+        if (!w.crossings.empty() || reached) plan.pieces.push_back({std::move(w.crossings), true, reached});
+      }
+    }
+    for (const auto& entry : entries_[e]) {
+      if (entry.eta <= covered_until + 1e-9) continue;
+      WalkResult<d> w = walk(e, entry.place, entry.eta, pb);
+      covered_until = w.end == WalkEnd::reached ? 1.0 : w.eta;
+      if (w.end == WalkEnd::failed) {
+        if (w.steps == 0 && w.reason != EdgeFailureReason::solver_failure) continue;  // an exit
+        plan.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+        continue;
+      }
+      if (w.end == WalkEnd::left_boundary && w.crossings.empty()) continue;
+      const bool reached = w.end == WalkEnd::reached;
+      reached_second |= reached;
+      Piece<d> piece;
+      piece.crossings.push_back(entry.crossing);
+      piece.crossings.insert(piece.crossings.end(), w.crossings.begin(), w.crossings.end());
+      piece.from_first = false;
+      piece.to_second = reached;
+      plan.pieces.push_back(std::move(piece));
+    }
+    if (pb && !reached_second && plan.failures.empty() && !on_boundary(*pb))
+      plan.failures.push_back(failure(e, EdgeFailureReason::endpoint_without_preimage, *pb, 1.0,
+                                      fmt::format("the S2 vertex {} has no preimage", tv[0])));
+    // No piece and nothing wrong: the edge lies outside D (it may touch S1's boundary at an
+    // endpoint and leave at once).
+    if (plan.pieces.empty() && plan.failures.empty()) plan.outside = true;
+    return plan;
+  }
+
+  /// Points where S2 edges cross S1's boundary, per S2 edge, sorted by the edge parameter.
+  void find_boundary_entries() {
+    if constexpr (d == 1) {
+      for (Index v = 0; v < s1_.vertex_count(); ++v) {
+        if (!s1_.is_boundary_vertex(v) || vertex_state_[v] != VertexState::ghost || !vertex_image_[v]) continue;
+        const auto& image = *vertex_image_[v];
+        BoundaryEntry<1> entry;
+        entry.place.kind = PlaceKind::vertex;
+        entry.place.index = v;
+        entry.eta = image.local(0);
+        entry.crossing = VertexCrossing{v, entry.eta};
+        entries_[image.element].push_back(entry);
+      }
+    } else {
+      long long calls = 0, failures = 0;
+      std::vector<Index> edges;
+      for (Index edge = 0; edge < s1_.edge_count(); ++edge) {
+        if (s1_.edge_elements(edge).size() != 1) continue;
+        const auto ev = s1_.edge_vertices(edge);
+        const auto& ia = vertex_image_[ev[0]];
+        const auto& ib = vertex_image_[ev[1]];
+        if (!ia && !ib) continue;
+        const double length = (s1_.vertex(ev[0]) - s1_.vertex(ev[1])).norm();
+        WorldPoint<2> centre;
+        double radius;
+        if (ia && ib) {
+          const WorldPoint<2> a = s2_.world_position(ia->element, ia->local);
+          const WorldPoint<2> b = s2_.world_position(ib->element, ib->local);
+          centre = 0.5 * (a + b);
+          radius = 0.5 * (a - b).norm();
+        } else {
+          const auto& i = ia ? *ia : *ib;
+          centre = s2_.world_position(i.element, i.local);
+          radius = 2.0 * length;
+        }
+        edges.clear();
+        for (Index t : index2_->within(centre, radius + index2_->radius * 1.01 + 1e-9 * length))
+          for (int k = 0; k < 3; ++k) edges.push_back(s2_.element_edge(t, k));
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+        for (Index e : edges) {
+          const auto tv = s2_.edge_vertices(e);
+          const CrossingCandidate c = solve_crossing(edge, s2_.vertex(tv[0]), s2_.vertex(tv[1]), calls, failures);
+          if (!c.valid || !(c.eta > 1e-9 && c.eta < 1.0 - 1e-9)) continue;
+          BoundaryEntry<2> entry;
+          entry.place = edge_place(edge, c.lambda);
+          entry.eta = c.eta;
+          entry.crossing = EdgeCrossing{edge, c.lambda, c.eta};
+          auto& list = entries_[e];
+          const bool duplicate = std::any_of(list.begin(), list.end(), [&](const BoundaryEntry<2>& x) {
+            return x.place == entry.place;
+          });
+          if (!duplicate) list.push_back(entry);
+        }
+      }
+      solver_calls_ += calls;
+      solver_failures_ += failures;
+    }
+    for (auto& list : entries_)
+      std::sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.eta < y.eta; });
+  }
+
+  std::shared_ptr<const Surface<d>> s1_ptr_, s2_ptr_;
+  const Surface<d>& s1_;
+  const Surface<d>& s2_;
+  ProjectionOptions opt_;
+  Solver solver_;
+  std::vector<WorldPoint<d>> nu_, n2_;
+  double limit_ = 0.0;
+  int seeds_ = 8;
+  unsigned threads_ = 1;
+  int walk_limit_ = 16;
+  std::unique_ptr<ElementIndex<d>> index1_, index2_;
+  std::vector<std::optional<Place<d>>> target_place_;
+  std::vector<VertexState> vertex_state_;
+  std::vector<std::optional<SurfacePoint<d>>> vertex_image_;
+  std::vector<std::vector<BoundaryEntry<d>>> entries_;
+  mutable std::atomic<long long> solver_calls_{0}, solver_failures_{0};
+};
+
+}  // namespace
+
+template <int d>
+  requires SurfaceDimension<d>
+ProjectionResult<d> project(std::shared_ptr<const Surface<d>> s1, std::shared_ptr<const Surface<d>> s2,
+                            const ProjectionOptions& options) {
+  if (!s1 || !s2) throw Error("project: both surfaces are required");
+  const SolverKind kind = solver_kind_from_string(options.solver);
+  return with_solver(kind, options.solver_tolerance, [&](const auto& solver) {
+    Projector<d, std::decay_t<decltype(solver)>> projector(s1, s2, options, solver);
+    return projector.run();
+  });
+}
+
+template ProjectionResult<1> project<1>(std::shared_ptr<const Surface<1>>, std::shared_ptr<const Surface<1>>,
+                                        const ProjectionOptions&);
+template ProjectionResult<2> project<2>(std::shared_ptr<const Surface<2>>, std::shared_ptr<const Surface<2>>,
+                                        const ProjectionOptions&);
+
+}  // namespace plmap

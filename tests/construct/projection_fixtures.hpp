@@ -1,0 +1,105 @@
+#pragma once
+// Small surfaces for the projection tests: circles (d = 1), planar grids and sphere-like
+// surfaces (d = 2), with deterministic jitter so that grids do not match.
+
+#include <plmap/core/surface.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <numbers>
+
+namespace plmap::test {
+
+/// Counter-clockwise polygon with n vertices on a circle: outward normals.
+inline std::shared_ptr<const Surface<1>> circle(int n, double radius, double phase = 0.0) {
+  std::vector<WorldPoint<1>> v;
+  std::vector<ElementCorners<1>> e;
+  for (int i = 0; i < n; ++i) {
+    const double a = phase + 2.0 * std::numbers::pi * i / n;
+    v.emplace_back(radius * std::cos(a), radius * std::sin(a));
+    e.push_back({i, (i + 1) % n});
+  }
+  return std::make_shared<const Surface<1>>(std::move(v), std::move(e));
+}
+
+/// Open polyline along the x-axis from x0 to x1 at height y, n segments; normals +y unless
+/// `down`.
+inline std::shared_ptr<const Surface<1>> line(int n, double x0, double x1, double y, bool down = false) {
+  std::vector<WorldPoint<1>> v;
+  std::vector<ElementCorners<1>> e;
+  for (int i = 0; i <= n; ++i) v.emplace_back(x0 + (x1 - x0) * i / n, y);
+  for (int i = 0; i < n; ++i) e.push_back(down ? ElementCorners<1>{i, i + 1} : ElementCorners<1>{i + 1, i});
+  return std::make_shared<const Surface<1>>(std::move(v), std::move(e));
+}
+
+/// nx x ny grid of squares over [x0, x1] x [y0, y1] at height z, each split into two triangles;
+/// normals +z (or -z if `down`). Interior vertices are moved by up to `jitter` of a cell.
+inline std::shared_ptr<const Surface<2>> grid(int nx, int ny, double x0, double x1, double y0, double y1,
+                                              double z, bool down = false, double jitter = 0.0) {
+  std::vector<WorldPoint<2>> v;
+  std::vector<ElementCorners<2>> e;
+  const double hx = (x1 - x0) / nx, hy = (y1 - y0) / ny;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      double x = x0 + i * hx, y = y0 + j * hy;
+      if (i > 0 && i < nx && j > 0 && j < ny) {
+        x += jitter * hx * std::sin(12.9898 * i + 78.233 * j);
+        y += jitter * hy * std::sin(39.3468 * i + 11.135 * j);
+      }
+      v.emplace_back(x, y, z);
+    }
+  auto id = [&](int i, int j) { return j * (nx + 1) + i; };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      ElementCorners<2> a{id(i, j), id(i + 1, j), id(i + 1, j + 1)};
+      ElementCorners<2> b{id(i, j), id(i + 1, j + 1), id(i, j + 1)};
+      if (down) {
+        std::swap(a[1], a[2]);
+        std::swap(b[1], b[2]);
+      }
+      e.push_back(a);
+      e.push_back(b);
+    }
+  return std::make_shared<const Surface<2>>(std::move(v), std::move(e));
+}
+
+/// Octahedron refined `levels` times by midpoint subdivision, projected onto a sphere of the
+/// given radius: outward normals unless `inward`.
+inline std::shared_ptr<const Surface<2>> sphere(int levels, double radius, bool inward = false,
+                                                double rotation = 0.0) {
+  std::vector<Eigen::Vector3d> v = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  std::vector<ElementCorners<2>> f = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                      {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<Index, Index>, Index> mid;
+    auto midpoint = [&](Index a, Index b) {
+      const auto key = std::minmax(a, b);
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      v.push_back((0.5 * (v[a] + v[b])).normalized());
+      const Index id = static_cast<Index>(v.size()) - 1;
+      mid.emplace(key, id);
+      return id;
+    };
+    std::vector<ElementCorners<2>> g;
+    for (const auto& t : f) {
+      const Index ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+      g.push_back({t[0], ab, ca});
+      g.push_back({ab, t[1], bc});
+      g.push_back({ca, bc, t[2]});
+      g.push_back({ab, bc, ca});
+    }
+    f = std::move(g);
+  }
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(rotation, Eigen::Vector3d(0.3, 0.5, 0.8).normalized()).matrix();
+  std::vector<WorldPoint<2>> w;
+  for (const auto& p : v) w.push_back(radius * (r * p));
+  if (inward)
+    for (auto& t : f) std::swap(t[1], t[2]);
+  return std::make_shared<const Surface<2>>(std::move(w), std::move(f));
+}
+
+}  // namespace plmap::test
