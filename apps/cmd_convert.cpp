@@ -1,0 +1,72 @@
+// `plmap convert IN OUT`: reads a surface in any readable format and writes it in the format
+// named by OUT's extension.
+
+#include "cli_common.hpp"
+
+#include <plmap/core/errors.hpp>
+#include <plmap/core/io/surface_writer.hpp>
+
+#include <iostream>
+#include <map>
+
+namespace plmap::cli {
+
+namespace {
+
+struct ConvertOptions {
+  std::string input;
+  std::string output;
+  int dimension = 0;
+  std::string encoding = "default";
+  std::string gmsh_version = "4.1";
+};
+
+int run_convert(const ConvertOptions& o) {
+  SurfaceWriteOptions options;
+  static const std::map<std::string, Encoding> encodings = {
+      {"default", Encoding::format_default},
+      {"ascii", Encoding::ascii},
+      {"binary", Encoding::binary},
+      {"binary-big-endian", Encoding::binary_big_endian}};
+  options.encoding = encodings.at(o.encoding);  // CLI11 checked the name
+  options.gmsh_version = o.gmsh_version == "2.2" ? GmshVersion::v2_2 : GmshVersion::v4_1;
+  // Fail on an unknown output extension before reading a possibly large input.
+  if (!format_from_extension(o.output))
+    throw Error(o.output + ": unknown output format '" +
+                std::filesystem::path(o.output).extension().string() +
+                "'; use .off, .obj, .stl, .ply, .msh or .curve");
+  std::visit(
+      [&](const auto& surface) {
+        write_surface(o.output, surface, options);
+        std::cout << "wrote " << o.output << ": " << surface.vertex_count() << " vertices, "
+                  << surface.element_count() << (surface.dimension == 1 ? " segments" : " triangles")
+                  << '\n';
+      },
+      read_any_surface(o.input, o.dimension));
+  return exit_code::success;
+}
+
+}  // namespace
+
+void register_convert(CLI::App& app, Action& action) {
+  auto o = std::make_shared<ConvertOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "convert",
+      "Convert a surface between file formats: reads .off .obj .stl .ply .msh .curve (format "
+      "from the extension, else from the content) and writes the format named by OUT's "
+      "extension. OUT is replaced only once it is completely written.");
+  cmd->add_option("IN", o->input, "Input surface")->required();
+  cmd->add_option("OUT", o->output, "Output surface")->required();
+  add_dimension_option(*cmd, o->dimension);
+  cmd->add_option("--encoding", o->encoding,
+                  "Number encoding: default (binary for STL and PLY, ASCII otherwise), ascii, "
+                  "binary, binary-big-endian (PLY)")
+      ->check(CLI::IsMember({"default", "ascii", "binary", "binary-big-endian"}))
+      ->capture_default_str();
+  cmd->add_option("--gmsh-version", o->gmsh_version, "Gmsh MSH version written: 2.2 or 4.1")
+      ->check(CLI::IsMember({"2.2", "4.1"}))
+      ->capture_default_str();
+  cmd->callback([o, &action] { action = [o] { return run_convert(*o); }; });
+}
+
+}  // namespace plmap::cli

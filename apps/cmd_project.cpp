@@ -1,0 +1,173 @@
+// `plmap project S1 S2 -o MAP`: builds the map from S1 onto S2 by normal projection (paper
+// section 3.2) and prints what was covered and what could not be inserted.
+
+#include "cli_common.hpp"
+
+#include <plmap/construct/project.hpp>
+#include <plmap/core/errors.hpp>
+#include <plmap/core/io/map_file.hpp>
+#include <plmap/core/regions.hpp>
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace plmap::cli {
+
+namespace {
+
+struct ProjectCommand {
+  std::string s1, s2, output, directions_file, solver = "newton", normal_check = "none";
+  double max_distance = std::numeric_limits<double>::infinity();
+  bool relative_distance = false, allow_negative = false, json = false;
+  unsigned threads = 1;
+  int dimension = 0;
+  std::size_t max_listed = 20;
+};
+
+/// Reads one direction per line (d+1 numbers; '#' starts a comment), one per S1 vertex.
+std::vector<double> read_directions(const std::string& file, int d, Index vertices) {
+  require_readable_file(file);
+  std::ifstream in(file);
+  std::vector<double> out;
+  std::string line;
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    std::istringstream words(line);
+    std::vector<double> row;
+    for (std::string w; words >> w;) {
+      std::size_t used = 0;
+      double x = 0.0;
+      try {
+        x = std::stod(w, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != w.size() || !std::isfinite(x))
+        throw ParseError(file, fmt::format("line {}", line_no), fmt::format("'{}' is not a finite number", w));
+      row.push_back(x);
+    }
+    if (row.empty()) continue;
+    if (static_cast<int>(row.size()) != d + 1)
+      throw ParseError(file, fmt::format("line {}", line_no),
+                       fmt::format("a direction needs {} numbers, found {}", d + 1, row.size()));
+    out.insert(out.end(), row.begin(), row.end());
+  }
+  if (out.size() != static_cast<std::size_t>(vertices) * (d + 1))
+    throw ParseError(file, "", fmt::format("{} directions given, but S1 has {} vertices",
+                                           out.size() / (d + 1), vertices));
+  return out;
+}
+
+TargetNormalCheck normal_check_from(const std::string& name) {
+  if (name == "none") return TargetNormalCheck::none;
+  if (name == "facing") return TargetNormalCheck::facing;
+  if (name == "aligned") return TargetNormalCheck::aligned;
+  throw Error(fmt::format("unknown normal check '{}' (valid: none, facing, aligned)", name));
+}
+
+template <int d>
+int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surface) {
+  auto s1 = std::make_shared<const Surface<d>>(std::move(s1_surface));
+  auto s2 = std::make_shared<const Surface<d>>(std::move(s2_surface));
+  ProjectionOptions options;
+  options.solver = o.solver;
+  options.max_distance = o.max_distance;
+  options.max_distance_is_relative = o.relative_distance;
+  options.allow_negative_distance = o.allow_negative;
+  options.normal_check = normal_check_from(o.normal_check);
+  options.threads = o.threads;
+  if (!o.directions_file.empty()) options.directions = read_directions(o.directions_file, d, s1->vertex_count());
+
+  const ProjectionResult<d> result = project<d>(s1, s2, options);
+  save_map(o.output, result.map);
+
+  const auto& r = result.report;
+  Json j;
+  j["map"] = o.output;
+  j["dimension"] = d;
+  j["domain_measure"] = result.measures.domain;
+  j["target_measure"] = result.measures.target;
+  j["covered_measure"] = result.measures.covered_domain;
+  j["covered_target_measure"] = result.measures.covered_target;
+  j["regions"] = result.map.region_count();
+  j["nodes"] = result.map.node_count();
+  j["vertex_preimages"] = r.vertex_preimages;
+  j["ghost_nodes"] = r.ghost_nodes;
+  j["edges_inserted"] = r.edges_inserted;
+  j["edges_partly_inserted"] = r.edges_partly_inserted;
+  j["edges_outside"] = r.edges_outside;
+  j["edges_not_inserted"] = r.edges_not_inserted.size();
+  Json listed = Json::array();
+  for (std::size_t i = 0; i < std::min(o.max_listed, r.edges_not_inserted.size()); ++i) {
+    const auto& e = r.edges_not_inserted[i];
+    listed.push_back({{"target_edge", e.target_edge},
+                      {"reason", std::string(to_string(e.reason))},
+                      {"domain_element", e.domain_element},
+                      {"domain_point", json_vector(e.domain_point)},
+                      {"target_parameter", e.target_parameter},
+                      {"detail", e.detail}});
+  }
+  j["edges_not_inserted_list"] = listed;
+  j["solver"] = o.solver;
+  j["solver_calls"] = r.solver_calls;
+  j["solver_failures"] = r.solver_failures;
+  j["threads"] = o.threads;
+  j["seconds"] = r.seconds.total;
+  j["seconds_by_phase"] = {{"setup", r.seconds.setup},
+                           {"vertex_preimages", r.seconds.vertex_preimages},
+                           {"ghost_nodes", r.seconds.ghost_nodes},
+                           {"edge_walks", r.seconds.edge_walks},
+                           {"insertion", r.seconds.insertion},
+                           {"finalize", r.seconds.finalize}};
+  print_result(j, o.json);
+  return exit_code::success;
+}
+
+int run_project(const ProjectCommand& o) {
+  AnySurface a = read_any_surface(o.s1, o.dimension);
+  AnySurface b = read_any_surface(o.s2, o.dimension == 0 ? static_cast<int>(a.index()) + 1 : o.dimension);
+  if (a.index() != b.index())
+    throw Error(fmt::format("{} is a {}-dimensional surface but {} is {}-dimensional", o.s1,
+                            a.index() + 1, o.s2, b.index() + 1));
+  if (a.index() == 0)
+    return run<1>(o, std::move(std::get<0>(a)), std::move(std::get<0>(b)));
+  return run<2>(o, std::move(std::get<1>(a)), std::move(std::get<1>(b)));
+}
+
+}  // namespace
+
+void register_project(CLI::App& app, Action& action) {
+  auto o = std::make_shared<ProjectCommand>();
+  CLI::App* cmd = app.add_subcommand(
+      "project",
+      "Build the map from S1 onto S2 by normal projection along a direction field on S1 "
+      "(default: averaged vertex normals). S2 edges that leave S1 are inserted up to S1's "
+      "boundary; edges that cannot be inserted are listed with the reason.");
+  cmd->add_option("S1", o->s1, "Domain surface (the map is stored on it)")->required();
+  cmd->add_option("S2", o->s2, "Target surface")->required();
+  cmd->add_option("-o,--output", o->output, "Map file to write (.plmap), replaced atomically")->required();
+  cmd->add_option("--directions", o->directions_file,
+                  "Text file with one projection direction per S1 vertex (d+1 numbers a line)");
+  cmd->add_option("--solver", o->solver, "Solver of the projection equations: newton or ceres")
+      ->capture_default_str();
+  cmd->add_option("--threads", o->threads, "Worker threads (0: all cores); the result does not depend on it")
+      ->capture_default_str();
+  cmd->add_option("--max-distance", o->max_distance, "Largest projection distance |mu|")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--relative-distance", o->relative_distance,
+                "--max-distance is a multiple of S1's bounding-box diagonal");
+  cmd->add_flag("--allow-negative", o->allow_negative,
+                "Also accept images behind S1 (penetrating contact), down to -max-distance");
+  cmd->add_option("--normal-check", o->normal_check,
+                  "Accept images by S2's normal: none, facing (contact pairs) or aligned")
+      ->capture_default_str();
+  cmd->add_option("--max-listed", o->max_listed, "Edges not inserted listed in the output")
+      ->capture_default_str();
+  add_dimension_option(*cmd, o->dimension);
+  cmd->add_flag("--json", o->json, "Print the summary as JSON");
+  cmd->callback([o, &action] { action = [o] { return run_project(*o); }; });
+}
+
+}  // namespace plmap::cli

@@ -1,0 +1,323 @@
+// Running the pipeline of every run and writing the outputs (runner.hpp).
+
+#include "inputs.hpp"
+#include "refinement_maps.hpp"  // tests/strategies: k x k subdivision maps, as in the benchmarks
+
+#include <plmap/core/evaluation.hpp>
+#include <plmap/core/io/atomic_file.hpp>
+#include <plmap/experiment/config_error.hpp>
+#include <plmap/experiment/runner.hpp>
+#include <plmap/experiment/schema.hpp>
+#include <plmap/experiment/summary.hpp>
+#include <plmap/experiment/sweep.hpp>
+#include <plmap/strategies/point_locator_registry.hpp>
+#include <plmap/verify/check.hpp>
+#include <plmap/verify/generators/random_maps.hpp>
+#ifdef PLMAP_EXPERIMENT_HAS_CONSTRUCT
+#include <plmap/construct/project.hpp>
+#endif
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <thread>
+
+namespace plmap::experiment {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+using generators::Rng;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// JSON of a double; non-finite values (an infinite condition number) become null.
+Json number(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
+
+/// What one repetition of a run measured.
+struct Measurements {
+  Json metrics = Json::object();
+  std::map<std::string, double> timings;
+};
+
+/// One run of the pipeline on a surface of dimension d.
+template <int d>
+class Pipeline {
+ public:
+  Pipeline(const ExperimentConfig& config, const RunSpec& run, detail::InputCache& inputs)
+      : config_(config), run_(run), inputs_(inputs) {}
+
+  Measurements operator()() {
+    Measurements m;
+    s1_ = inputs_.surface<d>(run_.input_index, run_.input_parameters);
+    m.metrics["input.dimension"] = d;
+    m.metrics["input.vertices"] = s1_->vertex_count();
+    m.metrics["input.elements"] = s1_->element_count();
+    map_.reset();
+    for (std::size_t s = 0; s < config_.pipeline.size(); ++s) {
+      const StepConfig& step = config_.pipeline[s];
+      try {
+        run_step(step, run_.step_parameters[s], m, step.name + ".");
+      } catch (const Error& e) {
+        throw Error(fmt::format("run {} (input \"{}\"), {} ({}): {}", run_.index, config_.inputs[run_.input_index].name,
+                                step.key, step.name, e.what()));
+      }
+    }
+    return m;
+  }
+
+ private:
+  void run_step(const StepConfig& step, const ParameterSet& p, Measurements& m, const std::string& prefix) {
+    if (step.kind == "build") return build(p, m, prefix);
+    if (step.kind == "project") return project(p, m, prefix);
+    if (step.kind == "evaluate") return evaluate(p, m, prefix);
+    if (step.kind == "check") return check(p, m, prefix);
+    throw Error("unknown step " + step.kind);
+  }
+
+  void build(const ParameterSet& p, Measurements& m, const std::string& prefix) {
+    const std::string& kind = p.text("map");
+    const auto start = std::chrono::steady_clock::now();
+    if (kind == "identity") {
+      map_ = generators::identity_map<d>(s1_).map;
+    } else if (kind == "subdivision") {
+      map_ = testing::refine(s1_, int(p.integer("k")), p.real("jitter"), std::uint64_t(p.integer("seed"))).map;
+    } else if (kind == "refinement") {
+      Rng rng(std::uint64_t(p.integer("seed")));
+      const generators::RefinementOptions options{.max_points_per_edge = int(p.integer("max_points_per_edge")),
+                                                  .max_points_per_element = int(p.integer("max_points_per_element"))};
+      map_ = generators::refinement_map<d>(s1_, generators::random_refinement<d>(*s1_, options, rng)).map;
+    } else if (kind == "overlay") {
+      Rng rng(std::uint64_t(p.integer("seed")));
+      if constexpr (d == 2) {
+        const bool hole = run_.input_parameters.has("hole") && run_.input_parameters.boolean("hole");
+        auto s2 = std::make_shared<const Surface<2>>(generators::grid_triangulation(
+            {.cells = int(p.integer("overlay_cells")), .jitter = p.real("overlay_jitter"), .with_hole = hole}, rng));
+        map_ = generators::plane_overlay_map(s1_, s2).map;
+      } else {
+        map_ = generators::polyline_overlay_map(generators::random_subdivisions(s1_, int(p.integer("overlay_cells")), rng)).map;
+      }
+    }
+    m.timings[prefix + "seconds"] = seconds_since(start);
+    record_map(m, prefix);
+    m.metrics[prefix + "memory_bytes"] = map_->memory_bytes();
+  }
+
+  void record_map(Measurements& m, const std::string& prefix) {
+    m.metrics[prefix + "nodes"] = map_->node_count();
+    m.metrics[prefix + "regions"] = map_->region_count();
+    m.metrics[prefix + "regions_per_element"] = double(map_->region_count()) / map_->domain().element_count();
+    m.metrics[prefix + "target_vertices"] = map_->target().vertex_count();
+    m.metrics[prefix + "target_elements"] = map_->target().element_count();
+  }
+
+  void project([[maybe_unused]] const ParameterSet& p, [[maybe_unused]] Measurements& m,
+               [[maybe_unused]] const std::string& prefix) {
+#ifdef PLMAP_EXPERIMENT_HAS_CONSTRUCT
+    const std::string& target = p.text("target");
+    int index = 0;
+    while (config_.inputs[index].name != target) ++index;
+    auto s2 = inputs_.surface<d>(index, config_.inputs[index].parameters);
+    ProjectionOptions options;
+    options.solver = p.text("solver");
+    const double limit = p.real("max_distance");
+    if (limit > 0) {
+      options.max_distance = limit;
+      options.max_distance_is_relative = p.boolean("relative_distance");
+    }
+    options.allow_negative_distance = p.boolean("allow_negative_distance");
+    const std::string& check = p.text("normal_check");
+    options.normal_check = check == "facing" ? TargetNormalCheck::facing
+                           : check == "aligned" ? TargetNormalCheck::aligned
+                                                : TargetNormalCheck::none;
+    options.threads = unsigned(p.integer("threads"));
+    const auto start = std::chrono::steady_clock::now();
+    auto result = plmap::project<d>(s1_, s2, options);
+    m.timings[prefix + "seconds"] = seconds_since(start);
+    map_ = std::make_shared<const PlMap<d>>(std::move(result.map));
+    m.metrics[prefix + "nodes"] = map_->node_count();
+    m.metrics[prefix + "regions"] = map_->region_count();
+    m.metrics[prefix + "target_elements"] = s2->element_count();
+    const auto& r = result.report;
+    m.metrics[prefix + "vertex_preimages"] = r.vertex_preimages;
+    m.metrics[prefix + "edges_inserted"] = r.edges_inserted;
+    m.metrics[prefix + "edges_partly_inserted"] = r.edges_partly_inserted;
+    m.metrics[prefix + "edges_not_inserted"] = r.edges_not_inserted.size();
+    m.metrics[prefix + "covered_fraction"] =
+        result.measures.domain > 0 ? result.measures.covered_domain / result.measures.domain : 0.0;
+    m.metrics[prefix + "solver_calls"] = r.solver_calls;
+    m.metrics[prefix + "solver_failures"] = r.solver_failures;
+#else
+    throw Error("this build has no plmap::construct");
+#endif
+  }
+
+  /// Query points uniform in the reference element of uniformly chosen elements (portable: drawn
+  /// through the generators' own uniform functions).
+  std::vector<SurfacePoint<d>> queries(std::size_t n, std::uint64_t seed) const {
+    Rng rng(seed);
+    const Surface<d>& s = map_->domain();
+    std::vector<SurfacePoint<d>> q(n);
+    for (auto& point : q) {
+      point.element = Index(generators::uniform_index(rng, int(s.element_count())));
+      if constexpr (d == 1) {
+        point.local = LocalPoint<1>(generators::uniform_unit(rng));
+      } else {
+        double x = generators::uniform_unit(rng), y = generators::uniform_unit(rng);
+        if (x + y > 1) x = 1 - x, y = 1 - y;
+        point.local = LocalPoint<2>(x, y);
+      }
+    }
+    return q;
+  }
+
+  void evaluate(const ParameterSet& p, Measurements& m, const std::string& prefix) {
+    const auto points = queries(std::size_t(p.integer("queries")), std::uint64_t(p.integer("seed")));
+    std::vector<Evaluation<d>> out(points.size());
+    const unsigned threads = unsigned(p.integer("threads"));
+    double seconds = 0;
+    with_point_locator<d>(
+        p.text("locator"),
+        [&](auto& locator) {
+          const auto start = std::chrono::steady_clock::now();
+          evaluate_batch<d>(*map_, points, out, locator, threads);
+          seconds = seconds_since(start);
+        },
+        PointLocatorOptions{.seed = std::uint64_t(p.integer("seed"))});
+    std::int64_t in_domain = 0;
+    double checksum = 0;
+    for (const auto& e : out)
+      if (e.in_domain) ++in_domain, checksum += e.world.sum();
+    m.metrics[prefix + "in_domain"] = in_domain;
+    m.metrics[prefix + "checksum"] = checksum;
+    m.timings[prefix + "seconds"] = seconds;
+    m.timings[prefix + "ns_per_eval"] = 1e9 * seconds / double(points.size());
+    m.timings[prefix + "evals_per_second"] = seconds > 0 ? double(points.size()) / seconds : 0.0;
+  }
+
+  void check(const ParameterSet& p, Measurements& m, const std::string& prefix) {
+    VerifyOptions options;
+    options.expect_parametrization = p.boolean("parametrization");
+    if (p.real("max_condition") > 0) options.max_condition = p.real("max_condition");
+    const auto start = std::chrono::steady_clock::now();
+    const VerificationReport report = verify<d>(*map_, options);
+    m.timings[prefix + "seconds"] = seconds_since(start);
+    m.metrics[prefix + "ok"] = report.ok();
+    m.metrics[prefix + "violations"] = report.violation_count();
+    m.metrics[prefix + "kappa_max"] = report.quality ? number(report.quality->kappa_max) : Json(nullptr);
+    m.metrics[prefix + "kappa_mean"] = report.quality ? number(report.quality->kappa_mean) : Json(nullptr);
+  }
+
+  const ExperimentConfig& config_;
+  const RunSpec& run_;
+  detail::InputCache& inputs_;
+  std::shared_ptr<const Surface<d>> s1_;
+  std::shared_ptr<const PlMap<d>> map_;
+};
+
+int run_dimension(const ExperimentConfig& config, const RunSpec& run) {
+  const InputConfig& input = config.inputs[run.input_index];
+  if (input.kind != "file") return input.dimension;
+  const auto dim = run.input_parameters.integer("dimension");
+  if (dim != 0) return int(dim);
+  return std::filesystem::path(run.input_parameters.text("path")).extension() == ".curve" ? 1 : 2;
+}
+
+/// The swept values of a run, for progress messages: "evaluate.locator=brute-force, ...".
+std::string describe(const ExperimentConfig& config, const RunSpec& run) {
+  std::string text = fmt::format("input {}", config.inputs[run.input_index].name);
+  for (const auto& axis : config.sweep) {
+    const std::string column = axis.target == SweepAxis::Target::input
+                                   ? "input." + axis.parameter
+                                   : config.pipeline[axis.index].name + "." + axis.parameter;
+    if (run.columns.contains(column)) text += fmt::format(", {}={}", column, run.columns[column].dump());
+  }
+  return text;
+}
+
+}  // namespace
+
+std::vector<RunResult> run_all(const ExperimentConfig& config, const std::filesystem::path& cache_dir,
+                               const RunOptions& options) {
+  const auto runs = expand_runs(config);
+  const int repetitions = options.repetitions_override > 0 ? options.repetitions_override : config.repetitions;
+  const auto available = available_metrics(config);
+  std::set<std::string> selected(config.metrics.begin(), config.metrics.end());
+  auto wanted = [&](const std::string& name) { return selected.empty() || selected.count(name) > 0; };
+
+  detail::InputCache inputs(config, cache_dir);
+  std::vector<RunResult> rows;
+  for (const RunSpec& run : runs) {
+    if (options.progress)
+      options.progress(fmt::format("run {}/{}: {}", run.index + 1, runs.size(), describe(config, run)));
+    RunResult row;
+    row.run = run.index;
+    row.config = run.columns;
+    std::map<std::string, std::vector<double>> samples;
+    Json first;
+    for (int rep = 0; rep < repetitions; ++rep) {
+      Measurements m = run_dimension(config, run) == 1 ? Pipeline<1>(config, run, inputs)()
+                                                        : Pipeline<2>(config, run, inputs)();
+      for (const auto& [name, t] : m.timings) samples[name].push_back(t);
+      if (rep == 0) {
+        first = m.metrics;
+      } else if (m.metrics != first) {
+        for (const auto& [name, value] : m.metrics.items())
+          if (first[name] != value)
+            row.notes.push_back(fmt::format("{} differs between repetitions ({} then {})", name, first[name].dump(),
+                                            value.dump()));
+        first = m.metrics;  // report each difference once per repetition
+      }
+    }
+    // Metrics in pipeline order, restricted to the selection.
+    for (const auto& [name, timing] : available) {
+      if (!wanted(name)) continue;
+      if (timing) {
+        if (!samples.count(name)) continue;
+        const TimingSummary t = summarize(samples[name]);
+        row.timings[name] = {{"median", t.median}, {"min", t.min}, {"max", t.max}, {"samples", t.samples}};
+      } else if (first.contains(name)) {
+        row.metrics[name] = first[name];
+      }
+    }
+    if (row.metrics.is_null()) row.metrics = Json::object();
+    if (row.timings.is_null()) row.timings = Json::object();
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+ExperimentOutcome run_experiment(const ExperimentConfig& config, const std::filesystem::path& output_dir,
+                                 const RunOptions& options) {
+  ExperimentOutcome outcome;
+  outcome.output_directory = output_dir;
+  outcome.provenance = collect_provenance();
+  std::filesystem::create_directories(output_dir);
+  write_file_atomically(output_dir / "config.toml", [&](std::ostream& out) { out << config.text; }, true);
+  write_file_atomically(
+      output_dir / "provenance.json", [&](std::ostream& out) { out << to_json(outcome.provenance).dump(2) << '\n'; },
+      false);
+  {
+    Json runs = Json::array();
+    for (const auto& run : expand_runs(config)) runs.push_back(run.columns);
+    write_file_atomically(output_dir / "runs.json", [&](std::ostream& out) { out << runs.dump(2) << '\n'; }, false);
+  }
+  outcome.rows = run_all(config, output_dir / "inputs", options);
+  write_jsonl(output_dir / "results.jsonl", outcome.rows, outcome.provenance);
+  write_csv(output_dir / "results.csv", outcome.rows, outcome.provenance);
+  if (options.make_plots && !config.plots.empty()) {
+    if (options.progress) options.progress("plots");
+    outcome.plots = write_plots(config, outcome.rows, output_dir, options.plots);
+  }
+  const std::string summary = summary_markdown(config, outcome.rows, outcome.provenance, outcome.plots);
+  write_file_atomically(output_dir / "summary.md", [&](std::ostream& out) { out << summary; }, false);
+  return outcome;
+}
+
+}  // namespace plmap::experiment

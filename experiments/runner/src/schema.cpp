@@ -1,0 +1,230 @@
+#include <plmap/experiment/schema.hpp>
+
+#include <stdexcept>
+
+namespace plmap::experiment {
+
+namespace {
+
+/// Small builders so that each schema below reads as a table.
+ParameterSpec integer(std::string name, std::int64_t def, double min, double max, std::string doc) {
+  ParameterSpec s;
+  s.name = std::move(name), s.type = ParameterType::integer, s.default_value = def;
+  s.min = min, s.max = max, s.doc = std::move(doc);
+  return s;
+}
+ParameterSpec real(std::string name, double def, double min, double max, std::string doc) {
+  ParameterSpec s;
+  s.name = std::move(name), s.type = ParameterType::real, s.default_value = def;
+  s.min = min, s.max = max, s.doc = std::move(doc);
+  return s;
+}
+ParameterSpec boolean(std::string name, bool def, std::string doc) {
+  ParameterSpec s;
+  s.name = std::move(name), s.type = ParameterType::boolean, s.default_value = def;
+  s.doc = std::move(doc);
+  return s;
+}
+ParameterSpec required_text(std::string name, std::string doc) {
+  ParameterSpec s;
+  s.name = std::move(name), s.type = ParameterType::text, s.doc = std::move(doc);
+  return s;
+}
+ParameterSpec choice(std::string name, std::optional<std::string> def, std::vector<std::string> choices,
+                     std::string noun, std::string doc) {
+  ParameterSpec s;
+  s.name = std::move(name), s.type = ParameterType::choice;
+  if (def) s.default_value = *def;
+  s.choices = std::move(choices), s.choice_noun = std::move(noun), s.doc = std::move(doc);
+  return s;
+}
+ParameterSpec seed(std::string doc) {
+  ParameterSpec s;
+  s.name = "seed", s.type = ParameterType::integer, s.inherits_seed = true;
+  s.min = 0, s.max = 9.0e15, s.doc = std::move(doc);
+  return s;
+}
+ParameterSpec only_for(ParameterSpec s, std::string key, std::vector<std::string> values) {
+  s.only_when = std::move(key), s.only_when_values = std::move(values);
+  return s;
+}
+
+constexpr double unbounded = 1e300;
+
+const std::vector<std::string> kInputKinds = {"file",          "cgal",           "grid",
+                                              "delaunay",      "bumpy-grid",     "open-polyline",
+                                              "closed-polyline", "star-polyline"};
+
+std::vector<std::string> make_step_kinds() {
+  std::vector<std::string> kinds = {"build"};
+  if (projection_available()) kinds.push_back("project");
+  kinds.push_back("evaluate");
+  kinds.push_back("check");
+  return kinds;
+}
+
+ParameterSpec height() {
+  return real("height", 0.0, 0.0, unbounded,
+              "amplitude of the height field z = height sin(3x) cos(2y) (0: planar)");
+}
+ParameterSpec z_offset() { return real("z_offset", 0.0, -unbounded, unbounded, "added to every z"); }
+
+}  // namespace
+
+bool projection_available() {
+#ifdef PLMAP_EXPERIMENT_HAS_CONSTRUCT
+  return true;
+#else
+  return false;
+#endif
+}
+
+std::span<const std::string> input_kinds() { return kInputKinds; }
+
+std::span<const std::string> step_kinds() {
+  static const std::vector<std::string> kinds = make_step_kinds();
+  return kinds;
+}
+
+const std::vector<ParameterSpec>& input_schema(const std::string& kind) {
+  static const std::vector<ParameterSpec> file = {
+      required_text("path", "surface file (.off .obj .stl .ply .msh .curve), relative to the config"),
+      integer("dimension", 0, 0, 2, "1 (curve) or 2 (triangle surface); 0: .curve is 1, else 2")};
+  static const std::vector<ParameterSpec> cgal = {
+      required_text("mesh", "name of a mesh in libcgal-demo's data/meshes, e.g. \"femur\""),
+      integer("simplify_to", 0, 0, unbounded,
+              "if > 0, simplify by CGAL edge collapse to about this many triangles")};
+  static const std::vector<ParameterSpec> grid = {
+      integer("cells", 8, 1, 4096, "cells per side of the unit square (a multiple of 4 with hole)"),
+      real("jitter", 0.0, 0.0, 0.2, "vertex jitter as a fraction of the cell size"),
+      boolean("hole", false, "cut the hole [0.25,0.5] x [0.5,0.75]"), height(), z_offset(),
+      seed("random diagonals and jitter")};
+  static const std::vector<ParameterSpec> delaunay = {
+      integer("interior_points", 50, 0, 1e7, "random points inside the square"),
+      integer("boundary_points", 8, 0, 1e6, "random points on the boundary"),
+      integer("grid_points", 0, 0, 1e6, "points from the dyadic grid of spacing 1/8"),
+      boolean("hole", false, "cut the hole [0.25,0.5] x [0.5,0.75]"), height(), z_offset(),
+      seed("the random points")};
+  static const std::vector<ParameterSpec> bumpy = {
+      integer("cells", 8, 1, 4096, "an n x n grid of squares, two triangles each, on a gentle height field")};
+  static const std::vector<ParameterSpec> open_polyline = {
+      integer("segments", 16, 1, 1e7, "segments of an x-monotone polyline from x = 0 to 1"),
+      seed("the vertices")};
+  static const std::vector<ParameterSpec> closed_polyline = {
+      integer("segments", 16, 3, 1e7, "segments of a closed star-shaped polygon"), seed("the vertices")};
+  static const std::vector<ParameterSpec> star_polyline = {
+      integer("arms", 3, 3, 1e5, "polylines leaving a common (non-manifold) centre"),
+      integer("segments_per_arm", 4, 1, 1e6, "segments per arm"), seed("the vertices")};
+  if (kind == "file") return file;
+  if (kind == "cgal") return cgal;
+  if (kind == "grid") return grid;
+  if (kind == "delaunay") return delaunay;
+  if (kind == "bumpy-grid") return bumpy;
+  if (kind == "open-polyline") return open_polyline;
+  if (kind == "closed-polyline") return closed_polyline;
+  if (kind == "star-polyline") return star_polyline;
+  throw std::out_of_range("no input kind " + kind);
+}
+
+int input_kind_dimension(const std::string& kind) {
+  if (kind == "file") return 0;
+  if (kind.ends_with("polyline")) return 1;
+  return 2;
+}
+
+const std::vector<ParameterSpec>& step_schema(const std::string& kind) {
+  static const std::vector<std::string> randomized = {"subdivision", "refinement", "overlay"};
+  static const std::vector<ParameterSpec> build = {
+      choice("map", std::nullopt, {"identity", "subdivision", "refinement", "overlay"}, "map kind",
+             "identity: S2 = S1; subdivision: every element cut into k x k (d = 1: k) pieces; "
+             "refinement: random points on edges and inside elements; overlay: a second, "
+             "independent triangulation of the same planar domain (d = 1: subdivision of the "
+             "same polyline)"),
+      only_for(integer("k", 4, 1, 1000, "subdivisions per element side"), "map", {"subdivision"}),
+      only_for(real("jitter", 0.2, 0.0, 0.2, "interior subdivision points move by up to jitter / k"),
+               "map", {"subdivision"}),
+      only_for(integer("max_points_per_edge", 2, 0, 64, "random points per S1 edge: 0..max"), "map",
+               {"refinement"}),
+      only_for(integer("max_points_per_element", 3, 0, 256, "random points per S1 element: 0..max"),
+               "map", {"refinement"}),
+      only_for(integer("overlay_cells", 8, 1, 4096,
+                       "d = 2: cells per side of the second triangulation (a grid); d = 1: most "
+                       "split points per segment"),
+               "map", {"overlay"}),
+      only_for(real("overlay_jitter", 0.1, 0.0, 0.2, "d = 2: jitter of the second triangulation"), "map",
+               {"overlay"}),
+      only_for(seed("random choices of the map"), "map", randomized)};
+  static const std::vector<ParameterSpec> project = {
+      required_text("target", "name of the input that is S2 (give it run = false)"),
+      choice("solver", "newton", {"newton", "ceres"}, "projection solver", "solver of eq. (3) and (4)"),
+      real("max_distance", 0.0, 0.0, unbounded, "largest projection distance; 0: no limit"),
+      boolean("relative_distance", true, "max_distance is a multiple of S1's bounding-box diagonal"),
+      boolean("allow_negative_distance", false, "accept images behind S1"),
+      choice("normal_check", "none", {"none", "facing", "aligned"}, "normal check",
+             "which target orientations are accepted"),
+      integer("threads", 1, 0, 1024, "worker threads; 0: all hardware threads")};
+  static const std::vector<ParameterSpec> evaluate = {
+      choice("locator", "default", {"default", "brown-faigle", "straight-walk", "brute-force", "bisection"},
+             "point locator",
+             "point-location strategy; default: brown-faigle (d = 2), bisection (d = 1)"),
+      integer("queries", 100000, 1, 1e9, "random query points, uniform over elements"),
+      integer("threads", 1, 0, 1024, "evaluation threads; 0: all hardware threads"),
+      seed("the query points")};
+  static const std::vector<ParameterSpec> check = {
+      boolean("parametrization", false, "also require that the map covers all of S1 and S2"),
+      real("max_condition", 0.0, 0.0, unbounded, "regions with kappa above this are violations; 0: none")};
+  if (kind == "build") return build;
+  if (kind == "project") return project;
+  if (kind == "evaluate") return evaluate;
+  if (kind == "check") return check;
+  throw std::out_of_range("no step kind " + kind);
+}
+
+const std::vector<MetricSpec>& input_metrics() {
+  static const std::vector<MetricSpec> m = {{"dimension", false, "1 or 2"},
+                                            {"vertices", false, "vertices of S1"},
+                                            {"elements", false, "elements of S1"}};
+  return m;
+}
+
+const std::vector<MetricSpec>& step_metrics(const std::string& kind) {
+  static const std::vector<MetricSpec> build = {
+      {"nodes", false, "graph nodes of the map"},
+      {"regions", false, "regions (overlaps) of the map"},
+      {"regions_per_element", false, "regions / S1 elements"},
+      {"target_vertices", false, "vertices of S2"},
+      {"target_elements", false, "elements of S2"},
+      {"memory_bytes", false, "bytes of the compact form"},
+      {"seconds", true, "wall time to build the map"}};
+  static const std::vector<MetricSpec> project = {
+      {"nodes", false, "graph nodes of the map"},
+      {"regions", false, "regions of the map"},
+      {"target_elements", false, "elements of S2"},
+      {"vertex_preimages", false, "S2 vertices with a preimage"},
+      {"edges_inserted", false, "S2 edges inserted completely"},
+      {"edges_partly_inserted", false, "S2 edges inserted in pieces"},
+      {"edges_not_inserted", false, "S2 edges reported as not inserted"},
+      {"covered_fraction", false, "measure of D / measure of S1"},
+      {"solver_calls", false, "solver calls (eq. 3 and 4)"},
+      {"solver_failures", false, "solver calls that did not converge"},
+      {"seconds", true, "wall time of the projection"}};
+  static const std::vector<MetricSpec> evaluate = {
+      {"in_domain", false, "queries inside D"},
+      {"checksum", false, "sum of the image coordinates (a fingerprint of the results)"},
+      {"seconds", true, "wall time for all queries"},
+      {"ns_per_eval", true, "wall nanoseconds per query"},
+      {"evals_per_second", true, "queries per wall second"}};
+  static const std::vector<MetricSpec> check = {
+      {"ok", false, "no violation"},
+      {"violations", false, "number of violations"},
+      {"kappa_max", false, "largest condition number of a region"},
+      {"kappa_mean", false, "mean condition number"},
+      {"seconds", true, "wall time of verify()"}};
+  if (kind == "build") return build;
+  if (kind == "project") return project;
+  if (kind == "evaluate") return evaluate;
+  if (kind == "check") return check;
+  throw std::out_of_range("no step kind " + kind);
+}
+
+}  // namespace plmap::experiment
