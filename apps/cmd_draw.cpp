@@ -127,7 +127,7 @@ std::string draw(const PlMap<d>& map, const DrawOptions& o) {
   MapViewOptions options;
   options.azimuth_degrees = o.azimuth;
   options.elevation_degrees = o.elevation;
-  options.up_axis = o.up.front();
+  options.up_axis = o.up;
   options.width = o.width;
   options.height = o.height;
   options.legend = !o.no_legend;
@@ -183,8 +183,8 @@ void register_draw(CLI::App& app, Action& action) {
       ->check(CLI::Range(-90.0, 90.0))
       ->capture_default_str();
   cmd->add_option("--up", o->up,
-                  "--view3d: the world axis pointing up in the picture (many meshes use y)")
-      ->check(CLI::IsMember({"x", "y", "z"}))
+                  "--view3d: the world axis pointing up in the picture: x, y, z, -x, -y or -z")
+      ->check(CLI::IsMember({"x", "y", "z", "-x", "-y", "-z"}))
       ->capture_default_str();
   cmd->add_option("--width", o->width, "--view3d: image width in pixels")
       ->check(CLI::Range(100.0, 20000.0))

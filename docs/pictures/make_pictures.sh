@@ -29,7 +29,7 @@ draw view_overlay_top overlay.plmap --view3d --elevation 90 --azimuth -90 --widt
 
 # Refinements of real meshes (S2 finer than S1).
 "$plmap" build refine data/meshes/pig.off --random-points 2 --seed 1 -o pig.plmap
-draw view_pig_refinement pig.plmap --view3d --up y --azimuth 60
+draw view_pig_refinement pig.plmap --view3d --up=-y --azimuth 60
 "$plmap" build refine data/meshes/elephant.off --levels 1 -o elephant.plmap
 # The elephant's SVG is ~3 MB: only the PNG is kept.
 "$plmap" draw elephant.plmap --view3d --up y --azimuth 20 --width 1000 --height 800 \

@@ -359,13 +359,35 @@ TEST(SvgMapView, ElementLabelsAndUpAxis) {
   // With y up, azimuth is measured about y from +z (the cyclic permutation (x, y, z) -> (z, x, y)
   // moves y to "up"): azimuth 0, elevation 0 puts the viewer on the +z side, facing the
   // triangles, so the one at z = 1 is nearer and drawn last.
-  options.up_axis = 'y';
+  options.up_axis = "y";
   options.elevation_degrees = 0.0;
   options.azimuth_degrees = 0.0;
   const std::string side = draw_map_3d_svg(map, options);
   EXPECT_EQ(face_order(side), (std::vector<std::string>{"1", "0"}));  // z = 1 is nearer
-  options.up_axis = 'w';
-  EXPECT_THROW((void)draw_map_3d_svg(map, options), Error);
+  // Upside down (-y): the corner (0, 1, 1) of element 0 is above corner (0, 0, 1) with y up
+  // and below it with -y up (SVG y grows downwards).
+  const auto corner_heights = [](const std::string& svg) {
+    for (const std::string& tag : tags_with_class(svg, "face "))
+      if (attribute(tag, "data-element") == "0") {
+        std::smatch m;
+        const std::string d = attribute(tag, "d");
+        const std::regex numbers("M[-0-9.]+ ([-0-9.]+)L[-0-9.]+ [-0-9.]+L[-0-9.]+ ([-0-9.]+)Z");
+        if (std::regex_match(d, m, numbers)) return std::pair{std::stod(m[1]), std::stod(m[2])};
+      }
+    ADD_FAILURE() << "no face path for element 0";
+    return std::pair{0.0, 0.0};
+  };
+  const auto [low_y, high_y] = corner_heights(side);
+  EXPECT_LT(high_y, low_y - 10.0);
+  options.up_axis = "-y";
+  const std::string flipped = draw_map_3d_svg(map, options);
+  const auto [low_flipped, high_flipped] = corner_heights(flipped);
+  EXPECT_GT(high_flipped, low_flipped + 10.0);
+  EXPECT_EQ(tags_with_class(flipped, "face front").size(), 2u);  // a rotation, not a mirror
+  for (const char* bad : {"w", "", "--y", "yy", "+"}) {
+    options.up_axis = bad;
+    EXPECT_THROW((void)draw_map_3d_svg(map, options), Error) << bad;
+  }
 }
 
 TEST(SvgMapView, CurvesInThePlane) {

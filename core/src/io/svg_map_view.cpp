@@ -29,13 +29,15 @@ struct Camera {
   double scale = 1.0;            // pixels per world unit
   double offset_x = 0.0, offset_y = 0.0;  // pixel position of the projected centre
 
-  /// `centre` in world coordinates; `up_axis` 0, 1 or 2.
+  /// `centre` in world coordinates; `up_axis` 0, 1 or 2, `up_sign` +1 or -1.
   static Camera looking_from(double azimuth_degrees, double elevation_degrees,
-                             const Eigen::Vector3d& world_centre, int up_axis = 2) {
+                             const Eigen::Vector3d& world_centre, int up_axis = 2,
+                             double up_sign = 1.0) {
     const double a = azimuth_degrees * std::numbers::pi / 180.0;
     const double e = elevation_degrees * std::numbers::pi / 180.0;
     Camera c;
     c.up_axis = up_axis;
+    c.up_sign = up_sign;
     c.centre = c.permuted(world_centre);
     c.toward_viewer = Eigen::Vector3d(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
     const Eigen::Vector3d forward = -c.toward_viewer;
@@ -49,13 +51,16 @@ struct Camera {
     return c;
   }
 
-  /// Which world coordinate plays the role of "up" (z after the cyclic permutation below).
+  /// Which world coordinate plays the role of "up" (z after the rotation below), and whether
+  /// it points down (-x, -y, -z).
   int up_axis = 2;
+  double up_sign = 1.0;
 
-  /// World coordinates with the up axis moved to z by a cyclic permutation (which keeps the
-  /// handedness, so front and back faces stay what they are).
+  /// World coordinates with the up axis moved to z by a cyclic permutation, followed for a
+  /// negative axis by a half turn about the new x axis. Both are rotations, so front and back
+  /// faces stay what they are.
   Eigen::Vector3d permuted(const Eigen::Vector3d& x) const {
-    return {x((up_axis + 1) % 3), x((up_axis + 2) % 3), x(up_axis)};
+    return {x((up_axis + 1) % 3), up_sign * x((up_axis + 2) % 3), up_sign * x(up_axis)};
   }
 
   /// Screen coordinates before framing (world units) and depth (larger = nearer the viewer).
@@ -123,11 +128,14 @@ std::string draw_map_3d_svg(const PlMap<2>& map, const MapViewOptions& options) 
   const Surface<2>& s1 = map.domain();
   const MapData<2>& data = map.data();
   const double width = options.width, height = options.height;
-  if (options.up_axis < 'x' || options.up_axis > 'z')
-    throw Error(fmt::format("up axis '{}' is not one of x, y, z", options.up_axis));
+  const std::string& up = options.up_axis;
+  const bool negative = up.size() == 2 && up[0] == '-';
+  const char axis = up.empty() ? '?' : up.back();
+  if (up.size() != (negative ? 2u : 1u) || axis < 'x' || axis > 'z')
+    throw Error(fmt::format("up axis '{}' is not one of x, y, z, -x, -y, -z", up));
   const Eigen::Vector3d centre = 0.5 * (s1.bounding_box_min() + s1.bounding_box_max());
   Camera camera = Camera::looking_from(options.azimuth_degrees, options.elevation_degrees, centre,
-                                       options.up_axis - 'x');
+                                       axis - 'x', negative ? -1.0 : 1.0);
   const double legend_height = options.legend ? 116.0 : 0.0;
   camera.frame(s1.vertices(), options.margin, title_height + options.margin, width - options.margin,
                height - options.margin - legend_height);

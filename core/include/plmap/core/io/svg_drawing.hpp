@@ -57,9 +57,10 @@ struct MapViewOptions {
   /// (plane curves) the camera is ignored.
   double azimuth_degrees = 35.0;
   double elevation_degrees = 25.0;
-  /// The world axis that points up in the picture, 'x', 'y' or 'z' (many meshes are modelled
-  /// with y up); azimuth turns about it, elevation is measured from the plane normal to it.
-  char up_axis = 'z';
+  /// The world axis that points up in the picture: "x", "y", "z", "-x", "-y" or "-z" (many
+  /// meshes are modelled with y up); azimuth turns about it, elevation is measured from the
+  /// plane normal to it.
+  std::string up_axis = "z";
   /// Image size in SVG pixels; the surface is framed automatically (orthographic projection,
   /// scaled so that the projected bounding box fills the image up to the margin).
   double width = 900.0;
@@ -86,7 +87,7 @@ struct MapViewOptions {
 /// cooler), drawn back to front by the depth of their centroids (painter's algorithm), each
 /// triangle immediately followed by its own graph edges and outline, so that nearer triangles
 /// hide the lines of farther ones. Orthographic projection; the camera follows `options`.
-/// Throws plmap::Error if `options.up_axis` is not 'x', 'y' or 'z'.
+/// Throws plmap::Error if `options.up_axis` is not one of the six axis names.
 std::string draw_map_3d_svg(const PlMap<2>& map, const MapViewOptions& options = {});
 
 /// The d = 1 counterpart: S1 and S2 as curves in the plane, the nodes on S1 with symbols by
