@@ -10,3 +10,20 @@ if(PLMAP_SANITIZE)
     -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   target_link_options(plmap_compile_options INTERFACE -fsanitize=address,undefined)
 endif()
+
+# plmap_add_library(<folder> [PUBLIC deps...] [PRIVATE deps...])
+# One library per top-level folder: sources from <folder>/src, public headers from
+# <folder>/include/plmap/<folder>, target plmap_<folder> with alias plmap::<folder>.
+function(plmap_add_library folder)
+  cmake_parse_arguments(ARG "" "" "PUBLIC;PRIVATE" ${ARGN})
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp)
+  set(target plmap_${folder})
+  add_library(${target} ${sources})
+  add_library(plmap::${folder} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${folder} OUTPUT_NAME ${target})
+  target_include_directories(${target} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:include>)
+  target_link_libraries(${target} PUBLIC ${ARG_PUBLIC}
+    PRIVATE ${ARG_PRIVATE} $<BUILD_INTERFACE:plmap_compile_options>)
+endfunction()
