@@ -104,11 +104,13 @@ RC_GTEST_PROP(PointLocation, WalksAgreeWithBruteForceOnRandomQueries, ()) {
   std::mt19937_64 rng(seed);
   BrownFaigleWalk brown_faigle(seed);
   StraightWalk straight;
+  point_location::BucketWalk bucket(seed);
   for (int q = 0; q < 100; ++q) {
     Index element;
     const LocalPoint<2> p = random_query(rng, element, map.domain().element_count());
     RC_ASSERT(agrees_with_brute_force<2>(brown_faigle, map, element, p));
     RC_ASSERT(agrees_with_brute_force<2>(straight, map, element, p));
+    RC_ASSERT(agrees_with_brute_force<2>(bucket, map, element, p));
   }
 }
 
@@ -334,12 +336,14 @@ TEST(PointLocatorRegistry, NamesDispatchToTheirTypes) {
       using L = std::decay_t<decltype(locator)>;
       if constexpr (std::is_same_v<L, BrownFaigleWalk>) return "BrownFaigleWalk";
       if constexpr (std::is_same_v<L, StraightWalk>) return "StraightWalk";
+      if constexpr (std::is_same_v<L, point_location::BucketWalk>) return "BucketWalk";
       if constexpr (std::is_same_v<L, BruteForce<2>>) return "BruteForce";
       return "other";
     });
   };
   EXPECT_EQ(type_of2("brown-faigle"), "BrownFaigleWalk");
   EXPECT_EQ(type_of2("straight-walk"), "StraightWalk");
+  EXPECT_EQ(type_of2("bucket-walk"), "BucketWalk");
   EXPECT_EQ(type_of2("brute-force"), "BruteForce");
   auto type_of1 = [](std::string_view name) {
     return with_point_locator<1>(name, [](auto& locator) -> std::string {
@@ -353,7 +357,7 @@ TEST(PointLocatorRegistry, NamesDispatchToTheirTypes) {
   EXPECT_EQ(type_of1("brute-force"), "BruteForce");
   EXPECT_EQ(default_point_locator_name<2>(), "brown-faigle");
   EXPECT_EQ(default_point_locator_name<1>(), "bisection");
-  EXPECT_EQ(point_locator_names<2>().size(), 3u);
+  EXPECT_EQ(point_locator_names<2>().size(), 4u);
   EXPECT_EQ(point_locator_names<1>().size(), 2u);
 }
 

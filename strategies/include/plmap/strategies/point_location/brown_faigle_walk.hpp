@@ -30,8 +30,13 @@ class BrownFaigleWalk {
   explicit BrownFaigleWalk(std::uint64_t seed = default_seed) : state_(mix(seed)) {}
 
   RegionLocation<2> locate(const PlMap<2>& map, Index element, const LocalPoint<2>& p) {
+    return walk_from(map, element, p, map.data().start_region[element]);
+  }
+
+  /// The walk from a given region of `element` (used by walks that choose their own start).
+  RegionLocation<2> walk_from(const PlMap<2>& map, Index element, const LocalPoint<2>& p,
+                              Index region) {
     const MapData<2>& m = map.data();
-    Index region = m.start_region[element];
     if (region == invalid_index) return {};
     // Generous budget: a walk never needs more steps than there are regions unless it wanders,
     // and a wandering walk is cheaper to cut short than to let run.
