@@ -7,6 +7,8 @@
 // the question "which S2 elements contain this image?" exact and cheap, and they let an image be
 // re-expressed on any of those elements without rounding.
 
+#include "element_closure.hpp"
+
 #include <plmap/core/element_transfer.hpp>
 #include <plmap/core/errors.hpp>
 #include <plmap/core/map_builder.hpp>
@@ -22,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <thread>
 
 namespace plmap {
 
@@ -81,18 +84,22 @@ using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
 /// finalize() (the second pass needs the map's orientation, which the first pass votes on).
 struct ElementTriangulation {
   std::vector<Index> slots;  // builder node of each slot (node order of the element)
-  std::vector<std::array<int, 3>> triangles;  // slots, ccw; -1 never appears (virtual faces dropped)
-  std::vector<std::array<int, 3>> triangle_neighbors;  // triangle index across side i, or -1
-  std::vector<int> triangle_component;
+  struct Triangle {
+    std::array<int, 3> corners;    // slots, ccw (triangles touching a virtual corner are dropped)
+    std::array<int, 3> neighbors;  // triangle across the side opposite corner i, or -1
+    int component;                 // face of the graph
+  };
+  std::vector<Triangle> triangles;
   struct Component {
     Index target = invalid_index;
     int sign = 0;
   };
   std::vector<Component> components;
-  // neighbour lists per slot in ccw order, with a flag telling whether the edge is a graph edge;
-  // closure edges are filtered after regions are known.
-  std::vector<std::vector<std::pair<int, bool>>> slot_neighbors;
-  std::array<std::vector<int>, 3> edge_slots;  // along local edges, corners included
+  // Neighbours of each slot in ccw order (CSR), each entry 2 * slot + 1 for a graph edge, + 0 for
+  // a closure edge; closure edges are filtered once the regions are known.
+  std::vector<int> ring_begin, ring;
+  std::vector<int> edge_slots;                // along local edges 0, 1, 2, corners included
+  std::array<int, 4> edge_slots_begin{};
   int centroid_triangle = -1;
 };
 
@@ -682,18 +689,6 @@ void MapBuilder<d>::add_edge_outside_domain(Index target_edge) {
 
 namespace {
 
-/// S2 elements that contain every support vertex of `s`.
-template <int d>
-std::vector<Index> candidate_elements(const Surface<d>& s2, const Support<d>& s) {
-  std::vector<Index> out;
-  for (Index t : s2.vertex_elements(s.vertex[0])) {
-    bool all = true;
-    for (int i = 1; i < s.count; ++i) all = all && s2.local_corner(t, s.vertex[i]) >= 0;
-    if (all) out.push_back(t);
-  }
-  return out;
-}
-
 template <int d>
 bool support_in_element(const Surface<d>& s2, const Support<d>& s, Index t) {
   for (int i = 0; i < s.count; ++i)
@@ -881,7 +876,6 @@ PlMap<d> MapBuilder<d>::finalize() && {
   } else {
     // ---- triangle surfaces: a constrained triangulation per S1 element ------------------------
     std::vector<ElementTriangulation> tri(n1);
-    long long votes = 0;
     const std::array<LocalPoint<2>, 3> ref = {reference_corner<2>(0), reference_corner<2>(1),
                                               reference_corner<2>(2)};
     auto node_local = [&](Index node, Index t) -> LocalPoint<2> {
@@ -903,8 +897,85 @@ PlMap<d> MapBuilder<d>::finalize() && {
       return LocalPoint<2>::Zero();
     };
 
-    Cdt cdt;
-    for (Index t = 0; t < n1; ++t) {
+    // Per element: the plane graph (slots, then virtual corners for corners outside D; the
+    // element boundary split at its nodes, and the graph edges), closed into triangles by the
+    // face-based fast path or, where it declines, a constrained Delaunay triangulation.
+    struct Workspace {
+      Cdt cdt;
+      detail::ElementClosure closure;
+      detail::ClosureScratch scratch;
+      std::vector<LocalPoint<2>> points;
+      std::vector<std::array<int, 2>> segments;
+      std::vector<int> ring_begin, ring;
+      // per-element scratch, kept to avoid allocating for every element
+      std::array<std::vector<int>, 3> edge_inner;
+      std::vector<std::pair<Index, int>> slot_of;
+      std::vector<std::pair<int, int>> graph_pairs;
+      std::vector<char> has_virtual;
+      std::vector<int> face_order, face_begin, comp_nodes, face_to_triangle;
+      long long votes = 0;
+    };
+
+    // The general path: a constrained Delaunay triangulation of the same graph. Also the place
+    // where invalid input (crossing edges, a node on another edge) is diagnosed.
+    auto close_by_cdt = [&](Index t, Workspace& w, int vertex_count,
+                            const std::vector<std::pair<int, int>>& graph_pairs) {
+      Cdt& cdt = w.cdt;
+      cdt.clear();
+      std::vector<Cdt::Vertex_handle> vh(vertex_count);
+      for (int i = 0; i < vertex_count; ++i) {
+        const auto before = cdt.number_of_vertices();
+        vh[i] = cdt.insert(Kernel::Point_2(w.points[i](0), w.points[i](1)));
+        if (cdt.number_of_vertices() == before)
+          throw BuilderError(fmt::format("two nodes coincide on S1 element {} at local ({}, {})", t,
+                                         w.points[i](0), w.points[i](1)));
+        vh[i]->info() = i;
+      }
+      try {
+        for (const auto& [a, b] : w.segments) cdt.insert_constraint(vh[a], vh[b]);
+      } catch (const Cdt::Intersection_of_constraints_exception&) {
+        throw BuilderError(fmt::format("graph edges cross each other on S1 element {}", t));
+      }
+      for (const auto& [a, b] : graph_pairs)
+        if (!cdt.is_edge(vh[a], vh[b]))
+          throw BuilderError(fmt::format(
+              "a graph edge on S1 element {} passes through another node (or its endpoints coincide)", t));
+      auto& closure = w.closure;
+      closure.clear();
+      int nf = 0;
+      for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) f->info() = nf++;
+      std::vector<Cdt::Face_handle> face_of(nf);
+      for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) face_of[f->info()] = f;
+      closure.triangles.resize(nf);
+      closure.neighbors.resize(nf);
+      closure.face.assign(nf, -1);
+      for (int f = 0; f < nf; ++f)
+        for (int i = 0; i < 3; ++i) {
+          closure.triangles[f][i] = face_of[f]->vertex(i)->info();
+          const auto g = face_of[f]->neighbor(i);
+          closure.neighbors[f][i] = cdt.is_infinite(g) ? -1 : g->info();
+        }
+      // faces of the graph: flood fill across unconstrained sides
+      std::vector<int> stack;
+      for (int f0 = 0; f0 < nf; ++f0) {
+        if (closure.face[f0] >= 0) continue;
+        const int c = closure.face_count++;
+        closure.face[f0] = c;
+        stack.push_back(f0);
+        while (!stack.empty()) {
+          const int f = stack.back();
+          stack.pop_back();
+          for (int i = 0; i < 3; ++i) {
+            const int g = closure.neighbors[f][i];
+            if (g < 0 || face_of[f]->is_constrained(i) || closure.face[g] >= 0) continue;
+            closure.face[g] = c;
+            stack.push_back(g);
+          }
+        }
+      }
+    };
+
+    auto close_element = [&](Index t, Workspace& w) {
       auto& et = tri[t];
       // slots: present corners, then edge nodes along edges 0, 1, 2, then interior nodes
       std::array<int, 3> corner_slot{-1, -1, -1};
@@ -915,8 +986,9 @@ PlMap<d> MapBuilder<d>::finalize() && {
           et.slots.push_back(n);
         }
       }
-      std::array<std::vector<int>, 3> edge_inner;
+      auto& edge_inner = w.edge_inner;
       for (int k = 0; k < 3; ++k) {
+        edge_inner[k].clear();
         const auto& list = edge_nodes[s1.element_edge(t, k)];
         const bool fwd = s1.local_edge_is_forward(t, k);
         for (std::size_t i = 0; i < list.size(); ++i) {
@@ -928,39 +1000,36 @@ PlMap<d> MapBuilder<d>::finalize() && {
       for (Index n : interior_nodes[t]) et.slots.push_back(n);
       const int ns = static_cast<int>(et.slots.size());
       for (int k = 0; k < 3; ++k) {
-        auto& es = et.edge_slots[k];
+        auto& es = et.edge_slots;
+        et.edge_slots_begin[k] = static_cast<int>(es.size());
         if (corner_slot[k] >= 0) es.push_back(corner_slot[k]);
         es.insert(es.end(), edge_inner[k].begin(), edge_inner[k].end());
         if (corner_slot[(k + 1) % 3] >= 0) es.push_back(corner_slot[(k + 1) % 3]);
       }
-      if (ns == 0) continue;
+      et.edge_slots_begin[3] = static_cast<int>(et.edge_slots.size());
+      if (ns == 0) return;
 
-      // Triangulate. Missing corners become "virtual" vertices (info < 0): faces touching them
-      // lie outside D.
-      cdt.clear();
-      std::vector<Cdt::Vertex_handle> vh(ns);
-      std::array<Cdt::Vertex_handle, 3> corner_vh;
+      // Vertices: the slots, then one "virtual" vertex per missing corner; faces touching a
+      // virtual vertex lie outside D.
+      w.points.clear();
+      for (int i = 0; i < ns; ++i) w.points.push_back(node_local(et.slots[i], t));
+      std::array<int, 3> corner_vertex{};
       for (int k = 0; k < 3; ++k) {
-        if (corner_slot[k] >= 0) continue;
-        corner_vh[k] = cdt.insert(Kernel::Point_2(ref[k](0), ref[k](1)));
-        corner_vh[k]->info() = -1 - k;
+        if (corner_slot[k] >= 0) {
+          corner_vertex[k] = corner_slot[k];
+        } else {
+          corner_vertex[k] = static_cast<int>(w.points.size());
+          w.points.push_back(ref[k]);
+        }
       }
-      for (int i = 0; i < ns; ++i) {
-        const LocalPoint<2> x = node_local(et.slots[i], t);
-        const auto before = cdt.number_of_vertices();
-        vh[i] = cdt.insert(Kernel::Point_2(x(0), x(1)));
-        if (cdt.number_of_vertices() == before)
-          throw BuilderError(fmt::format("two nodes coincide on S1 element {} at local ({}, {})", t,
-                                         x(0), x(1)));
-        vh[i]->info() = i;
-      }
-      for (int k = 0; k < 3; ++k)
-        if (corner_slot[k] >= 0) corner_vh[k] = vh[corner_slot[k]];
+      const int vertex_count = static_cast<int>(w.points.size());
 
-      // constraints: the element boundary between consecutive points, and the graph edges
-      std::vector<std::pair<int, int>> graph_pairs;
-      // builder node -> slot, sorted for lookup (elements may carry thousands of nodes)
-      std::vector<std::pair<Index, int>> slot_of(ns);
+      // graph edges as slot pairs (builder node -> slot via a sorted table: elements may carry
+      // thousands of nodes)
+      auto& graph_pairs = w.graph_pairs;
+      graph_pairs.clear();
+      auto& slot_of = w.slot_of;
+      slot_of.resize(ns);
       for (int i = 0; i < ns; ++i) slot_of[i] = {et.slots[i], i};
       std::sort(slot_of.begin(), slot_of.end());
       auto find_slot = [&](Index node) {
@@ -974,6 +1043,9 @@ PlMap<d> MapBuilder<d>::finalize() && {
           throw BuilderError(fmt::format(
               "internal: a piece of the preimage of S2 edge {} lacks an endpoint on S1 element {}",
               seg.target_edge, t));
+        if (a == b)
+          throw BuilderError(fmt::format(
+              "a graph edge on S1 element {} passes through another node (or its endpoints coincide)", t));
         graph_pairs.emplace_back(std::min(a, b), std::max(a, b));
       };
       for (Index sidx : element_segments[t]) add_graph(sidx);
@@ -981,80 +1053,77 @@ PlMap<d> MapBuilder<d>::finalize() && {
         for (Index sidx : edge_segments[s1.element_edge(t, k)]) add_graph(sidx);
       std::sort(graph_pairs.begin(), graph_pairs.end());
       graph_pairs.erase(std::unique(graph_pairs.begin(), graph_pairs.end()), graph_pairs.end());
-      try {
-        for (int k = 0; k < 3; ++k) {
-          std::vector<Cdt::Vertex_handle> chain{corner_vh[k]};
-          for (int i : edge_inner[k]) chain.push_back(vh[i]);
-          chain.push_back(corner_vh[(k + 1) % 3]);
-          for (std::size_t i = 0; i + 1 < chain.size(); ++i) cdt.insert_constraint(chain[i], chain[i + 1]);
-        }
-        for (const auto& [a, b] : graph_pairs) cdt.insert_constraint(vh[a], vh[b]);
-      } catch (const Cdt::Intersection_of_constraints_exception&) {
-        throw BuilderError(fmt::format("graph edges cross each other on S1 element {}", t));
-      }
-      for (const auto& [a, b] : graph_pairs)
-        if (!cdt.is_edge(vh[a], vh[b]))
-          throw BuilderError(fmt::format(
-              "a graph edge on S1 element {} passes through another node (or its endpoints coincide)", t));
 
-      // number the finite faces, then flood-fill them into components between constraints
-      int nf = 0;
-      for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) f->info() = nf++;
-      std::vector<int> component(nf, -1);
-      std::vector<Cdt::Face_handle> face_of(nf);
-      for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) face_of[f->info()] = f;
-      int ncomp = 0;
-      std::vector<int> stack;
-      for (int f0 = 0; f0 < nf; ++f0) {
-        if (component[f0] >= 0) continue;
-        component[f0] = ncomp;
-        stack.push_back(f0);
-        while (!stack.empty()) {
-          const auto f = face_of[stack.back()];
-          stack.pop_back();
-          for (int i = 0; i < 3; ++i) {
-            if (f->is_constrained(i)) continue;
-            const auto g = f->neighbor(i);
-            if (cdt.is_infinite(g) || component[g->info()] >= 0) continue;
-            component[g->info()] = ncomp;
-            stack.push_back(g->info());
-          }
-        }
-        ++ncomp;
+      // constraints: the element boundary between consecutive points, and the graph edges
+      w.segments.clear();
+      std::array<int, 2> boundary_start{};
+      for (int k = 0; k < 3; ++k) {
+        int previous = corner_vertex[k];
+        auto add_piece = [&](int next) {
+          if (k == 0 && previous == corner_vertex[0]) boundary_start = {previous, next};
+          w.segments.push_back({std::min(previous, next), std::max(previous, next)});
+          previous = next;
+        };
+        for (int i : edge_inner[k]) add_piece(i);
+        add_piece(corner_vertex[(k + 1) % 3]);
       }
-      // classify components: virtual corner → outside; else common S2 element and image sign
-      std::vector<char> has_virtual(ncomp, 0);
-      std::vector<std::vector<int>> comp_faces(ncomp);
+      for (const auto& [a, b] : graph_pairs) w.segments.push_back({a, b});
+      std::sort(w.segments.begin(), w.segments.end());
+      w.segments.erase(std::unique(w.segments.begin(), w.segments.end()), w.segments.end());
+
+      if (!detail::close_by_faces(w.points, w.segments, boundary_start, w.closure, w.scratch)) {
+        close_by_cdt(t, w, vertex_count, graph_pairs);
+      }
+      const auto& closure = w.closure;
+      const int nf = static_cast<int>(closure.triangles.size());
+      const int ncomp = closure.face_count;
+
+      // classify faces: virtual corner → outside; else common S2 element and image sign
+      auto& has_virtual = w.has_virtual;
+      has_virtual.assign(ncomp, 0);
+      // triangles grouped by face (counting sort)
+      auto& face_begin = w.face_begin;
+      auto& face_order = w.face_order;
+      face_begin.assign(ncomp + 1, 0);
       for (int f = 0; f < nf; ++f) {
-        comp_faces[component[f]].push_back(f);
+        ++face_begin[closure.face[f] + 1];
         for (int i = 0; i < 3; ++i)
-          if (face_of[f]->vertex(i)->info() < 0) has_virtual[component[f]] = 1;
+          if (closure.triangles[f][i] >= ns) has_virtual[closure.face[f]] = 1;
+      }
+      for (int c = 0; c < ncomp; ++c) face_begin[c + 1] += face_begin[c];
+      face_order.resize(nf);
+      {
+        auto& cursor = w.comp_nodes;
+        cursor.assign(face_begin.begin(), face_begin.end() - 1);
+        for (int f = 0; f < nf; ++f) face_order[cursor[closure.face[f]]++] = f;
       }
       et.components.assign(ncomp, {});
-      std::vector<int> comp_nodes;
+      auto& comp_nodes = w.comp_nodes;
       for (int c = 0; c < ncomp; ++c) {
         if (has_virtual[c]) continue;
         comp_nodes.clear();
-        for (int f : comp_faces[c])
-          for (int i = 0; i < 3; ++i) comp_nodes.push_back(face_of[f]->vertex(i)->info());
+        for (int q = face_begin[c]; q < face_begin[c + 1]; ++q)
+          for (int i = 0; i < 3; ++i) comp_nodes.push_back(closure.triangles[face_order[q]][i]);
         std::sort(comp_nodes.begin(), comp_nodes.end());
         comp_nodes.erase(std::unique(comp_nodes.begin(), comp_nodes.end()), comp_nodes.end());
-        // node with the smallest candidate set first
+        // start from the node with the most support vertices: it has the fewest candidates
         int best = comp_nodes[0];
         for (int i : comp_nodes)
           if (im.nodes[et.slots[i]].image.count > im.nodes[et.slots[best]].image.count) best = i;
+        const Support<2>& best_support = im.nodes[et.slots[best]].image;
         double best_area = 0.0;
-        for (Index cand : candidate_elements<2>(s2, im.nodes[et.slots[best]].image)) {
+        for (Index cand : s2.vertex_elements(best_support.vertex[0])) {
+          if (!support_in_element<2>(s2, best_support, cand)) continue;
           bool all = true;
           for (int i : comp_nodes) all = all && support_in_element<2>(s2, im.nodes[et.slots[i]].image, cand);
           if (!all) continue;
           for (int k = 0; k < 3; ++k) all = all && im.edge_inserted[s2.element_edge(cand, k)];
           if (!all) continue;
           double area = 0.0;
-          for (int f : comp_faces[c]) {
+          for (int q = face_begin[c]; q < face_begin[c + 1]; ++q) {
+            const auto& tr = closure.triangles[face_order[q]];
             std::array<LocalPoint<2>, 3> y;
-            for (int i = 0; i < 3; ++i)
-              y[i] = support_local<2>(s2, im.nodes[et.slots[face_of[f]->vertex(i)->info()]].image, cand);
+            for (int i = 0; i < 3; ++i) y[i] = support_local<2>(s2, im.nodes[et.slots[tr[i]]].image, cand);
             area += (y[1] - y[0])(0) * (y[2] - y[0])(1) - (y[1] - y[0])(1) * (y[2] - y[0])(0);
           }
           if (std::abs(area) > std::abs(best_area)) {
@@ -1064,86 +1133,134 @@ PlMap<d> MapBuilder<d>::finalize() && {
         }
         if (et.components[c].target != invalid_index) {
           et.components[c].sign = best_area > 0 ? 1 : -1;
-          votes += et.components[c].sign * static_cast<long long>(comp_faces[c].size());
+          w.votes += et.components[c].sign * static_cast<long long>(face_begin[c + 1] - face_begin[c]);
         }
       }
-      // keep faces (in CDT face order) with real vertices only
-      std::vector<int> face_to_triangle(nf, -1);
-      for (int f = 0; f < nf; ++f) {
-        if (has_virtual[component[f]]) continue;
-        face_to_triangle[f] = static_cast<int>(et.triangles.size());
-        et.triangles.push_back({face_of[f]->vertex(0)->info(), face_of[f]->vertex(1)->info(),
-                                face_of[f]->vertex(2)->info()});
-        et.triangle_component.push_back(component[f]);
-      }
+      // keep the triangles with real vertices only
+      auto& face_to_triangle = w.face_to_triangle;
+      face_to_triangle.assign(nf, -1);
+      int kept = 0;
+      for (int f = 0; f < nf; ++f)
+        if (!has_virtual[closure.face[f]]) face_to_triangle[f] = kept++;
+      et.triangles.reserve(kept);
       for (int f = 0; f < nf; ++f) {
         if (face_to_triangle[f] < 0) continue;
-        std::array<int, 3> nb{-1, -1, -1};
+        ElementTriangulation::Triangle tr{closure.triangles[f], {-1, -1, -1}, closure.face[f]};
         for (int i = 0; i < 3; ++i) {
-          const auto g = face_of[f]->neighbor(i);
-          if (!cdt.is_infinite(g)) nb[i] = face_to_triangle[g->info()];
+          const int g = closure.neighbors[f][i];
+          if (g >= 0) tr.neighbors[i] = face_to_triangle[g];
         }
-        et.triangle_neighbors.push_back(nb);
+        et.triangles.push_back(tr);
       }
-      {
-        const auto f = cdt.locate(Kernel::Point_2(1.0 / 3.0, 1.0 / 3.0));
-        if (!cdt.is_infinite(f)) et.centroid_triangle = face_to_triangle[f->info()];
+      // the walk starts from the triangle at the element's centroid
+      const LocalPoint<2> centroid(1.0 / 3.0, 1.0 / 3.0);
+      for (int f = 0; f < nf && et.centroid_triangle < 0; ++f) {
+        const auto& tr = closure.triangles[f];
+        if (orient2d(w.points[tr[0]], w.points[tr[1]], centroid) >= 0 &&
+            orient2d(w.points[tr[1]], w.points[tr[2]], centroid) >= 0 &&
+            orient2d(w.points[tr[2]], w.points[tr[0]], centroid) >= 0)
+          et.centroid_triangle = face_to_triangle[f];
       }
-      // neighbours in ccw order: circulate the triangulation around each node (combinatorial)
-      et.slot_neighbors.assign(ns, {});
+      // neighbours in ccw order: circulate the triangles around each node (combinatorial)
+      detail::closure_rings(closure, vertex_count, w.ring_begin, w.ring);
+      et.ring_begin.resize(ns + 1);
+      et.ring_begin[0] = 0;
+      et.ring.reserve(w.ring_begin[ns]);
       for (int i = 0; i < ns; ++i) {
-        auto& out = et.slot_neighbors[i];
-        auto circ = cdt.incident_vertices(vh[i]), done = circ;
-        std::vector<int> ring;
-        int infinite_at = -1;
-        do {
-          if (cdt.is_infinite(circ))
-            infinite_at = static_cast<int>(ring.size());
-          else
-            ring.push_back(circ->info());
-        } while (++circ != done);
-        // Boundary nodes start after the outside; interior nodes at their smallest neighbour.
-        std::size_t start = 0;
-        if (infinite_at >= 0)
-          start = static_cast<std::size_t>(infinite_at) % std::max<std::size_t>(ring.size(), 1);
-        else
-          start = static_cast<std::size_t>(std::min_element(ring.begin(), ring.end()) - ring.begin());
-        for (std::size_t k = 0; k < ring.size(); ++k) {
-          const int j = ring[(start + k) % ring.size()];
-          if (j < 0) continue;  // virtual corner
+        for (int r = w.ring_begin[i]; r < w.ring_begin[i + 1]; ++r) {
+          const int j = w.ring[r];
+          if (j >= ns) continue;  // virtual corner
           const bool graph = std::binary_search(graph_pairs.begin(), graph_pairs.end(),
                                                 std::make_pair(std::min(i, j), std::max(i, j)));
-          out.emplace_back(j, graph);
+          et.ring.push_back(2 * j + (graph ? 1 : 0));
         }
+        et.ring_begin[i + 1] = static_cast<int>(et.ring.size());
+      }
+    };
+
+    // Elements are independent: close them on all threads. Errors are reported for the
+    // smallest element that has one, whatever the thread count.
+    const unsigned threads = std::max(1u, std::min<unsigned>(im.options.threads == 0
+                                                                 ? std::max(1u, std::thread::hardware_concurrency())
+                                                                 : im.options.threads,
+                                                             static_cast<unsigned>(std::max<Index>(1, n1 / 64))));
+    std::vector<Workspace> workspaces(threads);
+    std::vector<std::pair<Index, std::exception_ptr>> failures(threads, {invalid_index, nullptr});
+    {
+      const Index block = (n1 + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
+      auto run = [&](unsigned k) {
+        const Index begin = static_cast<Index>(k) * block, end = std::min<Index>(n1, begin + block);
+        for (Index t = begin; t < end; ++t) {
+          try {
+            close_element(t, workspaces[k]);
+          } catch (...) {
+            failures[k] = {t, std::current_exception()};
+            return;
+          }
+        }
+      };
+      if (threads == 1) {
+        run(0);
+      } else {
+        std::vector<std::jthread> pool;
+        for (unsigned k = 0; k < threads; ++k) pool.emplace_back(run, k);
       }
     }
+    for (const auto& [t, error] : failures)
+      if (error) std::rethrow_exception(error);  // blocks are in element order
+    long long votes = 0;
+    for (const auto& w : workspaces) votes += w.votes;
 
     m.orientation = im.options.orientation != 0 ? im.options.orientation : (votes >= 0 ? 1 : -1);
 
     // ---- assemble the flat arrays ----------------------------------------------------------------
+    // Sizes are known now; reserve so the arrays are written once.
+    {
+      std::size_t nodes = 0, rings = 0, triangles = 0, edge_entries = 0;
+      for (const auto& et : tri) {
+        nodes += et.slots.size();
+        rings += et.ring.size();
+        triangles += et.triangles.size();
+        edge_entries += et.edge_slots.size();
+      }
+      m.node_position.reserve(nodes);
+      m.node_type.reserve(nodes);
+      m.node_location.reserve(nodes);
+      m.node_image.reserve(nodes);
+      m.node_target.reserve(nodes);
+      m.neighbor_begin.reserve(nodes + 1);
+      m.neighbor.reserve(rings);
+      m.neighbor_edge_kind.reserve(rings);
+      m.region_corners.reserve(triangles);
+      m.region_neighbors.reserve(triangles);
+      m.region_target.reserve(triangles);
+      m.region_map.reserve(triangles);
+      m.edge_node_begin.reserve(3 * static_cast<std::size_t>(n1) + 1);
+      m.edge_node.reserve(edge_entries);
+    }
     m.edge_node_begin.push_back(0);
+    std::vector<Index> triangle_region;
+    std::vector<std::pair<int, int>> region_sides;  // slot pairs that border a region
     for (Index t = 0; t < n1; ++t) {
       auto& et = tri[t];
       const Index base = static_cast<Index>(m.node_type.size());
       const Index rbase = static_cast<Index>(m.region_target.size());
       const int ns = static_cast<int>(et.slots.size());
       // regions: triangles of components with a target element and the map's orientation
-      std::vector<Index> triangle_region(et.triangles.size(), invalid_index);
+      triangle_region.assign(et.triangles.size(), invalid_index);
+      region_sides.clear();
       Index nr = 0;
       for (std::size_t f = 0; f < et.triangles.size(); ++f) {
-        const auto& comp = et.components[et.triangle_component[f]];
-        if (comp.target != invalid_index && comp.sign == m.orientation) triangle_region[f] = rbase + nr++;
-      }
-      // per slot: which neighbours border a region (for closure edges)
-      std::vector<std::vector<int>> region_adjacent(ns);
-      for (std::size_t f = 0; f < et.triangles.size(); ++f) {
-        if (triangle_region[f] == invalid_index) continue;
+        const auto& tr = et.triangles[f];
+        const auto& comp = et.components[tr.component];
+        if (comp.target == invalid_index || comp.sign != m.orientation) continue;
+        triangle_region[f] = rbase + nr++;
         for (int i = 0; i < 3; ++i) {
-          const int a = et.triangles[f][i], b = et.triangles[f][(i + 1) % 3];
-          region_adjacent[a].push_back(b);
-          region_adjacent[b].push_back(a);
+          const int a = tr.corners[i], b = tr.corners[(i + 1) % 3];
+          region_sides.emplace_back(std::min(a, b), std::max(a, b));
         }
       }
+      std::sort(region_sides.begin(), region_sides.end());
       for (int i = 0; i < ns; ++i) {
         const auto& bn = im.nodes[et.slots[i]];
         const LocalPoint<2> x = node_local(et.slots[i], t);
@@ -1162,9 +1279,12 @@ PlMap<d> MapBuilder<d>::finalize() && {
         m.node_location.push_back(static_cast<std::int8_t>(location));
         m.node_image.push_back({bn.image.element, support_local<2>(s2, bn.image, bn.image.element)});
         m.node_target.push_back(bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target);
-        const auto& adj = region_adjacent[i];
-        for (const auto& [j, graph] : et.slot_neighbors[i]) {
-          if (!graph && std::find(adj.begin(), adj.end(), j) == adj.end()) continue;
+        for (int r = et.ring_begin[i]; r < et.ring_begin[i + 1]; ++r) {
+          const int j = et.ring[r] >> 1;
+          const bool graph = (et.ring[r] & 1) != 0;
+          if (!graph && !std::binary_search(region_sides.begin(), region_sides.end(),
+                                            std::make_pair(std::min(i, j), std::max(i, j))))
+            continue;
           m.neighbor.push_back(base + j);
           m.neighbor_edge_kind.push_back(graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure);
         }
@@ -1172,18 +1292,20 @@ PlMap<d> MapBuilder<d>::finalize() && {
       }
       m.node_begin[t + 1] = static_cast<Index>(m.node_type.size());
       for (int k = 0; k < 3; ++k) {
-        for (int s : et.edge_slots[k]) m.edge_node.push_back(base + s);
+        for (int q = et.edge_slots_begin[k]; q < et.edge_slots_begin[k + 1]; ++q)
+          m.edge_node.push_back(base + et.edge_slots[q]);
         m.edge_node_begin.push_back(static_cast<Index>(m.edge_node.size()));
       }
       for (std::size_t f = 0; f < et.triangles.size(); ++f) {
         if (triangle_region[f] == invalid_index) continue;
-        const Index target = et.components[et.triangle_component[f]].target;
+        const auto& tr = et.triangles[f];
+        const Index target = et.components[tr.component].target;
         std::array<Index, 3> corners, neighbors;
         std::array<LocalPoint<2>, 3> from, to;
         for (int i = 0; i < 3; ++i) {
-          const int s = et.triangles[f][i];
+          const int s = tr.corners[i];
           corners[i] = base + s;
-          const int g = et.triangle_neighbors[f][i];
+          const int g = tr.neighbors[i];
           neighbors[i] = g >= 0 ? triangle_region[g] : invalid_index;
           from[i] = m.node_position[base + s];
           to[i] = support_local<2>(s2, im.nodes[et.slots[s]].image, target);

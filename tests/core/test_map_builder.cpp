@@ -242,3 +242,65 @@ TEST(MapBuilder, EdgePiecesCoverUpToTheDomainBoundary) {
   EXPECT_EQ(count_type(m, NodeType::ghost), 0);
   EXPECT_EQ(count_type(m, NodeType::intersection), 2 + 2 * 2);  // two on x = 1, two diagonal crossings twice
 }
+
+// finalize() closes most elements by tracing the graph's faces; a graph part that floats inside
+// a face (here a whole S2 triangle inside one S1 element, touching no S1 edge) is not a plain
+// tiling, so that element goes through the constrained triangulation instead. Both must give
+// the same kind of result: one region per S2 triangle, neighbours in ccw order.
+TEST(MapBuilder, TargetTriangleFloatingInsideAnElement) {
+  auto s1 = square_diag02();
+  auto s2 = make_surface({P(0.5, 0.2), P(0.8, 0.2), P(0.8, 0.5)}, {{0, 1, 2}});
+  MapBuilder<2> b(s1, s2);
+  b.add_vertex_preimage(0, {0, LocalPoint<2>(0.3, 0.2)});  // element 0 is (0,0),(1,0),(1,1)
+  b.add_vertex_preimage(1, {0, LocalPoint<2>(0.6, 0.2)});
+  b.add_vertex_preimage(2, {0, LocalPoint<2>(0.3, 0.5)});
+  b.add_target_element(0);
+  const PlMap<2> m = std::move(b).finalize();
+  ASSERT_EQ(m.region_count(), 1);
+  EXPECT_EQ(count_type(m, NodeType::interior), 3);
+  EXPECT_NEAR(covered_measure(m).domain, 0.045, 1e-15);
+  EXPECT_NEAR(covered_measure(m).target, 0.045, 1e-15);
+  // each of the three nodes sees the two others, along S2 edges
+  for (Index n = 0; n < m.node_count(); ++n) {
+    ASSERT_EQ(m.neighbors(n).size(), 2u) << "node " << n;
+    for (Index i = m.data().neighbor_begin[n]; i < m.data().neighbor_begin[n + 1]; ++i)
+      EXPECT_EQ(m.data().neighbor_edge_kind[i], GraphEdgeKind::target_edge);
+  }
+  const auto ri = remote_intersection(m, 0);
+  const LocalPoint<2> a = ri.domain_local[1] - ri.domain_local[0];
+  const LocalPoint<2> c = ri.domain_local[2] - ri.domain_local[0];
+  EXPECT_NEAR(a.x() * c.y() - a.y() * c.x(), 0.09, 1e-15);  // counter-clockwise corners
+}
+
+// Nodes on an element edge with no graph edge inside that element: the element's face is a
+// polygon with a run of collinear vertices (here it touches a missing corner, so it lies outside
+// D), which the ear clipping must cut without degenerate triangles. The other element carries a
+// fan whose triangles each become one region.
+TEST(MapBuilder, CollinearNodesOnAnEdgeAreHandledOnBothSides) {
+  auto s1 = square_diag02();  // elements (0,1,2) and (0,2,3); the diagonal is S1 edge 0-2
+  const int k = 8;
+  std::vector<WorldPoint<2>> v{P(0, 0), P(1, 0), P(1, 1)};
+  for (int i = 1; i < k; ++i) v.push_back(P(i / double(k), i / double(k)));
+  auto diagonal = [&](int i) -> Index { return i == 0 ? 0 : (i == k ? 2 : 2 + i); };
+  std::vector<ElementCorners<2>> e;
+  for (int i = 0; i < k; ++i) e.push_back({1, diagonal(i + 1), diagonal(i)});
+  auto s2 = make_surface(std::move(v), std::move(e));
+  MapBuilder<2> b(s1, s2);
+  for (Index q = 0; q < 3; ++q) b.add_vertex_preimage_at_vertex(q, q);
+  // on element 0, local (xi, eta) is the point (xi + eta, eta): the diagonal is xi = 0
+  for (int i = 1; i < k; ++i) b.add_vertex_preimage(diagonal(i), {0, LocalPoint<2>(0.0, i / double(k))});
+  for (Index t = 0; t < s2->element_count(); ++t) b.add_target_element(t);
+  const PlMap<2> m = std::move(b).finalize();
+  EXPECT_EQ(m.region_count(), k);
+  EXPECT_EQ(count_type(m, NodeType::touching), 2 * (k - 1));  // one copy on each side
+  EXPECT_NEAR(covered_measure(m).domain, 0.5, 1e-15);
+  EXPECT_NEAR(covered_measure(m).target, 0.5, 1e-15);
+  for (Index r = 0; r < m.region_count(); ++r) {
+    const auto ri = remote_intersection(m, r);
+    EXPECT_EQ(ri.domain_element, 0);
+    const LocalPoint<2> a = ri.domain_local[1] - ri.domain_local[0];
+    const LocalPoint<2> c = ri.domain_local[2] - ri.domain_local[0];
+    EXPECT_NEAR(a.x() * c.y() - a.y() * c.x(), 1.0 / k, 1e-12) << "region " << r;
+  }
+  EXPECT_EQ(m.data().start_region[1], invalid_index);
+}

@@ -16,11 +16,14 @@
 /// relative to the element size) to a corner or an edge are snapped there; this is the single
 /// snapping rule of plmap.
 ///
-/// finalize() computes, per S1 element, a constrained triangulation of the nodes with the graph
-/// edges and the element boundary as constraints (exact predicates), keeps the faces that map
-/// into one S2 element with the map's orientation as regions, derives each node's cyclic
-/// neighbour order from the regions around it (a purely combinatorial step, no angles are
-/// compared), builds the edge arrays, and the compact query form.
+/// finalize() computes, per S1 element, the triangular closure of the plane graph formed by the
+/// graph edges and the element boundary: it traces the graph's faces (edges ordered around each
+/// node by exact orientation predicates) and cuts each face into triangles, falling back to a
+/// constrained Delaunay triangulation where the graph is not a plain tiling (e.g. a part floating
+/// inside a face). It keeps the faces that map into one S2 element with the map's orientation as
+/// regions, derives each node's cyclic neighbour order by circulating the triangles around it
+/// (combinatorial; no angles are computed), builds the edge arrays and the compact query form.
+/// Elements are closed in parallel when BuilderOptions::threads asks for it.
 
 #include <plmap/core/pl_map.hpp>
 
@@ -39,6 +42,9 @@ struct BuilderOptions {
   /// Orientation of the map: 0 = decide by majority of the candidate regions (default),
   /// +1 = orientation preserving, -1 = orientation reversing.
   int orientation = 0;
+  /// Threads finalize() uses for the per-element triangular closure (0: all cores). The result
+  /// does not depend on it.
+  unsigned threads = 1;
 };
 
 /// Where the preimage of an S2 edge crosses an S1 edge (d = 2).
