@@ -30,6 +30,56 @@ double ear_shape(const LocalPoint<2>& a, const LocalPoint<2>& b, const LocalPoin
 // cubic in the face size.
 constexpr int largest_face = 96;
 
+/// Lawson flips inside faces: a diagonal (a side whose two triangles belong to the same face)
+/// whose far vertex lies inside the other triangle's circumcircle is flipped, until none is left.
+/// Graph edges and the element boundary are never flipped, so the result is the constrained
+/// Delaunay triangulation of each face (up to cocircular ties).
+void make_faces_delaunay(std::span<const LocalPoint<2>> points, ElementClosure& out,
+                         ClosureScratch& s) {
+  auto& tri = out.triangles;
+  auto& nb = out.neighbors;
+  const int nt = static_cast<int>(tri.size());
+  auto& stack = s.polygon;  // (triangle, side) pairs as 3 * t + i
+  stack.clear();
+  for (int t = 0; t < nt; ++t)
+    for (int i = 0; i < 3; ++i)
+      if (nb[t][i] > t && out.face[nb[t][i]] == out.face[t]) stack.push_back(3 * t + i);
+  auto side_towards = [&](int u, int t) {
+    for (int j = 0; j < 3; ++j)
+      if (nb[u][j] == t) return j;
+    return -1;
+  };
+  // Each flip removes a non-Delaunay side for good; the bound only guards against a logic error.
+  for (long budget = 16L * nt * nt + 64; !stack.empty() && budget > 0; --budget) {
+    const int t = stack.back() / 3, i = stack.back() % 3;
+    stack.pop_back();
+    const int u = nb[t][i];
+    if (u < 0 || out.face[u] != out.face[t]) continue;
+    const int j = side_towards(u, t);
+    if (j < 0) continue;
+    // t = (p, a, b) and u = (q, b, a), counter-clockwise, sharing side a-b.
+    const int p = tri[t][i], a = tri[t][(i + 1) % 3], b = tri[t][(i + 2) % 3];
+    const int q = tri[u][j];
+    if (incircle(points[p], points[a], points[b], points[q]) <= 0) continue;
+    if (orient2d(points[p], points[a], points[q]) <= 0 || orient2d(points[q], points[b], points[p]) <= 0)
+      continue;  // not a convex quadrilateral: cannot flip
+    const int t_opp_a = nb[t][(i + 1) % 3];  // across side b-p
+    const int t_opp_b = nb[t][(i + 2) % 3];  // across side p-a
+    const int u_opp_b = nb[u][(j + 1) % 3];  // across side a-q (u = (q, b, a))
+    const int u_opp_a = nb[u][(j + 2) % 3];  // across side q-b
+    tri[t] = {p, a, q};
+    nb[t] = {u_opp_b, u, t_opp_b};
+    tri[u] = {q, b, p};
+    nb[u] = {t_opp_a, t, u_opp_a};
+    if (u_opp_b >= 0) nb[u_opp_b][side_towards(u_opp_b, u)] = t;
+    if (t_opp_a >= 0) nb[t_opp_a][side_towards(t_opp_a, t)] = u;
+    stack.push_back(3 * t + 0);
+    stack.push_back(3 * t + 2);
+    stack.push_back(3 * u + 0);
+    stack.push_back(3 * u + 2);
+  }
+}
+
 }  // namespace
 
 bool close_by_faces(std::span<const LocalPoint<2>> points,
@@ -213,6 +263,7 @@ bool close_by_faces(std::span<const LocalPoint<2>> points,
     }
     i = j;
   }
+  make_faces_delaunay(points, out, s);
   return true;
 }
 

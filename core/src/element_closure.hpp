@@ -12,9 +12,11 @@
 // decline, and the caller falls back to a constrained Delaunay triangulation, which handles or
 // diagnoses those cases.
 //
-// Which diagonals cut a face does not change the map: all triangles of one face share the
-// face's affine map. The ear chosen first is the one with the best shape, so the closure
-// triangles stay reasonable for point-location walks.
+// The diagonals chosen do matter: Xi is interpolated linearly on each closure triangle from its
+// corners' images, so where the construction is not exactly piecewise linear on a face (normal
+// projection) they decide the interpolation inside the face, and a sliver gets an affine map
+// that amplifies the rounding of its corner images. The best-shaped ear goes first for that
+// reason, then Lawson flips make each face's triangulation Delaunay.
 
 #include <plmap/core/types.hpp>
 

@@ -704,17 +704,24 @@ LocalPoint<d> support_local(const Surface<d>& s2, const Support<d>& s, Index t) 
   return local_from_barycentric<d>(b);
 }
 
+/// The affine map taking the corners `from` to `to`. Closure triangles can be slivers, whose
+/// maps are ill-conditioned; working relative to corner 0 in extended precision keeps the map's
+/// values at the corners within rounding of the given images even then.
 template <int d>
 AffineMap<d> affine_through(const std::array<LocalPoint<d>, d + 1>& from,
                             const std::array<LocalPoint<d>, d + 1>& to) {
-  Eigen::Matrix<double, d + 1, d + 1> x;
-  Eigen::Matrix<double, d, d + 1> y;
-  for (int i = 0; i <= d; ++i) {
-    x.col(i).template head<d>() = from[i];
-    x(d, i) = 1.0;
-    y.col(i) = to[i];
+  using Real = long double;
+  Eigen::Matrix<Real, d, d> f, t;
+  for (int k = 1; k <= d; ++k) {
+    f.col(k - 1) = (from[k].template cast<Real>() - from[0].template cast<Real>());
+    t.col(k - 1) = (to[k].template cast<Real>() - to[0].template cast<Real>());
   }
-  return y * x.inverse();
+  const Eigen::Matrix<Real, d, d> linear = t * f.inverse();
+  const Eigen::Matrix<Real, d, 1> offset = to[0].template cast<Real>() - linear * from[0].template cast<Real>();
+  AffineMap<d> map;
+  map.template leftCols<d>() = linear.template cast<double>();
+  map.col(d) = offset.template cast<double>();
+  return map;
 }
 
 /// The arrays grew by push_back; give back the slack so the map holds only what it needs.

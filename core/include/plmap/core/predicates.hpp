@@ -31,6 +31,11 @@ inline int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Ei
   return detail::orient2d_exact(a.x(), a.y(), b.x(), b.y(), c.x(), c.y());
 }
 
+/// +1 if d lies strictly inside the circle through the counter-clockwise points a, b, c, 0 if on
+/// it, -1 if outside. Exact (CGAL's filtered predicate).
+int incircle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+             const Eigen::Vector2d& d);
+
 /// Exact sign of a . b - style comparisons are not needed elsewhere; for segments:
 /// true if the closed segments [p, q] and [r, s] share a point other than a common endpoint.
 bool segments_cross_properly(const Eigen::Vector2d& p, const Eigen::Vector2d& q,
