@@ -115,7 +115,7 @@ void register_build(CLI::App& app, Action& action) {
   CLI::App* build = app.add_subcommand(
       "build",
       "Build a map between surfaces whose correspondence is known, and save it as a .plmap "
-      "file. (Maps by normal projection between arbitrary surfaces come in a later version.)");
+      "file. For maps by normal projection between arbitrary surfaces, see `plmap project`.");
   build->require_subcommand(1);
 
   auto identity = std::make_shared<BuildOptions>();

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -114,9 +115,16 @@ void register_eval(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed of the query points and of randomized locators")
       ->capture_default_str();
+  // The list comes from the registry, so a newly registered strategy shows up here.
+  auto names = [](auto list) {
+    std::string text;
+    for (std::size_t i = 0; i < list.size(); ++i)
+      text += std::string(i == 0 ? "" : ", ") + std::string(list[i]) + (i == 0 ? " (default)" : "");
+    return text;
+  };
   cmd->add_option("--locator", o->locator,
-                  "Point-location strategy: brown-faigle (default), straight-walk, brute-force "
-                  "for triangle surfaces; bisection (default), brute-force for curves");
+                  "Point-location strategy: " + names(point_locator_names<2>()) +
+                      " for triangle surfaces; " + names(point_locator_names<1>()) + " for curves");
   cmd->add_option("--threads", o->threads, "Threads (0: all hardware threads)")
       ->capture_default_str();
   cmd->add_option("--repeat", o->repeat, "Time this many runs and report the fastest")

@@ -1,5 +1,8 @@
 #include <plmap/experiment/schema.hpp>
 
+#include <plmap/strategies/point_locator_registry.hpp>
+
+#include <algorithm>
 #include <stdexcept>
 
 namespace plmap::experiment {
@@ -30,6 +33,16 @@ ParameterSpec required_text(std::string name, std::string doc) {
   s.name = std::move(name), s.type = ParameterType::text, s.doc = std::move(doc);
   return s;
 }
+/// "default" and every locator name of the registry (d = 2, then the d = 1 ones not yet listed),
+/// so a new strategy is accepted by configs as soon as it is registered.
+std::vector<std::string> locator_choices() {
+  std::vector<std::string> names{"default"};
+  for (const auto name : point_locator_names<2>()) names.emplace_back(name);
+  for (const auto name : point_locator_names<1>())
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.emplace_back(name);
+  return names;
+}
+
 ParameterSpec choice(std::string name, std::optional<std::string> def, std::vector<std::string> choices,
                      std::string noun, std::string doc) {
   ParameterSpec s;
@@ -164,9 +177,9 @@ const std::vector<ParameterSpec>& step_schema(const std::string& kind) {
              "which target orientations are accepted"),
       integer("threads", 1, 0, 1024, "worker threads; 0: all hardware threads")};
   static const std::vector<ParameterSpec> evaluate = {
-      choice("locator", "default", {"default", "brown-faigle", "straight-walk", "brute-force", "bisection"},
+      choice("locator", "default", locator_choices(),
              "point locator",
-             "point-location strategy; default: brown-faigle (d = 2), bisection (d = 1)"),
+             "point-location strategy, any registered name; default: the registry's default for the dimension"),
       integer("queries", 100000, 1, 1e9, "random query points, uniform over elements"),
       integer("threads", 1, 0, 1024, "evaluation threads; 0: all hardware threads"),
       seed("the query points")};
