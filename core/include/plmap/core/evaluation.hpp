@@ -32,6 +32,13 @@ concept PointLocator = std::copy_constructible<L> &&
       { locator.locate(map, element, local) } -> std::same_as<RegionLocation<d>>;
     };
 
+/// Locators with a per-map table (e.g. a bucket grid) build it in `prepare(map)`; `locate`
+/// builds it on first use otherwise. Prepare once before timing or copying a locator to threads.
+template <int d, class L>
+void prepare_point_locator(L& locator, const PlMap<d>& map) {
+  if constexpr (requires { locator.prepare(map); }) locator.prepare(map);
+}
+
 /// Xi at one point.
 template <int d>
 struct Evaluation {

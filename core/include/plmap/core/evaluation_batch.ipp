@@ -23,8 +23,11 @@ void evaluate_batch(const PlMap<d>& map, std::span<const SurfacePoint<d>> points
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t n = points.size();
   threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(n, 1)));
+  // Threads work on copies; preparing one first lets the copies share its table.
+  Locator prepared = locator;
+  prepare_point_locator<d>(prepared, map);
   auto work = [&](std::size_t begin, std::size_t end) {
-    Locator local_locator = locator;
+    Locator local_locator = prepared;
     for (std::size_t i = begin; i < end; ++i) out[i] = evaluate(map, points[i], local_locator);
   };
   if (threads <= 1) {
