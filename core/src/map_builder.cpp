@@ -724,6 +724,86 @@ AffineMap<d> affine_through(const std::array<LocalPoint<d>, d + 1>& from,
   return map;
 }
 
+/// Joins the parts assembled per block of elements (each numbered from 0) into one map: arrays
+/// are concatenated and node, region and entry indices shifted by the sizes of the parts before.
+template <class RunBlocks>
+void concatenate_parts(std::vector<MapData<2>>& parts, Index elements, MapData<2>& m,
+                       RunBlocks&& run_blocks) {
+  const std::size_t np = parts.size();
+  if (np == 1) {  // one block: already numbered globally, and no second copy of the map
+    if (parts[0].start_region.size() != static_cast<std::size_t>(elements))
+      throw BuilderError("internal: the assembled block does not cover every element");
+    const int orientation = m.orientation;
+    m = std::move(parts[0]);
+    m.orientation = orientation;
+    return;
+  }
+  std::vector<std::size_t> node0(np + 1, 0), region0(np + 1, 0), entry0(np + 1, 0), edge0(np + 1, 0),
+      element0(np + 1, 0);
+  for (std::size_t k = 0; k < np; ++k) {
+    node0[k + 1] = node0[k] + parts[k].node_type.size();
+    region0[k + 1] = region0[k] + parts[k].region_target.size();
+    entry0[k + 1] = entry0[k] + parts[k].neighbor.size();
+    edge0[k + 1] = edge0[k] + parts[k].edge_node.size();
+    element0[k + 1] = element0[k] + parts[k].start_region.size();
+  }
+  if (element0[np] != static_cast<std::size_t>(elements))
+    throw BuilderError("internal: the assembled blocks do not cover every element");
+  const std::size_t nn = node0[np], nr = region0[np], ne = entry0[np], ng = edge0[np];
+  m.node_position.resize(nn);
+  m.node_type.resize(nn);
+  m.node_location.resize(nn);
+  m.node_image.resize(nn);
+  m.node_target.resize(nn);
+  m.neighbor_begin.assign(nn + 1, 0);
+  m.neighbor.resize(ne);
+  m.neighbor_edge_kind.resize(ne);
+  m.edge_node_begin.assign(3 * static_cast<std::size_t>(elements) + 1, 0);
+  m.edge_node.resize(ng);
+  m.region_corners.resize(nr);
+  m.region_neighbors.resize(nr);
+  m.region_target.resize(nr);
+  m.region_map.resize(nr);
+  m.node_begin.assign(static_cast<std::size_t>(elements) + 1, 0);
+  m.region_begin.assign(static_cast<std::size_t>(elements) + 1, 0);
+  m.start_region.assign(static_cast<std::size_t>(elements), invalid_index);
+  run_blocks([&](unsigned k) {
+    MapData<2>& p = parts[k];
+    const auto dn = static_cast<Index>(node0[k]), dr = static_cast<Index>(region0[k]);
+    const auto de = static_cast<Index>(entry0[k]), dg = static_cast<Index>(edge0[k]);
+    const std::size_t e0 = element0[k];
+    auto copy = [](const auto& from, auto& to, std::size_t at) {
+      std::copy(from.begin(), from.end(), to.begin() + static_cast<std::ptrdiff_t>(at));
+    };
+    copy(p.node_position, m.node_position, node0[k]);
+    copy(p.node_type, m.node_type, node0[k]);
+    copy(p.node_location, m.node_location, node0[k]);
+    copy(p.node_image, m.node_image, node0[k]);
+    copy(p.node_target, m.node_target, node0[k]);
+    copy(p.neighbor_edge_kind, m.neighbor_edge_kind, entry0[k]);
+    copy(p.region_target, m.region_target, region0[k]);
+    copy(p.region_map, m.region_map, region0[k]);
+    for (std::size_t i = 0; i < p.neighbor.size(); ++i) m.neighbor[entry0[k] + i] = p.neighbor[i] + dn;
+    for (std::size_t i = 0; i + 1 < p.neighbor_begin.size(); ++i)
+      m.neighbor_begin[node0[k] + i + 1] = p.neighbor_begin[i + 1] + de;
+    for (std::size_t i = 0; i < p.edge_node.size(); ++i) m.edge_node[edge0[k] + i] = p.edge_node[i] + dn;
+    for (std::size_t i = 0; i + 1 < p.edge_node_begin.size(); ++i)
+      m.edge_node_begin[3 * e0 + i + 1] = p.edge_node_begin[i + 1] + dg;
+    for (std::size_t i = 0; i < p.region_corners.size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        m.region_corners[region0[k] + i][c] = p.region_corners[i][c] + dn;
+        const Index nb = p.region_neighbors[i][c];
+        m.region_neighbors[region0[k] + i][c] = nb == invalid_index ? invalid_index : nb + dr;
+      }
+    for (std::size_t i = 0; i < p.start_region.size(); ++i) {
+      m.node_begin[e0 + i + 1] = p.node_begin[i + 1] + dn;
+      m.region_begin[e0 + i + 1] = p.region_begin[i + 1] + dr;
+      m.start_region[e0 + i] = p.start_region[i] == invalid_index ? invalid_index : p.start_region[i] + dr;
+    }
+    p = MapData<2>{};  // release the part
+  });
+}
+
 /// The arrays grew by push_back; give back the slack so the map holds only what it needs.
 template <int d>
 void shrink_to_fit(MapData<d>& m) {
@@ -1191,12 +1271,22 @@ PlMap<d> MapBuilder<d>::finalize() && {
                                                                  ? std::max(1u, std::thread::hardware_concurrency())
                                                                  : im.options.threads,
                                                              static_cast<unsigned>(std::max<Index>(1, n1 / 64))));
+    // Runs f(k) for the blocks k = 0 .. threads - 1, on that many threads.
+    auto run_blocks = [threads](auto&& f) {
+      if (threads == 1) {
+        f(0u);
+        return;
+      }
+      std::vector<std::jthread> pool;
+      for (unsigned k = 0; k < threads; ++k) pool.emplace_back([&f, k] { f(k); });
+    };
     std::vector<Workspace> workspaces(threads);
     std::vector<std::pair<Index, std::exception_ptr>> failures(threads, {invalid_index, nullptr});
     {
       const Index block = (n1 + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
-      auto run = [&](unsigned k) {
-        const Index begin = static_cast<Index>(k) * block, end = std::min<Index>(n1, begin + block);
+      run_blocks([&](unsigned k) {
+        const Index begin = std::min<Index>(n1, static_cast<Index>(k) * block);
+        const Index end = std::min<Index>(n1, begin + block);
         for (Index t = begin; t < end; ++t) {
           try {
             close_element(t, workspaces[k]);
@@ -1205,13 +1295,7 @@ PlMap<d> MapBuilder<d>::finalize() && {
             return;
           }
         }
-      };
-      if (threads == 1) {
-        run(0);
-      } else {
-        std::vector<std::jthread> pool;
-        for (unsigned k = 0; k < threads; ++k) pool.emplace_back(run, k);
-      }
+      });
     }
     for (const auto& [t, error] : failures)
       if (error) std::rethrow_exception(error);  // blocks are in element order
@@ -1221,115 +1305,135 @@ PlMap<d> MapBuilder<d>::finalize() && {
     m.orientation = im.options.orientation != 0 ? im.options.orientation : (votes >= 0 ? 1 : -1);
 
     // ---- assemble the flat arrays ----------------------------------------------------------------
-    // Sizes are known now; reserve so the arrays are written once.
-    {
-      std::size_t nodes = 0, rings = 0, triangles = 0, edge_entries = 0;
-      for (const auto& et : tri) {
-        nodes += et.slots.size();
-        rings += et.ring.size();
-        triangles += et.triangles.size();
-        edge_entries += et.edge_slots.size();
-      }
-      m.node_position.reserve(nodes);
-      m.node_type.reserve(nodes);
-      m.node_location.reserve(nodes);
-      m.node_image.reserve(nodes);
-      m.node_target.reserve(nodes);
-      m.neighbor_begin.reserve(nodes + 1);
-      m.neighbor.reserve(rings);
-      m.neighbor_edge_kind.reserve(rings);
-      m.region_corners.reserve(triangles);
-      m.region_neighbors.reserve(triangles);
-      m.region_target.reserve(triangles);
-      m.region_map.reserve(triangles);
-      m.edge_node_begin.reserve(3 * static_cast<std::size_t>(n1) + 1);
-      m.edge_node.reserve(edge_entries);
-    }
-    m.edge_node_begin.push_back(0);
-    std::vector<Index> triangle_region;
-    std::vector<std::pair<int, int>> region_sides;  // slot pairs that border a region
-    for (Index t = 0; t < n1; ++t) {
-      auto& et = tri[t];
-      const Index base = static_cast<Index>(m.node_type.size());
-      const Index rbase = static_cast<Index>(m.region_target.size());
-      const int ns = static_cast<int>(et.slots.size());
-      // regions: triangles of components with a target element and the map's orientation
-      triangle_region.assign(et.triangles.size(), invalid_index);
-      region_sides.clear();
-      Index nr = 0;
-      for (std::size_t f = 0; f < et.triangles.size(); ++f) {
-        const auto& tr = et.triangles[f];
-        const auto& comp = et.components[tr.component];
-        if (comp.target == invalid_index || comp.sign != m.orientation) continue;
-        triangle_region[f] = rbase + nr++;
-        for (int i = 0; i < 3; ++i) {
-          const int a = tr.corners[i], b = tr.corners[(i + 1) % 3];
-          region_sides.emplace_back(std::min(a, b), std::max(a, b));
+    // Blocks of elements are assembled into parts with local numbering, in parallel, and the
+    // parts are then concatenated with their offsets added.
+    const int orientation = m.orientation;
+    auto assemble_block = [&](Index t_begin, Index t_end, MapData<2>& part) {
+      part.node_begin.assign(1, 0);
+      part.region_begin.assign(1, 0);
+      part.neighbor_begin.assign(1, 0);
+      part.edge_node_begin.assign(1, 0);
+      {
+        std::size_t nodes = 0, rings = 0, triangles = 0, edge_entries = 0;
+        for (Index t = t_begin; t < t_end; ++t) {
+          nodes += tri[t].slots.size();
+          rings += tri[t].ring.size();
+          triangles += tri[t].triangles.size();
+          edge_entries += tri[t].edge_slots.size();
         }
+        part.node_position.reserve(nodes);
+        part.node_type.reserve(nodes);
+        part.node_location.reserve(nodes);
+        part.node_image.reserve(nodes);
+        part.node_target.reserve(nodes);
+        part.neighbor_begin.reserve(nodes + 1);
+        part.neighbor.reserve(rings);
+        part.neighbor_edge_kind.reserve(rings);
+        part.region_corners.reserve(triangles);
+        part.region_neighbors.reserve(triangles);
+        part.region_target.reserve(triangles);
+        part.region_map.reserve(triangles);
+        part.edge_node_begin.reserve(3 * static_cast<std::size_t>(t_end - t_begin) + 1);
+        part.edge_node.reserve(edge_entries);
       }
-      std::sort(region_sides.begin(), region_sides.end());
-      for (int i = 0; i < ns; ++i) {
-        const auto& bn = im.nodes[et.slots[i]];
-        const LocalPoint<2> x = node_local(et.slots[i], t);
-        m.node_position.push_back(x);
-        int location = -1;
-        NodeType type = NodeType::interior;
-        if (bn.place.kind == PlaceKind::vertex) {
-          location = s1.local_corner(t, bn.place.index);
-          type = bn.kind == BuilderNodeKind::ghost ? NodeType::ghost : NodeType::corner;
-        } else if (bn.place.kind == PlaceKind::edge) {
-          for (int k = 0; k < 3; ++k)
-            if (s1.element_edge(t, k) == bn.place.index) location = k;
-          type = bn.kind == BuilderNodeKind::intersection ? NodeType::intersection : NodeType::touching;
+      std::vector<Index> triangle_region;
+      std::vector<std::pair<int, int>> region_sides;  // slot pairs that border a region
+      for (Index t = t_begin; t < t_end; ++t) {
+        auto& et = tri[t];
+        const Index base = static_cast<Index>(part.node_type.size());
+        const Index rbase = static_cast<Index>(part.region_target.size());
+        const int ns = static_cast<int>(et.slots.size());
+        // regions: triangles of components with a target element and the map's orientation
+        triangle_region.assign(et.triangles.size(), invalid_index);
+        region_sides.clear();
+        Index nr = 0;
+        for (std::size_t f = 0; f < et.triangles.size(); ++f) {
+          const auto& tr = et.triangles[f];
+          const auto& comp = et.components[tr.component];
+          if (comp.target == invalid_index || comp.sign != orientation) continue;
+          triangle_region[f] = rbase + nr++;
+          for (int i = 0; i < 3; ++i) {
+            const int a = tr.corners[i], b = tr.corners[(i + 1) % 3];
+            region_sides.emplace_back(std::min(a, b), std::max(a, b));
+          }
         }
-        m.node_type.push_back(type);
-        m.node_location.push_back(static_cast<std::int8_t>(location));
-        m.node_image.push_back({bn.image.element, support_local<2>(s2, bn.image, bn.image.element)});
-        m.node_target.push_back(bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target);
-        for (int r = et.ring_begin[i]; r < et.ring_begin[i + 1]; ++r) {
-          const int j = et.ring[r] >> 1;
-          const bool graph = (et.ring[r] & 1) != 0;
-          if (!graph && !std::binary_search(region_sides.begin(), region_sides.end(),
-                                            std::make_pair(std::min(i, j), std::max(i, j))))
-            continue;
-          m.neighbor.push_back(base + j);
-          m.neighbor_edge_kind.push_back(graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure);
+        std::sort(region_sides.begin(), region_sides.end());
+        for (int i = 0; i < ns; ++i) {
+          const auto& bn = im.nodes[et.slots[i]];
+          const LocalPoint<2> x = node_local(et.slots[i], t);
+          part.node_position.push_back(x);
+          int location = -1;
+          NodeType type = NodeType::interior;
+          if (bn.place.kind == PlaceKind::vertex) {
+            location = s1.local_corner(t, bn.place.index);
+            type = bn.kind == BuilderNodeKind::ghost ? NodeType::ghost : NodeType::corner;
+          } else if (bn.place.kind == PlaceKind::edge) {
+            for (int k = 0; k < 3; ++k)
+              if (s1.element_edge(t, k) == bn.place.index) location = k;
+            type = bn.kind == BuilderNodeKind::intersection ? NodeType::intersection : NodeType::touching;
+          }
+          part.node_type.push_back(type);
+          part.node_location.push_back(static_cast<std::int8_t>(location));
+          part.node_image.push_back({bn.image.element, support_local<2>(s2, bn.image, bn.image.element)});
+          part.node_target.push_back(bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target);
+          for (int r = et.ring_begin[i]; r < et.ring_begin[i + 1]; ++r) {
+            const int j = et.ring[r] >> 1;
+            const bool graph = (et.ring[r] & 1) != 0;
+            if (!graph && !std::binary_search(region_sides.begin(), region_sides.end(),
+                                              std::make_pair(std::min(i, j), std::max(i, j))))
+              continue;
+            part.neighbor.push_back(base + j);
+            part.neighbor_edge_kind.push_back(graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure);
+          }
+          part.neighbor_begin.push_back(static_cast<Index>(part.neighbor.size()));
         }
-        m.neighbor_begin.push_back(static_cast<Index>(m.neighbor.size()));
-      }
-      m.node_begin[t + 1] = static_cast<Index>(m.node_type.size());
-      for (int k = 0; k < 3; ++k) {
-        for (int q = et.edge_slots_begin[k]; q < et.edge_slots_begin[k + 1]; ++q)
-          m.edge_node.push_back(base + et.edge_slots[q]);
-        m.edge_node_begin.push_back(static_cast<Index>(m.edge_node.size()));
-      }
-      for (std::size_t f = 0; f < et.triangles.size(); ++f) {
-        if (triangle_region[f] == invalid_index) continue;
-        const auto& tr = et.triangles[f];
-        const Index target = et.components[tr.component].target;
-        std::array<Index, 3> corners, neighbors;
-        std::array<LocalPoint<2>, 3> from, to;
-        for (int i = 0; i < 3; ++i) {
-          const int s = tr.corners[i];
-          corners[i] = base + s;
-          const int g = tr.neighbors[i];
-          neighbors[i] = g >= 0 ? triangle_region[g] : invalid_index;
-          from[i] = m.node_position[base + s];
-          to[i] = support_local<2>(s2, im.nodes[et.slots[s]].image, target);
+        part.node_begin.push_back(static_cast<Index>(part.node_type.size()));
+        for (int k = 0; k < 3; ++k) {
+          for (int q = et.edge_slots_begin[k]; q < et.edge_slots_begin[k + 1]; ++q)
+            part.edge_node.push_back(base + et.edge_slots[q]);
+          part.edge_node_begin.push_back(static_cast<Index>(part.edge_node.size()));
         }
-        m.region_corners.push_back(corners);
-        m.region_neighbors.push_back(neighbors);
-        m.region_target.push_back(target);
-        m.region_map.push_back(affine_through<2>(from, to));
+        for (std::size_t f = 0; f < et.triangles.size(); ++f) {
+          if (triangle_region[f] == invalid_index) continue;
+          const auto& tr = et.triangles[f];
+          const Index target = et.components[tr.component].target;
+          std::array<Index, 3> corners, neighbors;
+          std::array<LocalPoint<2>, 3> from, to;
+          for (int i = 0; i < 3; ++i) {
+            const int s = tr.corners[i];
+            corners[i] = base + s;
+            const int g = tr.neighbors[i];
+            neighbors[i] = g >= 0 ? triangle_region[g] : invalid_index;
+            from[i] = part.node_position[base + s];
+            to[i] = support_local<2>(s2, im.nodes[et.slots[s]].image, target);
+          }
+          part.region_corners.push_back(corners);
+          part.region_neighbors.push_back(neighbors);
+          part.region_target.push_back(target);
+          part.region_map.push_back(affine_through<2>(from, to));
+        }
+        part.region_begin.push_back(static_cast<Index>(part.region_target.size()));
+        if (nr > 0) {
+          const int ct = et.centroid_triangle;
+          part.start_region.push_back((ct >= 0 && triangle_region[ct] != invalid_index) ? triangle_region[ct]
+                                                                                       : rbase);
+        } else {
+          part.start_region.push_back(invalid_index);
+        }
+        et = ElementTriangulation{};  // release memory early
       }
-      m.region_begin[t + 1] = static_cast<Index>(m.region_target.size());
-      if (m.region_begin[t + 1] > m.region_begin[t]) {
-        const int ct = et.centroid_triangle;
-        m.start_region[t] = (ct >= 0 && triangle_region[ct] != invalid_index) ? triangle_region[ct]
-                                                                              : m.region_begin[t];
-      }
-      et = ElementTriangulation{};  // release memory early
-    }
+    };
+    const Index block_size = (n1 + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
+    std::vector<MapData<2>> parts(threads);
+    auto block_range = [&](unsigned k) {
+      const Index begin = std::min<Index>(n1, static_cast<Index>(k) * block_size);
+      return std::make_pair(begin, std::min<Index>(n1, begin + block_size));
+    };
+    run_blocks([&](unsigned k) {
+      const auto [begin, end] = block_range(k);
+      assemble_block(begin, end, parts[k]);
+    });
+    concatenate_parts(parts, n1, m, run_blocks);
   }
   shrink_to_fit(m);
   return PlMap<d>(im.s1, im.s2, std::move(m));

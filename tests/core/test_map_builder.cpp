@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 using namespace plmap;
 
@@ -303,4 +304,70 @@ TEST(MapBuilder, CollinearNodesOnAnEdgeAreHandledOnBothSides) {
     EXPECT_NEAR(a.x() * c.y() - a.y() * c.x(), 1.0 / k, 1e-12) << "region " << r;
   }
   EXPECT_EQ(m.data().start_region[1], invalid_index);
+}
+
+// finalize() closes and assembles blocks of elements on several threads and concatenates them;
+// the result must be the same map, array for array, whatever the thread count.
+TEST(MapBuilder, ResultDoesNotDependOnTheThreadCount) {
+  const int n = 16;  // 512 triangles: enough for several blocks
+  std::vector<WorldPoint<2>> v;
+  std::vector<ElementCorners<2>> e;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) v.push_back(P(i / double(n), j / double(n)));
+  auto id = [&](int i, int j) { return static_cast<Index>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      e.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      e.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  auto s1 = make_surface(v, e);
+  // S2: the same square grid cut along the other diagonals, so edges cross inside elements.
+  std::vector<ElementCorners<2>> e2;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      e2.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
+      e2.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  auto s2 = make_surface(v, e2);
+  auto build = [&](unsigned threads) {
+    BuilderOptions options;
+    options.threads = threads;
+    MapBuilder<2> b(s1, s2, options);
+    for (Index q = 0; q < s2->vertex_count(); ++q) b.add_vertex_preimage_at_vertex(q, q);
+    // the diagonal (i+1, j) - (i, j+1) of S2 crosses S1's diagonal (i, j) - (i+1, j+1) in its middle
+    for (Index edge = 0; edge < s2->edge_count(); ++edge) {
+      const auto ends = s2->edge_vertices(edge);
+      const LocalPoint<2> a = s2->vertex(ends[0]).head<2>(), c = s2->vertex(ends[1]).head<2>();
+      if ((c - a).x() * (c - a).y() >= 0) {
+        b.add_edge(edge);
+        continue;
+      }
+      const int i = static_cast<int>(std::lround(std::min(a.x(), c.x()) * n));
+      const int j = static_cast<int>(std::lround(std::min(a.y(), c.y()) * n));
+      const Index crossed = s1->find_edge(id(i, j), id(i + 1, j + 1));
+      EdgeCrossing x;
+      x.domain_edge = crossed;
+      x.domain_parameter = 0.5;
+      b.add_edge(edge, std::span<const EdgeCrossing>(&x, 1));
+    }
+    return std::move(b).finalize();
+  };
+  const PlMap<2> one = build(1), three = build(3);
+  const auto& a = one.data();
+  const auto& c = three.data();
+  ASSERT_EQ(one.region_count(), 4 * n * n);  // every S1 triangle is cut in two
+  EXPECT_EQ(a.node_begin, c.node_begin);
+  EXPECT_EQ(a.node_type, c.node_type);
+  EXPECT_EQ(a.node_target, c.node_target);
+  EXPECT_EQ(a.neighbor_begin, c.neighbor_begin);
+  EXPECT_EQ(a.neighbor, c.neighbor);
+  EXPECT_EQ(a.edge_node_begin, c.edge_node_begin);
+  EXPECT_EQ(a.edge_node, c.edge_node);
+  EXPECT_EQ(a.region_begin, c.region_begin);
+  EXPECT_EQ(a.region_corners, c.region_corners);
+  EXPECT_EQ(a.region_neighbors, c.region_neighbors);
+  EXPECT_EQ(a.region_target, c.region_target);
+  EXPECT_EQ(a.start_region, c.start_region);
+  for (std::size_t r = 0; r < a.region_map.size(); ++r) ASSERT_EQ(a.region_map[r], c.region_map[r]) << r;
+  EXPECT_NEAR(covered_measure(three).domain, 1.0, 1e-12);
 }
