@@ -6,11 +6,16 @@
 // and the "floor": the cost of the same query stream when the region is already known (one
 // stored affine map plus the world position on S2). Prints a markdown table, fits the growth
 // exponent of (locator - floor) time with the number of regions per element, reports the memory
-// of the compact form per node and per region, and PSurface 2.0's per-node memory from the sizes
-// of its node types. Optionally writes everything as JSON.
+// of the compact form per node and per region (PSurface 2.0 itself is measured in the same run
+// by experiments/psurface_eval). Locators with per-map tables (cell-grid, bucket-walk) are prepared before
+// the timed loop; their build time and bytes per region are reported apart from the map's.
+// Optionally writes everything as JSON.
 //
 // Usage: bench_point_location [--queries N] [--femur path/to/femur.off] [--json out.json]
-//                             [--quick]
+//                             [--quick] [--cells-per-region X] [--only LOCATOR] [--femur-only]
+//   --cells-per-region  grid density of cell-grid (default: CellGridOptions's)
+//   --only              measure only this locator (and the floor)
+//   --femur-only        skip the growth series (no growth exponents then)
 
 #include "../tests/strategies/refinement_maps.hpp"
 
@@ -23,10 +28,6 @@
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <CGAL/boost/graph/IO/OFF.h>
 
-#define PSURFACE_STANDALONE
-#include <psurface/Domains.h>
-#include <psurface/Node.h>
-
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -38,12 +39,16 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 namespace {
 
 using namespace plmap;
 using Json = nlohmann::json;
+
+/// PSurface 2.0's evaluation throughput on its femur map, as quoted in issue 2 (other machine).
+constexpr double psurface_femur_evals_per_cpu_s = 2.3e6;
 
 // ---- clocks ------------------------------------------------------------------------------------
 
@@ -128,7 +133,8 @@ std::vector<SurfacePoint<2>> random_queries(const Surface<2>& s1, std::size_t n,
 
 // ---- one case ----------------------------------------------------------------------------------
 
-Json run_case(const Case& c, std::size_t query_count, unsigned all_threads, double target_seconds) {
+Json run_case(const Case& c, std::size_t query_count, unsigned all_threads, double target_seconds,
+             const point_location::CellGridOptions& cell_grid_options, const std::string& only) {
   const PlMap<2>& map = *c.refinement.map;
   const auto& s1 = map.domain();
   const auto queries = random_queries(s1, query_count, 12345);
@@ -193,8 +199,34 @@ Json run_case(const Case& c, std::size_t query_count, unsigned all_threads, doub
                      {"evals_per_cpu_s_all_threads", 1 / floor_all.cpu}};
 
   for (const auto name : point_locator_names<2>()) {
+    if (!only.empty() && name != only) continue;
     Timing one, all;
+    double prepare_seconds = 0;
+    std::size_t locator_bytes = 0;
+    Json locator_extra = Json::object();
     with_point_locator<2>(name, [&](auto& locator) {
+      // Locators with per-map tables build them once, outside the timed loop (evaluate_batch
+      // copies the locator per call; the copies share a prepared table).
+      // The registry builds cell-grid with default options; --cells-per-region overrides them.
+      if constexpr (std::is_same_v<std::decay_t<decltype(locator)>, point_location::CellGridLocator>)
+        locator = point_location::CellGridLocator(cell_grid_options);
+      if constexpr (requires { locator.prepare(map); }) {
+        const double t0 = seconds(CLOCK_MONOTONIC);
+        locator.prepare(map);
+        prepare_seconds = seconds(CLOCK_MONOTONIC) - t0;
+      }
+      if constexpr (requires { locator.memory_bytes(); }) locator_bytes = locator.memory_bytes();
+      if constexpr (requires { locator.grid()->memory(); }) {
+        const auto mem = locator.grid()->memory();
+        locator_extra = {{"cells", mem.cells},
+                         {"whole_cells", mem.whole_cells},
+                         {"split_cells", mem.split_cells},
+                         {"whole_area", mem.whole_area},
+                         {"split_area", mem.split_area},
+                         {"region_record_bytes", mem.region_record_bytes},
+                         {"cell_bytes", mem.cell_bytes},
+                         {"element_bytes", mem.element_bytes}};
+      }
       auto work = [&](unsigned threads) {
         return [&, threads](std::size_t count) {
           evaluate_batch<2>(map, std::span(queries).first(count), std::span(out).first(count),
@@ -212,7 +244,12 @@ Json run_case(const Case& c, std::size_t query_count, unsigned all_threads, doub
         {"evals_per_s_all_threads", 1 / all.wall},
         {"evals_per_cpu_s_all_threads", 1 / all.cpu},
         {"ratio_to_floor_1thread", one.cpu / floor1.cpu},
-        {"seconds_above_floor_1thread", one.cpu - floor1.cpu}};
+        {"ratio_to_psurface_femur_1thread", 1 / one.cpu / psurface_femur_evals_per_cpu_s},
+        {"seconds_above_floor_1thread", one.cpu - floor1.cpu},
+        {"prepare_seconds", prepare_seconds},
+        {"locator_bytes", locator_bytes},
+        {"locator_bytes_per_region", double(locator_bytes) / map.region_count()},
+        {"tables", locator_extra}};
   }
   return result;
 }
@@ -228,48 +265,26 @@ double fit_exponent(const std::vector<double>& x, const std::vector<double>& y) 
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-/// Per-node memory of PSurface 2.0's graph for the same graph, from the sizes of its types (the
-/// library offers no memory query): each node is a psurface::Node<float> inside a
-/// std::vector<Node> per triangle (capacity = size assumed), owns a heap std::vector of
-/// NeighborReference (degree entries; glibc malloc rounds a request r up to max(32, r + 8
-/// rounded to 16) bytes), and nodes on triangle edges appear in the per-triangle edgePoints
-/// arrays (4 bytes per entry). Triangle records (DomainTriangle) are counted per element.
-Json psurface_memory_estimate(const PlMap<2>& map) {
-  const auto& m = map.data();
-  auto malloc_chunk = [](std::size_t request) {
-    return request == 0 ? std::size_t(0) : std::max<std::size_t>(32, (request + 8 + 15) / 16 * 16);
-  };
-  std::size_t bytes = 0;
-  for (Index n = 0; n < map.node_count(); ++n) {
-    // PSurface's neighbour lists include the triangular-closure edges, as ours do, so the
-    // degree is the same.
-    const std::size_t degree = std::size_t(m.neighbor_begin[n + 1] - m.neighbor_begin[n]);
-    bytes += sizeof(psurface::Node<float>) + malloc_chunk(degree * sizeof(psurface::Node<float>::NeighborReference));
-  }
-  bytes += m.edge_node.size() * sizeof(int);
-  const std::size_t per_triangle = sizeof(psurface::DomainTriangle<float>);
-  bytes += per_triangle * std::size_t(map.domain().element_count());
-  return {{"sizeof_node_float", sizeof(psurface::Node<float>)},
-          {"sizeof_neighbor_reference", sizeof(psurface::Node<float>::NeighborReference)},
-          {"sizeof_domain_triangle", per_triangle},
-          {"bytes", bytes},
-          {"bytes_per_node", double(bytes) / map.node_count()}};
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   std::size_t query_count = 1 << 20;
   std::string femur_path, json_path;
-  bool quick = false;
+  bool quick = false, femur_only = false;
+  std::string only;
+  point_location::CellGridOptions cell_grid_options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--queries" && i + 1 < argc) query_count = std::stoul(argv[++i]);
+    else if (a == "--cells-per-region" && i + 1 < argc) cell_grid_options.cells_per_region = std::stod(argv[++i]);
+    else if (a == "--only" && i + 1 < argc) only = argv[++i];
+    else if (a == "--femur-only") femur_only = true;
     else if (a == "--femur" && i + 1 < argc) femur_path = argv[++i];
     else if (a == "--json" && i + 1 < argc) json_path = argv[++i];
     else if (a == "--quick") quick = true;
     else {
-      fmt::print(stderr, "usage: {} [--queries N] [--femur femur.off] [--json out.json] [--quick]\n", argv[0]);
+      fmt::print(stderr, "usage: {} [--queries N] [--femur femur.off] [--json out.json] [--quick]\n"
+                 "       [--cells-per-region X] [--only LOCATOR] [--femur-only]\n", argv[0]);
       return 2;
     }
   }
@@ -281,6 +296,7 @@ int main(int argc, char** argv) {
     // 50,000 regions (similar cache footprint).
     std::vector<int> ks = quick ? std::vector<int>{3, 10} : std::vector<int>{3, 6, 10, 18, 32};
     std::vector<Case> cases;
+    if (femur_only) ks.clear();
     for (int k : ks) {
       const int grid = std::max(3, int(std::lround(std::sqrt(50000.0 / (2.0 * k * k)))));
       cases.push_back({fmt::format("grid{}x{}, {}x{} refinement", grid, grid, k, k),
@@ -294,15 +310,17 @@ int main(int argc, char** argv) {
                          testing::refine(femur, k, 0.2, 200 + k)});
     }
 
+    if (cases.empty()) throw Error("--femur-only needs --femur path/to/femur.off");
     Json report;
     report["threads"] = all_threads;
     report["queries"] = query_count;
     for (const auto& c : cases) {
       fmt::print(stderr, "measuring {} ...\n", c.name);
-      report["cases"].push_back(run_case(c, query_count, all_threads, target_seconds));
+      report["cases"].push_back(run_case(c, query_count, all_threads, target_seconds, cell_grid_options, only));
     }
     // Growth exponents of the time above the floor against regions per element.
     for (const auto name : point_locator_names<2>()) {
+      if (growth_cases < 2 || (!only.empty() && name != only)) continue;
       std::vector<double> x, y;
       for (std::size_t i = 0; i < growth_cases; ++i) {
         const Json& r = report["cases"][i];
@@ -311,27 +329,41 @@ int main(int argc, char** argv) {
       }
       report["growth_exponent"][std::string(name)] = fit_exponent(x, y);
     }
-    report["psurface_memory_estimate"] = psurface_memory_estimate(*cases.back().refinement.map);
-    report["psurface_memory_estimate"]["case"] = cases.back().name;
 
     // ---- markdown ----
-    fmt::print("| map | regions/elem | nodes | locator | Meval/CPU-s (1 thr) | Meval/s ({} thr) | ratio to floor |\n", all_threads);
-    fmt::print("|---|---:|---:|---|---:|---:|---:|\n");
+    fmt::print("| map | regions/elem | nodes | locator | Meval/CPU-s (1 thr) | Meval/s ({} thr) | "
+               "ratio to floor | x PSurface 2.3 M/s | locator B/region |\n", all_threads);
+    fmt::print("|---|---:|---:|---|---:|---:|---:|---:|---:|\n");
     for (const auto& r : report["cases"]) {
       const auto& f = r["floor"];
-      fmt::print("| {} | {:.0f} | {} | floor (region known) | {:.2f} | {:.2f} | 1.00 |\n",
+      fmt::print("| {} | {:.0f} | {} | floor (region known) | {:.2f} | {:.2f} | 1.00 | | |\n",
                  r["case"].get<std::string>(), r["regions_per_element"].get<double>(),
                  r["nodes"].get<long>(), f["evals_per_cpu_s_1thread"].get<double>() / 1e6,
                  f["evals_per_s_all_threads"].get<double>() / 1e6);
       for (const auto& [name, l] : r["locators"].items())
-        fmt::print("| | | | {} | {:.2f} | {:.2f} | {:.2f} |\n", name,
+        fmt::print("| | | | {} | {:.2f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} |\n", name,
                    l["evals_per_cpu_s_1thread"].get<double>() / 1e6,
                    l["evals_per_s_all_threads"].get<double>() / 1e6,
-                   l["ratio_to_floor_1thread"].get<double>());
+                   l["ratio_to_floor_1thread"].get<double>(),
+                   l["ratio_to_psurface_femur_1thread"].get<double>(),
+                   l["locator_bytes_per_region"].get<double>());
+    }
+    fmt::print("\ncell-grid tables: share of element area in whole cells (answered by the look-up "
+               "alone) and in split cells (one orient2d), build time\n");
+    for (const auto& r : report["cases"]) {
+      if (!r["locators"].contains("cell-grid")) continue;
+      const auto& l = r["locators"]["cell-grid"];
+      fmt::print("- {}: whole {:.1f} %, split {:.1f} %, {} cells ({:.1f} per region), built in {:.1f} ms\n",
+                 r["case"].get<std::string>(), 100 * l["tables"]["whole_area"].get<double>(),
+                 100 * l["tables"]["split_area"].get<double>(),
+                 l["tables"]["cells"].get<long>(),
+                 l["tables"]["cells"].get<double>() / r["regions"].get<double>(),
+                 1e3 * l["prepare_seconds"].get<double>());
     }
     fmt::print("\nGrowth exponent of (locator - floor) CPU time vs regions per element:");
-    for (const auto& [name, e] : report["growth_exponent"].items())
-      fmt::print(" {} {:.2f};", name, e.get<double>());
+    if (report.contains("growth_exponent"))
+      for (const auto& [name, e] : report["growth_exponent"].items())
+        fmt::print(" {} {:.2f};", name, e.get<double>());
     fmt::print("\n\n| map | memory_bytes() | per node | per region | by size: graph/node | "
                "regions/region | total/node |\n|---|---:|---:|---:|---:|---:|---:|\n");
     for (const auto& r : report["cases"])
@@ -341,11 +373,6 @@ int main(int argc, char** argv) {
                  r["size_bytes_graph_per_node"].get<double>(),
                  r["size_bytes_regions_per_region"].get<double>(),
                  r["size_bytes_total_per_node"].get<double>());
-    const auto& ps = report["psurface_memory_estimate"];
-    fmt::print("\nPSurface 2.0 estimate for '{}': {:.1f} bytes/node (sizeof Node<float> = {}, "
-               "DomainTriangle<float> = {})\n",
-               ps["case"].get<std::string>(), ps["bytes_per_node"].get<double>(),
-               ps["sizeof_node_float"].get<long>(), ps["sizeof_domain_triangle"].get<long>());
     if (!json_path.empty()) std::ofstream(json_path) << report.dump(2) << "\n";
   } catch (const std::exception& e) {
     fmt::print(stderr, "bench_point_location: {}\n", e.what());

@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <type_traits>
@@ -22,6 +24,8 @@ namespace {
 using point_location::Bisection;
 using point_location::BrownFaigleWalk;
 using point_location::BruteForce;
+using point_location::CellGridLocator;
+using point_location::CellGridOptions;
 using point_location::StraightWalk;
 using point_location::detail::region_contains;
 
@@ -97,6 +101,24 @@ TEST(PointLocation, TestMapsHaveTheExpectedRegions) {
   EXPECT_GT(m[4].holes.size(), 100u);
 }
 
+/// Cell-grid locators with coarse, default and fine grids (the coarse ones certify few cells and
+/// walk a lot; the fine ones answer almost everything from the table).
+std::vector<CellGridLocator> cell_grid_variants() {
+  return {CellGridLocator(CellGridOptions{0.5, 512}), CellGridLocator(),
+          CellGridLocator(CellGridOptions{64, 512}), CellGridLocator(CellGridOptions{8, 3})};
+}
+
+/// The variants prepared for test map `which`, built once: property cases copy them (copies
+/// share the tables), which keeps the sanitizer build fast.
+const std::vector<CellGridLocator>& prepared_cell_grids(std::size_t which) {
+  static std::vector<std::vector<CellGridLocator>> prepared(maps2().size());
+  if (prepared[which].empty()) {
+    prepared[which] = cell_grid_variants();
+    for (CellGridLocator& locator : prepared[which]) locator.prepare(*maps2()[which].map);
+  }
+  return prepared[which];
+}
+
 RC_GTEST_PROP(PointLocation, WalksAgreeWithBruteForceOnRandomQueries, ()) {
   const auto which = *rc::gen::inRange<std::size_t>(0, maps2().size());
   const auto seed = *rc::gen::arbitrary<std::uint64_t>();
@@ -105,13 +127,152 @@ RC_GTEST_PROP(PointLocation, WalksAgreeWithBruteForceOnRandomQueries, ()) {
   BrownFaigleWalk brown_faigle(seed);
   StraightWalk straight;
   point_location::BucketWalk bucket(seed);
+  CellGridLocator cell_grid = prepared_cell_grids(which)[1];
   for (int q = 0; q < 100; ++q) {
     Index element;
     const LocalPoint<2> p = random_query(rng, element, map.domain().element_count());
     RC_ASSERT(agrees_with_brute_force<2>(brown_faigle, map, element, p));
     RC_ASSERT(agrees_with_brute_force<2>(straight, map, element, p));
     RC_ASSERT(agrees_with_brute_force<2>(bucket, map, element, p));
+    RC_ASSERT(agrees_with_brute_force<2>(cell_grid, map, element, p));
   }
+}
+
+// ---- cell-grid: certified cells answer without a test, so they get their own scrutiny --------
+
+
+RC_GTEST_PROP(PointLocation, CellGridAgreesWithBruteForceOnRandomAndBoundaryQueries, ()) {
+  const auto which = *rc::gen::inRange<std::size_t>(0, maps2().size());
+  const PlMap<2>& map = *maps2()[which].map;
+  const MapData<2>& m = map.data();
+  std::mt19937_64 rng(*rc::gen::arbitrary<std::uint64_t>());
+  const auto variant = *rc::gen::inRange<std::size_t>(0, cell_grid_variants().size());
+  CellGridLocator locator = prepared_cell_grids(which)[variant];
+  const Index elements = map.domain().element_count();
+  for (int q = 0; q < 300; ++q) {
+    Index element;
+    LocalPoint<2> p = random_query(rng, element, elements);
+    switch (q % 5) {
+      case 0:  // anywhere around the element
+        break;
+      case 1: {  // on or a hair beside the grid lines of some grid size: cell rounding matters
+        const int side = std::uniform_int_distribution<int>(1, 128)(rng);
+        auto on_line = [&] {
+          const double x = std::uniform_int_distribution<int>(0, side)(rng) / double(side);
+          const int nudge = std::uniform_int_distribution<int>(-1, 1)(rng);
+          return nudge == 0 ? x : std::nextafter(x, nudge * 2.0);
+        };
+        p.x() = on_line();
+        if (q % 2 == 0) p.y() = on_line();
+        break;
+      }
+      case 2: {  // on a node or a region side of the element
+        if (map.regions_begin(element) == map.regions_end(element)) break;
+        const Index r = std::uniform_int_distribution<Index>(map.regions_begin(element),
+                                                             map.regions_end(element) - 1)(rng);
+        const auto& a = m.node_position[m.region_corners[r][q % 3]];
+        const auto& b = m.node_position[m.region_corners[r][(q + 1) % 3]];
+        p = a + std::uniform_real_distribution<double>(0, 1)(rng) * (b - a);
+        if (q % 2 == 0) p = a;
+        break;
+      }
+      case 3:  // a hair off the element's edges
+        p = {std::nextafter(0.0, -1.0), std::uniform_real_distribution<double>(0, 1)(rng)};
+        if (q % 2 == 0) std::swap(p.x(), p.y());
+        break;
+      default:  // on the slanted edge
+        p.y() = 1 - p.x();
+    }
+    RC_ASSERT(agrees_with_brute_force<2>(locator, map, element, p));
+  }
+}
+
+TEST(PointLocation, CellGridReportsHolesAndFarPointsOutside) {
+  for (std::size_t which : {3u, 4u}) {
+    const auto& rm = maps2()[which];
+    for (CellGridLocator locator : prepared_cell_grids(which))
+      for (const auto& hole : rm.holes)
+        EXPECT_FALSE(locator.locate(*rm.map, hole.element, hole.local).found());
+  }
+  const PlMap<2>& map = *maps2()[1].map;
+  CellGridLocator locator;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const LocalPoint<2>& p :
+       {LocalPoint<2>(-0.01, 0.3), LocalPoint<2>(0.3, -1e-300), LocalPoint<2>(0.5, 0.5000001),
+        LocalPoint<2>(2, 2), LocalPoint<2>(-1e300, 1e300), LocalPoint<2>(nan, 0.2),
+        LocalPoint<2>(0.2, nan)})
+    EXPECT_FALSE(locator.locate(map, 0, p).found()) << p.transpose();
+}
+
+TEST(PointLocation, CellGridOnNodesAndRegionSides) {
+  for (std::size_t which = 0; which < maps2().size(); ++which) {
+    const PlMap<2>& map = *maps2()[which].map;
+    const MapData<2>& m = map.data();
+    for (CellGridLocator locator : prepared_cell_grids(which))
+      for (Index t = 0; t < map.domain().element_count(); ++t)
+        for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
+          for (int side = 0; side < 3; ++side) {
+            const auto& a = m.node_position[m.region_corners[r][(side + 1) % 3]];
+            const auto& b = m.node_position[m.region_corners[r][(side + 2) % 3]];
+            for (double s : {0.0, 0.5, 0.25, 1.0 / 3.0})
+              ASSERT_TRUE(agrees_with_brute_force<2>(locator, map, t, LocalPoint<2>(a + s * (b - a))));
+          }
+  }
+}
+
+TEST(PointLocation, CellGridCertifiesMostOfTheAreaAndReportsItsMemory) {
+  const PlMap<2>& map = *maps2()[2].map;  // 121 regions per element
+  CellGridLocator locator;
+  EXPECT_EQ(locator.memory_bytes(), 0u);
+  locator.prepare(map);
+  ASSERT_NE(locator.grid(), nullptr);
+  const auto memory = locator.grid()->memory();
+  EXPECT_EQ(memory.region_record_bytes, 64u * std::size_t(map.region_count()));
+  EXPECT_GE(memory.cells, 8u * std::size_t(map.region_count()));
+  EXPECT_GT(memory.whole_cells, 0u);
+  EXPECT_GT(memory.whole_cells + memory.split_cells, memory.cells / 2);
+  EXPECT_GT(memory.whole_area + memory.split_area, 0.5);
+  EXPECT_LE(memory.whole_area + memory.split_area, 1.0);
+  EXPECT_EQ(locator.memory_bytes(), memory.total_bytes());
+  // Every certified answer is checked against brute force on the cell centres and corners.
+  for (Index t = 0; t < map.domain().element_count(); ++t)
+    for (int i = 0; i <= 40; ++i)
+      for (int j = 0; i + j <= 40; ++j)
+        ASSERT_TRUE(agrees_with_brute_force<2>(locator, map, t, LocalPoint<2>(i / 40.0, j / 40.0)));
+}
+
+TEST(PointLocation, CellGridOnElementsWithMoreRegionsThanACellCanName) {
+  // 91 x 91 = 8,281 regions per element: more than a 16-bit cell can address (8,191), so part of
+  // each element's cells start walks from a substitute region.
+  const auto rm = testing::refine(testing::two_triangles(), 91, 0.2, 9);
+  const PlMap<2>& map = *rm.map;
+  ASSERT_GT(map.regions_end(0) - map.regions_begin(0), 8191);
+  CellGridLocator locator(CellGridOptions{2, 512});  // few cells: the map is the large part
+  std::mt19937_64 rng(13);
+  // Brute force scans 8,281 regions per query: a few hundred queries suffice.
+  for (int q = 0; q < 400; ++q) {
+    Index element;
+    const LocalPoint<2> p = random_query(rng, element, map.domain().element_count());
+    ASSERT_TRUE(agrees_with_brute_force<2>(locator, map, element, p));
+  }
+}
+
+TEST(PointLocation, CellGridFollowsTheMapItIsUsedOn) {
+  // One locator object used on two maps in turn rebuilds its tables for each.
+  CellGridLocator locator;
+  std::mt19937_64 rng(11);
+  for (int round = 0; round < 2; ++round)
+    for (std::size_t which : {1u, 2u, 3u}) {
+      const PlMap<2>& map = *maps2()[which].map;
+      for (int q = 0; q < 500; ++q) {
+        Index element;
+        const LocalPoint<2> p = random_query(rng, element, map.domain().element_count());
+        ASSERT_TRUE(agrees_with_brute_force<2>(locator, map, element, p));
+      }
+      EXPECT_EQ(locator.grid()->memory().region_record_bytes, 64u * std::size_t(map.region_count()));
+    }
+  EXPECT_THROW(CellGridLocator(CellGridOptions{0, 8}).prepare(*maps2()[1].map), Error);
+  EXPECT_THROW(CellGridLocator(CellGridOptions{8, 0}).prepare(*maps2()[1].map), Error);
 }
 
 RC_GTEST_PROP(PointLocation, PointsInsideTheElementAreInsideWhenCovered, ()) {
@@ -253,6 +414,10 @@ TEST(PointLocation, BatchEvaluationDoesNotDependOnTheThreadCount) {
     expect_batch_independent_of_threads<2>(map, BrownFaigleWalk{}, points);
     expect_batch_independent_of_threads<2>(map, StraightWalk{}, points);
     expect_batch_independent_of_threads<2>(map, BruteForce<2>{}, points);
+    expect_batch_independent_of_threads<2>(map, CellGridLocator{}, points);
+    CellGridLocator prepared;
+    prepared.prepare(map);
+    expect_batch_independent_of_threads<2>(map, prepared, points);
   }
   const PlMap<1>& curve = *maps1()[2].map;
   std::mt19937_64 rng(18);
@@ -337,6 +502,7 @@ TEST(PointLocatorRegistry, NamesDispatchToTheirTypes) {
       if constexpr (std::is_same_v<L, BrownFaigleWalk>) return "BrownFaigleWalk";
       if constexpr (std::is_same_v<L, StraightWalk>) return "StraightWalk";
       if constexpr (std::is_same_v<L, point_location::BucketWalk>) return "BucketWalk";
+      if constexpr (std::is_same_v<L, CellGridLocator>) return "CellGridLocator";
       if constexpr (std::is_same_v<L, BruteForce<2>>) return "BruteForce";
       return "other";
     });
@@ -344,6 +510,7 @@ TEST(PointLocatorRegistry, NamesDispatchToTheirTypes) {
   EXPECT_EQ(type_of2("brown-faigle"), "BrownFaigleWalk");
   EXPECT_EQ(type_of2("straight-walk"), "StraightWalk");
   EXPECT_EQ(type_of2("bucket-walk"), "BucketWalk");
+  EXPECT_EQ(type_of2("cell-grid"), "CellGridLocator");
   EXPECT_EQ(type_of2("brute-force"), "BruteForce");
   auto type_of1 = [](std::string_view name) {
     return with_point_locator<1>(name, [](auto& locator) -> std::string {
@@ -357,7 +524,7 @@ TEST(PointLocatorRegistry, NamesDispatchToTheirTypes) {
   EXPECT_EQ(type_of1("brute-force"), "BruteForce");
   EXPECT_EQ(default_point_locator_name<2>(), "brown-faigle");
   EXPECT_EQ(default_point_locator_name<1>(), "bisection");
-  EXPECT_EQ(point_locator_names<2>().size(), 4u);
+  EXPECT_EQ(point_locator_names<2>().size(), 5u);
   EXPECT_EQ(point_locator_names<1>().size(), 2u);
 }
 

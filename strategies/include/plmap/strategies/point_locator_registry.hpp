@@ -13,6 +13,7 @@
 #include <plmap/strategies/point_location/brown_faigle_walk.hpp>
 #include <plmap/strategies/point_location/brute_force.hpp>
 #include <plmap/strategies/point_location/bucket_walk.hpp>
+#include <plmap/strategies/point_location/cell_grid.hpp>
 #include <plmap/strategies/point_location/straight_walk.hpp>
 
 #include <array>
@@ -34,8 +35,8 @@ struct PointLocatorOptions {
 namespace detail {
 inline constexpr std::array<std::string_view, 2> point_locator_names_1 = {"bisection",
                                                                            "brute-force"};
-inline constexpr std::array<std::string_view, 4> point_locator_names_2 = {
-    "brown-faigle", "bucket-walk", "straight-walk", "brute-force"};
+inline constexpr std::array<std::string_view, 5> point_locator_names_2 = {
+    "brown-faigle", "cell-grid", "bucket-walk", "straight-walk", "brute-force"};
 
 /// Throws plmap::Error naming `name` and listing the valid names for dimension d.
 [[noreturn]] void throw_unknown_point_locator(std::string_view name, int d);
@@ -82,6 +83,10 @@ decltype(auto) with_point_locator(std::string_view name, F&& f,
     }
     if (name == "bucket-walk") {
       BucketWalk locator(options.seed);
+      return std::invoke(std::forward<F>(f), locator);
+    }
+    if (name == "cell-grid") {
+      CellGridLocator locator;
       return std::invoke(std::forward<F>(f), locator);
     }
     if (name == "straight-walk") {

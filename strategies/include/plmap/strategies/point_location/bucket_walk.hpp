@@ -36,6 +36,10 @@ class StartBuckets {
     return cells_[begin_[element] + cell(p(0)) * g + cell(p(1))];
   }
 
+  std::size_t memory_bytes() const {
+    return begin_.capacity() * sizeof(Index) + size_.capacity() + cells_.capacity() * sizeof(Index);
+  }
+
  private:
   const PlMap<2>* map_;
   Index regions_;
@@ -63,6 +67,9 @@ class BucketWalk {
   void prepare(const PlMap<2>& map) {
     if (!buckets_ || !buckets_->built_for(map)) buckets_ = std::make_shared<const StartBuckets>(map);
   }
+
+  /// Bytes of the bucket table (0 before prepare); not part of the map's compact form.
+  std::size_t memory_bytes() const { return buckets_ ? buckets_->memory_bytes() : 0; }
 
  private:
   BrownFaigleWalk walk_;

@@ -1,0 +1,182 @@
+#pragma once
+/// \file
+/// CellGridLocator: point location by a fine per-element grid of cells, most of which are
+/// certified when the table is built, so that most queries are answered by one table look-up and
+/// at most one orientation test, without a walk.
+///
+/// The reference triangle of every element is covered by the cells (i, j), i + j < G, of a
+/// G x G grid on the unit square (G grows like the square root of the element's region count,
+/// about `cells_per_region` cells per region, 2 bytes a cell). Each cell's closed square, widened
+/// by a margin far larger than the rounding of the cell index computed from a query, is
+/// classified with the exact orient2d on its corners (regions are convex):
+/// - whole: it lies in one region, which is the answer for every query landing in the cell;
+/// - split: it lies in the union of a region and its neighbour across one side, and that union
+///   is convex, so the side's line divides the cell between the two: one orient2d answers;
+/// - start: anything else; the query walks from the region covering most of the cell.
+/// Every answer is a region containing the query exactly, as every other locator's is.
+///
+/// The walk reads the locator's own copy of the regions, one 64-byte record per region (its three
+/// corners and three neighbours), so a step touches one cache line instead of chasing
+/// region_corners -> node_position. The walk crosses a separating side chosen by a hash of the
+/// region and the step number: as unpredictable as the Brown–Faigle coin (which is what breaks
+/// cycles on non-Delaunay graphs), yet a function of the query alone, so answers do not depend
+/// on earlier queries or on the thread count. Leaving D ∩ T or exceeding the step budget falls
+/// back to scanning the element's records, with the same exact containment test as
+/// detail::region_contains.
+///
+/// The table is derived from the map on first use (and rebuilt if the locator meets another map);
+/// copies share it. Its memory is reported by CellGrid::memory() and is not part of the map's
+/// compact form.
+
+#include <plmap/core/evaluation.hpp>
+#include <plmap/core/predicates.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace plmap::point_location {
+
+/// Settings of the cell grid.
+struct CellGridOptions {
+  /// Cells per region of an element (the grid side follows); more cells certify a larger share
+  /// of the element, at 2 bytes a cell.
+  double cells_per_region = 32.0;
+  /// Upper bound on the grid side G (the grid has G (G + 1) / 2 cells per element).
+  int max_cells_per_side = 512;
+};
+
+/// What a cell grid holds, for reports.
+struct CellGridMemory {
+  std::size_t region_record_bytes = 0;  ///< 64 bytes per region
+  std::size_t cell_bytes = 0;           ///< 2 bytes per cell
+  std::size_t element_bytes = 0;        ///< per-element grid headers
+  std::size_t cells = 0;
+  std::size_t whole_cells = 0;   ///< cells inside one region: answered without a geometric test
+  std::size_t split_cells = 0;   ///< cells split by one region side: answered by one orient2d
+  double whole_area = 0;         ///< share of the covered elements' area in whole cells
+  double split_area = 0;         ///< share of the covered elements' area in split cells
+  std::size_t total_bytes() const { return region_record_bytes + cell_bytes + element_bytes; }
+};
+
+/// The per-map tables of CellGridLocator.
+class CellGrid {
+ public:
+  explicit CellGrid(const PlMap<2>& map, const CellGridOptions& options = {});
+
+  bool built_for(const PlMap<2>& map) const {
+    return map_ == &map && regions_ == map.region_count() &&
+           static_cast<std::size_t>(map.domain().element_count()) == elements_.size();
+  }
+
+  /// The region of `element` containing p, or invalid_index when p is outside D.
+  Index locate(Index element, const LocalPoint<2>& p) const {
+    const ElementGrid& e = elements_[element];
+    const double u = p.x() * e.scale, v = p.y() * e.scale;
+    const int i = cell_coordinate(u, e.side), j_in_square = cell_coordinate(v, e.side);
+    const int j = std::min(j_in_square, e.side - 1 - i);  // cells with i + j >= G are not stored
+    const unsigned cell = cells_[static_cast<std::size_t>(e.first_cell + row_offset(i, e.side) + j)];
+    const unsigned kind = cell & kind_mask;
+    const Index region = e.first_region + static_cast<Index>(cell >> kind_bits);
+    // Certified cells may answer only when p really maps to this cell: u and v were not clamped
+    // (this also rejects NaN) and the cell is one of the stored ones.
+    const bool in_cell = u >= 0 && v >= 0 && u < e.scale && v < e.scale && j == j_in_square;
+    if (kind <= whole_cell && in_cell) [[likely]] {
+      if (kind == whole_cell) return region;
+      // A split cell: p is in `region` on its side of the shared side's line, else in the
+      // neighbour. One exact orientation test, no walk.
+      const RegionRecord& r = records_[static_cast<std::size_t>(region)];
+      const int o = orient2d(r.corner[next_corner[kind]], r.corner[next_corner[kind + 1]], p);
+      return o >= 0 ? region : r.neighbor[kind];
+    }
+    return walk(e, p, region);
+  }
+
+  CellGridMemory memory() const { return memory_; }
+
+ private:
+  // A cell is 16 bits: the region's offset in its element (13 bits) and a kind (3 bits). Kinds
+  // 0, 1, 2: the (widened) cell lies in the union of the region and its neighbour across that
+  // side, which is convex, so the side's line splits the cell between the two; whole_cell: the
+  // cell lies in the region; start_cell: nothing certified, walk from the region. Two bytes a
+  // cell keep the table small enough to stay in cache next to the map.
+  using Cell = std::uint16_t;
+  static constexpr unsigned kind_bits = 3;
+  static constexpr unsigned kind_mask = (1u << kind_bits) - 1;
+  static constexpr unsigned whole_cell = 3;
+  static constexpr unsigned start_cell = 4;
+  /// Regions of an element beyond this offset are never named by a cell (their element's cells
+  /// start walks from a lower one instead).
+  static constexpr Index max_cell_offset = (1 << (16 - kind_bits)) - 1;
+  static constexpr std::array<int, 4> next_corner = {1, 2, 0, 1};
+
+  struct alignas(64) RegionRecord {
+    std::array<Eigen::Vector2d, 3> corner;
+    std::array<Index, 3> neighbor;
+  };
+  static_assert(sizeof(RegionRecord) == 64);
+
+  struct ElementGrid {
+    double scale = 1;  ///< G as a double
+    int side = 1;      ///< G
+    Index first_cell = 0;
+    Index first_region = 0;
+    Index end_region = 0;
+  };
+
+  // Clamped to [0, G - 1]; std::max(0.0, NaN) is 0, so NaN lands in cell 0 (and is not in_cell).
+  static int cell_coordinate(double u, int side) {
+    return static_cast<int>(std::min(std::max(0.0, u), side - 0.5));
+  }
+  static Index row_offset(int i, int side) { return i * side - i * (i - 1) / 2; }
+
+  /// Randomized-by-hash walk from `region`; scans the element when it leaves D or wanders.
+  Index walk(const ElementGrid& e, const LocalPoint<2>& p, Index region) const;
+  Index scan(const ElementGrid& e, const LocalPoint<2>& p) const;
+  bool contains(Index region, const LocalPoint<2>& p) const;
+  /// How the widened cell with corners `box` relates to `region`, which contains its centre:
+  /// whole_cell, a side k splitting it between region and that neighbour, or start_cell.
+  unsigned certify(Index region, const std::array<LocalPoint<2>, 4>& box) const;
+  /// The start region for an uncertified cell (i, j): the one covering most of it.
+  Index most_covering(const ElementGrid& e, int i, int j, Index near) const;
+
+  const PlMap<2>* map_ = nullptr;
+  Index regions_ = 0;
+  std::vector<ElementGrid> elements_;
+  std::vector<Cell> cells_;
+  std::vector<RegionRecord> records_;
+  CellGridMemory memory_;
+};
+
+class CellGridLocator {
+ public:
+  explicit CellGridLocator(const CellGridOptions& options = {}) : options_(options) {}
+
+  RegionLocation<2> locate(const PlMap<2>& map, Index element, const LocalPoint<2>& p) {
+    prepare(map);
+    return {grid_->locate(element, p)};
+  }
+
+  /// Builds the tables now (evaluate_batch copies the locator per thread; preparing it first
+  /// lets the copies share one table and keeps the build out of the query loop).
+  void prepare(const PlMap<2>& map) {
+    if (!grid_ || !grid_->built_for(map)) grid_ = std::make_shared<const CellGrid>(map, options_);
+  }
+
+  /// The tables, once prepared (null before).
+  const CellGrid* grid() const { return grid_.get(); }
+
+  /// Bytes of the tables (0 before prepare); not part of the map's compact form.
+  std::size_t memory_bytes() const { return grid_ ? grid_->memory().total_bytes() : 0; }
+
+ private:
+  CellGridOptions options_;
+  std::shared_ptr<const CellGrid> grid_;
+};
+
+static_assert(PointLocator<CellGridLocator, 2>);
+
+}  // namespace plmap::point_location
