@@ -1,0 +1,229 @@
+// One measurement of the projection benchmark against the peers (experiments/peers/README.md):
+// builds one input pair in memory from a seed, runs one tool on it once, and prints one JSON line
+// with the wall time of the projection, the increase of peak memory over the memory held after
+// the input was built, and the covered measure against the exact overlap. run.sh runs each tool
+// and input in a separate process, three times, and tabulates the medians.
+//
+// Usage: bench_projection_peers --tool plmap|psurface|contactmerge --case plane|sphere|femur|femur-offset|circle
+//            --size N [--seed S] [--threads T] [--femur femur.off] [--write-inputs PREFIX]
+//        bench_projection_peers --list-tools
+// --size: plane: S1 triangles; sphere: icosphere level; circle: S1 segments; femur*: ignored.
+// --threads: plmap only (0 = all cores); the peers are single-threaded.
+// --write-inputs: also write S1 and S2 to PREFIX_s1.off/.txt and PREFIX_s2.off/.txt (reproducers).
+
+#include "tools.hpp"
+
+#include <fmt/format.h>
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fcntl.h>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <string>
+
+namespace plmap::peers {
+
+namespace {
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// A "VmXXX:  1234 kB" field of /proc/self/status in KiB, or -1.
+long status_kib(const std::string& field) {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind(field + ":", 0) == 0) return std::stol(line.substr(field.size() + 1));
+  return -1;
+}
+
+}  // namespace
+
+void Measurement::start() {
+  // Writing 5 to clear_refs resets VmHWM to the current resident size (Linux >= 4.0), so the peak
+  // seen at stop() belongs to the measured part alone.
+  {
+    std::ofstream clear("/proc/self/clear_refs");
+    clear << "5";
+    clear.flush();
+    reset_ok_ = static_cast<bool>(clear);
+  }
+  baseline_kib_ = status_kib("VmRSS");
+  start_time_ = now();
+}
+
+void Measurement::stop() {
+  seconds_ = now() - start_time_;
+  peak_kib_ = status_kib("VmHWM");
+  if (peak_kib_ < 0) {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    peak_kib_ = usage.ru_maxrss;
+  }
+}
+
+QuietStdout::QuietStdout() {
+  std::cout.flush();
+  std::fflush(stdout);
+  saved_ = dup(STDOUT_FILENO);
+  const int null = open("/dev/null", O_WRONLY);
+  if (null >= 0) {
+    dup2(null, STDOUT_FILENO);
+    close(null);
+  }
+}
+
+QuietStdout::~QuietStdout() {
+  std::cout.flush();
+  std::fflush(stdout);
+  if (saved_ >= 0) {
+    dup2(saved_, STDOUT_FILENO);
+    close(saved_);
+  }
+}
+
+namespace {
+
+struct Arguments {
+  std::string tool = "plmap", family = "plane", femur, write_inputs;
+  long size = 2000;
+  std::uint64_t seed = 1;
+  unsigned threads = 1;
+};
+
+/// Writes S1 and S2 as PREFIX_s1.off / PREFIX_s2.off (d = 2) or PREFIX_s1.txt / PREFIX_s2.txt
+/// (d = 1: "x y" lines, then "a b" segment lines after a blank line), to reproduce a case with the CLI.
+template <int d>
+void write_inputs(const std::string& prefix, const SurfacePair<d>& input) {
+  const auto write = [](const std::string& file, const PlainMesh<d>& mesh) {
+    std::ofstream out(file);
+    out.precision(17);
+    if constexpr (d == 2) out << "OFF\n" << mesh.points.size() << " " << mesh.cells.size() << " 0\n";
+    for (const auto& p : mesh.points) {
+      for (int k = 0; k <= d; ++k) out << p[k] << (k < d ? " " : "\n");
+    }
+    if constexpr (d == 1) out << "\n";
+    for (const auto& c : mesh.cells) {
+      if constexpr (d == 2) out << "3 ";
+      for (int k = 0; k <= d; ++k) out << c[k] << (k < d ? " " : "\n");
+    }
+    if (!out) throw std::runtime_error(file + ": cannot write");
+  };
+  const std::string ext = d == 2 ? ".off" : ".txt";
+  write(prefix + "_s1" + ext, input.s1);
+  write(prefix + "_s2" + ext, input.s2);
+}
+
+template <int d>
+nlohmann::json measure(const Arguments& args, const SurfacePair<d>& input, double generation_seconds) {
+  if (!args.write_inputs.empty()) write_inputs(args.write_inputs, input);
+  Measurement clock;
+  ToolOutcome outcome;
+  if (args.tool == "plmap") {
+    outcome = run_plmap<d>(input, args.threads, clock);
+#ifdef PLMAP_PEERS_HAVE_PSURFACE
+  } else if (args.tool == "psurface") {
+    outcome = run_psurface<d>(input, clock);
+#endif
+#ifdef PLMAP_PEERS_HAVE_CONTACTMERGE
+  } else if (args.tool == "contactmerge") {
+    outcome = run_contactmerge<d>(input, clock);
+#endif
+  } else {
+    throw std::invalid_argument(fmt::format("tool '{}' is not built in (see --list-tools)", args.tool));
+  }
+  const double relative_error = (outcome.covered - input.exact_overlap) / input.exact_overlap;
+  const double covered_target = outcome.details.value("covered_target", 0.0);
+  const double target_relative_error =
+      (covered_target - input.exact_target_overlap) / input.exact_target_overlap;
+  return {{"tool", args.tool},
+          {"threads", args.tool == "plmap" ? args.threads : 1u},
+          {"family", input.family},
+          {"label", input.label},
+          {"size", args.size},
+          {"seed", args.seed},
+          {"dimension", d},
+          {"s1_cells", input.s1.cells.size()},
+          {"s2_cells", input.s2.cells.size()},
+          {"ok", outcome.ok},
+          {"error", outcome.error},
+          {"seconds", clock.seconds()},
+          {"peak_increase_mib", double(clock.peak_increase_kib()) / 1024.0},
+          {"baseline_mib", double(clock.baseline_kib()) / 1024.0},
+          {"peak_reset", clock.peak_was_reset()},
+          {"covered", outcome.covered},
+          {"exact_overlap", input.exact_overlap},
+          {"exact_overlap_note", input.exact_overlap_note},
+          {"covered_relative_error", relative_error},
+          {"covered_target", covered_target},
+          {"exact_target_overlap", input.exact_target_overlap},
+          {"covered_target_relative_error", target_relative_error},
+          {"pieces", outcome.pieces},
+          {"generation_seconds", generation_seconds},
+          {"details", outcome.details}};
+}
+
+int run(int argc, char** argv) {
+  Arguments args;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--tool") args.tool = value();
+    else if (a == "--case") args.family = value();
+    else if (a == "--size") args.size = std::stol(value());
+    else if (a == "--seed") args.seed = std::stoull(value());
+    else if (a == "--threads") args.threads = static_cast<unsigned>(std::stoul(value()));
+    else if (a == "--femur") args.femur = value();
+    else if (a == "--write-inputs") args.write_inputs = value();
+    else if (a == "--list-tools") {
+      std::cout << "plmap\n";
+#ifdef PLMAP_PEERS_HAVE_PSURFACE
+      std::cout << "psurface\n";
+#endif
+#ifdef PLMAP_PEERS_HAVE_CONTACTMERGE
+      std::cout << "contactmerge\n";
+#endif
+      return 0;
+    } else {
+      throw std::invalid_argument(fmt::format("unknown argument '{}'", a));
+    }
+  }
+  const double t0 = now();
+  nlohmann::json line;
+  if (args.family == "circle") {
+    const auto input = concentric_circles(args.size, args.seed);
+    line = measure<1>(args, input, now() - t0);
+  } else {
+    SurfacePair<2> input;
+    if (args.family == "plane") input = facing_planes(args.size, args.seed);
+    else if (args.family == "sphere") input = concentric_spheres(static_cast<int>(args.size), args.seed);
+    else if (args.family == "femur") input = femur_pair(args.femur, true, args.seed);
+    else if (args.family == "femur-offset") input = femur_pair(args.femur, false, args.seed);
+    else throw std::invalid_argument(fmt::format("unknown case '{}'", args.family));
+    line = measure<2>(args, input, now() - t0);
+  }
+  std::cout << line.dump() << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+}  // namespace plmap::peers
+
+int main(int argc, char** argv) {
+  try {
+    return plmap::peers::run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "bench_projection_peers: " << e.what() << "\n";
+    return 2;
+  }
+}

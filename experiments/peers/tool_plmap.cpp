@@ -1,0 +1,84 @@
+// plmap's normal projection (construct/project.hpp) as one tool of the peer benchmark.
+
+#include "tools.hpp"
+
+#include <plmap/construct/project.hpp>
+
+#include <exception>
+#include <memory>
+
+namespace plmap::peers {
+
+namespace {
+
+template <int d>
+std::shared_ptr<const Surface<d>> to_surface(const PlainMesh<d>& mesh) {
+  std::vector<WorldPoint<d>> points;
+  points.reserve(mesh.points.size());
+  for (const auto& p : mesh.points) {
+    WorldPoint<d> x;
+    for (int k = 0; k <= d; ++k) x(k) = p[k];
+    points.push_back(x);
+  }
+  std::vector<ElementCorners<d>> cells;
+  cells.reserve(mesh.cells.size());
+  for (const auto& c : mesh.cells) {
+    ElementCorners<d> corners;
+    for (int k = 0; k <= d; ++k) corners[k] = static_cast<Index>(c[k]);
+    cells.push_back(corners);
+  }
+  return std::make_shared<const Surface<d>>(std::move(points), std::move(cells));
+}
+
+}  // namespace
+
+template <int d>
+ToolOutcome run_plmap(const SurfacePair<d>& input, unsigned threads, Measurement& clock) {
+  ToolOutcome out;
+  const auto s1 = to_surface(input.s1);
+  const auto s2 = to_surface(input.s2);
+  ProjectionOptions options;
+  options.threads = threads;
+  try {
+    clock.start();
+    const ProjectionResult<d> result = project<d>(s1, s2, options);
+    clock.stop();
+    const auto& r = result.report;
+    out.ok = true;
+    out.covered = result.measures.covered_domain;
+    out.pieces = result.map.region_count();
+    out.details = {{"covered_target", result.measures.covered_target},
+                   {"target_measure", result.measures.target},
+                   {"nodes", result.map.node_count()},
+                   {"vertex_preimages", r.vertex_preimages},
+                   {"target_vertices", r.target_vertices},
+                   {"edges_inserted", r.edges_inserted},
+                   {"edges_partly_inserted", r.edges_partly_inserted},
+                   {"edges_not_inserted", r.edges_not_inserted.size()},
+                   {"solver_failures", r.solver_failures},
+                   {"seconds_by_phase",
+                    {{"setup", r.seconds.setup},
+                     {"vertex_preimages", r.seconds.vertex_preimages},
+                     {"ghost_nodes", r.seconds.ghost_nodes},
+                     {"edge_walks", r.seconds.edge_walks},
+                     {"insertion", r.seconds.insertion},
+                     {"finalize", r.seconds.finalize},
+                     {"total", r.seconds.total}}}};
+    if (!r.edges_not_inserted.empty()) {
+      const auto& e = r.edges_not_inserted.front();
+      out.details["first_edge_not_inserted"] = {{"target_edge", e.target_edge},
+                                                {"reason", std::string(to_string(e.reason))},
+                                                {"domain_element", e.domain_element},
+                                                {"detail", e.detail}};
+    }
+  } catch (const std::exception& e) {
+    clock.stop();
+    out.error = e.what();
+  }
+  return out;
+}
+
+template ToolOutcome run_plmap<1>(const SurfacePair<1>&, unsigned, Measurement&);
+template ToolOutcome run_plmap<2>(const SurfacePair<2>&, unsigned, Measurement&);
+
+}  // namespace plmap::peers
