@@ -818,38 +818,49 @@ void shrink_to_fit(MapData<d>& m) {
 
 template <int d>
   requires SurfaceDimension<d>
-PlMap<d> MapBuilder<d>::finalize() && {
+PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
   auto impl = std::move(impl_);
   auto& im = *impl;
   const Surface<d>& s1 = *im.s1;
   const Surface<d>& s2 = *im.s2;
   const Index n1 = s1.element_count();
 
-  // Bucket nodes and segments by where they live.
-  std::vector<std::vector<Index>> interior_nodes(n1);
-  std::vector<std::vector<Index>> edge_nodes(d == 2 ? s1.edge_count() : 0);
-  for (Index n = 0; n < static_cast<Index>(im.nodes.size()); ++n) {
-    const auto& p = im.nodes[n].place;
-    if (p.kind == PlaceKind::element) interior_nodes[p.index].push_back(n);
-    if (p.kind == PlaceKind::edge) edge_nodes[p.index].push_back(n);
-  }
-  for (auto& list : edge_nodes) {
-    std::sort(list.begin(), list.end(),
-              [&](Index a, Index b) { return im.nodes[a].place.t < im.nodes[b].place.t; });
-    for (std::size_t i = 1; i < list.size(); ++i)
-      if (im.nodes[list[i]].place.t == im.nodes[list[i - 1]].place.t)
-        throw BuilderError(fmt::format("two nodes at the same point of S1 edge {}",
-                                       im.nodes[list[i]].place.index));
-  }
-  std::vector<std::vector<Index>> element_segments(n1);
-  std::vector<std::vector<Index>> edge_segments(d == 2 ? s1.edge_count() : 0);
-  for (Index s = 0; s < static_cast<Index>(im.segments.size()); ++s) {
-    const auto& seg = im.segments[s];
-    if (seg.along_edge)
-      edge_segments[seg.where].push_back(s);
-    else
-      element_segments[seg.where].push_back(s);
-  }
+  // Bucket nodes and segments by where they live. S2 edges dropped because their preimages
+  // conflict with others (BuilderOptions::drop_conflicting_edges) leave out their segments and
+  // the intersection nodes they created.
+  std::vector<char> dropped(d == 2 ? im.edge_inserted.size() : 0, 0);
+  std::vector<std::vector<Index>> interior_nodes, edge_nodes, element_segments, edge_segments;
+  auto bucket = [&] {
+    interior_nodes.assign(n1, {});
+    edge_nodes.assign(d == 2 ? s1.edge_count() : 0, {});
+    element_segments.assign(n1, {});
+    edge_segments.assign(d == 2 ? s1.edge_count() : 0, {});
+    for (Index n = 0; n < static_cast<Index>(im.nodes.size()); ++n) {
+      const auto& node = im.nodes[n];
+      if (!dropped.empty() && node.kind == BuilderNodeKind::intersection && dropped[node.target]) continue;
+      const auto& p = node.place;
+      if (p.kind == PlaceKind::element) interior_nodes[p.index].push_back(n);
+      if (p.kind == PlaceKind::edge) edge_nodes[p.index].push_back(n);
+    }
+    for (auto& list : edge_nodes) {
+      std::sort(list.begin(), list.end(),
+                [&](Index a, Index b) { return im.nodes[a].place.t < im.nodes[b].place.t; });
+      for (std::size_t i = 1; i < list.size(); ++i)
+        if (im.nodes[list[i]].place.t == im.nodes[list[i - 1]].place.t)
+          throw BuilderError(fmt::format("two nodes at the same point of S1 edge {}",
+                                         im.nodes[list[i]].place.index));
+    }
+    for (Index s = 0; s < static_cast<Index>(im.segments.size()); ++s) {
+      const auto& seg = im.segments[s];
+      if (!dropped.empty() && dropped[seg.target_edge]) continue;
+      if (seg.along_edge)
+        edge_segments[seg.where].push_back(s);
+      else
+        element_segments[seg.where].push_back(s);
+    }
+  };
+  bucket();
+  if (report) *report = FinalizeReport{};
 
   MapData<d> m;
   m.node_begin.assign(n1 + 1, 0);
@@ -1280,9 +1291,52 @@ PlMap<d> MapBuilder<d>::finalize() && {
       std::vector<std::jthread> pool;
       for (unsigned k = 0; k < threads; ++k) pool.emplace_back([&f, k] { f(k); });
     };
-    std::vector<Workspace> workspaces(threads);
-    std::vector<std::pair<Index, std::exception_ptr>> failures(threads, {invalid_index, nullptr});
-    {
+    // The S2 edges whose pieces on element t cross another piece or pass through a node.
+    auto conflicting_edges = [&](Index t) {
+      std::vector<Index> pieces = element_segments[t];
+      for (int k = 0; k < 3; ++k) {
+        const auto& along = edge_segments[s1.element_edge(t, k)];
+        pieces.insert(pieces.end(), along.begin(), along.end());
+      }
+      std::vector<Index> nodes = interior_nodes[t];
+      for (int k = 0; k < 3; ++k) {
+        const auto& on_edge = edge_nodes[s1.element_edge(t, k)];
+        nodes.insert(nodes.end(), on_edge.begin(), on_edge.end());
+        const Index corner = im.node_at_domain_vertex[s1.element(t)[k]];
+        if (corner != invalid_index) nodes.push_back(corner);
+      }
+      std::vector<Index> edges;
+      for (std::size_t i = 0; i < pieces.size(); ++i) {
+        const auto& si = im.segments[pieces[i]];
+        const LocalPoint<2> p = node_local(si.a, t), q = node_local(si.b, t);
+        for (std::size_t j = i + 1; j < pieces.size(); ++j) {
+          const auto& sj = im.segments[pieces[j]];
+          if (segments_cross_properly(p, q, node_local(sj.a, t), node_local(sj.b, t))) {
+            edges.push_back(si.target_edge);
+            edges.push_back(sj.target_edge);
+          }
+        }
+        for (Index n : nodes) {
+          if (n == si.a || n == si.b) continue;
+          const LocalPoint<2> x = node_local(n, t);
+          if (orient2d(p, q, x) == 0 && x.x() >= std::min(p.x(), q.x()) && x.x() <= std::max(p.x(), q.x()) &&
+              x.y() >= std::min(p.y(), q.y()) && x.y() <= std::max(p.y(), q.y()))
+            edges.push_back(si.target_edge);
+        }
+      }
+      std::sort(edges.begin(), edges.end());
+      edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+      return edges;
+    };
+
+    // An element whose graph has crossing edges (or an edge through another node) cannot be
+    // closed. Unless asked to drop the S2 edges involved, that is an error; otherwise they are
+    // dropped everywhere and the elements are closed again (each round removes at least one).
+    const bool drop = im.options.drop_conflicting_edges;
+    std::vector<Workspace> workspaces;
+    for (int round = 0;; ++round) {
+      workspaces.assign(threads, Workspace{});
+      std::vector<std::vector<std::pair<Index, std::exception_ptr>>> failures(threads);
       const Index block = (n1 + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
       run_blocks([&](unsigned k) {
         const Index begin = std::min<Index>(n1, static_cast<Index>(k) * block);
@@ -1291,14 +1345,32 @@ PlMap<d> MapBuilder<d>::finalize() && {
           try {
             close_element(t, workspaces[k]);
           } catch (...) {
-            failures[k] = {t, std::current_exception()};
-            return;
+            failures[k].emplace_back(t, std::current_exception());
+            if (!drop) return;
           }
         }
       });
+      std::vector<std::pair<Index, std::exception_ptr>> failed;
+      for (auto& list : failures) failed.insert(failed.end(), list.begin(), list.end());
+      if (failed.empty()) break;
+      // blocks are in element order: failed.front() is the smallest element that failed
+      if (!drop || round == 16) std::rethrow_exception(failed.front().second);
+      bool any = false;
+      for (const auto& [t, error] : failed)
+        for (Index e : conflicting_edges(t)) {
+          if (dropped[e]) continue;
+          dropped[e] = 1;
+          im.edge_inserted[e] = 0;
+          any = true;
+          if (report) {
+            report->dropped_edges.push_back(e);
+            report->dropped_edge_element.push_back(t);
+          }
+        }
+      if (!any) std::rethrow_exception(failed.front().second);
+      bucket();
+      tri.assign(n1, ElementTriangulation{});
     }
-    for (const auto& [t, error] : failures)
-      if (error) std::rethrow_exception(error);  // blocks are in element order
     long long votes = 0;
     for (const auto& w : workspaces) votes += w.votes;
 

@@ -371,3 +371,43 @@ TEST(MapBuilder, ResultDoesNotDependOnTheThreadCount) {
   for (std::size_t r = 0; r < a.region_map.size(); ++r) ASSERT_EQ(a.region_map[r], c.region_map[r]) << r;
   EXPECT_NEAR(covered_measure(three).domain, 1.0, 1e-12);
 }
+
+// Inconsistent input, as a folding projection produces it: two S2 vertex preimages are swapped,
+// so the preimage of S2 edge 0-3 runs through the preimage of vertex 4 and other edges cross.
+// By default finalize() refuses; with drop_conflicting_edges it leaves out the S2 edges
+// involved, reports them, and keeps the rest of the map.
+TEST(MapBuilder, ConflictingEdgesAreRejectedOrDropped) {
+  auto s1 = make_surface({P(0, 0), P(1, 0), P(0, 1)}, {{0, 1, 2}});
+  auto s2 = make_surface({P(0, 0), P(1, 0), P(0, 1), P(0.2, 0.2), P(0.4, 0.4)},
+                         {{0, 1, 3}, {1, 4, 3}, {1, 2, 4}, {2, 3, 4}, {2, 0, 3}});
+  auto enter = [&](MapBuilder<2>& b) {
+    for (Index q = 0; q < 3; ++q) b.add_vertex_preimage_at_vertex(q, q);
+    b.add_vertex_preimage(3, {0, LocalPoint<2>(0.4, 0.4)});  // swapped with vertex 4
+    b.add_vertex_preimage(4, {0, LocalPoint<2>(0.2, 0.2)});
+    for (Index t = 0; t < s2->element_count(); ++t) b.add_target_element(t);
+  };
+  {
+    MapBuilder<2> b(s1, s2);
+    enter(b);
+    EXPECT_THROW((void)std::move(b).finalize(), BuilderError);
+  }
+  BuilderOptions options;
+  options.drop_conflicting_edges = true;
+  MapBuilder<2> b(s1, s2, options);
+  enter(b);
+  FinalizeReport report;
+  const PlMap<2> m = std::move(b).finalize(&report);
+  ASSERT_FALSE(report.dropped_edges.empty());
+  EXPECT_EQ(report.dropped_edges.size(), report.dropped_edge_element.size());
+  const Index e03 = s2->find_edge(0, 3);
+  EXPECT_NE(std::find(report.dropped_edges.begin(), report.dropped_edges.end(), e03), report.dropped_edges.end());
+  for (Index t : report.dropped_edge_element) EXPECT_EQ(t, 0);
+  // what is left are regions of S2 triangles none of whose edges was dropped
+  EXPECT_LT(m.region_count(), 5);
+  for (Index r = 0; r < m.region_count(); ++r)
+    for (int k = 0; k < 3; ++k) {
+      const Index e = s2->element_edge(m.data().region_target[r], k);
+      EXPECT_EQ(std::find(report.dropped_edges.begin(), report.dropped_edges.end(), e), report.dropped_edges.end());
+    }
+  EXPECT_LT(covered_measure(m).domain, 0.5);
+}

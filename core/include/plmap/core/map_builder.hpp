@@ -45,6 +45,17 @@ struct BuilderOptions {
   /// Threads finalize() uses for the per-element triangular closure (0: all cores). The result
   /// does not depend on it.
   unsigned threads = 1;
+  /// What finalize() does when the preimages of S2 edges cross on an S1 element, or one passes
+  /// through a node (inconsistent input, e.g. a projection that folds): false (default) throws
+  /// BuilderError naming the element; true drops every S2 edge involved, as if it had not been
+  /// entered, and lists it in the FinalizeReport. Faces next to a dropped edge are not regions.
+  bool drop_conflicting_edges = false;
+};
+
+/// What finalize() had to leave out.
+struct FinalizeReport {
+  std::vector<Index> dropped_edges;         ///< S2 edges dropped (drop_conflicting_edges)
+  std::vector<Index> dropped_edge_element;  ///< for each, an S1 element where it conflicted
 };
 
 /// Where the preimage of an S2 edge crosses an S1 edge (d = 2).
@@ -134,8 +145,9 @@ class MapBuilder {
   /// True if the preimage of this S2 edge (d = 2) / segment (d = 1) was inserted.
   bool has_edge(Index target_edge) const;
 
-  /// Builds the compact map. The builder is left empty.
-  PlMap<d> finalize() &&;
+  /// Builds the compact map. The builder is left empty. `report`, if given, receives what had
+  /// to be left out.
+  PlMap<d> finalize(FinalizeReport* report = nullptr) &&;
 
  private:
   struct Impl;
