@@ -41,6 +41,7 @@ std::string_view to_string(EdgeFailureReason reason) {
     case EdgeFailureReason::endpoint_without_preimage: return "endpoint_without_preimage";
     case EdgeFailureReason::walk_limit: return "walk_limit";
     case EdgeFailureReason::builder_rejected: return "builder_rejected";
+    case EdgeFailureReason::overlap: return "overlap";
   }
   return "unknown";
 }
@@ -201,21 +202,30 @@ class Projector {
     BuilderOptions bopt;
     bopt.snap_tolerance = opt_.snap_tolerance;
     bopt.orientation = opt_.orientation;
+    bopt.threads = threads_;
+    // Where the projection folds, preimages of S2 edges cross on S1; those edges are left out
+    // and reported (EdgeFailureReason::overlap) instead of losing the whole map.
+    bopt.drop_conflicting_edges = true;
     MapBuilder<d> builder(s1_ptr_, s2_ptr_, bopt);
     target_place_.assign(n2v, std::nullopt);
+    if constexpr (d == 2) used_on_edge_.assign(s1_.edge_count(), {});
+    crossed_vertex_.assign(n1v, invalid_index);
     vertex_state_.assign(n1v, VertexState::free);
     vertex_image_.assign(n1v, std::nullopt);
     report.target_vertices = n2v;
     report.domain_vertices = n1v;
+    const std::vector<bool> loses = coincident_preimage_losers(preimage);
     for (Index q = 0; q < n2v; ++q) {
       if (!preimage[q]) continue;
       const Place<d> place = place_of(*preimage[q]);
-      if (place.kind == PlaceKind::vertex && vertex_state_[place.index] != VertexState::free) {
+      if (loses[q] || (place.kind == PlaceKind::vertex && vertex_state_[place.index] != VertexState::free)) {
         ++report.vertex_conflicts;
         continue;
       }
       builder.add_vertex_preimage(q, {preimage[q]->element, place_local(*preimage[q])});
       target_place_[q] = place;
+      if constexpr (d == 2)
+        if (place.kind == PlaceKind::edge) used_on_edge_[place.index].push_back({place.t, -1 - q});
       ++report.vertex_preimages;
       if (place.kind == PlaceKind::vertex) {
         vertex_state_[place.index] = VertexState::corner;
@@ -275,6 +285,7 @@ class Projector {
 
     t0 = Clock::now();
     report.target_edges = n2e;
+    std::vector<std::pair<char, int>> counted(n2e, {0, 0});  // per edge: inserted whole, pieces
     for (Index e = 0; e < n2e; ++e) {
       auto& plan = plans[e];
       if (plan.outside) {
@@ -284,6 +295,16 @@ class Projector {
       bool whole = false;
       int pieces = 0;
       for (const auto& piece : plan.pieces) {
+        if (const auto clash = find_used_point(piece)) {
+          EdgeNotInserted<d> f;
+          f.target_edge = e;
+          f.reason = EdgeFailureReason::builder_rejected;
+          f.domain_element = clash->element;
+          f.domain_point = clash->point;
+          f.detail = clash->detail;
+          plan.failures.push_back(std::move(f));
+          continue;
+        }
         try {
           if (piece.from_first && piece.to_second) {
             if constexpr (d == 2)
@@ -300,6 +321,7 @@ class Projector {
                                      piece.to_second);
             ++pieces;
           }
+          mark_used_points(piece, e);
         } catch (const BuilderError& error) {
           EdgeNotInserted<d> f;
           f.target_edge = e;
@@ -308,6 +330,7 @@ class Projector {
           plan.failures.push_back(std::move(f));
         }
       }
+      counted[e] = {whole ? 1 : 0, pieces};
       if (whole) ++report.edges_inserted;
       if (pieces > 0) ++report.edges_partly_inserted;
       report.edge_pieces += pieces;
@@ -316,8 +339,23 @@ class Projector {
     report.seconds.insertion += seconds_since(t0);
 
     t0 = Clock::now();
-    PlMap<d> map = std::move(builder).finalize();
+    FinalizeReport dropped;
+    PlMap<d> map = std::move(builder).finalize(&dropped);
     report.seconds.finalize = seconds_since(t0);
+    for (std::size_t i = 0; i < dropped.dropped_edges.size(); ++i) {
+      const Index e = dropped.dropped_edges[i];
+      if (counted[e].first) --report.edges_inserted;
+      if (counted[e].second > 0) --report.edges_partly_inserted;
+      report.edge_pieces -= counted[e].second;
+      EdgeNotInserted<d> f;
+      f.target_edge = e;
+      f.reason = EdgeFailureReason::overlap;
+      f.domain_element = dropped.dropped_edge_element[i];
+      f.domain_point = s1_.world_position(f.domain_element, LocalPoint<d>::Constant(1.0 / (d + 1)));
+      f.detail = "its preimage crosses another edge's preimage or runs through a node on this S1 "
+                 "element: the projection is not injective there";
+      report.edges_not_inserted.push_back(std::move(f));
+    }
 
     report.solver_calls = solver_calls_.load();
     report.solver_failures = solver_failures_.load();
@@ -467,11 +505,131 @@ class Projector {
     }
   }
 
+  // ---- insertion: points of S1 already taken ------------------------------------------------------
+  /// Two S2 edges whose preimages cross an S1 edge (or pass an S1 vertex) at the same point would
+  /// give the builder two nodes at one point (it throws in finalize), and the map could not be
+  /// injective there: S2 edges meet only at S2 vertices. This happens where the directions are
+  /// tangential to S2 (S2 perpendicular to S1, a vertical wall): edges of S2 then project onto
+  /// the same curve. The first edge (in index order, so independent of threads) keeps the point;
+  /// a later piece through it is reported, not inserted.
+  struct UsedPoint {
+    Index element;
+    WorldPoint<d> point;
+    std::string detail;
+  };
+
+  std::optional<UsedPoint> find_used_point(const Piece<d>& piece) const {
+    for (const auto& c : piece.crossings) {
+      Index vertex = invalid_index;
+      if constexpr (d == 2) {
+        const auto ev = s1_.edge_vertices(c.domain_edge);
+        if (c.domain_parameter <= opt_.snap_tolerance) vertex = ev[0];
+        else if (c.domain_parameter >= 1.0 - opt_.snap_tolerance) vertex = ev[1];
+        else {
+          for (const auto& [t, owner] : used_on_edge_[c.domain_edge])
+            if (std::abs(t - c.domain_parameter) <= opt_.snap_tolerance) {
+              const Place<d> at = edge_place(c.domain_edge, c.domain_parameter);
+              return UsedPoint{s1_.edge_elements(c.domain_edge).front().element, world_of(at),
+                               fmt::format("its preimage meets {} on S1 edge {} at {:.17g}: the projection is not "
+                                           "injective there (directions tangential to S2?)",
+                                           owner < 0 ? fmt::format("the preimage of S2 vertex {}", -1 - owner)
+                                                     : fmt::format("the preimage of S2 edge {}", owner),
+                                           c.domain_edge, c.domain_parameter)};
+            }
+          continue;
+        }
+      } else {
+        vertex = c.domain_vertex;
+      }
+      if (crossed_vertex_[vertex] != invalid_index)
+        return UsedPoint{s1_.vertex_elements(vertex).front(), s1_.vertex(vertex),
+                         fmt::format("its preimage passes S1 vertex {}, which the preimage of S2 {} {} passes too: "
+                                     "the projection is not injective there (directions tangential to S2?)",
+                                     vertex, d == 2 ? "edge" : "segment", crossed_vertex_[vertex])};
+    }
+    return std::nullopt;
+  }
+
+  void mark_used_points(const Piece<d>& piece, Index e) {
+    for (const auto& c : piece.crossings) {
+      if constexpr (d == 2) {
+        const auto ev = s1_.edge_vertices(c.domain_edge);
+        if (c.domain_parameter <= opt_.snap_tolerance) crossed_vertex_[ev[0]] = e;
+        else if (c.domain_parameter >= 1.0 - opt_.snap_tolerance) crossed_vertex_[ev[1]] = e;
+        else used_on_edge_[c.domain_edge].push_back({c.domain_parameter, e});
+      } else {
+        crossed_vertex_[c.domain_vertex] = e;
+      }
+    }
+  }
+
   // ---- phase 1: eq. (3) ---------------------------------------------------------------------------
+  /// Several S2 vertices can project onto the same point of S1 when the directions are tangential
+  /// to S2 (a vertical wall over S1, S2 standing on S1): the builder cannot hold two nodes at one
+  /// point (it throws in finalize), and the map could not be injective anyway. Among preimages that
+  /// coincide under the snapping rule, the one whose S2 vertex is nearest (smallest |mu|, then the
+  /// smallest index) is kept; the others are marked here and counted as vertex conflicts, and
+  /// their edges are reported by the walks. Preimages on the same S1 vertex keep the old rule
+  /// (first come), which gives the same winner as long as only one of them is nearest.
+  std::vector<bool> coincident_preimage_losers(const std::vector<std::optional<SurfacePoint<d>>>& preimage) const {
+    struct Item {
+      Place<d> place;
+      double distance;
+      Index q;
+    };
+    std::vector<Item> items;
+    for (Index q = 0; q < static_cast<Index>(preimage.size()); ++q) {
+      if (!preimage[q]) continue;
+      const Place<d> p = place_of(*preimage[q]);
+      if (p.kind == PlaceKind::vertex) continue;
+      items.push_back({p, (s2_.vertex(q) - world_of(p)).norm(), q});
+    }
+    std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
+      if (a.place.kind != b.place.kind) return a.place.kind < b.place.kind;
+      if (a.place.index != b.place.index) return a.place.index < b.place.index;
+      if (a.distance != b.distance) return a.distance < b.distance;
+      return a.q < b.q;
+    });
+    std::vector<bool> loses(preimage.size(), false);
+    for (std::size_t i = 0; i < items.size();) {
+      std::size_t end = i;
+      while (end < items.size() && items[end].place.kind == items[i].place.kind &&
+             items[end].place.index == items[i].place.index)
+        ++end;
+      // within one S1 edge or element, nearest first: a point loses if it coincides with a kept one
+      std::vector<std::size_t> kept;
+      for (std::size_t k = i; k < end; ++k) {
+        const bool same = std::any_of(kept.begin(), kept.end(), [&](std::size_t w) {
+          const double gap = items[k].place.kind == PlaceKind::edge
+                                 ? std::abs(items[k].place.t - items[w].place.t)
+                                 : (items[k].place.local - items[w].place.local).template lpNorm<Eigen::Infinity>();
+          return gap <= opt_.snap_tolerance;
+        });
+        if (same)
+          loses[items[k].q] = true;
+        else
+          kept.push_back(k);
+      }
+      i = end;
+    }
+    return loses;
+  }
+
   std::optional<SurfacePoint<d>> find_vertex_preimage(Index q) {
+    bool solver_failed = false;
+    auto found = find_vertex_preimage(q, seeds_, solver_failed);
+    // The elements nearest to q may all be tangential to the directions (eq. 3 is singular there),
+    // e.g. the horizontal sheets of a T-junction when the vertical sheet is the one that sees S2:
+    // their walks end at once, before reaching the element that holds the preimage. Only then is
+    // the search repeated from more seeds, so the usual case costs nothing extra.
+    if (!found && solver_failed && seeds_ < 32) found = find_vertex_preimage(q, 32, solver_failed);
+    return found;
+  }
+
+  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, int seed_count, bool& solver_failed) {
     const WorldPoint<d>& target = s2_.vertex(q);
     std::array<std::uint32_t, 32> seeds;
-    const int count = index1_->nearest(target, seeds_, seeds);
+    const int count = index1_->nearest(target, seed_count, seeds);
     std::optional<SurfacePoint<d>> best;
     double best_rank = std::numeric_limits<double>::infinity();
     std::array<Index, 64> visited;
@@ -517,6 +675,7 @@ class Projector {
     }
     solver_calls_ += calls;
     solver_failures_ += failures;
+    solver_failed = failures > 0;
     return best;
   }
 
@@ -645,9 +804,13 @@ class Projector {
   }
 
   /// Walks along the preimage of S2 edge e from `start` (at parameter eta0) towards `end`.
-  WalkResult<d> walk(Index e, const Place<d>& start, double eta0, const std::optional<Place<d>>& end) const {
+  /// With `reversed`, the walk runs from the second vertex towards the first: eta (and every
+  /// parameter in the result) is then measured from the second vertex; see plan_edge.
+  WalkResult<d> walk(Index e, const Place<d>& start, double eta0, const std::optional<Place<d>>& end,
+                     bool reversed = false) const {
     WalkResult<d> w;
-    const auto tv = target_edge_vertices(e);
+    auto tv = target_edge_vertices(e);
+    if (reversed) std::swap(tv[0], tv[1]);
     const WorldPoint<d> qa = s2_.vertex(tv[0]), qb = s2_.vertex(tv[1]);
     const double eta_slack = 1e-9;
     Place<d> cur = start;
@@ -670,7 +833,18 @@ class Projector {
       double best_eta = std::numeric_limits<double>::infinity();
       Place<d> best_place;
       Crossing<d> best_crossing{};
+      // From a point shared by several S1 elements (an S1 vertex; an edge of a non-manifold S1)
+      // the preimage can seem to continue into more than one of them: an element whose own
+      // projection is a nearer part of S2 still reaches this S2 edge farther along its rays
+      // (remeshed copies of a zigzag polyline, folds). Like the vertex preimages (phase 1), the
+      // continuation with the smallest distance wins; inside one element the exit is the
+      // crossing with the smallest eta beyond the current one.
+      double best_rank = std::numeric_limits<double>::infinity();
+      const double rank_tie = 1e-9 * s1_.max_edge_length();
       for (Index t : cand) {
+        double element_eta = std::numeric_limits<double>::infinity(), element_mu = 0.0;
+        Place<d> element_place;
+        Crossing<d> element_crossing{};
         for (int k = 0; k <= d; ++k) {
           CrossingCandidate c;
           Place<d> place;
@@ -698,11 +872,21 @@ class Projector {
             place.index = vtx;
             crossing = VertexCrossing{vtx, c.eta};
           }
-          if (!(c.eta > eta + eta_slack) || c.eta > 1.0 + eta_slack || c.eta >= best_eta || place == cur) continue;
-          best_eta = c.eta;
-          best_place = place;
-          best_crossing = crossing;
+          if (!(c.eta > eta + eta_slack) || c.eta > 1.0 + eta_slack || c.eta >= element_eta || place == cur) continue;
+          element_eta = c.eta;
+          element_mu = c.mu;
+          element_place = place;
+          element_crossing = crossing;
         }
+        if (!std::isfinite(element_eta)) continue;
+        const double r = rank(element_mu);
+        const bool nearer = r < best_rank - rank_tie;
+        const bool tie = !nearer && r <= best_rank + rank_tie;
+        if (!nearer && !(tie && element_eta < best_eta)) continue;
+        best_rank = std::min(best_rank, r);
+        best_eta = element_eta;
+        best_place = element_place;
+        best_crossing = element_crossing;
       }
       solver_calls_ += calls;
       solver_failures_ += failures;
@@ -779,7 +963,7 @@ class Projector {
     const auto tv = target_edge_vertices(e);
     const auto& pa = target_place_[tv[0]];
     const auto& pb = target_place_[tv[1]];
-    bool reached_second = false;
+    bool reached_second = false, first_walk_failed = false;
     // Pieces are disjoint intervals of the edge parameter; an entry inside an interval already
     // walked is where that walk left S1 (or a re-detection of it), not a new piece.
     double covered_until = -1.0;
@@ -788,6 +972,7 @@ class Projector {
       if (w.end == WalkEnd::failed) {
         plan.failures.push_back(failure(e, w.reason, w.stop, w.eta));
         covered_until = w.eta;
+        first_walk_failed = true;
       } else {
         const bool reached = w.end == WalkEnd::reached;
         reached_second |= reached;
@@ -813,6 +998,26 @@ class Projector {
       piece.from_first = false;
       piece.to_second = reached;
       plan.pieces.push_back(std::move(piece));
+    }
+    // The second vertex has a preimage that no walk reached: the edge enters S1 across its boundary
+    // at a point the boundary-entry search cannot see (that search needs an image of one end of
+    // the S1 boundary edge; both may lie outside S2 or over a hole of S2). Walking backwards from
+    // the second vertex finds the entry as the point where the reversed walk leaves S1.
+    if (pb && !reached_second && !first_walk_failed) {
+      WalkResult<d> w = walk(e, *pb, 0.0, std::nullopt, true);
+      if (w.end == WalkEnd::left_boundary && !w.crossings.empty()) {
+        Piece<d> piece;
+        for (auto it = w.crossings.rbegin(); it != w.crossings.rend(); ++it) {
+          piece.crossings.push_back(*it);
+          piece.crossings.back().target_parameter = 1.0 - it->target_parameter;
+        }
+        piece.from_first = false;
+        piece.to_second = true;
+        plan.pieces.push_back(std::move(piece));
+        reached_second = true;
+      } else if (w.end == WalkEnd::failed && w.reason != EdgeFailureReason::endpoint_without_preimage) {
+        plan.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
+      }
     }
     if (pb && !reached_second && plan.failures.empty() && !on_boundary(*pb))
       plan.failures.push_back(failure(e, EdgeFailureReason::endpoint_without_preimage, *pb, 1.0,
@@ -900,6 +1105,10 @@ class Projector {
   std::vector<VertexState> vertex_state_;
   std::vector<std::optional<SurfacePoint<d>>> vertex_image_;
   std::vector<std::vector<BoundaryEntry<d>>> entries_;
+  /// Per S1 edge (d = 2): parameters already holding a node, with their owner (an S2 edge, or
+  /// -1 - q for the preimage of S2 vertex q). Per S1 vertex: the S2 edge whose preimage passes it.
+  std::vector<std::vector<std::pair<double, Index>>> used_on_edge_;
+  std::vector<Index> crossed_vertex_;
   mutable std::atomic<long long> solver_calls_{0}, solver_failures_{0};
 };
 

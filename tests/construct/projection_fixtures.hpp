@@ -1,15 +1,23 @@
 #pragma once
 // Small surfaces for the projection tests: circles (d = 1), planar grids and sphere-like
-// surfaces (d = 2), with deterministic jitter so that grids do not match.
+// surfaces (d = 2), with deterministic jitter so that grids do not match; transformed copies;
+// and the messages the tests print when a map fails verify or an edge is not inserted.
 
+#include <plmap/construct/projection_result.hpp>
 #include <plmap/core/surface.hpp>
+#include <plmap/verify/check.hpp>
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
 #include <numbers>
+#include <sstream>
+#include <string>
 
 namespace plmap::test {
 
@@ -100,6 +108,63 @@ inline std::shared_ptr<const Surface<2>> sphere(int levels, double radius, bool 
   if (inward)
     for (auto& t : f) std::swap(t[1], t[2]);
   return std::make_shared<const Surface<2>>(std::move(w), std::move(f));
+}
+
+/// The same triangles with every vertex moved by `f` (rigid motions, lifts, affine copies).
+template <int d>
+std::shared_ptr<const Surface<d>> transformed(const Surface<d>& s,
+                                              const std::function<WorldPoint<d>(const WorldPoint<d>&)>& f) {
+  std::vector<WorldPoint<d>> v;
+  v.reserve(s.vertex_count());
+  for (const auto& p : s.vertices()) v.push_back(f(p));
+  return std::make_shared<const Surface<d>>(std::move(v), s.elements());
+}
+
+/// The same surface with every element's orientation reversed (normals flipped).
+template <int d>
+std::shared_ptr<const Surface<d>> flipped(const Surface<d>& s) {
+  auto e = s.elements();
+  for (auto& t : e) std::swap(t[0], t[1]);
+  return std::make_shared<const Surface<d>>(s.vertices(), std::move(e));
+}
+
+/// The same direction for every S1 vertex, as ProjectionOptions::directions wants them.
+template <int d>
+std::vector<double> constant_directions(const Surface<d>& s1, const WorldPoint<d>& direction) {
+  std::vector<double> out;
+  out.reserve(static_cast<std::size_t>(s1.vertex_count()) * (d + 1));
+  for (Index v = 0; v < s1.vertex_count(); ++v)
+    for (int k = 0; k <= d; ++k) out.push_back(direction(k));
+  return out;
+}
+
+/// Every violation of every check of plmap::verify, one a line; empty when the map is valid.
+template <int d>
+std::string verify_violations(const PlMap<d>& map) {
+  const VerificationReport report = verify(map);
+  if (report.ok()) return {};
+  std::ostringstream why;
+  for (const auto& check : report.checks)
+    for (const auto& v : check.violations)
+      why << check.name << "/" << v.rule << " element " << v.element << ": " << v.message << "\n";
+  return why.str().empty() ? std::string("verify failed without a listed violation") : why.str();
+}
+
+/// The edges a projection could not insert, one a line (reason, place, detail).
+template <int d>
+std::string describe_failures(const ProjectionReport<d>& r) {
+  std::ostringstream s;
+  for (const auto& f : r.edges_not_inserted)
+    s << (d == 2 ? "edge " : "segment ") << f.target_edge << ": " << to_string(f.reason) << " at element "
+      << f.domain_element << " eta " << f.target_parameter << " " << f.detail << "\n";
+  return s.str();
+}
+
+/// Area of the intersection of two axis-parallel rectangles given as {x0, x1, y0, y1}.
+inline double rectangle_overlap(const std::array<double, 4>& a, const std::array<double, 4>& b) {
+  const double w = std::min(a[1], b[1]) - std::max(a[0], b[0]);
+  const double h = std::min(a[3], b[3]) - std::max(a[2], b[2]);
+  return w > 0.0 && h > 0.0 ? w * h : 0.0;
 }
 
 }  // namespace plmap::test

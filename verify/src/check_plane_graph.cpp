@@ -214,6 +214,41 @@ void run_plane_graph(const MapContext<d>& ctx, ViolationSink& sink) {
           const auto list = map.edge_nodes(t, k);
           for (std::size_t i = 1; i < list.size() && full; ++i) full = is_side(list[i - 1], list[i]);
         }
+        // ... and no hole of S2 inside: a region side with no region beyond it, away from the
+        // element boundary, is the rim of such a hole when its image lies on a boundary edge of
+        // S2 (a missing region, in contrast, leaves sides on interior S2 edges or closure edges).
+        auto on_boundary = [&](Index a, Index b) {
+          for (int k = 0; k < 3; ++k) {
+            const auto list = map.edge_nodes(t, k);
+            if (std::find(list.begin(), list.end(), a) != list.end() &&
+                std::find(list.begin(), list.end(), b) != list.end())
+              return true;
+          }
+          return false;
+        };
+        auto image_on_target_boundary = [&](const RegionSide& side) {
+          const Index r = side.region, t2 = m.region_target[r];
+          const auto& c = m.region_corners[r];
+          const LocalPoint<2> ya = apply<2>(m.region_map[r], m.node_position[c[(side.opposite_corner + 1) % 3]]);
+          const LocalPoint<2> yb = apply<2>(m.region_map[r], m.node_position[c[(side.opposite_corner + 2) % 3]]);
+          const double tol = ctx.options.local_tolerance;
+          // local edge k of the S2 element: corners k, k + 1; there the barycentric coordinate of
+          // corner k + 2 vanishes (edge 0: y = 0, edge 1: 1 - x - y = 0, edge 2: x = 0)
+          auto zero = [&](int k, const LocalPoint<2>& y) {
+            const double b = k == 0 ? y.y() : (k == 1 ? 1.0 - y.x() - y.y() : y.x());
+            return std::abs(b) <= tol;
+          };
+          for (int k = 0; k < 3; ++k)
+            if (zero(k, ya) && zero(k, yb)) return ctx.s2.edge_elements(ctx.s2.element_edge(t2, k)).size() == 1;
+          return false;
+        };
+        for (std::size_t i = 0; i < sides.size() && full; ++i) {
+          const bool single = (i == 0 || sides[i - 1].low != sides[i].low || sides[i - 1].high != sides[i].high) &&
+                              (i + 1 == sides.size() || sides[i + 1].low != sides[i].low ||
+                               sides[i + 1].high != sides[i].high);
+          if (single && !on_boundary(sides[i].low, sides[i].high) && image_on_target_boundary(sides[i]))
+            full = false;
+        }
       } else {
         sorted_nodes.clear();
         for (Index n = ctx.nodes_begin(t); n < ctx.nodes_end(t); ++n) sorted_nodes.push_back(n);

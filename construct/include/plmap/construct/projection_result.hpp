@@ -29,6 +29,9 @@ enum class EdgeFailureReason {
   walk_limit,
   /// MapBuilder rejected the preimage (detail holds its message).
   builder_rejected,
+  /// The preimage crosses another edge's preimage or runs through a node on S1: the projection
+  /// is not injective there (it folds), so the edge was left out of the map.
+  overlap,
 };
 
 std::string_view to_string(EdgeFailureReason reason);
@@ -62,7 +65,8 @@ struct ProjectionReport {
   Index target_vertices = 0;
   Index vertex_preimages = 0;  ///< S2 vertices with a preimage on S1
   /// S2 vertices whose preimage was found but not entered: it fell onto an S1 vertex that
-  /// already carries another preimage.
+  /// already carries another preimage, or onto the same point of an S1 edge or element as
+  /// another (the nearest one is kept).
   Index vertex_conflicts = 0;
   Index domain_vertices = 0;
   Index ghost_nodes = 0;  ///< S1 vertices mapped into S2 (not onto an S2 vertex)
