@@ -6,12 +6,12 @@
 /// One header row, then one row per region in region order. Columns (d = 2 shown; for d = 1 the
 /// local coordinates have one component `xi0`, the world points two, `x` and `y`, and there are
 /// two corners):
-///   region, domain_element, target_element,
-///   domain_local_<c>_xi<i>    local coordinates of corner c on the S1 element,
-///   target_local_<c>_xi<i>    local coordinates of the image of corner c on the S2 element,
-///   domain_world_<c>_<x|y|z>  world position of corner c on S1,
-///   target_world_<c>_<x|y|z>  world position of its image on S2,
-///   domain_measure, target_measure   length / area of the region on S1 and of its image.
+/// - `region`, `domain_element`, `target_element`;
+/// - `domain_local_C_xiI`: local coordinate I of corner C on the S1 element;
+/// - `target_local_C_xiI`: local coordinate I of the image of corner C on the S2 element;
+/// - `domain_world_C_x` (`_y`, `_z`): world position of corner C on S1;
+/// - `target_world_C_x` (`_y`, `_z`): world position of its image on S2;
+/// - `domain_measure`, `target_measure`: length / area of the region on S1 and of its image.
 /// Corners are listed in the same order on both sides. Numbers are written in the shortest
 /// decimal form that parses back to the same double, so the table is exact.
 
