@@ -700,7 +700,13 @@ bool support_in_element(const Surface<d>& s2, const Support<d>& s, Index t) {
 template <int d>
 LocalPoint<d> support_local(const Surface<d>& s2, const Support<d>& s, Index t) {
   Barycentric<d> b = Barycentric<d>::Zero();
-  for (int i = 0; i < s.count; ++i) b(s2.local_corner(t, s.vertex[i])) = s.weight[i];
+  for (int i = 0; i < s.count; ++i) {
+    const int k = s2.local_corner(t, s.vertex[i]);
+    if (k < 0)
+      throw BuilderError(fmt::format("internal: an image is re-expressed on S2 element {}, which "
+                                     "does not contain its S2 vertex {}", t, s.vertex[i]));
+    b(k) = s.weight[i];
+  }
   return local_from_barycentric<d>(b);
 }
 
@@ -828,7 +834,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
   // Bucket nodes and segments by where they live. S2 edges dropped because their preimages
   // conflict with others (BuilderOptions::drop_conflicting_edges) leave out their segments and
   // the intersection nodes they created.
-  std::vector<char> dropped(d == 2 ? im.edge_inserted.size() : 0, 0);
+  std::vector<char> dropped(im.edge_inserted.size(), 0);
   std::vector<std::vector<Index>> interior_nodes, edge_nodes, element_segments, edge_segments;
   auto bucket = [&] {
     interior_nodes.assign(n1, {});
@@ -837,7 +843,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     edge_segments.assign(d == 2 ? s1.edge_count() : 0, {});
     for (Index n = 0; n < static_cast<Index>(im.nodes.size()); ++n) {
       const auto& node = im.nodes[n];
-      if (!dropped.empty() && node.kind == BuilderNodeKind::intersection && dropped[node.target]) continue;
+      if (d == 2 && node.kind == BuilderNodeKind::intersection && dropped[node.target]) continue;
       const auto& p = node.place;
       if (p.kind == PlaceKind::element) interior_nodes[p.index].push_back(n);
       if (p.kind == PlaceKind::edge) edge_nodes[p.index].push_back(n);
@@ -852,7 +858,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     }
     for (Index s = 0; s < static_cast<Index>(im.segments.size()); ++s) {
       const auto& seg = im.segments[s];
-      if (!dropped.empty() && dropped[seg.target_edge]) continue;
+      if (dropped[seg.target_edge]) continue;
       if (seg.along_edge)
         edge_segments[seg.where].push_back(s);
       else
@@ -881,40 +887,68 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     };
     std::vector<std::vector<PendingRegion>> element_regions(n1);
     std::vector<std::vector<Slot>> element_slots(n1);
-    for (Index t = 0; t < n1; ++t) {
-      slots.clear();
-      const auto& c = s1.element(t);
-      if (Index n = im.node_at_domain_vertex[c[0]]; n != invalid_index) slots.push_back({n, 0.0});
-      for (Index n : interior_nodes[t]) slots.push_back({n, im.nodes[n].place.local(0)});
-      if (Index n = im.node_at_domain_vertex[c[1]]; n != invalid_index) slots.push_back({n, 1.0});
-      std::sort(slots.begin(), slots.end(), [](const Slot& x, const Slot& y) { return x.s < y.s; });
-      for (std::size_t i = 1; i < slots.size(); ++i)
-        if (slots[i].s == slots[i - 1].s)
-          throw BuilderError(fmt::format("two nodes at the same point of S1 element {}", t));
-      // nodes per segment are few except in stress tests; binary search keeps it O(n log n)
-      std::vector<std::pair<Index, int>> slot_index(slots.size());
-      for (std::size_t i = 0; i < slots.size(); ++i) slot_index[i] = {slots[i].node, static_cast<int>(i)};
-      std::sort(slot_index.begin(), slot_index.end());
-      auto slot_of = [&](Index node) {
-        const auto it = std::lower_bound(slot_index.begin(), slot_index.end(), std::make_pair(node, -1));
-        return it != slot_index.end() && it->first == node ? it->second : -1;
-      };
-      for (Index sidx : element_segments[t]) {
-        const auto& seg = im.segments[sidx];
-        int i = slot_of(seg.a), j = slot_of(seg.b);
-        if (i > j) std::swap(i, j);
-        if (i < 0 || j != i + 1)
-          throw BuilderError(fmt::format(
-              "the preimage of S2 segment {} passes over another node on S1 element {}",
-              seg.target_edge, t));
-        const auto& na = im.nodes[slots[i].node].image;
-        const auto& nb = im.nodes[slots[j].node].image;
-        const double ya = support_local<1>(s2, na, seg.target_edge)(0);
-        const double yb = support_local<1>(s2, nb, seg.target_edge)(0);
-        votes += yb > ya ? 1 : -1;
-        element_regions[t].push_back({i, j, seg.target_edge});
+    // A segment's preimage that passes over another node (a fold of the projection) is an error,
+    // or, with drop_conflicting_edges, that S2 segment is left out and the elements redone.
+    for (int round = 0;; ++round) {
+      std::vector<std::pair<Index, Index>> conflicts;  // (S2 segment, S1 element)
+      votes = 0;
+      for (Index t = 0; t < n1; ++t) {
+        element_regions[t].clear();
+        slots.clear();
+        const auto& c = s1.element(t);
+        if (Index n = im.node_at_domain_vertex[c[0]]; n != invalid_index) slots.push_back({n, 0.0});
+        for (Index n : interior_nodes[t]) slots.push_back({n, im.nodes[n].place.local(0)});
+        if (Index n = im.node_at_domain_vertex[c[1]]; n != invalid_index) slots.push_back({n, 1.0});
+        std::sort(slots.begin(), slots.end(), [](const Slot& x, const Slot& y) { return x.s < y.s; });
+        for (std::size_t i = 1; i < slots.size(); ++i)
+          if (slots[i].s == slots[i - 1].s)
+            throw BuilderError(fmt::format("two nodes at the same point of S1 element {}", t));
+        // nodes per segment are few except in stress tests; binary search keeps it O(n log n)
+        std::vector<std::pair<Index, int>> slot_index(slots.size());
+        for (std::size_t i = 0; i < slots.size(); ++i) slot_index[i] = {slots[i].node, static_cast<int>(i)};
+        std::sort(slot_index.begin(), slot_index.end());
+        auto slot_of = [&](Index node) {
+          const auto it = std::lower_bound(slot_index.begin(), slot_index.end(), std::make_pair(node, -1));
+          return it != slot_index.end() && it->first == node ? it->second : -1;
+        };
+        for (Index sidx : element_segments[t]) {
+          const auto& seg = im.segments[sidx];
+          int i = slot_of(seg.a), j = slot_of(seg.b);
+          if (i > j) std::swap(i, j);
+          // both ends must map into the S2 segment, and no other node may lie between them
+          const bool images_on_segment =
+              i >= 0 && support_in_element<1>(s2, im.nodes[slots[i].node].image, seg.target_edge) &&
+              support_in_element<1>(s2, im.nodes[slots[j].node].image, seg.target_edge);
+          if (i < 0 || j != i + 1 || !images_on_segment) {
+            if (im.options.drop_conflicting_edges && i >= 0 && round < 16) {
+              conflicts.emplace_back(seg.target_edge, t);
+              continue;
+            }
+            throw BuilderError(fmt::format(
+                "the preimage of S2 segment {} passes over another node on S1 element {}, or joins "
+                "nodes whose images are not on that segment",
+                seg.target_edge, t));
+          }
+          const auto& na = im.nodes[slots[i].node].image;
+          const auto& nb = im.nodes[slots[j].node].image;
+          const double ya = support_local<1>(s2, na, seg.target_edge)(0);
+          const double yb = support_local<1>(s2, nb, seg.target_edge)(0);
+          votes += yb > ya ? 1 : -1;
+          element_regions[t].push_back({i, j, seg.target_edge});
+        }
+        element_slots[t] = slots;
       }
-      element_slots[t] = slots;
+      if (conflicts.empty()) break;
+      for (const auto& [e, t] : conflicts) {
+        if (dropped[e]) continue;
+        dropped[e] = 1;
+        im.edge_inserted[e] = 0;
+        if (report) {
+          report->dropped_edges.push_back(e);
+          report->dropped_edge_element.push_back(t);
+        }
+      }
+      bucket();
     }
     m.orientation = im.options.orientation != 0 ? im.options.orientation : (votes >= 0 ? 1 : -1);
     for (Index t = 0; t < n1; ++t) {

@@ -411,3 +411,35 @@ TEST(MapBuilder, ConflictingEdgesAreRejectedOrDropped) {
     }
   EXPECT_LT(covered_measure(m).domain, 0.5);
 }
+
+// d = 1: S2 vertex 2's preimage lies between those of vertices 0 and 1, so the preimage of
+// segment 0-1 passes over it (a fold). By default finalize() refuses; with
+// drop_conflicting_edges segment 0 is left out and reported, segment 1 stays.
+TEST(MapBuilder, PolylineSegmentOverAnotherNodeIsRejectedOrDropped) {
+  auto s1 = std::make_shared<const Surface<1>>(std::vector<WorldPoint<1>>{{0, 0}, {1, 0}},
+                                               std::vector<ElementCorners<1>>{{0, 1}});
+  auto s2 = std::make_shared<const Surface<1>>(std::vector<WorldPoint<1>>{{0, 0}, {0.8, 0}, {0.4, 0}},
+                                               std::vector<ElementCorners<1>>{{0, 1}, {1, 2}});
+  auto enter = [&](MapBuilder<1>& b) {
+    b.add_vertex_preimage_at_vertex(0, 0);
+    b.add_vertex_preimage(1, {0, LocalPoint<1>(0.8)});
+    b.add_vertex_preimage(2, {0, LocalPoint<1>(0.4)});
+    b.add_target_element(0);
+    b.add_target_element(1);
+  };
+  {
+    MapBuilder<1> b(s1, s2);
+    enter(b);
+    EXPECT_THROW((void)std::move(b).finalize(), BuilderError);
+  }
+  BuilderOptions options;
+  options.drop_conflicting_edges = true;
+  MapBuilder<1> b(s1, s2, options);
+  enter(b);
+  FinalizeReport report;
+  const PlMap<1> m = std::move(b).finalize(&report);
+  ASSERT_EQ(report.dropped_edges, std::vector<Index>{0});
+  ASSERT_EQ(m.region_count(), 1);
+  EXPECT_EQ(m.data().region_target[0], 1);
+  EXPECT_NEAR(covered_measure(m).domain, 0.4, 1e-15);
+}
