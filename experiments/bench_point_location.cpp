@@ -20,13 +20,10 @@
 #include "../tests/strategies/refinement_maps.hpp"
 
 #include <plmap/core/evaluation.hpp>
+#include <plmap/core/io/surface_reader.hpp>
 #include <plmap/strategies/point_locator_registry.hpp>
+#include <plmap/verify/generators/simplified_surface.hpp>
 
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
-#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
-#include <CGAL/boost/graph/IO/OFF.h>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -93,28 +90,8 @@ struct Case {
 
 /// The femur of CGAL's data set simplified to about `faces` triangles by edge collapse.
 std::shared_ptr<const Surface<2>> coarse_femur(const std::string& path, std::size_t faces) {
-  using Kernel = CGAL::Simple_cartesian<double>;
-  using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
-  Mesh mesh;
-  if (!CGAL::IO::read_OFF(path, mesh) || mesh.number_of_faces() == 0)
-    throw Error(fmt::format("{}: cannot read the femur mesh", path));
-  namespace SMS = CGAL::Surface_mesh_simplification;
-  // CGAL 5.5 stops on the edge count; a closed triangle mesh has 3/2 edges per face.
-  SMS::edge_collapse(mesh, SMS::Count_stop_predicate<Mesh>(faces * 3 / 2));
-  mesh.collect_garbage();
-  std::vector<WorldPoint<2>> vertices;
-  for (auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    vertices.push_back({p.x(), p.y(), p.z()});
-  }
-  std::vector<ElementCorners<2>> triangles;
-  for (auto f : mesh.faces()) {
-    ElementCorners<2> c;
-    int k = 0;
-    for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) c[k++] = Index(v.idx());
-    triangles.push_back(c);
-  }
-  return std::make_shared<const Surface<2>>(std::move(vertices), std::move(triangles));
+  return std::make_shared<const Surface<2>>(
+      generators::simplify_by_edge_collapse(read_surface<2>(path), faces));
 }
 
 /// Random query points, uniform over the elements (uniform in each reference triangle).

@@ -33,13 +33,9 @@
 #include <plmap/construct/project.hpp>
 #include <plmap/core/evaluation.hpp>
 #include <plmap/core/io/map_file.hpp>
+#include <plmap/core/io/surface_reader.hpp>
 #include <plmap/strategies/point_locator_registry.hpp>
-
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
-#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
-#include <CGAL/boost/graph/IO/OFF.h>
+#include <plmap/verify/generators/simplified_surface.hpp>
 
 // PSURFACE_STANDALONE is defined by the build (the headers need it).
 #include <psurface/PSurface.h>
@@ -122,27 +118,8 @@ struct Case {
 
 /// CGAL's femur simplified to about `faces` triangles by edge collapse (as bench_point_location).
 std::shared_ptr<const Surface<2>> coarse_femur(const std::string& path, std::size_t faces) {
-  using Kernel = CGAL::Simple_cartesian<double>;
-  using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
-  Mesh mesh;
-  if (!CGAL::IO::read_OFF(path, mesh) || mesh.number_of_faces() == 0)
-    throw Error(fmt::format("{}: cannot read the femur mesh", path));
-  namespace SMS = CGAL::Surface_mesh_simplification;
-  SMS::edge_collapse(mesh, SMS::Count_stop_predicate<Mesh>(faces * 3 / 2));
-  mesh.collect_garbage();
-  std::vector<WorldPoint<2>> vertices;
-  for (auto v : mesh.vertices()) {
-    const auto& p = mesh.point(v);
-    vertices.push_back({p.x(), p.y(), p.z()});
-  }
-  std::vector<ElementCorners<2>> triangles;
-  for (auto f : mesh.faces()) {
-    ElementCorners<2> c;
-    int k = 0;
-    for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) c[k++] = Index(v.idx());
-    triangles.push_back(c);
-  }
-  return std::make_shared<const Surface<2>>(std::move(vertices), std::move(triangles));
+  return std::make_shared<const Surface<2>>(
+      generators::simplify_by_edge_collapse(read_surface<2>(path), faces));
 }
 
 std::vector<SurfacePoint<2>> random_queries(const Surface<2>& s1, std::size_t n, std::uint64_t seed) {
