@@ -157,6 +157,23 @@ std::vector<BadCase> bad_cases() {
     project.pipeline = "[[pipeline]]\nstep = \"project\"\ntarget = \"grid\"\nsolver = \"magic\"\n";
     cases.push_back({"unknown solver", project, "pipeline[0].solver", "unknown projection solver"});
   }
+  if (peer_benchmark_available()) {
+    Parts peer;
+    peer.pipeline = "[[pipeline]]\nstep = \"peer_project\"\ntool = \"plmap\"\n";
+    cases.push_back({"peer_project on a grid input", peer, "inputs[0].kind", "contact-pair"});
+    peer.inputs = "[[inputs]]\nkind = \"contact-pair\"\ncase = \"plane\"\nsize = 200\n";
+    peer.pipeline = "[[pipeline]]\nstep = \"peer_project\"\ntool = \"abaqus\"\n";
+    cases.push_back({"unknown peer tool", peer, "pipeline[0].tool", "unknown projection tool"});
+    peer.pipeline = "[[pipeline]]\nstep = \"peer_project\"\n";
+    cases.push_back({"peer_project without a tool", peer, "pipeline[0].tool", "missing"});
+    peer.pipeline = "[[pipeline]]\nstep = \"peer_project\"\ntool = \"plmap\"\n[[pipeline]]\nstep = \"check\"\n";
+    cases.push_back({"check after peer_project", peer, "pipeline[1].step", "needs a map"});
+    peer.inputs = "[[inputs]]\nkind = \"contact-pair\"\ncase = \"cube\"\n";
+    peer.pipeline = "[[pipeline]]\nstep = \"peer_project\"\ntool = \"plmap\"\n";
+    cases.push_back({"unknown contact case", peer, "inputs[0].case", "unknown contact pair"});
+    peer.inputs = "[[inputs]]\nkind = \"contact-circles\"\nsegments = 2\n";
+    cases.push_back({"too few circle segments", peer, "inputs[0].segments", "at least 3"});
+  }
   if (!cgal_data_location().empty()) {
     Parts cgal;
     cgal.inputs = "[[inputs]]\nkind = \"cgal\"\nmesh = \"no-such-mesh\"\n";

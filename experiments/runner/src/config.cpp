@@ -289,6 +289,7 @@ class Parser {
     parse_experiment(root);
     parse_inputs(root);
     parse_pipeline(root);
+    check_peer_inputs();
     // The pipeline parameters are checked for each dimension the inputs have.
     std::set<int> dimensions;
     for (const auto& in : config_.inputs)
@@ -420,7 +421,9 @@ class Parser {
       if (std::find(kinds.begin(), kinds.end(), step.kind) == kinds.end())
         fail_at(*t.get("step"), step.key + ".step",
                 fmt::format("unknown step \"{}\" (valid: {}){}", step.kind, join(kinds),
-                            step.kind == "project" ? "; this build has no plmap::construct" : ""));
+                            step.kind == "project"        ? "; this build has no plmap::construct"
+                            : step.kind == "peer_project" ? "; this build has no experiments/peers benchmark"
+                                                          : ""));
       step.name = string_key(t, step.key, "name", step.kind);
       if (step.name == "input" || step.name == "inputs" || step.name.find('.') != std::string::npos)
         fail(step.key + ".name", fmt::format("\"{}\" cannot name a step (reserved or contains a dot)", step.name));
@@ -438,6 +441,18 @@ class Parser {
         if (const toml::node* n = t.get(s.name)) step.given.set(s.name, convert(*n, s, step.key + "." + s.name));
       config_.pipeline.push_back(std::move(step));
     }
+  }
+
+  /// peer_project runs the benchmark's own input pairs, so every input it runs on must be one.
+  void check_peer_inputs() const {
+    const auto step = std::find_if(config_.pipeline.begin(), config_.pipeline.end(),
+                                   [](const StepConfig& s) { return s.kind == "peer_project"; });
+    if (step == config_.pipeline.end()) return;
+    for (const auto& in : config_.inputs)
+      if (in.run && !is_contact_input_kind(in.kind))
+        fail(in.key + ".kind", fmt::format("input \"{}\" is of kind \"{}\", but {} (peer_project) runs only on "
+                                           "contact-pair or contact-circles inputs (give other inputs run = false)",
+                                           in.name, in.kind, step->key));
   }
 
   void parse_metrics() {

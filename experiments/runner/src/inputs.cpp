@@ -6,11 +6,11 @@
 #include <plmap/core/io/surface_reader.hpp>
 #include <plmap/experiment/cgal_data.hpp>
 #include <plmap/verify/generators/random_surfaces.hpp>
+#include <plmap/verify/generators/simplified_surface.hpp>
 
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
-#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
+#ifdef PLMAP_EXPERIMENT_PEER_BENCH
+#include "peers/inputs.hpp"
+#endif
 
 #include <fmt/format.h>
 
@@ -20,36 +20,7 @@ namespace {
 
 using generators::Rng;
 
-/// `surface` simplified by CGAL's edge collapse (default cost and placement: Lindstrom-Turk) to
-/// about `faces` triangles. Deterministic: the collapse order depends only on the mesh.
-Surface<2> simplify(const Surface<2>& surface, std::size_t faces) {
-  using Kernel = CGAL::Simple_cartesian<double>;
-  using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
-  Mesh mesh;
-  std::vector<Mesh::Vertex_index> v;
-  for (const auto& p : surface.vertices()) v.push_back(mesh.add_vertex({p(0), p(1), p(2)}));
-  for (const auto& t : surface.elements())
-    if (mesh.add_face(v[t[0]], v[t[1]], v[t[2]]) == Mesh::null_face())
-      throw Error("cannot simplify a non-manifold mesh (CGAL rejected a face)");
-  namespace SMS = CGAL::Surface_mesh_simplification;
-  // CGAL 5.5's stop predicate counts edges; a closed triangle mesh has 3/2 edges per face.
-  SMS::edge_collapse(mesh, SMS::Count_stop_predicate<Mesh>(faces * 3 / 2));
-  mesh.collect_garbage();
-  std::vector<WorldPoint<2>> vertices;
-  for (auto vi : mesh.vertices()) {
-    const auto& p = mesh.point(vi);
-    vertices.push_back({p.x(), p.y(), p.z()});
-  }
-  std::vector<ElementCorners<2>> triangles;
-  for (auto f : mesh.faces()) {
-    ElementCorners<2> c;
-    int k = 0;
-    for (auto vi : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) c[k++] = Index(vi.idx());
-    triangles.push_back(c);
-  }
-  return Surface<2>(std::move(vertices), std::move(triangles));
-}
-
+/// A planar triangulation lifted onto the input's height field and shifted by its z offset.
 Surface<2> shaped(const Surface<2>& planar, const ParameterSet& p) {
   Surface<2> s = p.real("height") > 0
                      ? generators::lift_to_height_field(planar, generators::HeightField{.amplitude = p.real("height")})
@@ -60,7 +31,30 @@ Surface<2> shaped(const Surface<2>& planar, const ParameterSet& p) {
   return Surface<2>(std::move(vertices), s.elements());
 }
 
+#ifdef PLMAP_EXPERIMENT_PEER_BENCH
+template <int d>
+Surface<d> from_plain(const peers::PlainMesh<d>& mesh) {
+  std::vector<WorldPoint<d>> vertices;
+  vertices.reserve(mesh.points.size());
+  for (const auto& p : mesh.points) {
+    WorldPoint<d> x;
+    for (int k = 0; k <= d; ++k) x(k) = p[k];
+    vertices.push_back(x);
+  }
+  std::vector<ElementCorners<d>> elements;
+  elements.reserve(mesh.cells.size());
+  for (const auto& c : mesh.cells) {
+    ElementCorners<d> e;
+    for (int k = 0; k <= d; ++k) e[k] = Index(c[k]);
+    elements.push_back(e);
+  }
+  return Surface<d>(std::move(vertices), std::move(elements));
+}
+#endif
+
 }  // namespace
+
+std::filesystem::path InputCache::cgal_mesh(const std::string& name) { return resolve_cgal_mesh(name, cgal_cache_); }
 
 template <int d>
 std::shared_ptr<const Surface<d>> InputCache::surface(int index, const ParameterSet& p) {
@@ -82,7 +76,7 @@ std::shared_ptr<const Surface<d>> InputCache::surface(int index, const Parameter
   } else if constexpr (d == 2) {
     if (input.kind == "cgal") {
       Surface<2> mesh = read_surface<2>(resolve_cgal_mesh(p.text("mesh"), cgal_cache_));
-      if (p.integer("simplify_to") > 0) mesh = simplify(mesh, std::size_t(p.integer("simplify_to")));
+      if (p.integer("simplify_to") > 0) mesh = generators::simplify_by_edge_collapse(mesh, std::size_t(p.integer("simplify_to")));
       s = std::make_shared<const Surface<2>>(std::move(mesh));
     } else if (input.kind == "grid") {
       Rng r = rng();
@@ -99,6 +93,18 @@ std::shared_ptr<const Surface<d>> InputCache::surface(int index, const Parameter
       s = std::make_shared<const Surface<2>>(shaped(planar, p));
     } else if (input.kind == "bumpy-grid") {
       s = testing::bumpy_grid(int(p.integer("cells")));
+    } else if (input.kind == "contact-pair") {
+#ifdef PLMAP_EXPERIMENT_PEER_BENCH
+      const std::string& which = p.text("case");
+      const auto seed = std::uint64_t(p.integer("seed"));
+      peers::SurfacePair<2> pair;
+      if (which == "plane") pair = peers::facing_planes(long(p.integer("size")), seed);
+      else if (which == "sphere") pair = peers::concentric_spheres(int(p.integer("size")), seed);
+      else pair = peers::femur_pair(cgal_mesh("femur").string(), which == "femur", seed);
+      s = std::make_shared<const Surface<2>>(from_plain<2>(pair.s1));
+#else
+      throw Error("contact-pair inputs need experiments/peers, which this build lacks");
+#endif
     }
   } else {
     Rng r = rng();
@@ -109,6 +115,14 @@ std::shared_ptr<const Surface<d>> InputCache::surface(int index, const Parameter
     else if (input.kind == "star-polyline")
       s = std::make_shared<const Surface<1>>(
           generators::random_star_polyline(int(p.integer("arms")), int(p.integer("segments_per_arm")), r));
+    else if (input.kind == "contact-circles") {
+#ifdef PLMAP_EXPERIMENT_PEER_BENCH
+      const auto pair = peers::concentric_circles(long(p.integer("segments")), std::uint64_t(p.integer("seed")));
+      s = std::make_shared<const Surface<1>>(from_plain<1>(pair.s1));
+#else
+      throw Error("contact-circles inputs need experiments/peers, which this build lacks");
+#endif
+    }
   }
   if (!s) throw Error(fmt::format("input \"{}\": kind {} does not give a surface of dimension {}", input.name, input.kind, d));
   cache.emplace(cache_key, s);

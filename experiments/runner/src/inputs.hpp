@@ -20,6 +20,8 @@ class InputCache {
   /// The surface of input `index` with resolved parameters `parameters`.
   template <int d>
   std::shared_ptr<const Surface<d>> surface(int index, const ParameterSet& parameters);
+  /// A mesh of the CGAL data set by name, extracted into the cache if needed.
+  std::filesystem::path cgal_mesh(const std::string& name);
 
  private:
   const ExperimentConfig& config_;

@@ -6,14 +6,18 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
+#include <chrono>
+#include <csignal>
 
 extern char** environ;
 
 namespace plmap::experiment::detail {
 
-ProcessResult run_process(const std::vector<std::string>& argv, const std::filesystem::path& working_directory) {
+ProcessResult run_process(const std::vector<std::string>& argv, const std::filesystem::path& working_directory,
+                          double time_limit_seconds) {
   ProcessResult result;
   int out_pipe[2], err_pipe[2];
   if (pipe(out_pipe) != 0) return result;
@@ -52,11 +56,25 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::files
   std::array<std::string*, 2> sinks = {&result.output, &result.errors};
   int open_count = 2;
   char buffer[65536];
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                              std::chrono::duration<double>(time_limit_seconds));
   while (open_count > 0) {
-    if (poll(fds.data(), fds.size(), -1) < 0) {
+    int wait_ms = -1;
+    if (time_limit_seconds > 0) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+      if (left.count() <= 0 && !result.timed_out) {
+        // Killing the child closes its ends of the pipes, so the loop ends with the reads below.
+        kill(pid, SIGKILL);
+        result.timed_out = true;
+      }
+      wait_ms = result.timed_out ? 100 : int(std::min<long long>(left.count(), 60'000));
+    }
+    const int ready = poll(fds.data(), fds.size(), wait_ms);
+    if (ready < 0) {
       if (errno == EINTR) continue;
       break;
     }
+    if (ready == 0) continue;
     for (std::size_t i = 0; i < fds.size(); ++i) {
       if (fds[i].fd < 0 || !(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
       const ssize_t n = read(fds[i].fd, buffer, sizeof buffer);

@@ -1,6 +1,7 @@
 // Running the pipeline of every run and writing the outputs (runner.hpp).
 
 #include "inputs.hpp"
+#include "process.hpp"
 #include "refinement_maps.hpp"  // tests/strategies: k x k subdivision maps, as in the benchmarks
 
 #include <plmap/core/evaluation.hpp>
@@ -78,6 +79,7 @@ class Pipeline {
     if (step.kind == "project") return project(p, m, prefix);
     if (step.kind == "evaluate") return evaluate(p, m, prefix);
     if (step.kind == "check") return check(p, m, prefix);
+    if (step.kind == "peer_project") return peer_project(p, m, prefix);
     throw Error("unknown step " + step.kind);
   }
 
@@ -213,6 +215,58 @@ class Pipeline {
     m.metrics[prefix + "violations"] = report.violation_count();
     m.metrics[prefix + "kappa_max"] = report.quality ? number(report.quality->kappa_max) : Json(nullptr);
     m.metrics[prefix + "kappa_mean"] = report.quality ? number(report.quality->kappa_mean) : Json(nullptr);
+  }
+
+  /// One tool's projection of the input's contact pair, run by experiments/peers' benchmark in a
+  /// child process (the benchmark generates the same pair from the same parameters), so that plmap
+  /// and the peers are measured the same way: wall time and peak memory of the projection alone.
+  void peer_project(const ParameterSet& p, Measurements& m, const std::string& prefix) {
+    const InputConfig& input = config_.inputs[run_.input_index];
+    const ParameterSet& in = run_.input_parameters;
+    const std::string& tool = p.text("tool");
+    std::vector<std::string> argv = {peer_benchmark_program(), "--tool", tool, "--seed",
+                                     std::to_string(in.integer("seed")), "--threads",
+                                     std::to_string(tool == "plmap" ? p.integer("threads") : 1)};
+    if (argv[0].empty()) throw Error("peer_project: this build has no experiments/peers benchmark");
+    if (input.kind == "contact-circles") {
+      argv.insert(argv.end(), {"--case", "circle", "--size", std::to_string(in.integer("segments"))});
+    } else {
+      const std::string& which = in.text("case");
+      argv.insert(argv.end(), {"--case", which, "--size", std::to_string(in.integer("size"))});
+      if (which.starts_with("femur")) argv.insert(argv.end(), {"--femur", inputs_.cgal_mesh("femur").string()});
+    }
+    auto failed = [&](std::string why) {
+      m.metrics[prefix + "ok"] = false;
+      m.metrics[prefix + "error"] = std::move(why);
+    };
+    const auto limit = p.integer("psurface_max_elements");
+    if (tool == "psurface" && limit > 0 && std::int64_t(s1_->element_count()) > limit)
+      return failed(fmt::format("skipped: S1 has {} elements, more than psurface_max_elements = {}",
+                                s1_->element_count(), limit));
+    const auto result = detail::run_process(argv, {}, p.real("timeout_seconds"));
+    if (result.timed_out) return failed(fmt::format("timed out after {} s", p.real("timeout_seconds")));
+    // The benchmark prints one JSON line last; anything before it is the peers' chatter.
+    const auto end = result.output.find_last_not_of("\n");
+    const auto begin = end == std::string::npos ? std::string::npos : result.output.rfind('\n', end);
+    const std::string last =
+        end == std::string::npos ? "" : result.output.substr(begin == std::string::npos ? 0 : begin + 1, end + 1);
+    if (result.exit_code != 0 || last.empty() || last.front() != '{') {
+      std::string why = result.errors.empty() ? result.output : result.errors;
+      while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
+      if (result.exit_code == 2 && why.find("not built in") != std::string::npos)
+        throw Error(fmt::format("peer_project: {} ({} was built without that peer's Debian package)", why, argv[0]));
+      return failed(fmt::format("{} exited with {}: {}", argv[0], result.exit_code, why));
+    }
+    const Json line = Json::parse(last);
+    m.metrics[prefix + "ok"] = line.at("ok").get<bool>();
+    m.metrics[prefix + "error"] = line.at("error").get<std::string>();
+    m.metrics[prefix + "target_elements"] = line.at("s2_cells");
+    if (!line.at("ok").get<bool>()) return;
+    m.metrics[prefix + "pieces"] = line.at("pieces");
+    m.metrics[prefix + "covered_error"] = number(line.at("covered_relative_error").get<double>());
+    m.metrics[prefix + "covered_target_error"] = number(line.at("covered_target_relative_error").get<double>());
+    m.timings[prefix + "seconds"] = line.at("seconds").get<double>();
+    m.timings[prefix + "peak_mib"] = line.at("peak_increase_mib").get<double>();
   }
 
   const ExperimentConfig& config_;

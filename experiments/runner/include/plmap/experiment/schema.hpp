@@ -38,5 +38,12 @@ const std::vector<MetricSpec>& step_metrics(const std::string& kind);
 
 /// Whether the projection step is available in this build.
 bool projection_available();
+/// True if this build can run experiments/peers' benchmark (the peer_project step).
+bool peer_benchmark_available();
+/// The benchmark the peer_project step runs: $PLMAP_PEER_BENCH if set, else the one built with
+/// this runner (empty if none).
+std::string peer_benchmark_program();
+/// contact-pair and contact-circles: the inputs that peer_project accepts.
+bool is_contact_input_kind(const std::string& kind);
 
 }  // namespace plmap::experiment
