@@ -16,6 +16,7 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/map_builder.hpp>
 #include <plmap/core/regions.hpp>
+#include <plmap/solvers/focal_points.hpp>
 #include <plmap/solvers/projection_systems.hpp>
 #include <plmap/solvers/solver_kind.hpp>
 
@@ -42,6 +43,7 @@ std::string_view to_string(EdgeFailureReason reason) {
     case EdgeFailureReason::walk_limit: return "walk_limit";
     case EdgeFailureReason::builder_rejected: return "builder_rejected";
     case EdgeFailureReason::overlap: return "overlap";
+    case EdgeFailureReason::fold: return "fold";
   }
   return "unknown";
 }
@@ -484,6 +486,40 @@ class Projector {
 
   double rank(double mu) const { return opt_.allow_negative_distance ? std::abs(mu) : std::max(mu, 0.0); }
 
+  /// The ray from local point xi of S1 element t reaches distance mu before any focal point of
+  /// the direction field (solvers/focal_points.hpp): beyond one the projection is folded.
+  bool unfolded_in(Index t, const LocalPoint<d>& xi, double mu) const {
+    std::array<WorldPoint<d>, d + 1> corners, directions;
+    for (int k = 0; k <= d; ++k) {
+      corners[k] = s1_.corner(t, k);
+      directions[k] = nu_[s1_.element(t)[k]];
+    }
+    return reaches_without_focal_point<d>(corners, directions, xi, mu);
+  }
+
+  /// The same for a ray from an S1 vertex or edge point: it must be unfolded in every element
+  /// that contains the point, since the regions on all of them end there.
+  bool unfolded_at(const Place<d>& p, double mu) const {
+    std::vector<Index> els;
+    elements_of(p, els);
+    for (Index t : els) {
+      LocalPoint<d> xi = p.local;
+      if (p.kind == PlaceKind::vertex) {
+        xi = local_of_corner(s1_, t, p.index);
+      } else if constexpr (d == 2) {
+        if (p.kind == PlaceKind::edge) {
+          const auto ev = s1_.edge_vertices(p.index);
+          Barycentric<2> b = Barycentric<2>::Zero();
+          b(s1_.local_corner(t, ev[0])) = 1.0 - p.t;
+          b(s1_.local_corner(t, ev[1])) = p.t;
+          xi = local_from_barycentric<2>(b);
+        }
+      }
+      if (!unfolded_in(t, xi, mu)) return false;
+    }
+    return true;
+  }
+
   bool normal_ok(const WorldPoint<d>& direction, const WorldPoint<d>& target_normal) const {
     if (opt_.normal_check == TargetNormalCheck::none) return true;
     const double c = direction.dot(target_normal);
@@ -662,7 +698,7 @@ class Projector {
           WorldPoint<d> direction = sys.directions[0];
           for (int k = 0; k < d; ++k) direction += xi(k) * (sys.directions[k + 1] - sys.directions[0]);
           if (distance_ok(mu, sys.scale()) && (n2_.empty() || normal_ok(direction, n2_[q])) &&
-              rank(mu) < best_rank) {
+              rank(mu) < best_rank && unfolded_in(t, xi, mu)) {
             best_rank = rank(mu);
             Barycentric<d> bc = b.cwiseMax(0.0);
             bc /= bc.sum();
@@ -714,7 +750,8 @@ class Projector {
         if (b(worst) >= -1e-9) {
           const double mu = x(d);
           WorldPoint<d> target_normal = s2_.element_normal(t);
-          if (distance_ok(mu, scale) && normal_ok(direction, target_normal) && rank(mu) < best_rank) {
+          if (distance_ok(mu, scale) && normal_ok(direction, target_normal) && rank(mu) < best_rank &&
+              unfolded_at(Place<d>{PlaceKind::vertex, v}, mu)) {
             best_rank = rank(mu);
             Barycentric<d> bc = b.cwiseMax(0.0);
             bc /= bc.sum();
@@ -829,7 +866,7 @@ class Projector {
             return w;
           }
       }
-      bool solver_failed = false, beyond_limit = false;
+      bool solver_failed = false, beyond_limit = false, folded = false;
       double best_eta = std::numeric_limits<double>::infinity();
       Place<d> best_place;
       Crossing<d> best_crossing{};
@@ -873,6 +910,11 @@ class Projector {
             crossing = VertexCrossing{vtx, c.eta};
           }
           if (!(c.eta > eta + eta_slack) || c.eta > 1.0 + eta_slack || c.eta >= element_eta || place == cur) continue;
+          // beyond a focal point the continuation belongs to a folded sheet of the projection
+          if (!unfolded_at(place, c.mu)) {
+            folded = true;
+            continue;
+          }
           element_eta = c.eta;
           element_mu = c.mu;
           element_place = place;
@@ -899,9 +941,10 @@ class Projector {
           return w;
         }
         w.end = WalkEnd::failed;
-        w.reason = solver_failed  ? EdgeFailureReason::solver_failure
-                   : beyond_limit ? EdgeFailureReason::distance_limit
-                                  : EdgeFailureReason::discontinuity;
+        w.reason = folded          ? EdgeFailureReason::fold
+                   : solver_failed ? EdgeFailureReason::solver_failure
+                   : beyond_limit  ? EdgeFailureReason::distance_limit
+                                   : EdgeFailureReason::discontinuity;
         return w;
       }
       if (best_eta >= 1.0 - 1e-12) {
@@ -1072,6 +1115,7 @@ class Projector {
           const auto tv = s2_.edge_vertices(e);
           const CrossingCandidate c = solve_crossing(edge, s2_.vertex(tv[0]), s2_.vertex(tv[1]), calls, failures);
           if (!c.valid || !(c.eta > 1e-9 && c.eta < 1.0 - 1e-9)) continue;
+          if (!unfolded_at(edge_place(edge, c.lambda), c.mu)) continue;
           BoundaryEntry<2> entry;
           entry.place = edge_place(edge, c.lambda);
           entry.eta = c.eta;

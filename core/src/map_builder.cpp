@@ -884,6 +884,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     int votes = 0;
     struct PendingRegion {
       Index a, b, target;
+      int sign;  // orientation of the image: +1 if it runs along the S2 segment, -1 against, 0 degenerate
     };
     std::vector<std::vector<PendingRegion>> element_regions(n1);
     std::vector<std::vector<Slot>> element_slots(n1);
@@ -933,8 +934,9 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           const auto& nb = im.nodes[slots[j].node].image;
           const double ya = support_local<1>(s2, na, seg.target_edge)(0);
           const double yb = support_local<1>(s2, nb, seg.target_edge)(0);
+          const int sign = (yb > ya) - (yb < ya);
           votes += yb > ya ? 1 : -1;
-          element_regions[t].push_back({i, j, seg.target_edge});
+          element_regions[t].push_back({i, j, seg.target_edge, sign});
         }
         element_slots[t] = slots;
       }
@@ -954,6 +956,9 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     for (Index t = 0; t < n1; ++t) {
       const auto& sl = element_slots[t];
       auto& regs = element_regions[t];
+      // As for triangle surfaces, only pieces mapped with the map's orientation are regions: a
+      // piece against it (or onto a single point) is where the projection folds.
+      std::erase_if(regs, [&](const PendingRegion& r) { return r.sign != m.orientation; });
       std::sort(regs.begin(), regs.end(), [](const auto& x, const auto& y) { return x.a < y.a; });
       const Index base = static_cast<Index>(m.node_type.size());
       std::vector<char> left(sl.size(), 0), right(sl.size(), 0);

@@ -194,11 +194,48 @@ void project_steep_hill_in_domain(bool check_verify) {
 
 TEST(ProjectEdgeCases, SteepHillInDomainUnderAPlaneNeitherThrowsNorHangs) { project_steep_hill_in_domain(false); }
 
-// DISABLED: the folded part is not detected: regions on both sides of the fold map onto the same
-// part of S2 (verify: coverage/image_overlap, overlaps of ~1e-3 in local coordinates, i.e. real
-// ones). project() would have to reject preimages beyond a focal point of the direction field
-// (sign change of det d(p + mu nu)/d(xi, mu)); see the report of the issue-4 projection tests.
+// DISABLED: preimages beyond a focal point of the normals (the concave foot of the hill) are
+// rejected now (solvers/focal_points.hpp), but the convex flanks fan out without a focal point
+// and their rays reach the same part of S2 as the rays of the flat part around the hill: two
+// unfolded sheets overlap on S2 (verify: coverage/image_overlap, e.g. a whole S2 triangle mapped
+// into the flank and pieces of it into the flat part). Rejecting that needs a global test of
+// injectivity on S2, which project() does not have yet.
 TEST(ProjectEdgeCases, DISABLED_SteepHillInDomainUnderAPlaneGivesAValidMap) { project_steep_hill_in_domain(true); }
+
+TEST(ProjectEdgeCases, ARayBeyondTheFocalLineOfATroughIsAFold) {
+  // S1: a trough, part of the cylinder of radius 1 around the line x = 0, z = 1 seen from inside
+  // (angles -50..50 degrees, y in [0, 1]); its normals converge on that axis, the focal line of
+  // every ray. S2: the plane z = 1 + (y - 1/2) / 2, below the axis for y < 1/2 and above it for
+  // y > 1/2. Rays reach it before their focal point on the first half and beyond it on the
+  // second; without the focal-point rule the second half was mapped as well, with reversed
+  // orientation (verify: map/fold_over).
+  auto trough = transformed<2>(*grid(20, 10, -50.0 * degree, 50.0 * degree, 0.0, 1.0, 0.0, false, 0.1),
+                               [](const WorldPoint<2>& p) {
+                                 return WorldPoint<2>(std::sin(p.x()), p.y(), 1.0 - std::cos(p.x()));
+                               });
+  auto plane = transformed<2>(*grid(24, 12, -2.0, 2.0, -0.5, 1.5, 0.0, false, 0.15), [](const WorldPoint<2>& p) {
+    return WorldPoint<2>(p.x(), p.y(), 1.0 + 0.5 * (p.y() - 0.5));
+  });
+  for (const char* solver : {"newton", "ceres"}) {
+    SCOPED_TRACE(solver);
+    const auto r = project<2>(trough, plane, {.solver = solver});
+    expect_sound(r, *plane);
+    const auto folded = std::count_if(r.report.edges_not_inserted.begin(), r.report.edges_not_inserted.end(),
+                                      [](const auto& f) { return f.reason == EdgeFailureReason::fold; });
+    EXPECT_GT(folded, 0) << describe_failures(r.report);
+    // only the half before the focal line is mapped
+    // (near y = 1/2 the rays meet the plane close to their focal line, where the image of the
+    // trough shrinks to the axis; about 28 % of S1 is covered with either solver)
+    EXPECT_GT(r.measures.covered_domain, 0.2 * r.measures.domain);
+    EXPECT_LT(r.measures.covered_domain, 0.55 * r.measures.domain);
+    for (Index t = 0; t < trough->element_count(); ++t) {
+      if (r.map.regions_begin(t) == r.map.regions_end(t)) continue;
+      double y = 0.0;
+      for (int k = 0; k < 3; ++k) y += trough->corner(t, k).y() / 3.0;
+      EXPECT_LT(y, 0.5 + 0.1) << "element " << t << " lies beyond the focal line";
+    }
+  }
+}
 
 // ---- non-manifold S1 -------------------------------------------------------------------------------
 
@@ -328,11 +365,10 @@ void project_star_into_circle(bool check_verify) {
 
 TEST(ProjectEdgeCases, StarPolylineInsideACircleNeitherThrowsNorHangs) { project_star_into_circle(false); }
 
-// DISABLED: near the centre (three or more segments, averaged normal of no arm in particular) the
-// rays of neighbouring arms cross before they reach the circle, and the segments there are
-// mapped with reversed orientation (verify: map/fold_over on 6 regions). Same missing fold
-// detection as DISABLED_SteepHillInDomainUnderAPlaneGivesAValidMap.
-TEST(ProjectEdgeCases, DISABLED_StarPolylineInsideACircleGivesAValidMap) { project_star_into_circle(true); }
+// Near the centre (three or more segments, averaged normal of no arm in particular) the rays of
+// neighbouring segments cross before they reach the circle; those preimages lie beyond a focal
+// point and are rejected, so no segment is mapped with reversed orientation.
+TEST(ProjectEdgeCases, StarPolylineInsideACircleGivesAValidMap) { project_star_into_circle(true); }
 
 // ---- exact coincidences ------------------------------------------------------------------------------
 

@@ -443,3 +443,43 @@ TEST(MapBuilder, PolylineSegmentOverAnotherNodeIsRejectedOrDropped) {
   EXPECT_EQ(m.data().region_target[0], 1);
   EXPECT_NEAR(covered_measure(m).domain, 0.4, 1e-15);
 }
+
+// d = 1: a segment whose preimage runs against the map's orientation (the projection folded
+// there) is not a region, as for the faces of triangle surfaces: S1 is [0, 2], S2 three
+// separate segments, two entered along S1's direction and one (C-D) against it.
+TEST(MapBuilder, PolylinePiecesAgainstTheMapsOrientationAreNotRegions) {
+  auto s1 = std::make_shared<const Surface<1>>(std::vector<WorldPoint<1>>{{0, 0}, {1, 0}, {2, 0}},
+                                               std::vector<ElementCorners<1>>{{0, 1}, {1, 2}});
+  auto s2 = std::make_shared<const Surface<1>>(
+      std::vector<WorldPoint<1>>{{0, 1}, {1, 1}, {2, 1}, {3, 1}, {4, 1}, {5, 1}},
+      std::vector<ElementCorners<1>>{{0, 1}, {2, 3}, {4, 5}});
+  auto enter = [&](MapBuilder<1>& b) {
+    b.add_vertex_preimage(0, {0, LocalPoint<1>(0.1)});  // A-B forwards on element 0
+    b.add_vertex_preimage(1, {0, LocalPoint<1>(0.4)});
+    b.add_vertex_preimage(2, {0, LocalPoint<1>(0.9)});  // C-D backwards on element 0
+    b.add_vertex_preimage(3, {0, LocalPoint<1>(0.6)});
+    b.add_vertex_preimage(4, {1, LocalPoint<1>(0.2)});  // E-F forwards on element 1
+    b.add_vertex_preimage(5, {1, LocalPoint<1>(0.7)});
+    for (Index s = 0; s < 3; ++s) b.add_edge(s);
+  };
+  {
+    MapBuilder<1> b(s1, s2);
+    enter(b);
+    const PlMap<1> m = std::move(b).finalize();
+    EXPECT_EQ(m.data().orientation, 1);  // two pieces against one
+    ASSERT_EQ(m.region_count(), 2);
+    EXPECT_EQ(m.data().region_target[0], 0);
+    EXPECT_EQ(m.data().region_target[1], 2);
+    EXPECT_NEAR(covered_measure(m).domain, 0.3 + 0.5, 1e-15);
+    // the nodes of the left-out piece stay, without graph neighbours
+    for (Index n = m.nodes_begin(0); n < m.nodes_end(0); ++n)
+      if (m.data().node_target[n] == 2 || m.data().node_target[n] == 3) EXPECT_TRUE(m.neighbors(n).empty());
+  }
+  BuilderOptions reversed;
+  reversed.orientation = -1;
+  MapBuilder<1> b(s1, s2, reversed);
+  enter(b);
+  const PlMap<1> m = std::move(b).finalize();
+  ASSERT_EQ(m.region_count(), 1);
+  EXPECT_EQ(m.data().region_target[0], 1);
+}

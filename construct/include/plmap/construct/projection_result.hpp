@@ -32,6 +32,10 @@ enum class EdgeFailureReason {
   /// The preimage crosses another edge's preimage or runs through a node on S1: the projection
   /// is not injective there (it folds), so the edge was left out of the map.
   overlap,
+  /// The continuation lies beyond a focal point of the direction field (neighbouring rays meet
+  /// before they reach S2, e.g. under a concave part of S1): the projection is folded there
+  /// (solvers/focal_points.hpp).
+  fold,
 };
 
 std::string_view to_string(EdgeFailureReason reason);
