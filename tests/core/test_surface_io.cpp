@@ -20,8 +20,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// A directory of the running test's own: CTest runs the tests of this file as parallel
+/// processes, and one test's temporary files must not show up in another's directory listing.
 fs::path scratch_dir() {
-  const fs::path dir = fs::path(PLMAP_TEST_BINARY_DIR) / "surface_io_scratch";
+  const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::path(PLMAP_TEST_BINARY_DIR) / "surface_io_scratch" /
+                       (std::string(test->test_suite_name()) + "." + test->name());
   fs::create_directories(dir);
   return dir;
 }
