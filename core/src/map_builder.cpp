@@ -80,8 +80,8 @@ using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
     Kernel, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
 
-/// Per S1 element, the outcome of the triangulation step, kept between the two passes of
-/// finalize() (the second pass needs the map's orientation, which the first pass votes on).
+/// Per S1 element, the outcome of the triangulation step, which finalize() assembles into the
+/// flat arrays right away (one per thread, reused from element to element).
 struct ElementTriangulation {
   std::vector<Index> slots;  // builder node of each slot (node order of the element)
   struct Triangle {
@@ -101,6 +101,18 @@ struct ElementTriangulation {
   std::vector<int> edge_slots;                // along local edges 0, 1, 2, corners included
   std::array<int, 4> edge_slots_begin{};
   int centroid_triangle = -1;
+
+  /// Empties it for the next element, keeping the buffers.
+  void clear() {
+    slots.clear();
+    triangles.clear();
+    components.clear();
+    ring_begin.clear();
+    ring.clear();
+    edge_slots.clear();
+    edge_slots_begin = {};
+    centroid_triangle = -1;
+  }
 };
 
 }  // namespace
@@ -1012,7 +1024,6 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     }
   } else {
     // ---- triangle surfaces: a constrained triangulation per S1 element ------------------------
-    std::vector<ElementTriangulation> tri(n1);
     const std::array<LocalPoint<2>, 3> ref = {reference_corner<2>(0), reference_corner<2>(1),
                                               reference_corner<2>(2)};
     auto node_local = [&](Index node, Index t) -> LocalPoint<2> {
@@ -1038,6 +1049,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     // element boundary split at its nodes, and the graph edges), closed into triangles by the
     // face-based fast path or, where it declines, a constrained Delaunay triangulation.
     struct Workspace {
+      ElementTriangulation et;  // the element being closed, assembled right after
       Cdt cdt;
       detail::ElementClosure closure;
       detail::ClosureScratch scratch;
@@ -1113,7 +1125,8 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     };
 
     auto close_element = [&](Index t, Workspace& w) {
-      auto& et = tri[t];
+      auto& et = w.et;
+      et.clear();
       // slots: present corners, then edge nodes along edges 0, 1, 2, then interior nodes
       std::array<int, 3> corner_slot{-1, -1, -1};
       for (int k = 0; k < 3; ++k) {
@@ -1371,18 +1384,126 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     // An element whose graph has crossing edges (or an edge through another node) cannot be
     // closed. Unless asked to drop the S2 edges involved, that is an error; otherwise they are
     // dropped everywhere and the elements are closed again (each round removes at least one).
+    // ---- assemble the flat arrays ----------------------------------------------------------------
+    // Each element is assembled right after it is closed, into the part of its block of elements
+    // (local numbering); the parts are concatenated with their offsets added at the end. Only
+    // faces mapped with the map's orientation become regions, and that orientation is voted on
+    // by all elements: the pass assembles with a guess (the vote of a sample of elements, or the
+    // orientation given in the options) and runs again in the rare case the full vote differs.
+    struct AssemblyScratch {
+      std::vector<Index> triangle_region;
+      std::vector<std::pair<int, int>> region_sides;  // slot pairs that border a region
+    };
+    auto start_part = [](MapData<2>& part) {
+      part = MapData<2>{};
+      part.node_begin.assign(1, 0);
+      part.region_begin.assign(1, 0);
+      part.neighbor_begin.assign(1, 0);
+      part.edge_node_begin.assign(1, 0);
+    };
+    auto assemble_element = [&](Index t, const ElementTriangulation& et, MapData<2>& part, int orientation,
+                                AssemblyScratch& sc) {
+      const Index base = static_cast<Index>(part.node_type.size());
+      const Index rbase = static_cast<Index>(part.region_target.size());
+      const int ns = static_cast<int>(et.slots.size());
+      // regions: triangles of components with a target element and the map's orientation
+      sc.triangle_region.assign(et.triangles.size(), invalid_index);
+      sc.region_sides.clear();
+      Index nr = 0;
+      for (std::size_t f = 0; f < et.triangles.size(); ++f) {
+        const auto& tr = et.triangles[f];
+        const auto& comp = et.components[tr.component];
+        if (comp.target == invalid_index || comp.sign != orientation) continue;
+        sc.triangle_region[f] = rbase + nr++;
+        for (int i = 0; i < 3; ++i) {
+          const int a = tr.corners[i], b = tr.corners[(i + 1) % 3];
+          sc.region_sides.emplace_back(std::min(a, b), std::max(a, b));
+        }
+      }
+      std::sort(sc.region_sides.begin(), sc.region_sides.end());
+      for (int i = 0; i < ns; ++i) {
+        const auto& bn = im.nodes[et.slots[i]];
+        const LocalPoint<2> x = node_local(et.slots[i], t);
+        part.node_position.push_back(x);
+        int location = -1;
+        NodeType type = NodeType::interior;
+        if (bn.place.kind == PlaceKind::vertex) {
+          location = s1.local_corner(t, bn.place.index);
+          type = bn.kind == BuilderNodeKind::ghost ? NodeType::ghost : NodeType::corner;
+        } else if (bn.place.kind == PlaceKind::edge) {
+          for (int k = 0; k < 3; ++k)
+            if (s1.element_edge(t, k) == bn.place.index) location = k;
+          type = bn.kind == BuilderNodeKind::intersection ? NodeType::intersection : NodeType::touching;
+        }
+        part.node_type.push_back(type);
+        part.node_location.push_back(static_cast<std::int8_t>(location));
+        part.node_image.push_back({bn.image.element, support_local<2>(s2, bn.image, bn.image.element)});
+        part.node_target.push_back(bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target);
+        for (int r = et.ring_begin[i]; r < et.ring_begin[i + 1]; ++r) {
+          const int j = et.ring[r] >> 1;
+          const bool graph = (et.ring[r] & 1) != 0;
+          if (!graph && !std::binary_search(sc.region_sides.begin(), sc.region_sides.end(),
+                                            std::make_pair(std::min(i, j), std::max(i, j))))
+            continue;
+          part.neighbor.push_back(base + j);
+          part.neighbor_edge_kind.push_back(graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure);
+        }
+        part.neighbor_begin.push_back(static_cast<Index>(part.neighbor.size()));
+      }
+      part.node_begin.push_back(static_cast<Index>(part.node_type.size()));
+      for (int k = 0; k < 3; ++k) {
+        for (int q = et.edge_slots_begin[k]; q < et.edge_slots_begin[k + 1]; ++q)
+          part.edge_node.push_back(base + et.edge_slots[q]);
+        part.edge_node_begin.push_back(static_cast<Index>(part.edge_node.size()));
+      }
+      for (std::size_t f = 0; f < et.triangles.size(); ++f) {
+        if (sc.triangle_region[f] == invalid_index) continue;
+        const auto& tr = et.triangles[f];
+        const Index target = et.components[tr.component].target;
+        std::array<Index, 3> corners, neighbors;
+        std::array<LocalPoint<2>, 3> from, to;
+        for (int i = 0; i < 3; ++i) {
+          const int s = tr.corners[i];
+          corners[i] = base + s;
+          const int g = tr.neighbors[i];
+          neighbors[i] = g >= 0 ? sc.triangle_region[g] : invalid_index;
+          from[i] = part.node_position[base + s];
+          to[i] = support_local<2>(s2, im.nodes[et.slots[s]].image, target);
+        }
+        part.region_corners.push_back(corners);
+        part.region_neighbors.push_back(neighbors);
+        part.region_target.push_back(target);
+        part.region_map.push_back(affine_through<2>(from, to));
+      }
+      part.region_begin.push_back(static_cast<Index>(part.region_target.size()));
+      if (nr > 0) {
+        const int ct = et.centroid_triangle;
+        part.start_region.push_back((ct >= 0 && sc.triangle_region[ct] != invalid_index) ? sc.triangle_region[ct]
+                                                                                     : rbase);
+      } else {
+        part.start_region.push_back(invalid_index);
+      }
+    };
+
     const bool drop = im.options.drop_conflicting_edges;
     std::vector<Workspace> workspaces;
-    for (int round = 0;; ++round) {
+    std::vector<MapData<2>> parts(threads);
+    const Index block = (n1 + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
+    // Closes and assembles every element; returns the elements that could not be closed, in
+    // element order (blocks are in element order).
+    auto close_and_assemble = [&](int orientation) {
       workspaces.assign(threads, Workspace{});
       std::vector<std::vector<std::pair<Index, std::exception_ptr>>> failures(threads);
-      const Index block = (n1 + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
       run_blocks([&](unsigned k) {
         const Index begin = std::min<Index>(n1, static_cast<Index>(k) * block);
         const Index end = std::min<Index>(n1, begin + block);
+        start_part(parts[k]);
+        AssemblyScratch scratch;
         for (Index t = begin; t < end; ++t) {
           try {
             close_element(t, workspaces[k]);
+            // after a failure the part is discarded: only the failures are still collected
+            if (failures[k].empty()) assemble_element(t, workspaces[k].et, parts[k], orientation, scratch);
           } catch (...) {
             failures[k].emplace_back(t, std::current_exception());
             if (!drop) return;
@@ -1391,8 +1512,26 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       });
       std::vector<std::pair<Index, std::exception_ptr>> failed;
       for (auto& list : failures) failed.insert(failed.end(), list.begin(), list.end());
+      return failed;
+    };
+    // The orientation guess: the vote of up to 64 elements spread over S1.
+    auto sampled_orientation = [&] {
+      Workspace w;
+      const Index stride = std::max<Index>(1, n1 / 64);
+      for (Index t = 0; t < n1; t += stride) {
+        try {
+          close_element(t, w);
+        } catch (...) {
+          // an element that cannot be closed does not vote; the full pass reports it
+        }
+      }
+      return w.votes >= 0 ? 1 : -1;
+    };
+    const int guess = im.options.orientation != 0 ? im.options.orientation : sampled_orientation();
+    for (int round = 0;; ++round) {
+      const auto failed = close_and_assemble(guess);
       if (failed.empty()) break;
-      // blocks are in element order: failed.front() is the smallest element that failed
+      // failed.front() is the smallest element that failed
       if (!drop || round == 16) std::rethrow_exception(failed.front().second);
       bool any = false;
       for (const auto& [t, error] : failed)
@@ -1408,142 +1547,14 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         }
       if (!any) std::rethrow_exception(failed.front().second);
       bucket();
-      tri.assign(n1, ElementTriangulation{});
     }
     long long votes = 0;
     for (const auto& w : workspaces) votes += w.votes;
-
     m.orientation = im.options.orientation != 0 ? im.options.orientation : (votes >= 0 ? 1 : -1);
-
-    // ---- assemble the flat arrays ----------------------------------------------------------------
-    // Blocks of elements are assembled into parts with local numbering, in parallel, and the
-    // parts are then concatenated with their offsets added.
-    const int orientation = m.orientation;
-    auto assemble_block = [&](Index t_begin, Index t_end, MapData<2>& part) {
-      part.node_begin.assign(1, 0);
-      part.region_begin.assign(1, 0);
-      part.neighbor_begin.assign(1, 0);
-      part.edge_node_begin.assign(1, 0);
-      {
-        std::size_t nodes = 0, rings = 0, triangles = 0, edge_entries = 0;
-        for (Index t = t_begin; t < t_end; ++t) {
-          nodes += tri[t].slots.size();
-          rings += tri[t].ring.size();
-          triangles += tri[t].triangles.size();
-          edge_entries += tri[t].edge_slots.size();
-        }
-        part.node_position.reserve(nodes);
-        part.node_type.reserve(nodes);
-        part.node_location.reserve(nodes);
-        part.node_image.reserve(nodes);
-        part.node_target.reserve(nodes);
-        part.neighbor_begin.reserve(nodes + 1);
-        part.neighbor.reserve(rings);
-        part.neighbor_edge_kind.reserve(rings);
-        part.region_corners.reserve(triangles);
-        part.region_neighbors.reserve(triangles);
-        part.region_target.reserve(triangles);
-        part.region_map.reserve(triangles);
-        part.edge_node_begin.reserve(3 * static_cast<std::size_t>(t_end - t_begin) + 1);
-        part.edge_node.reserve(edge_entries);
-      }
-      std::vector<Index> triangle_region;
-      std::vector<std::pair<int, int>> region_sides;  // slot pairs that border a region
-      for (Index t = t_begin; t < t_end; ++t) {
-        auto& et = tri[t];
-        const Index base = static_cast<Index>(part.node_type.size());
-        const Index rbase = static_cast<Index>(part.region_target.size());
-        const int ns = static_cast<int>(et.slots.size());
-        // regions: triangles of components with a target element and the map's orientation
-        triangle_region.assign(et.triangles.size(), invalid_index);
-        region_sides.clear();
-        Index nr = 0;
-        for (std::size_t f = 0; f < et.triangles.size(); ++f) {
-          const auto& tr = et.triangles[f];
-          const auto& comp = et.components[tr.component];
-          if (comp.target == invalid_index || comp.sign != orientation) continue;
-          triangle_region[f] = rbase + nr++;
-          for (int i = 0; i < 3; ++i) {
-            const int a = tr.corners[i], b = tr.corners[(i + 1) % 3];
-            region_sides.emplace_back(std::min(a, b), std::max(a, b));
-          }
-        }
-        std::sort(region_sides.begin(), region_sides.end());
-        for (int i = 0; i < ns; ++i) {
-          const auto& bn = im.nodes[et.slots[i]];
-          const LocalPoint<2> x = node_local(et.slots[i], t);
-          part.node_position.push_back(x);
-          int location = -1;
-          NodeType type = NodeType::interior;
-          if (bn.place.kind == PlaceKind::vertex) {
-            location = s1.local_corner(t, bn.place.index);
-            type = bn.kind == BuilderNodeKind::ghost ? NodeType::ghost : NodeType::corner;
-          } else if (bn.place.kind == PlaceKind::edge) {
-            for (int k = 0; k < 3; ++k)
-              if (s1.element_edge(t, k) == bn.place.index) location = k;
-            type = bn.kind == BuilderNodeKind::intersection ? NodeType::intersection : NodeType::touching;
-          }
-          part.node_type.push_back(type);
-          part.node_location.push_back(static_cast<std::int8_t>(location));
-          part.node_image.push_back({bn.image.element, support_local<2>(s2, bn.image, bn.image.element)});
-          part.node_target.push_back(bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target);
-          for (int r = et.ring_begin[i]; r < et.ring_begin[i + 1]; ++r) {
-            const int j = et.ring[r] >> 1;
-            const bool graph = (et.ring[r] & 1) != 0;
-            if (!graph && !std::binary_search(region_sides.begin(), region_sides.end(),
-                                              std::make_pair(std::min(i, j), std::max(i, j))))
-              continue;
-            part.neighbor.push_back(base + j);
-            part.neighbor_edge_kind.push_back(graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure);
-          }
-          part.neighbor_begin.push_back(static_cast<Index>(part.neighbor.size()));
-        }
-        part.node_begin.push_back(static_cast<Index>(part.node_type.size()));
-        for (int k = 0; k < 3; ++k) {
-          for (int q = et.edge_slots_begin[k]; q < et.edge_slots_begin[k + 1]; ++q)
-            part.edge_node.push_back(base + et.edge_slots[q]);
-          part.edge_node_begin.push_back(static_cast<Index>(part.edge_node.size()));
-        }
-        for (std::size_t f = 0; f < et.triangles.size(); ++f) {
-          if (triangle_region[f] == invalid_index) continue;
-          const auto& tr = et.triangles[f];
-          const Index target = et.components[tr.component].target;
-          std::array<Index, 3> corners, neighbors;
-          std::array<LocalPoint<2>, 3> from, to;
-          for (int i = 0; i < 3; ++i) {
-            const int s = tr.corners[i];
-            corners[i] = base + s;
-            const int g = tr.neighbors[i];
-            neighbors[i] = g >= 0 ? triangle_region[g] : invalid_index;
-            from[i] = part.node_position[base + s];
-            to[i] = support_local<2>(s2, im.nodes[et.slots[s]].image, target);
-          }
-          part.region_corners.push_back(corners);
-          part.region_neighbors.push_back(neighbors);
-          part.region_target.push_back(target);
-          part.region_map.push_back(affine_through<2>(from, to));
-        }
-        part.region_begin.push_back(static_cast<Index>(part.region_target.size()));
-        if (nr > 0) {
-          const int ct = et.centroid_triangle;
-          part.start_region.push_back((ct >= 0 && triangle_region[ct] != invalid_index) ? triangle_region[ct]
-                                                                                       : rbase);
-        } else {
-          part.start_region.push_back(invalid_index);
-        }
-        et = ElementTriangulation{};  // release memory early
-      }
-    };
-    const Index block_size = (n1 + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
-    std::vector<MapData<2>> parts(threads);
-    auto block_range = [&](unsigned k) {
-      const Index begin = std::min<Index>(n1, static_cast<Index>(k) * block_size);
-      return std::make_pair(begin, std::min<Index>(n1, begin + block_size));
-    };
-    run_blocks([&](unsigned k) {
-      const auto [begin, end] = block_range(k);
-      assemble_block(begin, end, parts[k]);
-    });
+    if (m.orientation != guess) {
+      const auto failed = close_and_assemble(m.orientation);  // the same graphs: they close again
+      if (!failed.empty()) std::rethrow_exception(failed.front().second);
+    }
     concatenate_parts(parts, n1, m, run_blocks);
   }
   shrink_to_fit(m);

@@ -287,11 +287,13 @@ int run_dimension(const ExperimentConfig& config, const RunSpec& run) {
 /// The swept values of a run, for progress messages: "evaluate.locator=brute-force, ...".
 std::string describe(const ExperimentConfig& config, const RunSpec& run) {
   std::string text = fmt::format("input {}", config.inputs[run.input_index].name);
+  std::set<std::string> shown;  // axes of several inputs share a column ("inputs.a.size", "inputs.b.size")
   for (const auto& axis : config.sweep) {
     const std::string column = axis.target == SweepAxis::Target::input
                                    ? "input." + axis.parameter
                                    : config.pipeline[axis.index].name + "." + axis.parameter;
-    if (run.columns.contains(column)) text += fmt::format(", {}={}", column, run.columns[column].dump());
+    if (run.columns.contains(column) && shown.insert(column).second)
+      text += fmt::format(", {}={}", column, run.columns[column].dump());
   }
   return text;
 }
