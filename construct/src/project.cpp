@@ -500,22 +500,21 @@ class Projector {
   /// The same for a ray from an S1 vertex or edge point: it must be unfolded in every element
   /// that contains the point, since the regions on all of them end there.
   bool unfolded_at(const Place<d>& p, double mu) const {
-    std::vector<Index> els;
-    elements_of(p, els);
-    for (Index t : els) {
-      LocalPoint<d> xi = p.local;
-      if (p.kind == PlaceKind::vertex) {
-        xi = local_of_corner(s1_, t, p.index);
-      } else if constexpr (d == 2) {
-        if (p.kind == PlaceKind::edge) {
-          const auto ev = s1_.edge_vertices(p.index);
-          Barycentric<2> b = Barycentric<2>::Zero();
-          b(s1_.local_corner(t, ev[0])) = 1.0 - p.t;
-          b(s1_.local_corner(t, ev[1])) = p.t;
-          xi = local_from_barycentric<2>(b);
-        }
+    if (p.kind == PlaceKind::element) return unfolded_in(p.index, p.local, mu);
+    if (p.kind == PlaceKind::vertex) {
+      for (Index t : s1_.vertex_elements(p.index))
+        if (!unfolded_in(t, local_of_corner(s1_, t, p.index), mu)) return false;
+      return true;
+    }
+    if constexpr (d == 2) {
+      const auto ev = s1_.edge_vertices(p.index);
+      for (const auto& incidence : s1_.edge_elements(p.index)) {
+        const Index t = incidence.element;
+        Barycentric<2> b = Barycentric<2>::Zero();
+        b(s1_.local_corner(t, ev[0])) = 1.0 - p.t;
+        b(s1_.local_corner(t, ev[1])) = p.t;
+        if (!unfolded_in(t, local_from_barycentric<2>(b), mu)) return false;
       }
-      if (!unfolded_in(t, xi, mu)) return false;
     }
     return true;
   }

@@ -1,6 +1,7 @@
 // The peer_project step: one tool's projection of a contact pair, run by experiments/peers'
 // benchmark in a child process, recorded as a row like any other step's.
 
+#include <plmap/core/errors.hpp>
 #include <plmap/experiment/config.hpp>
 #include <plmap/experiment/runner.hpp>
 #include <plmap/experiment/schema.hpp>
@@ -9,6 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -93,6 +95,20 @@ TEST_F(PeerProject, AChildThatRunsTooLongIsKilledAndTheRunSaysSo) {
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_FALSE(rows[0].metrics["peer_project.ok"].get<bool>());
   EXPECT_EQ(rows[0].metrics["peer_project.error"], "timed out after 1 s");
+}
+
+TEST_F(PeerProject, AMissingBenchmarkIsAnErrorThatSaysWhatToBuild) {
+  const auto config = config_with("[[inputs]]\nkind = \"contact-circles\"\nsegments = 10\n", "tool = \"plmap\"\n");
+  ASSERT_EQ(setenv("PLMAP_PEER_BENCH", "/nonexistent/bench_projection_peers", 1), 0);
+  try {
+    (void)run_all(config, fresh_directory("peer_project_missing_cache"));
+    ADD_FAILURE() << "ran without the benchmark";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/bench_projection_peers does not exist"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("PLMAP_PEER_BENCH"), std::string::npos) << e.what();
+  }
+  unsetenv("PLMAP_PEER_BENCH");
 }
 
 TEST_F(PeerProject, ContactMergeAgreesWithPlmapOnThePiecesOfAPlanePair) {

@@ -228,6 +228,10 @@ class Pipeline {
                                      std::to_string(in.integer("seed")), "--threads",
                                      std::to_string(tool == "plmap" ? p.integer("threads") : 1)};
     if (argv[0].empty()) throw Error("peer_project: this build has no experiments/peers benchmark");
+    if (std::error_code ec; !std::filesystem::is_regular_file(argv[0], ec))
+      throw Error(fmt::format("peer_project: the benchmark {} does not exist (build the target "
+                              "bench_projection_peers, or set PLMAP_PEER_BENCH)",
+                              argv[0]));
     if (input.kind == "contact-circles") {
       argv.insert(argv.end(), {"--case", "circle", "--size", std::to_string(in.integer("segments"))});
     } else {
