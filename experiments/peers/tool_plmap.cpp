@@ -1,5 +1,6 @@
 // plmap's normal projection (construct/project.hpp) as one tool of the peer benchmark.
 
+#include "plain_mesh_surface.hpp"
 #include "tools.hpp"
 
 #include <plmap/construct/project.hpp>
@@ -8,29 +9,6 @@
 #include <memory>
 
 namespace plmap::peers {
-
-namespace {
-
-template <int d>
-std::shared_ptr<const Surface<d>> to_surface(const PlainMesh<d>& mesh) {
-  std::vector<WorldPoint<d>> points;
-  points.reserve(mesh.points.size());
-  for (const auto& p : mesh.points) {
-    WorldPoint<d> x;
-    for (int k = 0; k <= d; ++k) x(k) = p[k];
-    points.push_back(x);
-  }
-  std::vector<ElementCorners<d>> cells;
-  cells.reserve(mesh.cells.size());
-  for (const auto& c : mesh.cells) {
-    ElementCorners<d> corners;
-    for (int k = 0; k <= d; ++k) corners[k] = static_cast<Index>(c[k]);
-    cells.push_back(corners);
-  }
-  return std::make_shared<const Surface<d>>(std::move(points), std::move(cells));
-}
-
-}  // namespace
 
 template <int d>
 ToolOutcome run_plmap(const SurfacePair<d>& input, unsigned threads, Measurement& clock) {

@@ -10,6 +10,7 @@
 
 #ifdef PLMAP_EXPERIMENT_PEER_BENCH
 #include "peers/inputs.hpp"
+#include "peers/plain_mesh_surface.hpp"
 #endif
 
 #include <fmt/format.h>
@@ -30,27 +31,6 @@ Surface<2> shaped(const Surface<2>& planar, const ParameterSet& p) {
   for (auto& x : vertices) x(2) += p.real("z_offset");
   return Surface<2>(std::move(vertices), s.elements());
 }
-
-#ifdef PLMAP_EXPERIMENT_PEER_BENCH
-template <int d>
-Surface<d> from_plain(const peers::PlainMesh<d>& mesh) {
-  std::vector<WorldPoint<d>> vertices;
-  vertices.reserve(mesh.points.size());
-  for (const auto& p : mesh.points) {
-    WorldPoint<d> x;
-    for (int k = 0; k <= d; ++k) x(k) = p[k];
-    vertices.push_back(x);
-  }
-  std::vector<ElementCorners<d>> elements;
-  elements.reserve(mesh.cells.size());
-  for (const auto& c : mesh.cells) {
-    ElementCorners<d> e;
-    for (int k = 0; k <= d; ++k) e[k] = Index(c[k]);
-    elements.push_back(e);
-  }
-  return Surface<d>(std::move(vertices), std::move(elements));
-}
-#endif
 
 }  // namespace
 
@@ -101,7 +81,7 @@ std::shared_ptr<const Surface<d>> InputCache::surface(int index, const Parameter
       if (which == "plane") pair = peers::facing_planes(long(p.integer("size")), seed);
       else if (which == "sphere") pair = peers::concentric_spheres(int(p.integer("size")), seed);
       else pair = peers::femur_pair(cgal_mesh("femur").string(), which == "femur", seed);
-      s = std::make_shared<const Surface<2>>(from_plain<2>(pair.s1));
+      s = peers::to_surface<2>(pair.s1);
 #else
       throw Error("contact-pair inputs need experiments/peers, which this build lacks");
 #endif
@@ -118,7 +98,7 @@ std::shared_ptr<const Surface<d>> InputCache::surface(int index, const Parameter
     else if (input.kind == "contact-circles") {
 #ifdef PLMAP_EXPERIMENT_PEER_BENCH
       const auto pair = peers::concentric_circles(long(p.integer("segments")), std::uint64_t(p.integer("seed")));
-      s = std::make_shared<const Surface<1>>(from_plain<1>(pair.s1));
+      s = peers::to_surface<1>(pair.s1);
 #else
       throw Error("contact-circles inputs need experiments/peers, which this build lacks");
 #endif
