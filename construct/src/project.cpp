@@ -344,6 +344,7 @@ class Projector {
     FinalizeReport dropped;
     PlMap<d> map = std::move(builder).finalize(&dropped);
     report.seconds.finalize = seconds_since(t0);
+    report.reversed_faces = dropped.reversed_faces;
     for (std::size_t i = 0; i < dropped.dropped_edges.size(); ++i) {
       const Index e = dropped.dropped_edges[i];
       if (counted[e].first) --report.edges_inserted;

@@ -970,7 +970,8 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       auto& regs = element_regions[t];
       // As for triangle surfaces, only pieces mapped with the map's orientation are regions: a
       // piece against it (or onto a single point) is where the projection folds.
-      std::erase_if(regs, [&](const PendingRegion& r) { return r.sign != m.orientation; });
+      const auto reversed = std::erase_if(regs, [&](const PendingRegion& r) { return r.sign != m.orientation; });
+      if (report) report->reversed_faces += static_cast<Index>(reversed);
       std::sort(regs.begin(), regs.end(), [](const auto& x, const auto& y) { return x.a < y.a; });
       const Index base = static_cast<Index>(m.node_type.size());
       std::vector<char> left(sl.size(), 0), right(sl.size(), 0);
@@ -1393,6 +1394,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     struct AssemblyScratch {
       std::vector<Index> triangle_region;
       std::vector<std::pair<int, int>> region_sides;  // slot pairs that border a region
+      Index reversed_faces = 0;  // faces with a target element but the other orientation
     };
     auto start_part = [](MapData<2>& part) {
       part = MapData<2>{};
@@ -1409,6 +1411,8 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       // regions: triangles of components with a target element and the map's orientation
       sc.triangle_region.assign(et.triangles.size(), invalid_index);
       sc.region_sides.clear();
+      for (const auto& comp : et.components)
+        if (comp.target != invalid_index && comp.sign != orientation) ++sc.reversed_faces;
       Index nr = 0;
       for (std::size_t f = 0; f < et.triangles.size(); ++f) {
         const auto& tr = et.triangles[f];
@@ -1491,6 +1495,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     const Index block = (n1 + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
     // Closes and assembles every element; returns the elements that could not be closed, in
     // element order (blocks are in element order).
+    std::vector<Index> reversed_faces(threads, 0);
     auto close_and_assemble = [&](int orientation) {
       workspaces.assign(threads, Workspace{});
       std::vector<std::vector<std::pair<Index, std::exception_ptr>>> failures(threads);
@@ -1506,9 +1511,10 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
             if (failures[k].empty()) assemble_element(t, workspaces[k].et, parts[k], orientation, scratch);
           } catch (...) {
             failures[k].emplace_back(t, std::current_exception());
-            if (!drop) return;
+            if (!drop) return;  // finalize throws: the part and its count are not used
           }
         }
+        reversed_faces[k] = scratch.reversed_faces;
       });
       std::vector<std::pair<Index, std::exception_ptr>> failed;
       for (auto& list : failures) failed.insert(failed.end(), list.begin(), list.end());
@@ -1555,6 +1561,8 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       const auto failed = close_and_assemble(m.orientation);  // the same graphs: they close again
       if (!failed.empty()) std::rethrow_exception(failed.front().second);
     }
+    if (report)
+      for (Index r : reversed_faces) report->reversed_faces += r;
     concatenate_parts(parts, n1, m, run_blocks);
   }
   shrink_to_fit(m);

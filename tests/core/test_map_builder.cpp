@@ -465,15 +465,20 @@ TEST(MapBuilder, PolylinePiecesAgainstTheMapsOrientationAreNotRegions) {
   {
     MapBuilder<1> b(s1, s2);
     enter(b);
-    const PlMap<1> m = std::move(b).finalize();
+    FinalizeReport report;
+    const PlMap<1> m = std::move(b).finalize(&report);
+    EXPECT_EQ(report.reversed_faces, 1);
     EXPECT_EQ(m.data().orientation, 1);  // two pieces against one
     ASSERT_EQ(m.region_count(), 2);
     EXPECT_EQ(m.data().region_target[0], 0);
     EXPECT_EQ(m.data().region_target[1], 2);
     EXPECT_NEAR(covered_measure(m).domain, 0.3 + 0.5, 1e-15);
     // the nodes of the left-out piece stay, without graph neighbours
-    for (Index n = m.nodes_begin(0); n < m.nodes_end(0); ++n)
-      if (m.data().node_target[n] == 2 || m.data().node_target[n] == 3) EXPECT_TRUE(m.neighbors(n).empty());
+    for (Index n = m.nodes_begin(0); n < m.nodes_end(0); ++n) {
+      if (m.data().node_target[n] == 2 || m.data().node_target[n] == 3) {
+        EXPECT_TRUE(m.neighbors(n).empty());
+      }
+    }
   }
   BuilderOptions reversed;
   reversed.orientation = -1;
@@ -482,4 +487,37 @@ TEST(MapBuilder, PolylinePiecesAgainstTheMapsOrientationAreNotRegions) {
   const PlMap<1> m = std::move(b).finalize();
   ASSERT_EQ(m.region_count(), 1);
   EXPECT_EQ(m.data().region_target[0], 1);
+}
+
+// d = 2: three separate S2 triangles drawn inside the two triangles of the unit square, one of
+// them with its corners in clockwise order. Its face maps with the orientation opposite to the
+// other two and is not a region; the report counts it.
+TEST(MapBuilder, AFaceMappedAgainstTheMapsOrientationIsNotARegionAndIsCounted) {
+  auto s1 = square_diag02();  // triangles (0, 1, 2) below the diagonal, (0, 2, 3) above
+  std::vector<WorldPoint<2>> v;
+  std::vector<ElementCorners<2>> e;
+  for (int k = 0; k < 3; ++k) {
+    v.insert(v.end(), {P(3 * k, 0), P(3 * k + 1, 0), P(3 * k, 1)});
+    e.push_back({3 * k, 3 * k + 1, 3 * k + 2});
+  }
+  auto s2 = make_surface(std::move(v), std::move(e));
+  // element 0: local (x, y) with x + y < 1; triangle 0 counter-clockwise, triangle 1 clockwise
+  // in element 0, triangle 2 counter-clockwise in element 1
+  const std::array<std::array<LocalPoint<2>, 3>, 3> at = {{
+      {LocalPoint<2>(0.1, 0.1), LocalPoint<2>(0.3, 0.1), LocalPoint<2>(0.1, 0.3)},
+      {LocalPoint<2>(0.5, 0.1), LocalPoint<2>(0.5, 0.3), LocalPoint<2>(0.7, 0.1)},
+      {LocalPoint<2>(0.1, 0.1), LocalPoint<2>(0.3, 0.1), LocalPoint<2>(0.1, 0.3)},
+  }};
+  MapBuilder<2> b(s1, s2);
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) b.add_vertex_preimage(3 * k + i, {k == 2 ? 1 : 0, at[k][i]});
+  for (Index t = 0; t < 3; ++t) b.add_target_element(t);
+  FinalizeReport report;
+  const PlMap<2> m = std::move(b).finalize(&report);
+  EXPECT_EQ(m.data().orientation, 1);
+  EXPECT_EQ(report.reversed_faces, 1);
+  ASSERT_EQ(m.region_count(), 2);
+  EXPECT_EQ(m.data().region_target[0], 0);
+  EXPECT_EQ(m.data().region_target[1], 2);
+  EXPECT_NEAR(covered_measure(m).target, 1.0, 1e-15);  // two of the three S2 triangles
 }

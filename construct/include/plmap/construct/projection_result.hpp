@@ -84,6 +84,9 @@ struct ProjectionReport {
   Index edge_pieces = 0;            ///< pieces entered (ending at S1's boundary)
   Index boundary_entries = 0;       ///< points where S2 edges enter S1 across its boundary
   Index edges_outside = 0;          ///< edges with no part over S1 (not a failure)
+  /// Faces of the graph left out of D because they map with the orientation opposite to the
+  /// map's (FinalizeReport::reversed_faces): a fold that no edge failure reports.
+  Index reversed_faces = 0;
   std::vector<EdgeNotInserted<d>> edges_not_inserted;
   /// Solver calls and how many did not converge (eq. 3 and eq. 4 together).
   long long solver_calls = 0;

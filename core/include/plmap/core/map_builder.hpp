@@ -56,6 +56,10 @@ struct BuilderOptions {
 struct FinalizeReport {
   std::vector<Index> dropped_edges;         ///< S2 edges dropped (drop_conflicting_edges)
   std::vector<Index> dropped_edge_element;  ///< for each, an S1 element where it conflicted
+  /// Faces of the graph (d = 1: pieces between two nodes) that map into one S2 element but
+  /// with the orientation opposite to the map's, or onto a degenerate image: they are not
+  /// regions, so D has a hole there (the projection is folded).
+  Index reversed_faces = 0;
 };
 
 /// Where the preimage of an S2 edge crosses an S1 edge (d = 2).
