@@ -183,3 +183,43 @@ TEST(SolverKind, NamesRoundTripAndUnknownNamesThrow) {
   });
   EXPECT_GE(iterations, 1);
 }
+
+namespace {
+/// Eq. (4) with two real roots: the S1 edge from (0,0,0) to (1,0,0) with directions (0,-1,1) and
+/// (0,1,1) sweeps the saddle y = z (2x - 1); the S2 edge q(eta) = (eta, 0.3, eta) meets it where
+/// 2 eta^2 - eta - 0.3 = 0, at eta = (1 + sqrt(3.4)) / 4 ~ 0.711 (on both edges) and at
+/// eta = (1 - sqrt(3.4)) / 4 ~ -0.211 (off both).
+EdgeCrossingSystem saddle_crossing() {
+  EdgeCrossingSystem s;
+  s.edge = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0)};
+  s.directions = {Eigen::Vector3d(0, -1, 1), Eigen::Vector3d(0, 1, 1)};
+  s.target = {Eigen::Vector3d(0, 0.3, 0), Eigen::Vector3d(1, 0.3, 1)};
+  return s;
+}
+}  // namespace
+
+TEST(EdgeCrossingSystem, TheStartIsTheRootOnBothEdges) {
+  const auto s = saddle_crossing();
+  const double root = (1.0 + std::sqrt(3.4)) / 4.0;
+  const auto start = s.root_on_the_edges();
+  ASSERT_TRUE(start.has_value());
+  EXPECT_NEAR((*start)(0), root, 1e-12);  // lambda = x
+  EXPECT_NEAR((*start)(1), root, 1e-12);  // mu = z
+  EXPECT_NEAR((*start)(2), root, 1e-12);  // eta
+  EXPECT_LE(s.residual(*start).norm(), 1e-12);
+  EXPECT_EQ(s.initial_guess(), *start);
+  // an S2 edge that misses the S1 edge's sweep has no such root: the frozen-midpoint start
+  EdgeCrossingSystem apart = s;
+  apart.target = {Eigen::Vector3d(3, 0.3, 0), Eigen::Vector3d(4, 0.3, 1)};
+  EXPECT_FALSE(apart.root_on_the_edges().has_value());
+  EXPECT_EQ(apart.initial_guess(), apart.frozen_midpoint_guess());
+}
+
+TYPED_TEST(ProjectionSolverTest, BothSolversFindTheCrossingOnTheEdgesOfAQuadraticSystem) {
+  const TypeParam solver;
+  const auto s = saddle_crossing();
+  const auto r = solver.solve(s, s.initial_guess());
+  ASSERT_TRUE(r.converged);
+  const double root = (1.0 + std::sqrt(3.4)) / 4.0;
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(r.x(k), root, 1e-10) << k;
+}

@@ -22,11 +22,13 @@
 #include <plmap/core/types.hpp>
 #include <plmap/solvers/nonlinear_system.hpp>
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 namespace plmap {
 
@@ -117,8 +119,61 @@ struct EdgeCrossingSystem {
 
   double scale() const { return std::max((edge[1] - edge[0]).norm(), (target[1] - target[0]).norm()); }
 
-  /// Start value: the solution with nu frozen at the edge midpoint; (1/2, 0, 1/2) if singular.
+  /// Start value. Eq. (4) reduces to a quadratic in lambda: eliminating eta (cross with
+  /// g = q_1 - q_0) leaves A + lambda B + mu (C + lambda D) = 0 for vectors normal to g, so
+  /// A + lambda B and C + lambda D are parallel, a quadratic condition on lambda. With a curved
+  /// direction field both roots can be real, and an iterative solver started elsewhere may
+  /// reach the one far outside the S1 edge while the crossing lies on it. So the start is the
+  /// root on the S1 edge and the S2 edge (the one with the smaller |mu| if both are), from which
+  /// every solver converges to the same crossing; without such a root, the solution with nu
+  /// frozen at the edge midpoint (exact for constant fields), or (1/2, 0, 1/2) if singular.
   Vector initial_guess() const {
+    if (const auto root = root_on_the_edges()) return *root;
+    return frozen_midpoint_guess();
+  }
+
+  /// The closed-form solution of the reduced quadratic with lambda and eta within [0, 1]
+  /// (slack 1e-6), if there is one.
+  std::optional<Vector> root_on_the_edges() const {
+    const Eigen::Vector3d e = edge[1] - edge[0], f = directions[1] - directions[0];
+    const Eigen::Vector3d g = target[1] - target[0], w = edge[0] - target[0];
+    const double gg = g.squaredNorm();
+    if (!(gg > 0.0)) return std::nullopt;
+    const Eigen::Vector3d a = w.cross(g), b = e.cross(g), c = directions[0].cross(g), dv = f.cross(g);
+    // ((a + l b) x (c + l dv)) . g = k0 + k1 l + k2 l^2
+    const double k0 = a.cross(c).dot(g), k1 = (a.cross(dv) + b.cross(c)).dot(g), k2 = b.cross(dv).dot(g);
+    std::array<double, 2> lambdas{};
+    int count = 0;
+    const double size = std::max({std::abs(k0), std::abs(k1), std::abs(k2)});
+    if (!(size > 0.0) || !std::isfinite(size)) return std::nullopt;
+    if (std::abs(k2) <= 1e-12 * size) {
+      if (std::abs(k1) > 1e-12 * size) lambdas[count++] = -k0 / k1;
+    } else {
+      const double disc = k1 * k1 - 4.0 * k2 * k0;
+      if (disc < 0.0) return std::nullopt;
+      const double q = -0.5 * (k1 + std::copysign(std::sqrt(disc), k1));  // no cancellation
+      lambdas[count++] = q / k2;
+      if (q != 0.0) lambdas[count++] = k0 / q;
+    }
+    std::optional<Vector> best;
+    const double slack = 1e-6;
+    for (int i = 0; i < count; ++i) {
+      const double l = lambdas[i];
+      if (!(l >= -slack && l <= 1.0 + slack)) continue;
+      const Eigen::Vector3d along = c + l * dv, offset = a + l * b;
+      const double nn = along.squaredNorm();
+      if (!(nn > 0.0)) continue;
+      const double mu = -offset.dot(along) / nn;
+      const double eta = (w + l * e + mu * (directions[0] + l * f)).dot(g) / gg;
+      if (!(eta >= -slack && eta <= 1.0 + slack)) continue;
+      if (!best || std::abs(mu) < std::abs((*best)(1))) best = Vector(l, mu, eta);
+    }
+    return best;
+  }
+
+  /// The solution with nu frozen at the edge midpoint (exact for constant direction fields);
+  /// (1/2, 0, 1/2) if that is singular.
+  Vector frozen_midpoint_guess() const {
     Jacobian a;
     a.col(0) = edge[1] - edge[0];
     a.col(1) = 0.5 * (directions[0] + directions[1]);
