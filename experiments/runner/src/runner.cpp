@@ -250,10 +250,12 @@ class Pipeline {
     const auto result = detail::run_process(argv, {}, p.real("timeout_seconds"));
     if (result.timed_out) return failed(fmt::format("timed out after {} s", p.real("timeout_seconds")));
     // The benchmark prints one JSON line last; anything before it is the peers' chatter.
-    const auto end = result.output.find_last_not_of("\n");
-    const auto begin = end == std::string::npos ? std::string::npos : result.output.rfind('\n', end);
-    const std::string last =
-        end == std::string::npos ? "" : result.output.substr(begin == std::string::npos ? 0 : begin + 1, end + 1);
+    std::string last;
+    if (const auto end = result.output.find_last_not_of("\n"); end != std::string::npos) {
+      const auto newline = result.output.rfind('\n', end);
+      const std::size_t start = newline == std::string::npos ? 0 : newline + 1;
+      last = result.output.substr(start, end + 1 - start);
+    }
     if (result.exit_code != 0 || last.empty() || last.front() != '{') {
       std::string why = result.errors.empty() ? result.output : result.errors;
       while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
@@ -261,16 +263,21 @@ class Pipeline {
         throw Error(fmt::format("peer_project: {} ({} was built without that peer's Debian package)", why, argv[0]));
       return failed(fmt::format("{} exited with {}: {}", argv[0], result.exit_code, why));
     }
-    const Json line = Json::parse(last);
-    m.metrics[prefix + "ok"] = line.at("ok").get<bool>();
-    m.metrics[prefix + "error"] = line.at("error").get<std::string>();
-    m.metrics[prefix + "target_elements"] = line.at("s2_cells");
-    if (!line.at("ok").get<bool>()) return;
-    m.metrics[prefix + "pieces"] = line.at("pieces");
-    m.metrics[prefix + "covered_error"] = number(line.at("covered_relative_error").get<double>());
-    m.metrics[prefix + "covered_target_error"] = number(line.at("covered_target_relative_error").get<double>());
-    m.timings[prefix + "seconds"] = line.at("seconds").get<double>();
-    m.timings[prefix + "peak_mib"] = line.at("peak_increase_mib").get<double>();
+    const Json line = Json::parse(last, nullptr, /*allow_exceptions=*/false);
+    if (line.is_discarded() || !line.contains("ok") || !line.contains("seconds"))
+      return failed(fmt::format("{} printed no result line: {}", argv[0], last.substr(0, 200)));
+    // a number of the line, or null (the benchmark writes NaN, e.g. an undefined error, as null)
+    auto real = [&](const char* key) { return line.contains(key) && line[key].is_number() ? line[key] : Json(nullptr); };
+    const bool ok = line["ok"].is_boolean() && line["ok"].get<bool>();
+    m.metrics[prefix + "ok"] = ok;
+    m.metrics[prefix + "error"] = line.contains("error") && line["error"].is_string() ? line["error"] : Json("");
+    m.metrics[prefix + "target_elements"] = real("s2_cells");
+    if (!ok) return;
+    m.metrics[prefix + "pieces"] = real("pieces");
+    m.metrics[prefix + "covered_error"] = real("covered_relative_error");
+    m.metrics[prefix + "covered_target_error"] = real("covered_target_relative_error");
+    if (real("seconds").is_number()) m.timings[prefix + "seconds"] = line["seconds"].get<double>();
+    if (real("peak_increase_mib").is_number()) m.timings[prefix + "peak_mib"] = line["peak_increase_mib"].get<double>();
   }
 
   const ExperimentConfig& config_;
