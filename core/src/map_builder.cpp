@@ -1382,9 +1382,6 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       return edges;
     };
 
-    // An element whose graph has crossing edges (or an edge through another node) cannot be
-    // closed. Unless asked to drop the S2 edges involved, that is an error; otherwise they are
-    // dropped everywhere and the elements are closed again (each round removes at least one).
     // ---- assemble the flat arrays ----------------------------------------------------------------
     // Each element is assembled right after it is closed, into the part of its block of elements
     // (local numbering); the parts are concatenated with their offsets added at the end. Only
@@ -1489,13 +1486,17 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       }
     };
 
+    // ---- close and assemble every element -----------------------------------------------------
+    // An element whose graph has crossing edges (or an edge through another node) cannot be
+    // closed. Unless asked to drop the S2 edges involved, that is an error; otherwise they are
+    // dropped everywhere and the elements are closed again (each round removes at least one).
     const bool drop = im.options.drop_conflicting_edges;
     std::vector<Workspace> workspaces;
     std::vector<MapData<2>> parts(threads);
+    std::vector<Index> reversed_faces(threads, 0);  // per block, FinalizeReport::reversed_faces
     const Index block = (n1 + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
     // Closes and assembles every element; returns the elements that could not be closed, in
     // element order (blocks are in element order).
-    std::vector<Index> reversed_faces(threads, 0);
     auto close_and_assemble = [&](int orientation) {
       workspaces.assign(threads, Workspace{});
       std::vector<std::vector<std::pair<Index, std::exception_ptr>>> failures(threads);
