@@ -74,6 +74,17 @@ void parallel_for(Index n, unsigned threads, F&& f) {
   for (auto& t : pool) t.join();
 }
 
+/// Runs f(begin, end) over [0, n) cut into chunks of a fixed size, the chunks spread over
+/// `threads` threads. Work inside a chunk is sequential, so a chunk may carry state from one
+/// item to the next (a search hint) and the result still does not depend on the thread count:
+/// the chunks are the same whatever it is.
+template <class F>
+void parallel_for_chunks(Index n, unsigned threads, Index chunk, F&& f) {
+  const Index chunks = (n + chunk - 1) / chunk;
+  auto run = [&](Index c) { f(c * chunk, std::min<Index>(n, (c + 1) * chunk)); };
+  parallel_for(chunks, threads, run);
+}
+
 /// Element centroids as a nanoflann point cloud.
 template <int dim>
 struct PointCloud {
@@ -197,7 +208,15 @@ class Projector {
     t0 = Clock::now();
     const Index n2v = s2_.vertex_count(), n1v = s1_.vertex_count();
     std::vector<std::optional<SurfacePoint<d>>> preimage(n2v);
-    parallel_for(n2v, threads_, [&](Index q) { preimage[q] = find_vertex_preimage(q); });
+    parallel_for_chunks(n2v, threads_, search_chunk, [&](Index begin, Index end) {
+      SearchOffset offset;  // target minus preimage of the previous vertex found
+      for (Index q = begin; q < end; ++q) {
+        preimage[q] = find_vertex_preimage(q, offset);
+        offset.valid = preimage[q].has_value();
+        if (offset.valid)
+          offset.value = s2_.vertex(q) - s1_.world_position(preimage[q]->element, preimage[q]->local);
+      }
+    });
     report.seconds.vertex_preimages = seconds_since(t0);
 
     t0 = Clock::now();
@@ -240,8 +259,10 @@ class Projector {
     // ---- 2. ghost nodes ------------------------------------------------------------------------
     t0 = Clock::now();
     std::vector<std::optional<SurfacePoint<d>>> hit(n1v);
-    parallel_for(n1v, threads_, [&](Index v) {
-      if (vertex_state_[v] == VertexState::free) hit[v] = cast_ray(v);
+    parallel_for_chunks(n1v, threads_, search_chunk, [&](Index begin, Index end) {
+      std::optional<double> mu;  // ray parameter of the previous hit
+      for (Index v = begin; v < end; ++v)
+        if (vertex_state_[v] == VertexState::free) hit[v] = cast_ray(v, mu);
     });
     report.seconds.ghost_nodes = seconds_since(t0);
     t0 = Clock::now();
@@ -651,21 +672,52 @@ class Projector {
     return loses;
   }
 
+  // ---- seeds of the searches of phases 1 and 2 -------------------------------------------------
+  // Both phases start their walks from the elements whose centroids are nearest to a point. For
+  // the point itself, a kd-tree query costs O(gap / h) leaves when the point lies a gap of many
+  // element sizes away from the indexed surface (nanoflann bounds a subtree by its partition
+  // cell, which reaches right up to the query), e.g. 1,600 segment lengths on the 1M circles.
+  // Neighbouring items of a chunk have nearly the same offset to the other surface, so the
+  // search first asks for the centroids nearest to the point moved by the previous item's
+  // offset, which lies next to the indexed surface; only if that finds nothing does it ask
+  // at the point itself. Chunks have a fixed size, so the seeds, and the result, do not depend
+  // on the thread count.
+  static constexpr Index search_chunk = 256;
+
+  /// A plain flag and value rather than std::optional, on which GCC 12 warns falsely
+  /// (maybe-uninitialized) for Eigen members.
+  struct SearchOffset {
+    bool valid = false;
+    WorldPoint<d> value = WorldPoint<d>::Zero();
+  };
+
+  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const SearchOffset& offset) {
+    bool solver_failed = false;
+    if (offset.valid) {
+      auto found = find_vertex_preimage(q, s2_.vertex(q) - offset.value, seeds_, solver_failed);
+      if (found) return found;
+    }
+    return find_vertex_preimage(q);
+  }
+
   std::optional<SurfacePoint<d>> find_vertex_preimage(Index q) {
     bool solver_failed = false;
-    auto found = find_vertex_preimage(q, seeds_, solver_failed);
+    auto found = find_vertex_preimage(q, s2_.vertex(q), seeds_, solver_failed);
     // The elements nearest to q may all be tangential to the directions (eq. 3 is singular there),
     // e.g. the horizontal sheets of a T-junction when the vertical sheet is the one that sees S2:
     // their walks end at once, before reaching the element that holds the preimage. Only then is
     // the search repeated from more seeds, so the usual case costs nothing extra.
-    if (!found && solver_failed && seeds_ < 32) found = find_vertex_preimage(q, 32, solver_failed);
+    if (!found && solver_failed && seeds_ < 32) found = find_vertex_preimage(q, s2_.vertex(q), 32, solver_failed);
     return found;
   }
 
-  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, int seed_count, bool& solver_failed) {
+  /// Eq. (3) for S2 vertex q on walks across S1 that start at the `seed_count` elements nearest
+  /// to `seed_point`.
+  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const WorldPoint<d>& seed_point, int seed_count,
+                                                      bool& solver_failed) {
     const WorldPoint<d>& target = s2_.vertex(q);
     std::array<std::uint32_t, 32> seeds;
-    const int count = index1_->nearest(target, seed_count, seeds);
+    const int count = index1_->nearest(seed_point, seed_count, seeds);
     std::optional<SurfacePoint<d>> best;
     double best_rank = std::numeric_limits<double>::infinity();
     std::array<Index, 64> visited;
@@ -716,12 +768,25 @@ class Projector {
   }
 
   // ---- phase 2: rays from S1 vertices ---------------------------------------------------------------
-  std::optional<SurfacePoint<d>> cast_ray(Index v) {
+  /// The ray from S1 vertex v; `mu` is the ray parameter of the chunk's previous hit (see
+  /// search_chunk), updated on return.
+  std::optional<SurfacePoint<d>> cast_ray(Index v, std::optional<double>& mu) {
+    const WorldPoint<d>& direction = nu_[v];
+    std::optional<SurfacePoint<d>> hit;
+    if (mu) hit = cast_ray(v, s1_.vertex(v) + *mu * direction, *mu);
+    if (!hit) hit = cast_ray(v, s1_.vertex(v), mu.emplace());
+    if (!hit) mu.reset();
+    return hit;
+  }
+
+  /// The ray from S1 vertex v against S2, walking from the elements of S2 nearest to
+  /// `seed_point`; `hit_mu` receives the ray parameter of the hit.
+  std::optional<SurfacePoint<d>> cast_ray(Index v, const WorldPoint<d>& seed_point, double& hit_mu) {
     const WorldPoint<d>& origin = s1_.vertex(v);
     const WorldPoint<d>& direction = nu_[v];
     if (direction.squaredNorm() == 0.0) return std::nullopt;
     std::array<std::uint32_t, 32> seeds;
-    const int count = index2_->nearest(origin, seeds_, seeds);
+    const int count = index2_->nearest(seed_point, seeds_, seeds);
     std::optional<SurfacePoint<d>> best;
     double best_rank = std::numeric_limits<double>::infinity();
     std::array<Index, 64> visited;
@@ -753,6 +818,7 @@ class Projector {
           if (distance_ok(mu, scale) && normal_ok(direction, target_normal) && rank(mu) < best_rank &&
               unfolded_at(Place<d>{PlaceKind::vertex, v}, mu)) {
             best_rank = rank(mu);
+            hit_mu = mu;
             Barycentric<d> bc = b.cwiseMax(0.0);
             bc /= bc.sum();
             best = SurfacePoint<d>{t, local_from_barycentric<d>(bc)};

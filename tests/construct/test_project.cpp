@@ -12,6 +12,8 @@
 
 #include <algorithm>
 #include <numbers>
+#include <numeric>
+#include <random>
 
 using namespace plmap;
 using namespace plmap::test;
@@ -294,4 +296,39 @@ TEST(Project, RigidMotionKeepsTheCoveredMeasure) {
   EXPECT_NEAR(a.measures.covered_domain, 0.75 * 0.85, 1e-9);
   EXPECT_NEAR(b.measures.covered_domain, a.measures.covered_domain, 1e-9);
   EXPECT_EQ(region_targets_per_element(a.map), region_targets_per_element(b.map));
+}
+
+// The searches of phases 1 and 2 seed each vertex from the offset found for the previous one in
+// its chunk (project.cpp, search_chunk), so they see many chunks here, a gap of 240 segment
+// lengths, and S2 once in order and once with its vertices shuffled (useless offsets, so every
+// search falls back to the vertex itself): same map for every thread count, same measures and
+// regions for either vertex order.
+TEST(Project, LargeGapCirclesIndependentOfThreadsAndVertexOrder) {
+  auto inner = circle(3000, 1.0);
+  auto outer = circle(3900, 1.5, 0.0003);
+  std::vector<Index> order(static_cast<std::size_t>(outer->vertex_count()));
+  std::iota(order.begin(), order.end(), Index{0});
+  std::mt19937 rng(7);
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<WorldPoint<1>> vertices(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) vertices[static_cast<std::size_t>(order[i])] = outer->vertex(static_cast<Index>(i));
+  auto elements = outer->elements();
+  for (auto& e : elements)
+    for (auto& v : e) v = order[static_cast<std::size_t>(v)];
+  auto shuffled = std::make_shared<const Surface<1>>(std::move(vertices), std::move(elements));
+
+  const auto a = project<1>(inner, outer, {.threads = 1});
+  EXPECT_TRUE(a.report.edges_not_inserted.empty()) << describe(a.report);
+  EXPECT_NEAR(a.measures.covered_domain, a.measures.domain, 1e-9 * a.measures.domain);
+  EXPECT_NEAR(a.measures.covered_target, a.measures.target, 1e-9 * a.measures.target);
+  EXPECT_EQ(a.report.vertex_preimages, 3900);
+  EXPECT_EQ(a.report.ghost_nodes, 3000);
+  EXPECT_TRUE(a.map.data() == project<1>(inner, outer, {.threads = 3}).map.data());
+
+  const auto b = project<1>(inner, shuffled, {.threads = 2});
+  EXPECT_EQ(b.report.vertex_preimages, 3900);
+  EXPECT_EQ(b.report.ghost_nodes, 3000);
+  EXPECT_EQ(b.map.region_count(), a.map.region_count());
+  EXPECT_NEAR(b.measures.covered_domain, a.measures.covered_domain, 1e-12 * a.measures.domain);
+  EXPECT_NEAR(b.measures.covered_target, a.measures.covered_target, 1e-12 * a.measures.target);
 }
