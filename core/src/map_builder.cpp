@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <span>
 #include <thread>
 
 namespace plmap {
@@ -79,6 +80,31 @@ using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 // constructed intersection point: crossing graph edges raise an exception.
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
     Kernel, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
+
+/// Items grouped by a key in [0, groups) as CSR arrays: two allocations for all groups, where a
+/// vector per group would cost one per S1 element or edge (millions on large maps).
+class Buckets {
+ public:
+  /// key_of(i) is the group of item i in [0, items), or -1 to leave the item out. Items keep
+  /// their order within a group.
+  template <class KeyOf>
+  void build(Index groups, Index items, KeyOf&& key_of) {
+    begin_.assign(static_cast<std::size_t>(groups) + 1, 0);
+    for (Index i = 0; i < items; ++i)
+      if (const Index g = key_of(i); g >= 0) ++begin_[static_cast<std::size_t>(g) + 1];
+    std::partial_sum(begin_.begin(), begin_.end(), begin_.begin());
+    items_.resize(static_cast<std::size_t>(begin_.back()));
+    std::vector<Index> cursor(begin_.begin(), begin_.end() - 1);
+    for (Index i = 0; i < items; ++i)
+      if (const Index g = key_of(i); g >= 0) items_[static_cast<std::size_t>(cursor[static_cast<std::size_t>(g)]++)] = i;
+  }
+  Index group_count() const { return static_cast<Index>(begin_.size()) - 1; }
+  std::span<const Index> operator[](Index g) const { return {items_.data() + begin_[g], items_.data() + begin_[g + 1]}; }
+  std::span<Index> group(Index g) { return {items_.data() + begin_[g], items_.data() + begin_[g + 1]}; }
+
+ private:
+  std::vector<Index> begin_, items_;
+};
 
 /// Per S1 element, the outcome of the triangulation step, which finalize() assembles into the
 /// flat arrays right away (one per thread, reused from element to element).
@@ -847,20 +873,22 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
   // conflict with others (BuilderOptions::drop_conflicting_edges) leave out their segments and
   // the intersection nodes they created.
   std::vector<char> dropped(im.edge_inserted.size(), 0);
-  std::vector<std::vector<Index>> interior_nodes, edge_nodes, element_segments, edge_segments;
+  Buckets interior_nodes, edge_nodes, element_segments, edge_segments;
   auto bucket = [&] {
-    interior_nodes.assign(n1, {});
-    edge_nodes.assign(d == 2 ? s1.edge_count() : 0, {});
-    element_segments.assign(n1, {});
-    edge_segments.assign(d == 2 ? s1.edge_count() : 0, {});
-    for (Index n = 0; n < static_cast<Index>(im.nodes.size()); ++n) {
+    const Index n1e = d == 2 ? s1.edge_count() : 0;
+    const Index nn = static_cast<Index>(im.nodes.size()), ns = static_cast<Index>(im.segments.size());
+    auto live = [&](Index n) {
       const auto& node = im.nodes[n];
-      if (d == 2 && node.kind == BuilderNodeKind::intersection && dropped[node.target]) continue;
-      const auto& p = node.place;
-      if (p.kind == PlaceKind::element) interior_nodes[p.index].push_back(n);
-      if (p.kind == PlaceKind::edge) edge_nodes[p.index].push_back(n);
-    }
-    for (auto& list : edge_nodes) {
+      return !(d == 2 && node.kind == BuilderNodeKind::intersection && dropped[node.target]);
+    };
+    interior_nodes.build(n1, nn, [&](Index n) {
+      return live(n) && im.nodes[n].place.kind == PlaceKind::element ? im.nodes[n].place.index : -1;
+    });
+    edge_nodes.build(n1e, nn, [&](Index n) {
+      return live(n) && im.nodes[n].place.kind == PlaceKind::edge ? im.nodes[n].place.index : -1;
+    });
+    for (Index e = 0; e < n1e; ++e) {
+      const auto list = edge_nodes.group(e);
       std::sort(list.begin(), list.end(),
                 [&](Index a, Index b) { return im.nodes[a].place.t < im.nodes[b].place.t; });
       for (std::size_t i = 1; i < list.size(); ++i)
@@ -868,14 +896,14 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           throw BuilderError(fmt::format("two nodes at the same point of S1 edge {}",
                                          im.nodes[list[i]].place.index));
     }
-    for (Index s = 0; s < static_cast<Index>(im.segments.size()); ++s) {
+    edge_segments.build(n1e, ns, [&](Index s) {
       const auto& seg = im.segments[s];
-      if (dropped[seg.target_edge]) continue;
-      if (seg.along_edge)
-        edge_segments[seg.where].push_back(s);
-      else
-        element_segments[seg.where].push_back(s);
-    }
+      return !dropped[seg.target_edge] && seg.along_edge ? seg.where : -1;
+    });
+    element_segments.build(n1, ns, [&](Index s) {
+      const auto& seg = im.segments[s];
+      return !dropped[seg.target_edge] && !seg.along_edge ? seg.where : -1;
+    });
   };
   bucket();
   if (report) *report = FinalizeReport{};
@@ -898,15 +926,19 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       Index a, b, target;
       int sign;  // orientation of the image: +1 if it runs along the S2 segment, -1 against, 0 degenerate
     };
-    std::vector<std::vector<PendingRegion>> element_regions(n1);
-    std::vector<std::vector<Slot>> element_slots(n1);
+    // Per element, its slots and pending regions, flat (element t owns [begin[t], begin[t + 1])).
+    std::vector<PendingRegion> all_regions;
+    std::vector<Slot> all_slots;
+    std::vector<std::size_t> regions_begin(static_cast<std::size_t>(n1) + 1, 0), slots_begin(static_cast<std::size_t>(n1) + 1, 0);
+    std::vector<std::pair<Index, int>> slot_index;
     // A segment's preimage that passes over another node (a fold of the projection) is an error,
     // or, with drop_conflicting_edges, that S2 segment is left out and the elements redone.
     for (int round = 0;; ++round) {
       std::vector<std::pair<Index, Index>> conflicts;  // (S2 segment, S1 element)
       votes = 0;
+      all_regions.clear();
+      all_slots.clear();
       for (Index t = 0; t < n1; ++t) {
-        element_regions[t].clear();
         slots.clear();
         const auto& c = s1.element(t);
         if (Index n = im.node_at_domain_vertex[c[0]]; n != invalid_index) slots.push_back({n, 0.0});
@@ -917,7 +949,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           if (slots[i].s == slots[i - 1].s)
             throw BuilderError(fmt::format("two nodes at the same point of S1 element {}", t));
         // nodes per segment are few except in stress tests; binary search keeps it O(n log n)
-        std::vector<std::pair<Index, int>> slot_index(slots.size());
+        slot_index.resize(slots.size());
         for (std::size_t i = 0; i < slots.size(); ++i) slot_index[i] = {slots[i].node, static_cast<int>(i)};
         std::sort(slot_index.begin(), slot_index.end());
         auto slot_of = [&](Index node) {
@@ -948,9 +980,11 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           const double yb = support_local<1>(s2, nb, seg.target_edge)(0);
           const int sign = (yb > ya) - (yb < ya);
           votes += yb > ya ? 1 : -1;
-          element_regions[t].push_back({i, j, seg.target_edge, sign});
+          all_regions.push_back({i, j, seg.target_edge, sign});
         }
-        element_slots[t] = slots;
+        all_slots.insert(all_slots.end(), slots.begin(), slots.end());
+        regions_begin[t + 1] = all_regions.size();
+        slots_begin[t + 1] = all_slots.size();
       }
       if (conflicts.empty()) break;
       for (const auto& [e, t] : conflicts) {
@@ -965,16 +999,32 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       bucket();
     }
     m.orientation = im.options.orientation != 0 ? im.options.orientation : (votes >= 0 ? 1 : -1);
+    // Every array's final size is known (or bounded) now: reserve it once.
+    m.node_position.reserve(all_slots.size());
+    m.node_type.reserve(all_slots.size());
+    m.node_location.reserve(all_slots.size());
+    m.node_image.reserve(all_slots.size());
+    m.node_target.reserve(all_slots.size());
+    m.neighbor_begin.reserve(all_slots.size() + 1);
+    m.neighbor.reserve(2 * all_regions.size());
+    m.neighbor_edge_kind.reserve(2 * all_regions.size());
+    m.region_corners.reserve(all_regions.size());
+    m.region_neighbors.reserve(all_regions.size());
+    m.region_target.reserve(all_regions.size());
+    m.region_map.reserve(all_regions.size());
+    std::vector<char> left, right;
     for (Index t = 0; t < n1; ++t) {
-      const auto& sl = element_slots[t];
-      auto& regs = element_regions[t];
+      const std::span<const Slot> sl(all_slots.data() + slots_begin[t], all_slots.data() + slots_begin[t + 1]);
+      std::span<PendingRegion> regs(all_regions.data() + regions_begin[t], all_regions.data() + regions_begin[t + 1]);
       // As for triangle surfaces, only pieces mapped with the map's orientation are regions: a
       // piece against it (or onto a single point) is where the projection folds.
-      const auto reversed = std::erase_if(regs, [&](const PendingRegion& r) { return r.sign != m.orientation; });
-      if (report) report->reversed_faces += static_cast<Index>(reversed);
+      const auto kept_end = std::remove_if(regs.begin(), regs.end(), [&](const PendingRegion& r) { return r.sign != m.orientation; });
+      if (report) report->reversed_faces += static_cast<Index>(regs.end() - kept_end);
+      regs = regs.first(static_cast<std::size_t>(kept_end - regs.begin()));
       std::sort(regs.begin(), regs.end(), [](const auto& x, const auto& y) { return x.a < y.a; });
       const Index base = static_cast<Index>(m.node_type.size());
-      std::vector<char> left(sl.size(), 0), right(sl.size(), 0);
+      left.assign(sl.size(), 0);
+      right.assign(sl.size(), 0);
       for (const auto& r : regs) {
         right[r.a] = 1;
         left[r.b] = 1;
@@ -1346,12 +1396,12 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     };
     // The S2 edges whose pieces on element t cross another piece or pass through a node.
     auto conflicting_edges = [&](Index t) {
-      std::vector<Index> pieces = element_segments[t];
+      std::vector<Index> pieces(element_segments[t].begin(), element_segments[t].end());
       for (int k = 0; k < 3; ++k) {
         const auto& along = edge_segments[s1.element_edge(t, k)];
         pieces.insert(pieces.end(), along.begin(), along.end());
       }
-      std::vector<Index> nodes = interior_nodes[t];
+      std::vector<Index> nodes(interior_nodes[t].begin(), interior_nodes[t].end());
       for (int k = 0; k < 3; ++k) {
         const auto& on_edge = edge_nodes[s1.element_edge(t, k)];
         nodes.insert(nodes.end(), on_edge.begin(), on_edge.end());
