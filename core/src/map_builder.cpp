@@ -429,7 +429,14 @@ struct MapBuilder<d>::Impl {
   /// Inserts the preimage of S2 edge `target_edge` = (u, v), or a piece of it: the chain starts
   /// at the preimage of u (from_u) or at the first crossing, and ends at the preimage of v (to_v)
   /// or at the last crossing.
-  void insert_edge_preimage(Index target_edge, Index u, Index v, std::vector<CrossingPlace> crossings,
+  // Buffers of insert_edge_preimage, reused from edge to edge: insertion is sequential, and
+  // millions of S2 edges would otherwise cost a handful of allocations each.
+  std::vector<CrossingPlace> places_scratch, cs_scratch;
+  std::vector<double> arc_scratch;
+  std::vector<WorldPoint<d>> points_scratch;
+  std::vector<Index> chain_scratch;
+
+  void insert_edge_preimage(Index target_edge, Index u, Index v, const std::vector<CrossingPlace>& crossings,
                             bool from_u = true, bool to_v = true) {
     const char* noun = d == 2 ? "edge" : "segment";
     const bool piece = !from_u || !to_v;
@@ -443,8 +450,9 @@ struct MapBuilder<d>::Impl {
       throw BuilderError(fmt::format("cannot insert S2 {} {}: S2 vertex {} has no preimage yet", noun,
                                      target_edge, from_u && a == invalid_index ? u : v));
     // Drop repeated consecutive places (a crossing through a vertex given as two edge ends).
-    std::vector<CrossingPlace> cs;
-    for (auto& c : crossings) {
+    auto& cs = cs_scratch;
+    cs.clear();
+    for (const auto& c : crossings) {
       if (!cs.empty() && same_place(cs.back().place, c.place)) continue;
       cs.push_back(c);
     }
@@ -452,9 +460,11 @@ struct MapBuilder<d>::Impl {
       throw BuilderError(fmt::format("a piece of the preimage of S2 {} {} needs two distinct points",
                                      noun, target_edge));
     // Arc-length image parameters for crossings of complete edges that have none given.
-    std::vector<double> arc(cs.size() + 2, 0.0);
+    auto& arc = arc_scratch;
+    arc.assign(cs.size() + 2, 0.0);
     if (!piece) {
-      std::vector<WorldPoint<d>> pts;
+      auto& pts = points_scratch;
+      pts.clear();
       pts.push_back(world_of(nodes[a].place));
       for (const auto& c : cs) pts.push_back(world_of(c.place));
       pts.push_back(world_of(nodes[b].place));
@@ -463,7 +473,8 @@ struct MapBuilder<d>::Impl {
         throw BuilderError(fmt::format("the preimage of S2 {} {} has zero length", noun, target_edge));
     }
 
-    std::vector<Index> chain;
+    auto& chain = chain_scratch;
+    chain.clear();
     if (from_u) chain.push_back(a);
     for (std::size_t i = 0; i < cs.size(); ++i) {
       double tau = cs[i].target_parameter;
@@ -591,11 +602,12 @@ void MapBuilder<d>::add_edge(Index target_edge)
 
 namespace {
 
+/// The crossings as places on S1, written into the builder's reused buffer.
 template <int d, class Impl>
-std::vector<typename Impl::CrossingPlace> crossing_places(const Impl& im, Index target_edge,
-                                                          std::span<const EdgeCrossing> crossings) {
-  std::vector<typename Impl::CrossingPlace> places;
-  places.reserve(crossings.size());
+const std::vector<typename Impl::CrossingPlace>& crossing_places(Impl& im, Index target_edge,
+                                                                 std::span<const EdgeCrossing> crossings) {
+  auto& places = im.places_scratch;
+  places.clear();
   for (std::size_t i = 0; i < crossings.size(); ++i) {
     const auto& c = crossings[i];
     if (c.domain_edge < 0 || c.domain_edge >= im.s1->edge_count())
@@ -623,9 +635,10 @@ std::vector<typename Impl::CrossingPlace> crossing_places(const Impl& im, Index 
 }
 
 template <int d, class Impl>
-std::vector<typename Impl::CrossingPlace> crossing_places(const Impl& im,
-                                                          std::span<const VertexCrossing> crossings) {
-  std::vector<typename Impl::CrossingPlace> places;
+const std::vector<typename Impl::CrossingPlace>& crossing_places(Impl& im,
+                                                                 std::span<const VertexCrossing> crossings) {
+  auto& places = im.places_scratch;
+  places.clear();
   for (const auto& c : crossings) {
     im.check_s1_vertex(c.domain_vertex);
     Place<d> p;
