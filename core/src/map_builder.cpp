@@ -861,10 +861,14 @@ void concatenate_parts(std::vector<MapData<2>>& parts, Index elements, MapData<2
   });
 }
 
-/// The arrays grew by push_back; give back the slack so the map holds only what it needs.
+/// Gives back the slack of arrays that were reserved by an upper bound, so the map holds about
+/// what it needs; slack under 1/16 of an array is kept, as copying the array to save it would
+/// cost more time (and first-touched memory) than the slack is worth.
 template <int d>
 void shrink_to_fit(MapData<d>& m) {
-  auto shrink = [](auto&... v) { (v.shrink_to_fit(), ...); };
+  auto shrink = [](auto&... v) {
+    ((v.capacity() - v.size() > v.size() / 16 ? v.shrink_to_fit() : void()), ...);
+  };
   shrink(m.node_begin, m.node_position, m.node_type, m.node_location, m.node_image, m.node_target,
          m.neighbor_begin, m.neighbor, m.neighbor_edge_kind, m.edge_node_begin, m.edge_node,
          m.region_begin, m.region_corners, m.region_neighbors, m.region_target, m.region_map,
@@ -1560,6 +1564,46 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     const Index block = (n1 + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
     // Closes and assembles every element; returns the elements that could not be closed, in
     // element order (blocks are in element order).
+    // A block's arrays are reserved before it is assembled: nodes and edge arrays exactly, the
+    // rest by the size of each element's closure (a triangulation of n points, h of them on the
+    // element boundary, has 2n - h - 2 triangles and 3n - h - 3 sides), which is exact unless
+    // faces lie outside D. Growing by push_back instead would copy the map several times and
+    // first-touch up to twice its memory, and the final shrink_to_fit would copy it again.
+    auto reserve_part = [&](MapData<2>& part, Index begin, Index end) {
+      std::size_t nodes = 0, on_edges = 0, triangles = 0, sides = 0;
+      for (Index t = begin; t < end; ++t) {
+        std::size_t corners = 0, edge_inner = 0;
+        for (int k = 0; k < 3; ++k) {
+          if (im.node_at_domain_vertex[s1.element(t)[k]] != invalid_index) ++corners;
+          edge_inner += edge_nodes[s1.element_edge(t, k)].size();
+        }
+        const std::size_t ns = corners + edge_inner + interior_nodes[t].size();
+        nodes += ns;
+        on_edges += 2 * corners + edge_inner;
+        if (ns == 0) continue;
+        const std::size_t n = ns + (3 - corners), h = 3 + edge_inner;
+        triangles += 2 * n - h - 2;
+        sides += 3 * n - h - 3;
+      }
+      const std::size_t elements = static_cast<std::size_t>(end - begin);
+      part.node_begin.reserve(elements + 1);
+      part.region_begin.reserve(elements + 1);
+      part.start_region.reserve(elements);
+      part.edge_node_begin.reserve(3 * elements + 1);
+      part.node_position.reserve(nodes);
+      part.node_type.reserve(nodes);
+      part.node_location.reserve(nodes);
+      part.node_image.reserve(nodes);
+      part.node_target.reserve(nodes);
+      part.neighbor_begin.reserve(nodes + 1);
+      part.edge_node.reserve(on_edges);
+      part.neighbor.reserve(2 * sides);
+      part.neighbor_edge_kind.reserve(2 * sides);
+      part.region_corners.reserve(triangles);
+      part.region_neighbors.reserve(triangles);
+      part.region_target.reserve(triangles);
+      part.region_map.reserve(triangles);
+    };
     auto close_and_assemble = [&](int orientation) {
       workspaces.assign(threads, Workspace{});
       std::vector<std::vector<std::pair<Index, std::exception_ptr>>> failures(threads);
@@ -1567,6 +1611,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         const Index begin = std::min<Index>(n1, static_cast<Index>(k) * block);
         const Index end = std::min<Index>(n1, begin + block);
         start_part(parts[k]);
+        reserve_part(parts[k], begin, end);
         AssemblyScratch scratch;
         for (Index t = begin; t < end; ++t) {
           try {
