@@ -15,24 +15,13 @@ double simplex_measure(const std::array<WorldPoint<d>, d + 1>& c) {
     return 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm();
 }
 
-}  // namespace
-
+/// remote_intersection() for a region whose S1 element is already known.
 template <int d>
-double RemoteIntersection<d>::domain_measure() const {
-  return simplex_measure<d>(domain_world);
-}
-
-template <int d>
-double RemoteIntersection<d>::target_measure() const {
-  return simplex_measure<d>(target_world);
-}
-
-template <int d>
-RemoteIntersection<d> remote_intersection(const PlMap<d>& map, Index region) {
+RemoteIntersection<d> remote_intersection_on(const PlMap<d>& map, Index element, Index region) {
   const auto& m = map.data();
   RemoteIntersection<d> ri;
   ri.region = region;
-  ri.domain_element = map.node_element(m.region_corners[region][0]);
+  ri.domain_element = element;
   ri.target_element = m.region_target[region];
   for (int i = 0; i <= d; ++i) {
     const Index n = m.region_corners[region][i];
@@ -47,22 +36,42 @@ RemoteIntersection<d> remote_intersection(const PlMap<d>& map, Index region) {
   return ri;
 }
 
+}  // namespace
+
+template <int d>
+double RemoteIntersection<d>::domain_measure() const {
+  return simplex_measure<d>(domain_world);
+}
+
+template <int d>
+double RemoteIntersection<d>::target_measure() const {
+  return simplex_measure<d>(target_world);
+}
+
+template <int d>
+RemoteIntersection<d> remote_intersection(const PlMap<d>& map, Index region) {
+  return remote_intersection_on(map, map.node_element(map.data().region_corners[region][0]), region);
+}
+
+// The lists run element by element, so no region needs the search for its element.
 template <int d>
 std::vector<RemoteIntersection<d>> remote_intersections(const PlMap<d>& map) {
   std::vector<RemoteIntersection<d>> out;
   out.reserve(map.region_count());
-  for (Index r = 0; r < map.region_count(); ++r) out.push_back(remote_intersection(map, r));
+  for (Index t = 0; t < map.domain().element_count(); ++t)
+    for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) out.push_back(remote_intersection_on(map, t, r));
   return out;
 }
 
 template <int d>
 CoveredMeasure covered_measure(const PlMap<d>& map) {
   CoveredMeasure c;
-  for (Index r = 0; r < map.region_count(); ++r) {
-    const auto ri = remote_intersection(map, r);
-    c.domain += ri.domain_measure();
-    c.target += ri.target_measure();
-  }
+  for (Index t = 0; t < map.domain().element_count(); ++t)
+    for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) {
+      const auto ri = remote_intersection_on(map, t, r);
+      c.domain += ri.domain_measure();
+      c.target += ri.target_measure();
+    }
   return c;
 }
 
