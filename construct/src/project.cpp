@@ -16,6 +16,7 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/map_builder.hpp>
 #include <plmap/core/regions.hpp>
+#include <plmap/core/snapping.hpp>
 #include <plmap/solvers/focal_points.hpp>
 #include <plmap/solvers/projection_systems.hpp>
 #include <plmap/solvers/solver_kind.hpp>
@@ -410,17 +411,9 @@ class Projector {
   }
 
   // ---- helpers on places ------------------------------------------------------------------------
+  // The snapping rule is core/snapping.hpp's, the one MapBuilder applies to what it is given.
   Barycentric<d> clean_barycentric(const LocalPoint<d>& xi) const {
-    Barycentric<d> b = barycentric_from_local<d>(xi);
-    for (int k = 0; k <= d; ++k)
-      if (b(k) <= opt_.snap_tolerance) b(k) = 0.0;
-    b /= b.sum();
-    for (int k = 0; k <= d; ++k)
-      if (b(k) >= 1.0 - opt_.snap_tolerance) {
-        b.setZero();
-        b(k) = 1.0;
-      }
-    return b;
+    return snap_barycentric<d>(barycentric_from_local<d>(xi), opt_.snap_tolerance);
   }
 
   LocalPoint<d> place_local(const SurfacePoint<d>& p) const {
@@ -463,12 +456,10 @@ class Projector {
   {
     Place<d> p;
     const auto ev = s1_.edge_vertices(edge);
-    if (lambda <= opt_.snap_tolerance) {
+    const EdgeSnap snap = snap_edge_parameter(lambda, opt_.snap_tolerance);
+    if (snap != EdgeSnap::inside) {
       p.kind = PlaceKind::vertex;
-      p.index = ev[0];
-    } else if (lambda >= 1.0 - opt_.snap_tolerance) {
-      p.kind = PlaceKind::vertex;
-      p.index = ev[1];
+      p.index = ev[snap == EdgeSnap::first_vertex ? 0 : 1];
     } else {
       p.kind = PlaceKind::edge;
       p.index = edge;
@@ -580,8 +571,9 @@ class Projector {
       Index vertex = invalid_index;
       if constexpr (d == 2) {
         const auto ev = s1_.edge_vertices(c.domain_edge);
-        if (c.domain_parameter <= opt_.snap_tolerance) vertex = ev[0];
-        else if (c.domain_parameter >= 1.0 - opt_.snap_tolerance) vertex = ev[1];
+        const EdgeSnap snap = snap_edge_parameter(c.domain_parameter, opt_.snap_tolerance);
+        if (snap == EdgeSnap::first_vertex) vertex = ev[0];
+        else if (snap == EdgeSnap::second_vertex) vertex = ev[1];
         else {
           for (const auto& [t, owner] : used_on_edge_[c.domain_edge])
             if (std::abs(t - c.domain_parameter) <= opt_.snap_tolerance) {
@@ -611,8 +603,9 @@ class Projector {
     for (const auto& c : piece.crossings) {
       if constexpr (d == 2) {
         const auto ev = s1_.edge_vertices(c.domain_edge);
-        if (c.domain_parameter <= opt_.snap_tolerance) crossed_vertex_[ev[0]] = e;
-        else if (c.domain_parameter >= 1.0 - opt_.snap_tolerance) crossed_vertex_[ev[1]] = e;
+        const EdgeSnap snap = snap_edge_parameter(c.domain_parameter, opt_.snap_tolerance);
+        if (snap == EdgeSnap::first_vertex) crossed_vertex_[ev[0]] = e;
+        else if (snap == EdgeSnap::second_vertex) crossed_vertex_[ev[1]] = e;
         else used_on_edge_[c.domain_edge].push_back({c.domain_parameter, e});
       } else {
         crossed_vertex_[c.domain_vertex] = e;

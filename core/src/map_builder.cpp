@@ -13,6 +13,7 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/map_builder.hpp>
 #include <plmap/core/predicates.hpp>
+#include <plmap/core/snapping.hpp>
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -202,15 +203,12 @@ struct MapBuilder<d>::Impl {
   Barycentric<d> snapped_barycentric(const LocalPoint<d>& xi, const char* what, Index element) const {
     if (!xi.allFinite())
       throw BuilderError(fmt::format("{} on element {}: local coordinates are not finite", what, element));
-    Barycentric<d> b = barycentric_from_local<d>(xi);
-    for (int k = 0; k <= d; ++k) {
+    const Barycentric<d> b = barycentric_from_local<d>(xi);
+    for (int k = 0; k <= d; ++k)
       if (b(k) < -tol())
         throw BuilderError(fmt::format("{}: local coordinates ({}) lie outside element {}", what,
                                        fmt::join(xi.data(), xi.data() + d, ", "), element));
-      if (b(k) <= tol()) b(k) = 0.0;
-    }
-    b /= b.sum();
-    return b;
+    return snap_barycentric<d>(b, tol());
   }
 
   /// Place on S1 of a point given on an element, after snapping.
@@ -248,12 +246,10 @@ struct MapBuilder<d>::Impl {
     if (!p.local.allFinite())
       throw BuilderError(fmt::format("{}: image coordinates on S2 element {} are not finite", what, p.element));
     Barycentric<d> b = barycentric_from_local<d>(p.local);
-    for (int k = 0; k <= d; ++k) {
+    for (int k = 0; k <= d; ++k)
       if (b(k) < -tol())
         throw BuilderError(fmt::format("{}: image coordinates lie outside S2 element {}", what, p.element));
-      if (b(k) <= tol()) b(k) = 0.0;
-    }
-    b /= b.sum();
+    b = snap_barycentric<d>(b, tol());
     Support<d> s;
     s.element = p.element;
     for (int k = 0; k <= d; ++k)
@@ -571,12 +567,9 @@ typename MapBuilder<d>::NodeHandle MapBuilder<d>::add_vertex_preimage_on_edge(In
     throw BuilderError(fmt::format("parameter {} on S1 edge {} is outside [0, 1]", t, domain_edge));
   Place<d> p;
   const auto ev = impl_->s1->edge_vertices(domain_edge);
-  if (t <= impl_->tol()) {
+  if (const EdgeSnap snap = snap_edge_parameter(t, impl_->tol()); snap != EdgeSnap::inside) {
     p.kind = PlaceKind::vertex;
-    p.index = ev[0];
-  } else if (t >= 1.0 - impl_->tol()) {
-    p.kind = PlaceKind::vertex;
-    p.index = ev[1];
+    p.index = ev[snap == EdgeSnap::first_vertex ? 0 : 1];
   } else {
     p.kind = PlaceKind::edge;
     p.index = domain_edge;
@@ -618,12 +611,9 @@ const std::vector<typename Impl::CrossingPlace>& crossing_places(Impl& im, Index
                                      target_edge, c.domain_parameter));
     Place<d> p;
     const auto ev = im.s1->edge_vertices(c.domain_edge);
-    if (c.domain_parameter <= im.tol()) {
+    if (const EdgeSnap snap = snap_edge_parameter(c.domain_parameter, im.tol()); snap != EdgeSnap::inside) {
       p.kind = PlaceKind::vertex;
-      p.index = ev[0];
-    } else if (c.domain_parameter >= 1.0 - im.tol()) {
-      p.kind = PlaceKind::vertex;
-      p.index = ev[1];
+      p.index = ev[snap == EdgeSnap::first_vertex ? 0 : 1];
     } else {
       p.kind = PlaceKind::edge;
       p.index = c.domain_edge;

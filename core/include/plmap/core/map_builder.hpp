@@ -13,8 +13,8 @@
 ///
 /// Nodes on S1 vertices and edges are entered once and copied onto every incident element at
 /// finalize(). Positions closer than `BuilderOptions::snap_tolerance` (in local coordinates, hence
-/// relative to the element size) to a corner or an edge are snapped there; this is the single
-/// snapping rule of plmap.
+/// relative to the element size) to a corner or an edge are snapped there, by the single
+/// snapping rule of plmap (core/snapping.hpp).
 ///
 /// finalize() computes, per S1 element, the triangular closure of the plane graph formed by the
 /// graph edges and the element boundary: it traces the graph's faces (edges ordered around each
