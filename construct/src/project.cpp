@@ -798,7 +798,7 @@ class Projector {
         }
         a.col(d) = -direction;
         const double det = a.determinant();
-        if (!(std::abs(det) > 1e-12 * std::pow(scale, d))) break;  // ray parallel to the element
+        if (!(std::abs(det) > 1e-12 * integer_power(scale, d))) break;  // ray parallel to the element
         const Eigen::Matrix<double, d + 1, 1> x = a.partialPivLu().solve(origin - s2_.corner(t, 0));
         const LocalPoint<d> y = x.template head<d>();
         const Barycentric<d> b = barycentric_from_local<d>(y);

@@ -4,8 +4,9 @@
 ///
 /// plmap never decides "which side of a line" by a raw floating-point sign: orient2d returns the
 /// exact sign of the determinant for the given doubles. The fast path is the classic static
-/// error bound on the double evaluation (inline, a few flops); only when the bound cannot
-/// certify the sign does it call the exact predicate of CGAL (Epick), out of line.
+/// error bound on the double evaluation (inline, a few flops), then exact collinearity checks by
+/// comparison for the common degenerate cases; only when neither decides does it call the exact
+/// predicate of CGAL (Epick), out of line.
 
 #include <plmap/core/types.hpp>
 
@@ -16,6 +17,25 @@ namespace plmap {
 namespace detail {
 /// Exact orientation via CGAL; used when the floating-point filter is inconclusive.
 int orient2d_exact(double ax, double ay, double bx, double by, double cx, double cy);
+
+/// Whether x + y == 1 holds exactly (not just after rounding): the sum rounds to 1 and its
+/// rounding error (Knuth's two-sum) is zero.
+inline bool on_antidiagonal(const Eigen::Vector2d& p) {
+  const double s = p.x() + p.y();
+  const double y_part = s - p.x();
+  const double error = (p.x() - (s - y_part)) + (p.y() - y_part);
+  return s == 1.0 && error == 0.0;
+}
+
+/// Exactly collinear triples the filter cannot certify but plain comparisons can: two equal
+/// points (segments that share an endpoint, tested against each other), and three points on one
+/// horizontal or vertical line or on the line x + y = 1 (the nodes on the sides of the reference
+/// triangle). The closure of every element makes many such tests; without this check each would
+/// go to the exact predicate.
+inline bool obviously_collinear(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  return a == c || b == c || a == b || (a.y() == c.y() && b.y() == c.y()) || (a.x() == c.x() && b.x() == c.x()) ||
+         (on_antidiagonal(a) && on_antidiagonal(b) && on_antidiagonal(c));
+}
 }  // namespace detail
 
 /// +1 if a, b, c are counter-clockwise, -1 if clockwise, 0 if exactly collinear.
@@ -28,6 +48,7 @@ inline int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Ei
   const double bound = error_factor * (std::abs(detleft) + std::abs(detright));
   if (det > bound) return 1;
   if (-det > bound) return -1;
+  if (detail::obviously_collinear(a, b, c)) return 0;
   return detail::orient2d_exact(a.x(), a.y(), b.x(), b.y(), c.x(), c.y());
 }
 

@@ -68,4 +68,13 @@ struct SurfacePoint {
   friend bool operator==(const SurfacePoint&, const SurfacePoint&) = default;
 };
 
+/// x^n for a small non-negative n (a dimension): n multiplications, where std::pow takes its
+/// general path of logarithms (measurable in the projection's inner loops). Exact for n <= 2,
+/// as one rounding is all either way.
+constexpr double integer_power(double x, int n) {
+  double r = 1.0;
+  for (int i = 0; i < n; ++i) r *= x;
+  return r;
+}
+
 }  // namespace plmap

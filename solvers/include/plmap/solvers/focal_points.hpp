@@ -60,7 +60,7 @@ bool reaches_without_focal_point(const std::array<WorldPoint<d>, d + 1>& corners
   if (mu == 0.0 || !std::isfinite(mu)) return true;
   const auto a = ray_jacobian_polynomial<d>(corners, directions, xi);
   double scale = 0.0;
-  for (int k = 0; k <= d; ++k) scale = std::max(scale, std::abs(a[k]) * std::pow(std::abs(mu), k));
+  for (int k = 0; k <= d; ++k) scale = std::max(scale, std::abs(a[k]) * integer_power(std::abs(mu), k));
   if (!(scale > 0.0)) return true;
   const double zero = 1e-9 * scale;
   auto value = [&](double t) {

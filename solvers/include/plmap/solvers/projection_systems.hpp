@@ -80,7 +80,7 @@ struct VertexProjectionSystem {
     a.col(d) = nu;
     const Eigen::PartialPivLU<Jacobian> lu(a);
     Vector x = lu.solve(target - corners[0]);
-    if (!x.allFinite() || std::abs(a.determinant()) <= 1e-14 * std::pow(scale(), d) * nu.norm()) {
+    if (!x.allFinite() || std::abs(a.determinant()) <= 1e-14 * integer_power(scale(), d) * nu.norm()) {
       x.setConstant(1.0 / (d + 1));
       x(d) = 0.0;
     }
