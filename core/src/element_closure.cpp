@@ -243,23 +243,26 @@ bool close_by_faces(std::span<const LocalPoint<2>> points,
   out.face_count = face_id;
 
   // Neighbours: pair the triangle sides by their vertex pair.
+  // Side ts = 3 t + i (opposite corner i) gets the key (smaller vertex, larger vertex) packed into
+  // one integer, computed once: sorting the keys is much cheaper than comparing vertex pairs.
   const int nt = static_cast<int>(out.triangles.size());
-  s.order.resize(3 * nt);
-  std::iota(s.order.begin(), s.order.end(), 0);
-  auto side_key = [&](int ts) {
+  auto& keys = s.side_keys;
+  keys.resize(3 * static_cast<std::size_t>(nt));
+  for (int ts = 0; ts < 3 * nt; ++ts) {
     const auto& tri = out.triangles[ts / 3];
-    const int a = tri[(ts % 3 + 1) % 3], b = tri[(ts % 3 + 2) % 3];
-    return std::make_pair(std::min(a, b), std::max(a, b));
-  };
-  std::sort(s.order.begin(), s.order.end(), [&](int x, int y) { return side_key(x) < side_key(y); });
+    const auto a = static_cast<std::uint32_t>(tri[(ts % 3 + 1) % 3]), b = static_cast<std::uint32_t>(tri[(ts % 3 + 2) % 3]);
+    keys[ts] = {(static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b), ts};
+  }
+  std::sort(keys.begin(), keys.end());
   out.neighbors.assign(nt, {-1, -1, -1});
   for (int i = 0; i < 3 * nt;) {
     int j = i + 1;
-    while (j < 3 * nt && side_key(s.order[j]) == side_key(s.order[i])) ++j;
+    while (j < 3 * nt && keys[j].first == keys[i].first) ++j;
     if (j - i > 2) return false;
     if (j - i == 2) {
-      out.neighbors[s.order[i] / 3][s.order[i] % 3] = s.order[i + 1] / 3;
-      out.neighbors[s.order[i + 1] / 3][s.order[i + 1] % 3] = s.order[i] / 3;
+      const int x = keys[i].second, y = keys[i + 1].second;
+      out.neighbors[x / 3][x % 3] = y / 3;
+      out.neighbors[y / 3][y % 3] = x / 3;
     }
     i = j;
   }

@@ -21,6 +21,7 @@
 #include <plmap/core/types.hpp>
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -47,6 +48,7 @@ struct ClosureScratch {
   std::vector<int> out_begin, out_half_edge, position, next, half_edge_face, cycle, polygon;
   std::vector<char> visited;
   std::vector<int> order;
+  std::vector<std::pair<std::uint64_t, int>> side_keys;
 };
 
 /// Tries the fast path. `points` are the element's vertices in local coordinates (all distinct
