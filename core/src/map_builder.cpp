@@ -1445,9 +1445,15 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     // faces mapped with the map's orientation become regions, and that orientation is voted on
     // by all elements: the pass assembles with a guess (the vote of a sample of elements, or the
     // orientation given in the options) and runs again in the rare case the full vote differs.
+    auto side_key = [](int a, int b) {
+      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
+             static_cast<std::uint32_t>(std::max(a, b));
+    };
     struct AssemblyScratch {
       std::vector<Index> triangle_region;
-      std::vector<std::pair<int, int>> region_sides;  // slot pairs that border a region
+      // Slot pairs (smaller, larger) that border a region, packed into one integer each: sorting
+      // and searching integers is cheaper than comparing pairs.
+      std::vector<std::uint64_t> region_sides;
       Index reversed_faces = 0;  // faces with a target element but the other orientation
     };
     auto start_part = [](MapData<2>& part) {
@@ -1475,7 +1481,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         sc.triangle_region[f] = rbase + nr++;
         for (int i = 0; i < 3; ++i) {
           const int a = tr.corners[i], b = tr.corners[(i + 1) % 3];
-          sc.region_sides.emplace_back(std::min(a, b), std::max(a, b));
+          sc.region_sides.push_back(side_key(a, b));
         }
       }
       std::sort(sc.region_sides.begin(), sc.region_sides.end());
@@ -1500,8 +1506,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         for (int r = et.ring_begin[i]; r < et.ring_begin[i + 1]; ++r) {
           const int j = et.ring[r] >> 1;
           const bool graph = (et.ring[r] & 1) != 0;
-          if (!graph && !std::binary_search(sc.region_sides.begin(), sc.region_sides.end(),
-                                            std::make_pair(std::min(i, j), std::max(i, j))))
+          if (!graph && !std::binary_search(sc.region_sides.begin(), sc.region_sides.end(), side_key(i, j)))
             continue;
           part.neighbor.push_back(base + j);
           part.neighbor_edge_kind.push_back(graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure);
