@@ -58,6 +58,10 @@ struct ClosureScratch {
 bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const std::array<int, 2>> segments,
                     std::array<int, 2> boundary_start, ElementClosure& out, ClosureScratch& scratch);
 
+/// Whether the closed polygon `poly` (indices into `points`) turns left or goes straight at every
+/// vertex, never doubles back, and winds exactly once: then it is convex and simple. Exact.
+bool convex_and_winding_once(std::span<const LocalPoint<2>> points, const std::vector<int>& poly);
+
 /// For each vertex, its neighbours in the closure in counter-clockwise order: boundary vertices
 /// start right after the outside, interior vertices at their smallest neighbour. Written as
 /// CSR arrays (ring_begin has points + 1 entries).
