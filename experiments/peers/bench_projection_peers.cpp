@@ -9,9 +9,12 @@
 //        bench_projection_peers --list-tools
 // --size: plane: S1 triangles; sphere: icosphere level; circle: S1 segments; femur*: ignored.
 // --threads: plmap only (0 = all cores); the peers are single-threaded.
-// --write-inputs: also write S1 and S2 to PREFIX_s1.off/.txt and PREFIX_s2.off/.txt (reproducers).
+// --write-inputs: also write S1 and S2 to PREFIX_s1.off/.curve and PREFIX_s2.off/.curve (reproducers).
 
+#include "plain_mesh_surface.hpp"
 #include "tools.hpp"
+
+#include <plmap/core/io/surface_writer.hpp>
 
 #include <fmt/format.h>
 
@@ -97,27 +100,14 @@ struct Arguments {
   unsigned threads = 1;
 };
 
-/// Writes S1 and S2 as PREFIX_s1.off / PREFIX_s2.off (d = 2) or PREFIX_s1.txt / PREFIX_s2.txt
-/// (d = 1: "x y" lines, then "a b" segment lines after a blank line), to reproduce a case with the CLI.
+/// Writes S1 and S2 as PREFIX_s1.off / PREFIX_s2.off (d = 2) or PREFIX_s1.curve / PREFIX_s2.curve
+/// (d = 1), in plmap's own writers, so that `plmap project PREFIX_s1.off PREFIX_s2.off` reproduces
+/// a case from the command line (coordinates are written with round-trip precision).
 template <int d>
 void write_inputs(const std::string& prefix, const SurfacePair<d>& input) {
-  const auto write = [](const std::string& file, const PlainMesh<d>& mesh) {
-    std::ofstream out(file);
-    out.precision(17);
-    if constexpr (d == 2) out << "OFF\n" << mesh.points.size() << " " << mesh.cells.size() << " 0\n";
-    for (const auto& p : mesh.points) {
-      for (int k = 0; k <= d; ++k) out << p[k] << (k < d ? " " : "\n");
-    }
-    if constexpr (d == 1) out << "\n";
-    for (const auto& c : mesh.cells) {
-      if constexpr (d == 2) out << "3 ";
-      for (int k = 0; k <= d; ++k) out << c[k] << (k < d ? " " : "\n");
-    }
-    if (!out) throw std::runtime_error(file + ": cannot write");
-  };
-  const std::string ext = d == 2 ? ".off" : ".txt";
-  write(prefix + "_s1" + ext, input.s1);
-  write(prefix + "_s2" + ext, input.s2);
+  const std::string ext = d == 2 ? ".off" : ".curve";
+  write_surface<d>(prefix + "_s1" + ext, *to_surface(input.s1));
+  write_surface<d>(prefix + "_s2" + ext, *to_surface(input.s2));
 }
 
 template <int d>
