@@ -1,4 +1,5 @@
 #include <plmap/experiment/build_info.hpp>
+#include <plmap/experiment/git_info.hpp>
 #include <plmap/experiment/provenance.hpp>
 
 #include <sys/utsname.h>
