@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 
 namespace plmap {
 
@@ -57,26 +58,33 @@ PlMap<d>::PlMap(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const 
   require(m.start_region.size() == nt, "start_region size");
   require(m.orientation == 1 || m.orientation == -1, "orientation must be +1 or -1");
   // Indices that queries dereference must be in range, so that a corrupt file cannot make an
-  // evaluation read out of bounds. verify/ checks everything else.
-  const auto n2 = target_->element_count();
+  // evaluation read out of bounds. verify/ checks everything else. These loops run over every
+  // region, node and neighbour of maps with millions of them, so each check is a branch-free
+  // reduction (an index i is in [0, n) exactly when it is below n as an unsigned number).
+  const auto n2 = static_cast<std::uint32_t>(target_->element_count());
+  auto below = [](Index i, std::size_t n) { return static_cast<std::size_t>(static_cast<std::uint32_t>(i)) < n; };
+  bool targets_ok = true, corners_ok = true, neighbors_ok = true;
   for (std::size_t r = 0; r < nr; ++r) {
-    require(m.region_target[r] >= 0 && m.region_target[r] < n2, "region_target out of range");
-    for (Index c : m.region_corners[r])
-      require(c >= 0 && static_cast<std::size_t>(c) < nn, "region corner out of range");
-    for (Index q : m.region_neighbors[r])
-      require(q == invalid_index || (q >= 0 && static_cast<std::size_t>(q) < nr),
-              "region neighbor out of range");
+    targets_ok &= below(m.region_target[r], n2);
+    for (Index c : m.region_corners[r]) corners_ok &= below(c, nn);
+    for (Index q : m.region_neighbors[r]) neighbors_ok &= (q == invalid_index) | below(q, nr);
   }
+  require(targets_ok, "region_target out of range");
+  require(corners_ok, "region corner out of range");
+  require(neighbors_ok, "region neighbor out of range");
   for (std::size_t t = 0; t < nt; ++t) {
     const Index s = m.start_region[t];
     require(s == invalid_index ? m.region_begin[t] == m.region_begin[t + 1]
                                : (s >= m.region_begin[t] && s < m.region_begin[t + 1]),
             "start_region outside its element");
   }
-  for (Index x : m.neighbor) require(x >= 0 && static_cast<std::size_t>(x) < nn, "neighbor index");
-  for (Index x : m.edge_node) require(x >= 0 && static_cast<std::size_t>(x) < nn, "edge node index");
-  for (const auto& img : m.node_image)
-    require(img.element >= 0 && img.element < n2, "node image element out of range");
+  bool indices_ok = true;
+  for (Index x : m.neighbor) indices_ok &= below(x, nn);
+  require(indices_ok, "neighbor index");
+  for (Index x : m.edge_node) indices_ok &= below(x, nn);
+  require(indices_ok, "edge node index");
+  for (const auto& img : m.node_image) indices_ok &= below(img.element, n2);
+  require(indices_ok, "node image element out of range");
 }
 
 template <int d>

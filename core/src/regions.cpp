@@ -3,6 +3,8 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
+
 namespace plmap {
 
 namespace {
@@ -63,15 +65,43 @@ std::vector<RemoteIntersection<d>> remote_intersections(const PlMap<d>& map) {
   return out;
 }
 
+/// d! times the measure of a simplex given in local coordinates: its world measure is this times
+/// the measure of its element (the reference element has measure 1/d!).
+template <int d>
+double local_simplex_measure(const std::array<LocalPoint<d>, d + 1>& x) {
+  if constexpr (d == 1) {
+    return std::abs(x[1](0) - x[0](0));
+  } else {
+    const LocalPoint<2> u = x[1] - x[0], v = x[2] - x[0];
+    return std::abs(u(0) * v(1) - u(1) * v(0));
+  }
+}
+
+// Elements are affine, so a region's measure is its measure in local coordinates times its
+// element's, on either side: no world position of a corner is needed. Per S1 element the local
+// measures are summed first and scaled once. The image corners are moved onto the region's S2
+// element exactly, as remote_intersection does.
 template <int d>
 CoveredMeasure covered_measure(const PlMap<d>& map) {
+  const auto& m = map.data();
+  const Surface<d>& s2 = map.target();
   CoveredMeasure c;
-  for (Index t = 0; t < map.domain().element_count(); ++t)
+  std::array<LocalPoint<d>, d + 1> x, y;
+  for (Index t = 0; t < map.domain().element_count(); ++t) {
+    if (map.regions_begin(t) == map.regions_end(t)) continue;
+    double local = 0.0;
     for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) {
-      const auto ri = remote_intersection_on(map, t, r);
-      c.domain += ri.domain_measure();
-      c.target += ri.target_measure();
+      const Index target = m.region_target[r];
+      for (int i = 0; i <= d; ++i) {
+        const Index n = m.region_corners[r][i];
+        x[i] = m.node_position[n];
+        y[i] = transfer_to_element(s2, m.node_image[n], target).value_or(apply<d>(m.region_map[r], x[i]));
+      }
+      local += local_simplex_measure<d>(x);
+      c.target += local_simplex_measure<d>(y) * s2.element_measure(target);
     }
+    c.domain += local * map.domain().element_measure(t);
+  }
   return c;
 }
 
