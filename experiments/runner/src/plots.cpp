@@ -68,6 +68,14 @@ std::pair<std::string, double> reference_function(ReferenceSlope slope, double x
   return {"", 0.0};
 }
 
+/// Position of `value` in `values`, appended if new.
+int index_of(std::vector<std::string>& values, const std::string& value) {
+  const auto it = std::find(values.begin(), values.end(), value);
+  if (it != values.end()) return static_cast<int>(it - values.begin());
+  values.push_back(value);
+  return static_cast<int>(values.size()) - 1;
+}
+
 bool has_terminal(const std::filesystem::path& gnuplot, const std::string& terminal) {
   return detail::run_process({gnuplot.string(), "-e", "set terminal " + terminal}).exit_code == 0;
 }
@@ -87,6 +95,8 @@ std::vector<PlotOutcome> write_plots(const ExperimentConfig& config, const std::
     // Series: one per value of group_by, in order of first appearance, sorted by x.
     std::vector<std::string> groups;
     std::map<std::string, std::vector<Point>> series;
+    std::vector<std::string> colour_values, dash_values;
+    std::map<std::string, std::pair<int, int>> style;  // group -> (colour, dash) index, from 0
     bool timing = false;
     for (const auto& row : rows) {
       const auto x = numeric(column_value(row, plot.x));
@@ -105,7 +115,19 @@ std::vector<PlotOutcome> write_plots(const ExperimentConfig& config, const std::
         g += (g.empty() ? "" : ", ") + (plot.group_by.size() > 1 ? column + " = " : "") +
              group_label(column_value(row, column));
       if (plot.group_by.empty()) g = plot.y;
-      if (!series.count(g)) groups.push_back(g);
+      if (!series.count(g)) {
+        groups.push_back(g);
+        // With two or more group_by columns, the colour tells the value of the first and the line
+        // and point style the rest: 5 inputs x 3 tools would otherwise cycle through gnuplot's
+        // 8 colours and show two series alike.
+        if (plot.group_by.size() >= 2) {
+          std::string rest;
+          for (std::size_t c = 1; c < plot.group_by.size(); ++c)
+            rest += group_label(column_value(row, plot.group_by[c])) + ", ";
+          style[g] = {index_of(colour_values, group_label(column_value(row, plot.group_by[0]))),
+                      index_of(dash_values, rest)};
+        }
+      }
       series[g].push_back(p);
     }
     if (groups.empty()) {
@@ -139,10 +161,14 @@ std::vector<PlotOutcome> write_plots(const ExperimentConfig& config, const std::
     if (plot.log_y) script << "set logscale y\n";
     script << "set grid\nset key left top noenhanced\n";
     std::vector<std::string> items;
-    for (std::size_t i = 0; i < groups.size(); ++i)
-      items.push_back(fmt::format("{} index {} using 1:2{} with {} lw 2 title {}", quoted(data.string()), i,
-                                  timing ? ":3:4" : "", timing ? "yerrorlines" : "linespoints",
+    for (std::size_t i = 0; i < groups.size(); ++i) {
+      std::string look;
+      if (const auto it = style.find(groups[i]); it != style.end())
+        look = fmt::format(" lc {} dt {} pt {}", it->second.first + 1, it->second.second + 1, it->second.second + 4);
+      items.push_back(fmt::format("{} index {} using 1:2{} with {} lw 2{} title {}", quoted(data.string()), i,
+                                  timing ? ":3:4" : "", timing ? "yerrorlines" : "linespoints", look,
                                   quoted(plot.group_by.size() == 1 ? plot.group_by[0] + " = " + groups[i] : groups[i])));
+    }
     for (const ReferenceSlope reference : plot.references) {
       // Anchored at the first point of the first series where the reference is positive.
       for (const auto& p : series[groups.front()]) {
