@@ -68,6 +68,17 @@ Json json_vector(const Vector& v) {
   return a;
 }
 
+/// Validator for options that must be a positive number, with a message that says so (the one of
+/// CLI::PositiveNumber spells out the largest double: "not in range 0.000000 to 179769313486...").
+inline const CLI::Validator positive_number(
+    [](std::string& text) -> std::string {
+      double value = 0.0;
+      if (!CLI::detail::lexical_cast(text, value) || !(value > 0.0))
+        return "must be a positive number, not '" + text + "'";
+      return {};
+    },
+    "POSITIVE");
+
 /// A subcommand's work, run after the whole command line has been parsed; returns the exit code.
 using Action = std::function<int()>;
 

@@ -56,7 +56,7 @@ void register_check(CLI::App& app, Action& action) {
                 "Also require that the regions cover all of S1 and their images all of S2");
   cmd->add_option("--max-condition", o->max_condition,
                   "Report regions whose condition number kappa exceeds this as violations")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number);
   cmd->add_option("--max-reported", o->max_reported,
                   "Violations listed per rule (further ones are only counted)")
       ->capture_default_str();

@@ -129,7 +129,7 @@ void register_eval(CLI::App& app, Action& action) {
   cmd->add_option("--threads", o->threads, "Threads (0: all hardware threads)")
       ->capture_default_str();
   cmd->add_option("--repeat", o->repeat, "Time this many runs and report the fastest")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number)
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON instead of text");
   cmd->callback([o, &action] { action = [o] { return run_eval(*o); }; });

@@ -84,7 +84,7 @@ void register_experiment(CLI::App& app, Action& action) {
   run->add_option("CONFIG", o->config, "Experiment config (.toml)")->required();
   run->add_option("-o,--output", o->output, "Output directory (created if needed)")->required();
   run->add_option("--repetitions", o->repetitions, "Override [experiment] repetitions")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number);
   run->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");
   run->add_option("--gnuplot", o->gnuplot, "The gnuplot executable")->capture_default_str();
   run->add_flag("-q,--quiet", o->quiet, "No progress lines on stderr");

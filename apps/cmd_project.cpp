@@ -156,7 +156,7 @@ void register_project(CLI::App& app, Action& action) {
   cmd->add_option("--threads", o->threads, "Worker threads (0: all cores); the result does not depend on it")
       ->capture_default_str();
   cmd->add_option("--max-distance", o->max_distance, "Largest projection distance |mu|")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number);
   cmd->add_flag("--relative-distance", o->relative_distance,
                 "--max-distance is a multiple of S1's bounding-box diagonal");
   cmd->add_flag("--allow-negative", o->allow_negative,

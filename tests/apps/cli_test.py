@@ -136,6 +136,13 @@ def usage_errors():
     expect_clean_error(["info"], code=64)  # FILE missing
     expect_clean_error(["eval", "x.plmap", "--random", "many"], code=64)
     expect_clean_error(["build", "refine", "s.off", "-o", "m.plmap", "--levels", "99"], code=64)
+    # A number that must be positive says so, in a line a person can read.
+    for option, value in (("--max-distance", "-1"), ("--max-distance", "abc")):
+        line = expect_clean_error(["project", "a.off", "b.off", "-o", "m.plmap", option, value], code=64,
+                                  mention="must be a positive number")
+        expect(len(line) < 200, f"error line too long: {line}")
+    expect_clean_error(["eval", "x.plmap", "--random", "5", "--repeat", "0"], code=64,
+                       mention="--repeat: must be a positive number")
 
 
 @case
