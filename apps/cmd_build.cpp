@@ -2,7 +2,6 @@
 // without projection (normal projection comes with the construction algorithms).
 
 #include "cli_common.hpp"
-#include "uniform_refinement.hpp"
 
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/map_file.hpp>
@@ -80,7 +79,7 @@ int run_refine(const BuildOptions& o) {
                                                 std::to_string(o.seed) + ")"),
               o);
         }
-        const auto refinement = uniform_refinement<d>(*s1, o.levels, max_refined_elements);
+        const auto refinement = generators::uniform_refinement<d>(*s1, o.levels, max_refined_elements);
         return save_and_report(
             generators::refinement_map<d>(s1, refinement,
                                           "uniform refinement of " + o.surface + ", " +

@@ -17,7 +17,7 @@
 //   --only              measure only this locator (and the floor)
 //   --femur-only        skip the growth series (no growth exponents then)
 
-#include "../tests/strategies/refinement_maps.hpp"
+#include <plmap/verify/generators/subdivision_maps.hpp>
 
 #include <plmap/core/evaluation.hpp>
 #include <plmap/core/io/surface_reader.hpp>
@@ -85,7 +85,7 @@ Timing measure(Work&& work, std::size_t available, double target_seconds) {
 
 struct Case {
   std::string name;
-  testing::RefinementMap<2> refinement;
+  generators::SubdivisionMap<2> refinement;
 };
 
 /// The femur of CGAL's data set simplified to about `faces` triangles by edge collapse.
@@ -277,14 +277,14 @@ int main(int argc, char** argv) {
     for (int k : ks) {
       const int grid = std::max(3, int(std::lround(std::sqrt(50000.0 / (2.0 * k * k)))));
       cases.push_back({fmt::format("grid{}x{}, {}x{} refinement", grid, grid, k, k),
-                       testing::refine(testing::bumpy_grid(grid), k, 0.2, 100 + k)});
+                       generators::subdivision_map(generators::bumpy_grid(grid), k, 0.2, 100 + k)});
     }
     const std::size_t growth_cases = cases.size();
     if (!femur_path.empty()) {
       const auto femur = coarse_femur(femur_path, 500);
       for (int k : {4, 5})
         cases.push_back({fmt::format("femur {} tris, {}x{} refinement", femur->element_count(), k, k),
-                         testing::refine(femur, k, 0.2, 200 + k)});
+                         generators::subdivision_map(femur, k, 0.2, 200 + k)});
     }
 
     if (cases.empty()) throw Error("--femur-only needs --femur path/to/femur.off");

@@ -28,7 +28,7 @@
 //                      [--queries N] [--json out.json]
 
 #include "../../tests/construct/projection_fixtures.hpp"
-#include "../../tests/strategies/refinement_maps.hpp"
+#include <plmap/verify/generators/subdivision_maps.hpp>
 
 #include <plmap/construct/project.hpp>
 #include <plmap/core/evaluation.hpp>
@@ -609,7 +609,7 @@ int main(int argc, char** argv) {
       const auto femur = coarse_femur(femur_path, 500);
       for (int k : {4, 5})
         cases.push_back({fmt::format("femur {} tris, {}x{} refinement", femur->element_count(), k, k),
-                         testing::refine(femur, k, 0.2, 200 + k).map});
+                         generators::subdivision_map(femur, k, 0.2, 200 + k).map});
     }
     if (sphere) {
       // Two spheres, the outer one rotated so that the meshes do not match: S2 projected onto

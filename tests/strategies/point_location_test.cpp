@@ -2,7 +2,7 @@
 // handles queries exactly on nodes and region sides, and evaluate_batch does not depend on the
 // number of threads.
 
-#include "refinement_maps.hpp"
+#include <plmap/verify/generators/subdivision_maps.hpp>
 
 #include <plmap/core/evaluation.hpp>
 #include <plmap/core/errors.hpp>
@@ -37,25 +37,25 @@ bool drop_some(Index element, int sub) { return (sub * 7 + element * 3) % 5 == 0
 // Keeps only the sub-triangles of the lower left part of the first element of each pair.
 bool drop_most(Index element, int sub) { return element % 2 == 1 || sub % 9 > 2; }
 
-const std::vector<testing::RefinementMap<2>>& maps2() {
-  static const std::vector<testing::RefinementMap<2>> maps = [] {
-    std::vector<testing::RefinementMap<2>> m;
-    m.push_back(testing::refine(testing::two_triangles(), 1, 0.0, 1));       // S1 itself
-    m.push_back(testing::refine(testing::two_triangles(), 6, 0.2, 2));       // S2: refinement
-    m.push_back(testing::refine(testing::bumpy_grid(3), 11, 0.2, 3));        // 121 per element
-    m.push_back(testing::refine(testing::two_triangles(), 9, 0.15, 4, drop_some));  // holes
-    m.push_back(testing::refine(testing::bumpy_grid(2), 7, 0.1, 5, drop_most));    // partial
+const std::vector<generators::SubdivisionMap<2>>& maps2() {
+  static const std::vector<generators::SubdivisionMap<2>> maps = [] {
+    std::vector<generators::SubdivisionMap<2>> m;
+    m.push_back(generators::subdivision_map(generators::two_triangles(), 1, 0.0, 1));       // S1 itself
+    m.push_back(generators::subdivision_map(generators::two_triangles(), 6, 0.2, 2));       // S2: refinement
+    m.push_back(generators::subdivision_map(generators::bumpy_grid(3), 11, 0.2, 3));        // 121 per element
+    m.push_back(generators::subdivision_map(generators::two_triangles(), 9, 0.15, 4, drop_some));  // holes
+    m.push_back(generators::subdivision_map(generators::bumpy_grid(2), 7, 0.1, 5, drop_most));    // partial
     return m;
   }();
   return maps;
 }
 
-const std::vector<testing::RefinementMap<1>>& maps1() {
-  static const std::vector<testing::RefinementMap<1>> maps = [] {
-    std::vector<testing::RefinementMap<1>> m;
-    m.push_back(testing::refine(testing::zigzag_curve(3), 1, 0.0, 1));
-    m.push_back(testing::refine(testing::zigzag_curve(4), 13, 0.3, 2));
-    m.push_back(testing::refine(testing::zigzag_curve(5), 40, 0.3, 3,
+const std::vector<generators::SubdivisionMap<1>>& maps1() {
+  static const std::vector<generators::SubdivisionMap<1>> maps = [] {
+    std::vector<generators::SubdivisionMap<1>> m;
+    m.push_back(generators::subdivision_map(generators::zigzag_curve(3), 1, 0.0, 1));
+    m.push_back(generators::subdivision_map(generators::zigzag_curve(4), 13, 0.3, 2));
+    m.push_back(generators::subdivision_map(generators::zigzag_curve(5), 40, 0.3, 3,
                                 [](Index e, int s) { return (s + e) % 4 == 0 || s < 3; }));
     return m;
   }();
@@ -244,7 +244,7 @@ TEST(PointLocation, CellGridCertifiesMostOfTheAreaAndReportsItsMemory) {
 TEST(PointLocation, CellGridOnElementsWithMoreRegionsThanACellCanName) {
   // 91 x 91 = 8,281 regions per element: more than a 16-bit cell can address (8,191), so part of
   // each element's cells start walks from a substitute region.
-  const auto rm = testing::refine(testing::two_triangles(), 91, 0.2, 9);
+  const auto rm = generators::subdivision_map(generators::two_triangles(), 91, 0.2, 9);
   const PlMap<2>& map = *rm.map;
   ASSERT_GT(map.regions_end(0) - map.regions_begin(0), 8191);
   CellGridLocator locator(CellGridOptions{2, 512});  // few cells: the map is the large part

@@ -1,6 +1,6 @@
 #include "inputs.hpp"
 
-#include "refinement_maps.hpp"  // tests/strategies: bumpy_grid, shared with the benchmarks
+#include <plmap/verify/generators/subdivision_maps.hpp>
 
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/surface_reader.hpp>
@@ -72,7 +72,7 @@ std::shared_ptr<const Surface<d>> InputCache::surface(int index, const Parameter
                                                              r);
       s = std::make_shared<const Surface<2>>(shaped(planar, p));
     } else if (input.kind == "bumpy-grid") {
-      s = testing::bumpy_grid(int(p.integer("cells")));
+      s = generators::bumpy_grid(int(p.integer("cells")));
     } else if (input.kind == "contact-pair") {
 #ifdef PLMAP_EXPERIMENT_PEER_BENCH
       const std::string& which = p.text("case");

@@ -2,7 +2,7 @@
 
 #include "inputs.hpp"
 #include "process.hpp"
-#include "refinement_maps.hpp"  // tests/strategies: k x k subdivision maps, as in the benchmarks
+#include <plmap/verify/generators/subdivision_maps.hpp>
 
 #include <plmap/core/evaluation.hpp>
 #include <plmap/core/io/atomic_file.hpp>
@@ -89,7 +89,7 @@ class Pipeline {
     if (kind == "identity") {
       map_ = generators::identity_map<d>(s1_).map;
     } else if (kind == "subdivision") {
-      map_ = testing::refine(s1_, int(p.integer("k")), p.real("jitter"), std::uint64_t(p.integer("seed"))).map;
+      map_ = generators::subdivision_map(s1_, int(p.integer("k")), p.real("jitter"), std::uint64_t(p.integer("seed"))).map;
     } else if (kind == "refinement") {
       Rng rng(std::uint64_t(p.integer("seed")));
       const generators::RefinementOptions options{.max_points_per_edge = int(p.integer("max_points_per_edge")),

@@ -78,6 +78,12 @@ struct Refinement {
 template <int d>
 Refinement<d> random_refinement(const Surface<d>& s1, const RefinementOptions& options, Rng& rng);
 
+/// Uniform refinement, as `plmap build refine` makes it: every segment split into 2^levels equal
+/// pieces (d = 1), every triangle into 4^levels similar triangles (d = 2). Throws plmap::Error if
+/// levels is outside [0, 20] or the result would have more than `max_elements` elements.
+template <int d>
+Refinement<d> uniform_refinement(const Surface<d>& s1, int levels, Index max_elements);
+
 /// The inclusion map of a refinement: S1 -> S2 = refinement.refined.
 template <int d>
 MapCase<d> refinement_map(std::shared_ptr<const Surface<d>> s1, const Refinement<d>& refinement,

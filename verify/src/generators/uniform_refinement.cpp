@@ -1,11 +1,13 @@
-#include "uniform_refinement.hpp"
+// Uniform refinement (random_maps.hpp): every element cut into 2^levels (d = 1) or 4^levels
+// (d = 2) similar pieces, each new vertex located on the original surface.
 
 #include <plmap/core/errors.hpp>
+#include <plmap/verify/generators/random_maps.hpp>
 
 #include <map>
 #include <tuple>
 
-namespace plmap::cli {
+namespace plmap::generators {
 
 namespace {
 
@@ -16,8 +18,8 @@ using PointKey = std::tuple<int, Index, Index>;
 }  // namespace
 
 template <int d>
-generators::Refinement<d> uniform_refinement(const Surface<d>& s, int levels, Index max_elements) {
-  using Location = generators::DomainLocation<d>;
+Refinement<d> uniform_refinement(const Surface<d>& s, int levels, Index max_elements) {
+  using Location = DomainLocation<d>;
   if (levels < 0 || levels > 20) throw Error("refinement levels must be between 0 and 20");
   const Index n = Index{1} << levels;  // pieces per edge
   const double pieces_per_element = d == 1 ? double(n) : double(n) * double(n);
@@ -110,11 +112,11 @@ generators::Refinement<d> uniform_refinement(const Surface<d>& s, int levels, In
         }
     }
   }
-  return generators::Refinement<d>{Surface<d>(std::move(vertices), std::move(elements)),
+  return Refinement<d>{Surface<d>(std::move(vertices), std::move(elements)),
                                    std::move(locations)};
 }
 
-template generators::Refinement<1> uniform_refinement<1>(const Surface<1>&, int, Index);
-template generators::Refinement<2> uniform_refinement<2>(const Surface<2>&, int, Index);
+template Refinement<1> uniform_refinement<1>(const Surface<1>&, int, Index);
+template Refinement<2> uniform_refinement<2>(const Surface<2>&, int, Index);
 
-}  // namespace plmap::cli
+}  // namespace plmap::generators

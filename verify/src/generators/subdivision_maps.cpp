@@ -1,47 +1,21 @@
-#pragma once
-/// \file
-/// Maps whose regions are known in advance, for the point-location tests and benchmark:
-/// S2 is a logical refinement of S1 in which every S1 element is cut into k x k sub-elements
-/// (d = 2: the regular subdivision of the triangle into k^2 triangles; d = 1: k segments), interior
-/// subdivision points jittered. Sub-elements can be dropped from S2, which leaves holes in
-/// D ∩ T (a non-convex, possibly disconnected domain on an element). The map is built through
-/// MapBuilder (add_vertex_preimage*, add_target_element), exactly as a user would.
-///
-/// Shared by tests/strategies and experiments/bench_point_location.cpp.
+// The subdivision maps of subdivision_maps.hpp and their sample input surfaces.
 
 #include <plmap/core/map_builder.hpp>
+#include <plmap/verify/generators/subdivision_maps.hpp>
 
 #include <cmath>
-#include <functional>
 #include <map>
-#include <memory>
 #include <random>
 #include <tuple>
-#include <vector>
 
-namespace plmap::testing {
-
-template <int d>
-struct RefinementMap {
-  std::shared_ptr<const Surface<d>> domain;
-  std::shared_ptr<const Surface<d>> target;
-  std::shared_ptr<const PlMap<d>> map;
-  /// Points strictly inside dropped sub-elements (outside D), one per dropped sub-element.
-  std::vector<SurfacePoint<d>> holes;
-};
-
-/// Which sub-elements to drop: (S1 element, sub-element number on it) -> true to drop.
-using DropRule = std::function<bool(Index element, int sub_element)>;
-
-/// Two triangles forming the unit square at z = 0 (counter-clockwise seen from +z).
-inline std::shared_ptr<const Surface<2>> two_triangles() {
+namespace plmap::generators {
+std::shared_ptr<const Surface<2>> two_triangles() {
   std::vector<WorldPoint<2>> v = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   return std::make_shared<const Surface<2>>(std::move(v),
                                             std::vector<ElementCorners<2>>{{0, 1, 2}, {0, 2, 3}});
 }
 
-/// An n x n grid of squares, each cut into two triangles, on a gentle height field.
-inline std::shared_ptr<const Surface<2>> bumpy_grid(int n) {
+std::shared_ptr<const Surface<2>> bumpy_grid(int n) {
   std::vector<WorldPoint<2>> v;
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
@@ -58,8 +32,7 @@ inline std::shared_ptr<const Surface<2>> bumpy_grid(int n) {
   return std::make_shared<const Surface<2>>(std::move(v), std::move(t));
 }
 
-/// A polyline of n segments in the plane.
-inline std::shared_ptr<const Surface<1>> zigzag_curve(int n) {
+std::shared_ptr<const Surface<1>> zigzag_curve(int n) {
   std::vector<WorldPoint<1>> v;
   for (int i = 0; i <= n; ++i) v.push_back({double(i), 0.3 * (i % 2)});
   std::vector<ElementCorners<1>> e;
@@ -67,10 +40,8 @@ inline std::shared_ptr<const Surface<1>> zigzag_curve(int n) {
   return std::make_shared<const Surface<1>>(std::move(v), std::move(e));
 }
 
-/// The k x k refinement of every triangle of S1, interior points moved by up to
-/// jitter / k (jitter <= 0.2 keeps every sub-triangle positively oriented).
-inline RefinementMap<2> refine(std::shared_ptr<const Surface<2>> s1, int k, double jitter,
-                               std::uint64_t seed, const DropRule& drop = {}) {
+SubdivisionMap<2> subdivision_map(std::shared_ptr<const Surface<2>> s1, int k, double jitter, std::uint64_t seed,
+                                  const DropRule& drop) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> shake(-jitter / k, jitter / k);
   enum class Where { vertex, edge, inside };
@@ -139,7 +110,7 @@ inline RefinementMap<2> refine(std::shared_ptr<const Surface<2>> s1, int k, doub
       }
   }
   // Keep the sub-triangles that survive the drop rule; S2 holds only the points they use.
-  RefinementMap<2> out;
+  SubdivisionMap<2> out;
   out.domain = s1;
   std::vector<Index> target_vertex(points.size(), invalid_index);
   std::vector<WorldPoint<2>> vertices;
@@ -181,10 +152,8 @@ inline RefinementMap<2> refine(std::shared_ptr<const Surface<2>> s1, int k, doub
   return out;
 }
 
-/// The k-segment refinement of every segment of S1 (interior points jittered by up to
-/// jitter / k), sub-segments dropped by `drop`.
-inline RefinementMap<1> refine(std::shared_ptr<const Surface<1>> s1, int k, double jitter,
-                               std::uint64_t seed, const DropRule& drop = {}) {
+SubdivisionMap<1> subdivision_map(std::shared_ptr<const Surface<1>> s1, int k, double jitter, std::uint64_t seed,
+                                  const DropRule& drop) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> shake(-jitter / k, jitter / k);
   struct Point {
@@ -219,7 +188,7 @@ inline RefinementMap<1> refine(std::shared_ptr<const Surface<1>> s1, int k, doub
       sub_number.push_back(i);
     }
   }
-  RefinementMap<1> out;
+  SubdivisionMap<1> out;
   out.domain = s1;
   std::vector<Index> target_vertex(points.size(), invalid_index);
   std::vector<WorldPoint<1>> vertices;
@@ -258,4 +227,4 @@ inline RefinementMap<1> refine(std::shared_ptr<const Surface<1>> s1, int k, doub
   return out;
 }
 
-}  // namespace plmap::testing
+}  // namespace plmap::generators
