@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <vector>
 
 namespace plmap {
 
@@ -78,14 +79,15 @@ double local_simplex_measure(const std::array<LocalPoint<d>, d + 1>& x) {
 }
 
 // Elements are affine, so a region's measure is its measure in local coordinates times its
-// element's, on either side: no world position of a corner is needed. Per S1 element the local
-// measures are summed first and scaled once. The image corners are moved onto the region's S2
-// element exactly, as remote_intersection does.
+// element's, on either side: no world position of a corner is needed. Local measures are summed
+// per element first (S1: consecutive regions; S2: one running sum per S2 element) and scaled once.
+// The image corners are moved onto the region's S2 element exactly, as remote_intersection does.
 template <int d>
 CoveredMeasure covered_measure(const PlMap<d>& map) {
   const auto& m = map.data();
   const Surface<d>& s2 = map.target();
   CoveredMeasure c;
+  std::vector<double> target_local(static_cast<std::size_t>(s2.element_count()), 0.0);
   std::array<LocalPoint<d>, d + 1> x, y;
   for (Index t = 0; t < map.domain().element_count(); ++t) {
     if (map.regions_begin(t) == map.regions_end(t)) continue;
@@ -98,10 +100,13 @@ CoveredMeasure covered_measure(const PlMap<d>& map) {
         y[i] = transfer_to_element(s2, m.node_image[n], target).value_or(apply<d>(m.region_map[r], x[i]));
       }
       local += local_simplex_measure<d>(x);
-      c.target += local_simplex_measure<d>(y) * s2.element_measure(target);
+      target_local[static_cast<std::size_t>(target)] += local_simplex_measure<d>(y);
     }
     c.domain += local * map.domain().element_measure(t);
   }
+  for (Index t2 = 0; t2 < s2.element_count(); ++t2)
+    if (target_local[static_cast<std::size_t>(t2)] != 0.0)
+      c.target += target_local[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
   return c;
 }
 
