@@ -839,6 +839,33 @@ class Projector {
     double lambda = 0.0, mu = 0.0, eta = 0.0;
   };
 
+  /// The answers of eq. (4) for the S2 edge of one walk, by S1 edge. Consecutive steps of a walk
+  /// share an element whose other edges were solved in the step before, and a walk from an S1
+  /// vertex meets each edge at the vertex in two elements: the answer depends only on the two
+  /// edges, so it is looked up instead of solved again. The last `capacity` answers are kept,
+  /// enough for a step from a vertex of any usual valence and the step after it.
+  struct CrossingMemo {
+    static constexpr int capacity = 16;
+    std::array<Index, capacity> edges;
+    std::array<CrossingCandidate, capacity> answers;
+    int size = 0, next = 0;
+
+    template <class Solve>
+    const CrossingCandidate& get(Index edge, Solve&& solve) {
+      for (int i = 0; i < size; ++i)
+        if (edges[i] == edge) return answers[i];
+      const int slot = next;
+      next = (next + 1) % capacity;
+      if (size < capacity) ++size;
+      edges[slot] = edge;
+      answers[slot] = solve();
+      return answers[slot];
+    }
+  };
+
+  /// How far outside [0, 1] the S1 edge parameter of a solution of eq. (4) may lie (rounding).
+  static constexpr double crossing_lambda_slack = 1e-9;
+
   /// Eq. (4): where the projection of S2 edge (qa, qb) crosses S1 edge `edge` (d = 2).
   CrossingCandidate solve_crossing(Index edge, const WorldPoint<d>& qa, const WorldPoint<d>& qb,
                                    long long& calls, long long& failures) const
@@ -850,6 +877,8 @@ class Projector {
     sys.edge = {s1_.vertex(ev[0]), s1_.vertex(ev[1])};
     sys.directions = {nu_[ev[0]], nu_[ev[1]]};
     sys.target = {qa, qb};
+    // A crossing outside [-1e-9, 1 + 1e-9] is rejected below whatever the solver returns.
+    if (sys.misses_the_edge(opt_.solver_tolerance, crossing_lambda_slack)) return c;
     ++calls;
     const auto r = solver_.solve(sys, sys.initial_guess());
     if (!r.converged) {
@@ -867,7 +896,7 @@ class Projector {
       const double s = sys.scale();
       if (!(std::abs(j.determinant()) > 1e-10 * s * s * j.col(1).norm())) return c;
     }
-    if (c.lambda < -1e-9 || c.lambda > 1.0 + 1e-9) return c;
+    if (c.lambda < -crossing_lambda_slack || c.lambda > 1.0 + crossing_lambda_slack) return c;
     if (!distance_ok(c.mu, sys.scale())) {
       c.beyond_limit = true;
       return c;
@@ -913,6 +942,7 @@ class Projector {
     double eta = eta0;
     std::vector<Index> cand, end_elements;
     if (end) elements_of(*end, end_elements);
+    CrossingMemo memo;
     long long calls = 0, failures = 0;
     for (w.steps = 0; w.steps < walk_limit_; ++w.steps) {
       elements_of(cur, cand);
@@ -948,7 +978,7 @@ class Projector {
           if constexpr (d == 2) {
             const Index edge = s1_.element_edge(t, k);
             if (cur.kind == PlaceKind::edge && cur.index == edge) continue;
-            c = solve_crossing(edge, qa, qb, calls, failures);
+            c = memo.get(edge, [&] { return solve_crossing(edge, qa, qb, calls, failures); });
             if (!c.valid) {
               solver_failed |= c.solver_failed;
               beyond_limit |= c.beyond_limit;
