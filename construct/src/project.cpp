@@ -408,6 +408,15 @@ class Projector {
     index1_ = std::make_unique<ElementIndex<d>>(s1_);
     index2_ = std::make_unique<ElementIndex<d>>(s2_);
     walk_limit_ = 2 * static_cast<int>(s1_.element_count()) + 16;
+    focal_free_.resize(s1_.element_count());
+    parallel_for(s1_.element_count(), threads_, [&](Index t) {
+      std::array<WorldPoint<d>, d + 1> corners, directions;
+      for (int k = 0; k <= d; ++k) {
+        corners[k] = s1_.corner(t, k);
+        directions[k] = nu_[s1_.element(t)[k]];
+      }
+      focal_free_[t] = focal_free_distance<d>(corners, directions);
+    });
   }
 
   // ---- helpers on places ------------------------------------------------------------------------
@@ -502,6 +511,11 @@ class Projector {
   /// The ray from local point xi of S1 element t reaches distance mu before any focal point of
   /// the direction field (solvers/focal_points.hpp): beyond one the projection is folded.
   bool unfolded_in(Index t, const LocalPoint<d>& xi, double mu) const {
+    return std::abs(mu) <= focal_free_[t] || reaches_without_focal_point_in(t, xi, mu);
+  }
+
+  /// The focal test itself, for distances beyond the element's focal-free distance.
+  bool reaches_without_focal_point_in(Index t, const LocalPoint<d>& xi, double mu) const {
     std::array<WorldPoint<d>, d + 1> corners, directions;
     for (int k = 0; k <= d; ++k) {
       corners[k] = s1_.corner(t, k);
@@ -514,19 +528,22 @@ class Projector {
   /// that contains the point, since the regions on all of them end there.
   bool unfolded_at(const Place<d>& p, double mu) const {
     if (p.kind == PlaceKind::element) return unfolded_in(p.index, p.local, mu);
+    const double distance = std::abs(mu);
     if (p.kind == PlaceKind::vertex) {
       for (Index t : s1_.vertex_elements(p.index))
-        if (!unfolded_in(t, local_of_corner(s1_, t, p.index), mu)) return false;
+        if (!(distance <= focal_free_[t]) && !reaches_without_focal_point_in(t, local_of_corner(s1_, t, p.index), mu))
+          return false;
       return true;
     }
     if constexpr (d == 2) {
       const auto ev = s1_.edge_vertices(p.index);
       for (const auto& incidence : s1_.edge_elements(p.index)) {
         const Index t = incidence.element;
+        if (distance <= focal_free_[t]) continue;
         Barycentric<2> b = Barycentric<2>::Zero();
         b(s1_.local_corner(t, ev[0])) = 1.0 - p.t;
         b(s1_.local_corner(t, ev[1])) = p.t;
-        if (!unfolded_in(t, local_from_barycentric<2>(b), mu)) return false;
+        if (!reaches_without_focal_point_in(t, local_from_barycentric<2>(b), mu)) return false;
       }
     }
     return true;
@@ -1229,6 +1246,8 @@ class Projector {
   ProjectionOptions opt_;
   Solver solver_;
   std::vector<WorldPoint<d>> nu_, n2_;
+  /// Per S1 element: up to this |mu| no ray of the element passes a focal point (focal_points.hpp).
+  std::vector<double> focal_free_;
   double limit_ = 0.0;
   int seeds_ = 8;
   unsigned threads_ = 1;
