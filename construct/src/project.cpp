@@ -19,6 +19,7 @@
 #include <plmap/core/snapping.hpp>
 #include <plmap/solvers/focal_points.hpp>
 #include <plmap/solvers/projection_systems.hpp>
+#include <plmap/solvers/small_lu.hpp>
 #include <plmap/solvers/solver_kind.hpp>
 
 #include <fmt/format.h>
@@ -816,7 +817,7 @@ class Projector {
         a.col(d) = -direction;
         const double det = a.determinant();
         if (!(std::abs(det) > 1e-12 * integer_power(scale, d))) break;  // ray parallel to the element
-        const Eigen::Matrix<double, d + 1, 1> x = a.partialPivLu().solve(origin - s2_.corner(t, 0));
+        const Eigen::Matrix<double, d + 1, 1> x = solve_with_partial_pivoting<d + 1>(a, origin - s2_.corner(t, 0));
         const LocalPoint<d> y = x.template head<d>();
         const Barycentric<d> b = barycentric_from_local<d>(y);
         int worst = 0;
@@ -933,7 +934,7 @@ class Projector {
     a.col(1) = qa - qb;
     const double scale = (qb - qa).norm();
     if (!(std::abs(a.determinant()) > 1e-12 * scale)) return c;
-    const Eigen::Vector2d x = a.partialPivLu().solve(qa - s1_.vertex(w));
+    const Eigen::Vector2d x = solve_with_partial_pivoting<2>(a, qa - s1_.vertex(w));
     c.mu = x(0);
     c.eta = x(1);
     c.lambda = 0.0;

@@ -21,6 +21,7 @@
 
 #include <plmap/core/types.hpp>
 #include <plmap/solvers/nonlinear_system.hpp>
+#include <plmap/solvers/small_lu.hpp>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -79,8 +80,7 @@ struct VertexProjectionSystem {
     nu /= d + 1;
     for (int i = 0; i < d; ++i) a.col(i) = corners[i + 1] - corners[0];
     a.col(d) = nu;
-    const Eigen::PartialPivLU<Jacobian> lu(a);
-    Vector x = lu.solve(target - corners[0]);
+    Vector x = solve_with_partial_pivoting<d + 1>(a, target - corners[0]);
     if (!x.allFinite() || std::abs(a.determinant()) <= 1e-14 * integer_power(scale(), d) * nu.norm()) {
       x.setConstant(1.0 / (d + 1));
       x(d) = 0.0;
@@ -225,8 +225,7 @@ struct EdgeCrossingSystem {
     a.col(0) = edge[1] - edge[0];
     a.col(1) = 0.5 * (directions[0] + directions[1]);
     a.col(2) = target[0] - target[1];
-    const Eigen::PartialPivLU<Jacobian> lu(a);
-    Vector x = lu.solve(target[0] - edge[0]);
+    Vector x = solve_with_partial_pivoting<3>(a, target[0] - edge[0]);
     const double s = scale();
     if (!x.allFinite() || std::abs(a.determinant()) <= 1e-14 * s * s * a.col(1).norm())
       x = Vector(0.5, 0.0, 0.5);
