@@ -76,6 +76,24 @@ void parallel_for(Index n, unsigned threads, F&& f) {
   for (auto& t : pool) t.join();
 }
 
+/// Runs f(worker, begin, end) on `threads` threads, worker k taking the k-th of contiguous ranges
+/// that cover [0, n).
+template <class F>
+void parallel_for_ranges(Index n, unsigned threads, F&& f) {
+  if (threads <= 1 || n < 64) {
+    f(0u, Index{0}, n);
+    return;
+  }
+  std::vector<std::thread> pool;
+  const Index block = (n + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
+  for (unsigned k = 0; k < threads; ++k) {
+    const Index begin = static_cast<Index>(k) * block, end = std::min<Index>(n, begin + block);
+    if (begin >= end) break;
+    pool.emplace_back([&f, k, begin, end] { f(k, begin, end); });
+  }
+  for (auto& t : pool) t.join();
+}
+
 /// Runs f(begin, end) over [0, n) cut into chunks of a fixed size, the chunks spread over
 /// `threads` threads. Work inside a chunk is sequential, so a chunk may carry state from one
 /// item to the next (a search hint) and the result still does not depend on the thread count:
@@ -159,26 +177,46 @@ using Crossing = std::conditional_t<d == 2, EdgeCrossing, VertexCrossing>;
 
 enum class WalkEnd : std::uint8_t { reached, left_boundary, failed };
 
+/// How a walk along the preimage of an S2 edge ended; its crossings are appended to the
+/// PlanBuffer it was given.
 template <int d>
 struct WalkResult {
   WalkEnd end = WalkEnd::failed;
-  std::vector<Crossing<d>> crossings;
+  int crossing_count = 0;
   EdgeFailureReason reason = EdgeFailureReason::discontinuity;
   Place<d> stop;
   double eta = 0.0;
   int steps = 0;
 };
 
+/// What phase 3 plans for the S2 edges of one block, in flat arrays owned by one worker thread
+/// and reused from block to block: once they have grown, planning allocates nothing per edge or
+/// per walk (the per-edge vectors of pieces and crossings this replaces were millions of small
+/// allocations).
 template <int d>
-struct Piece {
+struct PlanBuffer {
+  /// A piece of an S2 edge's preimage: crossings [begin, end) of `crossings`.
+  struct Piece {
+    std::uint32_t begin, end;
+    bool from_first, to_second;
+  };
   std::vector<Crossing<d>> crossings;
-  bool from_first = true, to_second = true;
+  std::vector<Piece> pieces;
+  std::vector<EdgeNotInserted<d>> failures;
+  /// scratch of the walks: the S1 elements at the current point and at the walk's end
+  std::vector<Index> candidates, end_elements;
+
+  void clear() {
+    crossings.clear();
+    pieces.clear();
+    failures.clear();
+  }
 };
 
-template <int d>
-struct EdgePlan {
-  std::vector<Piece<d>> pieces;
-  std::vector<EdgeNotInserted<d>> failures;
+/// The plan of one S2 edge: which worker's PlanBuffer holds it and where.
+struct PlannedEdge {
+  unsigned worker = 0;
+  std::uint32_t pieces_begin = 0, pieces_end = 0, failures_begin = 0, failures_end = 0;
   bool outside = false;
 };
 
@@ -231,24 +269,27 @@ class Projector {
     bopt.drop_conflicting_edges = true;
     MapBuilder<d> builder(s1_ptr_, s2_ptr_, bopt);
     target_place_.assign(n2v, std::nullopt);
-    if constexpr (d == 2) used_on_edge_.assign(s1_.edge_count(), {});
+    if constexpr (d == 2) used_first_.assign(s1_.edge_count(), invalid_index);
     crossed_vertex_.assign(n1v, invalid_index);
     vertex_state_.assign(n1v, VertexState::free);
     vertex_image_.assign(n1v, std::nullopt);
     report.target_vertices = n2v;
     report.domain_vertices = n1v;
-    const std::vector<bool> loses = coincident_preimage_losers(preimage);
+    // target_place_ first holds every preimage's place; those that are not inserted lose it below
+    for (Index q = 0; q < n2v; ++q)
+      if (preimage[q]) target_place_[q] = place_of(*preimage[q]);
+    const std::vector<bool> loses = coincident_preimage_losers();
     for (Index q = 0; q < n2v; ++q) {
       if (!preimage[q]) continue;
-      const Place<d> place = place_of(*preimage[q]);
+      const Place<d> place = *target_place_[q];
       if (loses[q] || (place.kind == PlaceKind::vertex && vertex_state_[place.index] != VertexState::free)) {
         ++report.vertex_conflicts;
+        target_place_[q].reset();
         continue;
       }
       builder.add_vertex_preimage(q, {preimage[q]->element, place_local(*preimage[q])});
-      target_place_[q] = place;
       if constexpr (d == 2)
-        if (place.kind == PlaceKind::edge) used_on_edge_[place.index].push_back({place.t, -1 - q});
+        if (place.kind == PlaceKind::edge) add_used_parameter(place.index, place.t, -1 - q);
       ++report.vertex_preimages;
       if (place.kind == PlaceKind::vertex) {
         vertex_state_[place.index] = VertexState::corner;
@@ -257,6 +298,7 @@ class Projector {
       }
     }
     report.seconds.insertion += seconds_since(t0);
+    std::vector<std::optional<SurfacePoint<d>>>().swap(preimage);
 
     // ---- 2. ghost nodes ------------------------------------------------------------------------
     t0 = Clock::now();
@@ -297,6 +339,7 @@ class Projector {
       vertex_image_[v] = image;
     }
     report.seconds.insertion += seconds_since(t0);
+    std::vector<std::optional<SurfacePoint<d>>>().swap(hit);
 
     // ---- 3. edge preimages ---------------------------------------------------------------------
     t0 = Clock::now();
@@ -304,64 +347,14 @@ class Projector {
     entries_.assign(n2e, {});
     find_boundary_entries();
     for (const auto& list : entries_) report.boundary_entries += static_cast<Index>(list.size());
-    std::vector<EdgePlan<d>> plans(n2e);
-    parallel_for(n2e, threads_, [&](Index e) { plans[e] = plan_edge(e); });
-    report.seconds.edge_walks = seconds_since(t0);
+    report.seconds.edge_walks += seconds_since(t0);
 
-    t0 = Clock::now();
     report.target_edges = n2e;
-    std::vector<std::pair<char, int>> counted(n2e, {0, 0});  // per edge: inserted whole, pieces
-    for (Index e = 0; e < n2e; ++e) {
-      auto& plan = plans[e];
-      if (plan.outside) {
-        ++report.edges_outside;
-        builder.add_edge_outside_domain(e);
-      }
-      bool whole = false;
-      int pieces = 0;
-      for (const auto& piece : plan.pieces) {
-        if (const auto clash = find_used_point(piece)) {
-          EdgeNotInserted<d> f;
-          f.target_edge = e;
-          f.reason = EdgeFailureReason::builder_rejected;
-          f.domain_element = clash->element;
-          f.domain_point = clash->point;
-          f.detail = clash->detail;
-          plan.failures.push_back(std::move(f));
-          continue;
-        }
-        try {
-          if (piece.from_first && piece.to_second) {
-            if constexpr (d == 2)
-              builder.add_edge(e, std::span<const EdgeCrossing>(piece.crossings));
-            else
-              builder.add_edge(e, std::span<const VertexCrossing>(piece.crossings));
-            whole = true;
-          } else {
-            if constexpr (d == 2)
-              builder.add_edge_piece(e, std::span<const EdgeCrossing>(piece.crossings), piece.from_first,
-                                     piece.to_second);
-            else
-              builder.add_edge_piece(e, std::span<const VertexCrossing>(piece.crossings), piece.from_first,
-                                     piece.to_second);
-            ++pieces;
-          }
-          mark_used_points(piece, e);
-        } catch (const BuilderError& error) {
-          EdgeNotInserted<d> f;
-          f.target_edge = e;
-          f.reason = EdgeFailureReason::builder_rejected;
-          f.detail = error.what();
-          plan.failures.push_back(std::move(f));
-        }
-      }
-      counted[e] = {whole ? 1 : 0, pieces};
-      if (whole) ++report.edges_inserted;
-      if (pieces > 0) ++report.edges_partly_inserted;
-      report.edge_pieces += pieces;
-      for (auto& f : plan.failures) report.edges_not_inserted.push_back(std::move(f));
-    }
-    report.seconds.insertion += seconds_since(t0);
+    // per edge: bit 31 set if inserted whole, the lower bits count the pieces inserted
+    std::vector<std::uint32_t> counted(n2e, 0);
+    plan_and_insert_edges(builder, report, counted);
+    // what the projection no longer needs, freed before finalize (which has the memory peak)
+    release_search_data();
 
     t0 = Clock::now();
     FinalizeReport dropped;
@@ -370,9 +363,10 @@ class Projector {
     report.reversed_faces = dropped.reversed_faces;
     for (std::size_t i = 0; i < dropped.dropped_edges.size(); ++i) {
       const Index e = dropped.dropped_edges[i];
-      if (counted[e].first) --report.edges_inserted;
-      if (counted[e].second > 0) --report.edges_partly_inserted;
-      report.edge_pieces -= counted[e].second;
+      const Index pieces = static_cast<Index>(counted[e] & ~inserted_whole);
+      if (counted[e] & inserted_whole) --report.edges_inserted;
+      if (pieces > 0) --report.edges_partly_inserted;
+      report.edge_pieces -= pieces;
       EdgeNotInserted<d> f;
       f.target_edge = e;
       f.reason = EdgeFailureReason::overlap;
@@ -584,8 +578,8 @@ class Projector {
     std::string detail;
   };
 
-  std::optional<UsedPoint> find_used_point(const Piece<d>& piece) const {
-    for (const auto& c : piece.crossings) {
+  std::optional<UsedPoint> find_used_point(std::span<const Crossing<d>> crossings) const {
+    for (const auto& c : crossings) {
       Index vertex = invalid_index;
       if constexpr (d == 2) {
         const auto ev = s1_.edge_vertices(c.domain_edge);
@@ -593,8 +587,9 @@ class Projector {
         if (snap == EdgeSnap::first_vertex) vertex = ev[0];
         else if (snap == EdgeSnap::second_vertex) vertex = ev[1];
         else {
-          for (const auto& [t, owner] : used_on_edge_[c.domain_edge])
-            if (std::abs(t - c.domain_parameter) <= opt_.snap_tolerance) {
+          for (Index i = used_first_[c.domain_edge]; i != invalid_index; i = used_parameters_[i].next)
+            if (const Index owner = used_parameters_[i].owner;
+                std::abs(used_parameters_[i].t - c.domain_parameter) <= opt_.snap_tolerance) {
               const Place<d> at = edge_place(c.domain_edge, c.domain_parameter);
               return UsedPoint{s1_.edge_elements(c.domain_edge).front().element, world_of(at),
                                fmt::format("its preimage meets {} on S1 edge {} at {:.17g}: the projection is not "
@@ -617,18 +612,27 @@ class Projector {
     return std::nullopt;
   }
 
-  void mark_used_points(const Piece<d>& piece, Index e) {
-    for (const auto& c : piece.crossings) {
+  void mark_used_points(std::span<const Crossing<d>> crossings, Index e) {
+    for (const auto& c : crossings) {
       if constexpr (d == 2) {
         const auto ev = s1_.edge_vertices(c.domain_edge);
         const EdgeSnap snap = snap_edge_parameter(c.domain_parameter, opt_.snap_tolerance);
         if (snap == EdgeSnap::first_vertex) crossed_vertex_[ev[0]] = e;
         else if (snap == EdgeSnap::second_vertex) crossed_vertex_[ev[1]] = e;
-        else used_on_edge_[c.domain_edge].push_back({c.domain_parameter, e});
+        else add_used_parameter(c.domain_edge, c.domain_parameter, e);
       } else {
         crossed_vertex_[c.domain_vertex] = e;
       }
     }
+  }
+
+  /// Appends to S1 edge `edge`'s list of used parameters (see used_first_).
+  void add_used_parameter(Index edge, double t, Index owner) {
+    const Index entry = static_cast<Index>(used_parameters_.size());
+    used_parameters_.push_back({t, owner, invalid_index});
+    Index* link = &used_first_[edge];
+    while (*link != invalid_index) link = &used_parameters_[*link].next;
+    *link = entry;
   }
 
   // ---- phase 1: eq. (3) ---------------------------------------------------------------------------
@@ -639,46 +643,57 @@ class Projector {
   /// smallest index) is kept; the others are marked here and counted as vertex conflicts, and
   /// their edges are reported by the walks. Preimages on the same S1 vertex keep the old rule
   /// (first come), which gives the same winner as long as only one of them is nearest.
-  std::vector<bool> coincident_preimage_losers(const std::vector<std::optional<SurfacePoint<d>>>& preimage) const {
+  /// Reads the places of all preimages from target_place_.
+  std::vector<bool> coincident_preimage_losers() const {
+    // Group the preimages by the S1 edge or element they lie on (a counting sort: almost every
+    // group has a single member, which keeps its place without further work).
+    const Index n2v = static_cast<Index>(target_place_.size());
+    const Index edge_keys = d == 2 ? s1_.edge_count() : 0;
+    auto key = [&](const Place<d>& p) { return p.kind == PlaceKind::edge ? p.index : edge_keys + p.index; };
+    std::vector<Index> group_begin(static_cast<std::size_t>(edge_keys + s1_.element_count()) + 1, 0);
+    auto grouped = [&](Index q) { return target_place_[q] && target_place_[q]->kind != PlaceKind::vertex; };
+    for (Index q = 0; q < n2v; ++q)
+      if (grouped(q)) ++group_begin[key(*target_place_[q]) + 1];
+    for (std::size_t k = 1; k < group_begin.size(); ++k) group_begin[k] += group_begin[k - 1];
+    std::vector<Index> members(static_cast<std::size_t>(group_begin.back()));
+    {
+      std::vector<Index> cursor(group_begin.begin(), group_begin.end() - 1);
+      for (Index q = 0; q < n2v; ++q)
+        if (grouped(q)) members[cursor[key(*target_place_[q])]++] = q;
+    }
+    std::vector<bool> loses(target_place_.size(), false);
     struct Item {
-      Place<d> place;
       double distance;
       Index q;
     };
-    std::vector<Item> items;
-    for (Index q = 0; q < static_cast<Index>(preimage.size()); ++q) {
-      if (!preimage[q]) continue;
-      const Place<d> p = place_of(*preimage[q]);
-      if (p.kind == PlaceKind::vertex) continue;
-      items.push_back({p, (s2_.vertex(q) - world_of(p)).norm(), q});
-    }
-    std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
-      if (a.place.kind != b.place.kind) return a.place.kind < b.place.kind;
-      if (a.place.index != b.place.index) return a.place.index < b.place.index;
-      if (a.distance != b.distance) return a.distance < b.distance;
-      return a.q < b.q;
-    });
-    std::vector<bool> loses(preimage.size(), false);
-    for (std::size_t i = 0; i < items.size();) {
-      std::size_t end = i;
-      while (end < items.size() && items[end].place.kind == items[i].place.kind &&
-             items[end].place.index == items[i].place.index)
-        ++end;
-      // within one S1 edge or element, nearest first: a point loses if it coincides with a kept one
-      std::vector<std::size_t> kept;
-      for (std::size_t k = i; k < end; ++k) {
-        const bool same = std::any_of(kept.begin(), kept.end(), [&](std::size_t w) {
-          const double gap = items[k].place.kind == PlaceKind::edge
-                                 ? std::abs(items[k].place.t - items[w].place.t)
-                                 : (items[k].place.local - items[w].place.local).template lpNorm<Eigen::Infinity>();
+    std::vector<Item> group;
+    std::vector<const Place<d>*> kept;
+    for (std::size_t g = 0; g + 1 < group_begin.size(); ++g) {
+      if (group_begin[g + 1] - group_begin[g] < 2) continue;
+      // within one S1 edge or element, nearest first (then the smallest q): a point loses if it
+      // coincides with a kept one
+      group.clear();
+      for (Index i = group_begin[g]; i < group_begin[g + 1]; ++i) {
+        const Index q = members[i];
+        group.push_back({(s2_.vertex(q) - world_of(*target_place_[q])).norm(), q});
+      }
+      std::sort(group.begin(), group.end(), [](const Item& a, const Item& b) {
+        return a.distance != b.distance ? a.distance < b.distance : a.q < b.q;
+      });
+      kept.clear();
+      for (const Item& item : group) {
+        const Place<d>& place = *target_place_[item.q];
+        const bool same = std::any_of(kept.begin(), kept.end(), [&](const Place<d>* w) {
+          const double gap = place.kind == PlaceKind::edge
+                                 ? std::abs(place.t - w->t)
+                                 : (place.local - w->local).template lpNorm<Eigen::Infinity>();
           return gap <= opt_.snap_tolerance;
         });
         if (same)
-          loses[items[k].q] = true;
+          loses[item.q] = true;
         else
-          kept.push_back(k);
+          kept.push_back(&place);
       }
-      i = end;
     }
     return loses;
   }
@@ -949,8 +964,8 @@ class Projector {
   /// Walks along the preimage of S2 edge e from `start` (at parameter eta0) towards `end`.
   /// With `reversed`, the walk runs from the second vertex towards the first: eta (and every
   /// parameter in the result) is then measured from the second vertex; see plan_edge.
-  WalkResult<d> walk(Index e, const Place<d>& start, double eta0, const std::optional<Place<d>>& end,
-                     bool reversed = false) const {
+  WalkResult<d> walk(Index e, const Place<d>& start, double eta0, const std::optional<Place<d>>& end, bool reversed,
+                     PlanBuffer<d>& buffer) const {
     WalkResult<d> w;
     auto tv = target_edge_vertices(e);
     if (reversed) std::swap(tv[0], tv[1]);
@@ -958,7 +973,8 @@ class Projector {
     const double eta_slack = 1e-9;
     Place<d> cur = start;
     double eta = eta0;
-    std::vector<Index> cand, end_elements;
+    std::vector<Index>& cand = buffer.candidates;
+    std::vector<Index>& end_elements = buffer.end_elements;
     if (end) elements_of(*end, end_elements);
     CrossingMemo memo;
     long long calls = 0, failures = 0;
@@ -1070,7 +1086,8 @@ class Projector {
         return w;
       }
       if constexpr (d == 2) best_crossing.target_parameter = best_eta;
-      w.crossings.push_back(best_crossing);
+      buffer.crossings.push_back(best_crossing);
+      ++w.crossing_count;
       cur = best_place;
       eta = best_eta;
       if constexpr (d == 2) {
@@ -1108,8 +1125,18 @@ class Projector {
     return f;
   }
 
-  EdgePlan<d> plan_edge(Index e) const {
-    EdgePlan<d> plan;
+  /// Walks along S2 edge e and appends its pieces (and what could not be walked) to `buffer`.
+  PlannedEdge plan_edge(Index e, unsigned worker, PlanBuffer<d>& buffer) const {
+    PlannedEdge plan;
+    plan.worker = worker;
+    plan.pieces_begin = static_cast<std::uint32_t>(buffer.pieces.size());
+    plan.failures_begin = static_cast<std::uint32_t>(buffer.failures.size());
+    auto& crossings = buffer.crossings;
+    // a piece ends at the last crossing appended
+    auto add_piece = [&](std::size_t begin, bool from_first, bool to_second) {
+      buffer.pieces.push_back(
+          {static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(crossings.size()), from_first, to_second});
+    };
     const auto tv = target_edge_vertices(e);
     const auto& pa = target_place_[tv[0]];
     const auto& pb = target_place_[tv[1]];
@@ -1118,64 +1145,169 @@ class Projector {
     // walked is where that walk left S1 (or a re-detection of it), not a new piece.
     double covered_until = -1.0;
     if (pa) {
-      WalkResult<d> w = walk(e, *pa, 0.0, pb);
+      const std::size_t begin = crossings.size();
+      const WalkResult<d> w = walk(e, *pa, 0.0, pb, false, buffer);
       if (w.end == WalkEnd::failed) {
-        plan.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+        crossings.resize(begin);
+        buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
         covered_until = w.eta;
         first_walk_failed = true;
       } else {
         const bool reached = w.end == WalkEnd::reached;
         reached_second |= reached;
         covered_until = reached ? 1.0 : w.eta;
-        if (!w.crossings.empty() || reached) plan.pieces.push_back({std::move(w.crossings), true, reached});
+        if (w.crossing_count > 0 || reached)
+          add_piece(begin, true, reached);
+        else
+          crossings.resize(begin);
       }
     }
     for (const auto& entry : entries_[e]) {
       if (entry.eta <= covered_until + 1e-9) continue;
-      WalkResult<d> w = walk(e, entry.place, entry.eta, pb);
+      const std::size_t begin = crossings.size();
+      crossings.push_back(entry.crossing);  // the piece starts where the edge enters S1
+      const WalkResult<d> w = walk(e, entry.place, entry.eta, pb, false, buffer);
       covered_until = w.end == WalkEnd::reached ? 1.0 : w.eta;
       if (w.end == WalkEnd::failed) {
+        crossings.resize(begin);
         if (w.steps == 0 && w.reason != EdgeFailureReason::solver_failure) continue;  // an exit
-        plan.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+        buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
         continue;
       }
-      if (w.end == WalkEnd::left_boundary && w.crossings.empty()) continue;
+      if (w.end == WalkEnd::left_boundary && w.crossing_count == 0) {
+        crossings.resize(begin);
+        continue;
+      }
       const bool reached = w.end == WalkEnd::reached;
       reached_second |= reached;
-      Piece<d> piece;
-      piece.crossings.push_back(entry.crossing);
-      piece.crossings.insert(piece.crossings.end(), w.crossings.begin(), w.crossings.end());
-      piece.from_first = false;
-      piece.to_second = reached;
-      plan.pieces.push_back(std::move(piece));
+      add_piece(begin, false, reached);
     }
     // The second vertex has a preimage that no walk reached: the edge enters S1 across its boundary
     // at a point the boundary-entry search cannot see (that search needs an image of one end of
     // the S1 boundary edge; both may lie outside S2 or over a hole of S2). Walking backwards from
     // the second vertex finds the entry as the point where the reversed walk leaves S1.
     if (pb && !reached_second && !first_walk_failed) {
-      WalkResult<d> w = walk(e, *pb, 0.0, std::nullopt, true);
-      if (w.end == WalkEnd::left_boundary && !w.crossings.empty()) {
-        Piece<d> piece;
-        for (auto it = w.crossings.rbegin(); it != w.crossings.rend(); ++it) {
-          piece.crossings.push_back(*it);
-          piece.crossings.back().target_parameter = 1.0 - it->target_parameter;
-        }
-        piece.from_first = false;
-        piece.to_second = true;
-        plan.pieces.push_back(std::move(piece));
+      const std::size_t begin = crossings.size();
+      const WalkResult<d> w = walk(e, *pb, 0.0, std::nullopt, true, buffer);
+      if (w.end == WalkEnd::left_boundary && w.crossing_count > 0) {
+        // measured from the first vertex again, in the edge's direction
+        std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(begin), crossings.end());
+        for (std::size_t i = begin; i < crossings.size(); ++i)
+          crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
+        add_piece(begin, false, true);
         reached_second = true;
-      } else if (w.end == WalkEnd::failed && w.reason != EdgeFailureReason::endpoint_without_preimage) {
-        plan.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
+      } else {
+        crossings.resize(begin);
+        if (w.end == WalkEnd::failed && w.reason != EdgeFailureReason::endpoint_without_preimage)
+          buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
       }
     }
-    if (pb && !reached_second && plan.failures.empty() && !on_boundary(*pb))
-      plan.failures.push_back(failure(e, EdgeFailureReason::endpoint_without_preimage, *pb, 1.0,
-                                      fmt::format("the S2 vertex {} has no preimage", tv[0])));
+    if (pb && !reached_second && buffer.failures.size() == plan.failures_begin && !on_boundary(*pb))
+      buffer.failures.push_back(failure(e, EdgeFailureReason::endpoint_without_preimage, *pb, 1.0,
+                                        fmt::format("the S2 vertex {} has no preimage", tv[0])));
+    plan.pieces_end = static_cast<std::uint32_t>(buffer.pieces.size());
+    plan.failures_end = static_cast<std::uint32_t>(buffer.failures.size());
     // No piece and nothing wrong: the edge lies outside D (it may touch S1's boundary at an
     // endpoint and leave at once).
-    if (plan.pieces.empty() && plan.failures.empty()) plan.outside = true;
+    plan.outside = plan.pieces_begin == plan.pieces_end && plan.failures_begin == plan.failures_end;
     return plan;
+  }
+
+  // ---- insertion of the planned edges -----------------------------------------------------------
+  /// S2 edges planned and inserted per block (see run()): large enough that the threads of a
+  /// block have work, small enough that a block's plans take little memory.
+  static constexpr Index plan_block = 4096;
+  /// In the per-edge count of what was inserted: the edge was inserted whole.
+  static constexpr std::uint32_t inserted_whole = 1u << 31;
+
+  /// Phase 3 proper. The edges are planned in blocks of consecutive indices (in parallel, into
+  /// per-worker flat buffers) and each block is fed to the builder, in index order, before the
+  /// next one is planned: the walks read nothing the insertion changes, so this is the same as
+  /// planning all edges first, and only one block's plans are ever held in memory.
+  void plan_and_insert_edges(MapBuilder<d>& builder, ProjectionReport<d>& report, std::vector<std::uint32_t>& counted) {
+    const Index n2e = s2_.edge_count();
+    std::vector<PlanBuffer<d>> buffers(std::max(1u, threads_));
+    std::vector<PlannedEdge> planned(static_cast<std::size_t>(std::min(n2e, plan_block)));
+    for (Index block = 0; block < n2e; block += plan_block) {
+      const Index block_end = std::min(n2e, block + plan_block);
+      auto t0 = Clock::now();
+      for (auto& buffer : buffers) buffer.clear();
+      parallel_for_ranges(block_end - block, threads_, [&](unsigned worker, Index begin, Index end) {
+        for (Index i = begin; i < end; ++i) planned[i] = plan_edge(block + i, worker, buffers[worker]);
+      });
+      report.seconds.edge_walks += seconds_since(t0);
+      t0 = Clock::now();
+      for (Index e = block; e < block_end; ++e)
+        counted[e] = insert_planned_edge(e, planned[e - block], buffers[planned[e - block].worker], builder, report);
+      report.seconds.insertion += seconds_since(t0);
+    }
+  }
+
+  /// Feeds the planned pieces of S2 edge e to the builder and reports what was left out. Returns
+  /// inserted_whole if the edge was inserted whole, or'ed with the number of pieces inserted.
+  std::uint32_t insert_planned_edge(Index e, const PlannedEdge& plan, PlanBuffer<d>& buffer, MapBuilder<d>& builder,
+                                    ProjectionReport<d>& report) {
+    if (plan.outside) {
+      ++report.edges_outside;
+      builder.add_edge_outside_domain(e);
+    }
+    bool whole = false;
+    std::uint32_t pieces = 0;
+    std::vector<EdgeNotInserted<d>> rejected;
+    for (std::uint32_t p = plan.pieces_begin; p < plan.pieces_end; ++p) {
+      const auto& piece = buffer.pieces[p];
+      const std::span<const Crossing<d>> crossings(buffer.crossings.data() + piece.begin, piece.end - piece.begin);
+      if (const auto clash = find_used_point(crossings)) {
+        EdgeNotInserted<d> f;
+        f.target_edge = e;
+        f.reason = EdgeFailureReason::builder_rejected;
+        f.domain_element = clash->element;
+        f.domain_point = clash->point;
+        f.detail = clash->detail;
+        rejected.push_back(std::move(f));
+        continue;
+      }
+      try {
+        if (piece.from_first && piece.to_second) {
+          builder.add_edge(e, crossings);
+          whole = true;
+        } else {
+          builder.add_edge_piece(e, crossings, piece.from_first, piece.to_second);
+          ++pieces;
+        }
+        mark_used_points(crossings, e);
+      } catch (const BuilderError& error) {
+        EdgeNotInserted<d> f;
+        f.target_edge = e;
+        f.reason = EdgeFailureReason::builder_rejected;
+        f.detail = error.what();
+        rejected.push_back(std::move(f));
+      }
+    }
+    if (whole) ++report.edges_inserted;
+    if (pieces > 0) ++report.edges_partly_inserted;
+    report.edge_pieces += static_cast<Index>(pieces);
+    for (std::uint32_t f = plan.failures_begin; f < plan.failures_end; ++f)
+      report.edges_not_inserted.push_back(std::move(buffer.failures[f]));
+    for (auto& f : rejected) report.edges_not_inserted.push_back(std::move(f));
+    return (whole ? inserted_whole : 0u) | pieces;
+  }
+
+  /// Frees what only the phases before finalize need.
+  void release_search_data() {
+    index1_.reset();
+    index2_.reset();
+    auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
+    release(entries_);
+    release(target_place_);
+    release(vertex_state_);
+    release(vertex_image_);
+    release(used_first_);
+    release(used_parameters_);
+    release(crossed_vertex_);
+    release(focal_free_);
+    release(nu_);
+    release(n2_);
   }
 
   /// Points where S2 edges cross S1's boundary, per S2 edge, sorted by the edge parameter.
@@ -1258,9 +1390,15 @@ class Projector {
   std::vector<VertexState> vertex_state_;
   std::vector<std::optional<SurfacePoint<d>>> vertex_image_;
   std::vector<std::vector<BoundaryEntry<d>>> entries_;
-  /// Per S1 edge (d = 2): parameters already holding a node, with their owner (an S2 edge, or
-  /// -1 - q for the preimage of S2 vertex q). Per S1 vertex: the S2 edge whose preimage passes it.
-  std::vector<std::vector<std::pair<double, Index>>> used_on_edge_;
+  /// Per S1 edge (d = 2): the parameters already holding a node, with their owner (an S2 edge,
+  /// or -1 - q for the preimage of S2 vertex q), as lists in insertion order linked through one
+  /// array (used_first_[edge] is the first entry). Per S1 vertex: the S2 edge whose preimage passes it.
+  struct UsedParameter {
+    double t;
+    Index owner, next;
+  };
+  std::vector<Index> used_first_;
+  std::vector<UsedParameter> used_parameters_;
   std::vector<Index> crossed_vertex_;
   mutable std::atomic<long long> solver_calls_{0}, solver_failures_{0};
 };

@@ -278,7 +278,8 @@ RC_GTEST_PROP(EdgeCrossingSystem, NeverMissesACrossingTheSolversFind, ()) {
   const auto s = crossing_at(lambda, scale, offset, coord);
   const bool missed = s.misses_the_edge(1e-12, 1e-9);
   for (const bool newton : {true, false}) {
-    const auto r = newton ? DampedNewtonSolver{}.solve(s, s.initial_guess()) : CeresTinySolver{}.solve(s, s.initial_guess());
+    const auto r =
+        newton ? DampedNewtonSolver{}.solve(s, s.initial_guess()) : CeresTinySolver{}.solve(s, s.initial_guess());
     if (r.converged && r.x(0) >= -1e-9 && r.x(0) <= 1.0 + 1e-9) RC_ASSERT(!missed);
   }
   if (lambda >= -1e-9 && lambda <= 1.0 + 1e-9) RC_ASSERT(!missed);

@@ -30,7 +30,8 @@ template <int n>
 void expect_like_eigen(const Eigen::Matrix<double, n, n>& a, const Eigen::Matrix<double, n, 1>& b) {
   const Eigen::Matrix<double, n, 1> expected = Eigen::PartialPivLU<Eigen::Matrix<double, n, n>>(a).solve(b);
   const Eigen::Matrix<double, n, 1> got = solve_with_partial_pivoting<n>(a, b);
-  EXPECT_TRUE(same_bits<n>(expected, got)) << "A =\n" << a << "\nb = " << b.transpose() << "\nEigen " << expected.transpose()
+  EXPECT_TRUE(same_bits<n>(expected, got)) << "A =\n"
+                                           << a << "\nb = " << b.transpose() << "\nEigen " << expected.transpose()
                                            << "\nhere  " << got.transpose();
 }
 

@@ -33,7 +33,8 @@ struct DampedNewtonSolver {
   /// J dx = -F by partially pivoted LU; for the projection's 2x2 and 3x3 systems the hand-written
   /// copy of Eigen's algorithm (small_lu.hpp), same bits at a fraction of the cost.
   template <SmallNonlinearSystem System>
-  static typename System::Vector newton_step(const typename System::Jacobian& j, const typename System::Vector& minus_f) {
+  static typename System::Vector newton_step(const typename System::Jacobian& j,
+                                             const typename System::Vector& minus_f) {
     if constexpr (System::size == 2 || System::size == 3)
       return solve_with_partial_pivoting<System::size>(j, minus_f);
     else
