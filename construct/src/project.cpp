@@ -11,6 +11,8 @@
 // Phases 1-3 compute into per-item slots, in parallel; the builder is then fed sequentially in
 // index order, so the result does not depend on the number of threads.
 
+#include "element_index.hpp"
+
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/construct/project.hpp>
 #include <plmap/core/errors.hpp>
@@ -23,7 +25,6 @@
 #include <plmap/solvers/solver_kind.hpp>
 
 #include <fmt/format.h>
-#include <nanoflann.hpp>
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -52,6 +53,8 @@ std::string_view to_string(EdgeFailureReason reason) {
 
 namespace {
 
+using projection::ElementIndex;
+using projection::NearestElements;
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -104,58 +107,6 @@ void parallel_for_chunks(Index n, unsigned threads, Index chunk, F&& f) {
   auto run = [&](Index c) { f(c * chunk, std::min<Index>(n, (c + 1) * chunk)); };
   parallel_for(chunks, threads, run);
 }
-
-/// Element centroids as a nanoflann point cloud.
-template <int dim>
-struct PointCloud {
-  std::vector<Eigen::Matrix<double, dim, 1>> points;
-  std::size_t kdtree_get_point_count() const { return points.size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t k) const { return points[i](static_cast<int>(k)); }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-template <int dim>
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud<dim>>,
-                                                   PointCloud<dim>, dim, std::uint32_t>;
-
-/// Centroids of a surface's elements, their kd-tree, and the largest centroid-to-corner distance.
-template <int d>
-struct ElementIndex {
-  PointCloud<d + 1> cloud;
-  std::unique_ptr<KdTree<d + 1>> tree;
-  double radius = 0.0;
-
-  explicit ElementIndex(const Surface<d>& s) {
-    cloud.points.resize(s.element_count());
-    for (Index t = 0; t < s.element_count(); ++t) {
-      WorldPoint<d> c = WorldPoint<d>::Zero();
-      for (int k = 0; k <= d; ++k) c += s.corner(t, k);
-      c /= d + 1;
-      cloud.points[t] = c;
-      for (int k = 0; k <= d; ++k) radius = std::max(radius, (s.corner(t, k) - c).norm());
-    }
-    tree = std::make_unique<KdTree<d + 1>>(d + 1, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  }
-
-  /// Up to `k` (<= 32) nearest elements, nearest first.
-  int nearest(const WorldPoint<d>& x, int k, std::array<std::uint32_t, 32>& out) const {
-    if (cloud.points.empty()) return 0;
-    std::array<double, 32> dist;
-    return static_cast<int>(tree->knnSearch(x.data(), static_cast<std::size_t>(k), out.data(), dist.data()));
-  }
-
-  std::vector<Index> within(const WorldPoint<d>& x, double r) const {
-    std::vector<std::pair<std::uint32_t, double>> hits;
-    if (!cloud.points.empty()) tree->radiusSearch(x.data(), r * r, hits, nanoflann::SearchParams());
-    std::vector<Index> out;
-    for (const auto& h : hits) out.push_back(static_cast<Index>(h.first));
-    std::sort(out.begin(), out.end());
-    return out;
-  }
-};
 
 enum class PlaceKind : std::uint8_t { vertex, edge, element };
 
@@ -250,8 +201,9 @@ class Projector {
     std::vector<std::optional<SurfacePoint<d>>> preimage(n2v);
     parallel_for_chunks(n2v, threads_, search_chunk, [&](Index begin, Index end) {
       SearchOffset offset;  // target minus preimage of the previous vertex found
+      NearestElements<d> nearest(*index1_);
       for (Index q = begin; q < end; ++q) {
-        preimage[q] = find_vertex_preimage(q, offset);
+        preimage[q] = find_vertex_preimage(q, offset, nearest);
         offset.valid = preimage[q].has_value();
         if (offset.valid)
           offset.value = s2_.vertex(q) - s1_.world_position(preimage[q]->element, preimage[q]->local);
@@ -305,8 +257,9 @@ class Projector {
     std::vector<std::optional<SurfacePoint<d>>> hit(n1v);
     parallel_for_chunks(n1v, threads_, search_chunk, [&](Index begin, Index end) {
       std::optional<double> mu;  // ray parameter of the previous hit
+      NearestElements<d> nearest(*index2_);
       for (Index v = begin; v < end; ++v)
-        if (vertex_state_[v] == VertexState::free) hit[v] = cast_ray(v, mu);
+        if (vertex_state_[v] == VertexState::free) hit[v] = cast_ray(v, mu, nearest);
     });
     report.seconds.ghost_nodes = seconds_since(t0);
     t0 = Clock::now();
@@ -710,6 +663,18 @@ class Projector {
   // on the thread count.
   static constexpr Index search_chunk = 256;
 
+  /// The k elements nearest to x; for the moved seed points of a curve from `nearest`. Along a
+  /// curve the moved seed points of consecutive items follow each other, and most answers come
+  /// from the centroids kept from an earlier, wider query. On a surface the vertex order is at
+  /// best row by row, and a wide query covers too few of the following points to pay (3 answers
+  /// from 21,000 queries on the L5 spheres): there the tree answers every query.
+  static int nearest_seeds(const ElementIndex<d>& index, NearestElements<d>* nearest, const WorldPoint<d>& x, int k,
+                           std::array<std::uint32_t, 32>& seeds) {
+    if (d == 1 && nearest) return nearest->nearest(x, k, seeds);
+    std::array<double, 32> squared_distances;
+    return index.nearest(x, k, seeds.data(), squared_distances.data());
+  }
+
   /// A plain flag and value rather than std::optional, on which GCC 12 warns falsely
   /// (maybe-uninitialized) for Eigen members.
   struct SearchOffset {
@@ -717,10 +682,11 @@ class Projector {
     WorldPoint<d> value = WorldPoint<d>::Zero();
   };
 
-  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const SearchOffset& offset) {
+  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const SearchOffset& offset,
+                                                      NearestElements<d>& nearest) {
     bool solver_failed = false;
     if (offset.valid) {
-      auto found = find_vertex_preimage(q, s2_.vertex(q) - offset.value, seeds_, solver_failed);
+      auto found = find_vertex_preimage(q, s2_.vertex(q) - offset.value, seeds_, solver_failed, &nearest);
       if (found) return found;
     }
     return find_vertex_preimage(q);
@@ -728,22 +694,24 @@ class Projector {
 
   std::optional<SurfacePoint<d>> find_vertex_preimage(Index q) {
     bool solver_failed = false;
-    auto found = find_vertex_preimage(q, s2_.vertex(q), seeds_, solver_failed);
+    auto found = find_vertex_preimage(q, s2_.vertex(q), seeds_, solver_failed, nullptr);
     // The elements nearest to q may all be tangential to the directions (eq. 3 is singular there),
     // e.g. the horizontal sheets of a T-junction when the vertical sheet is the one that sees S2:
     // their walks end at once, before reaching the element that holds the preimage. Only then is
     // the search repeated from more seeds, so the usual case costs nothing extra.
-    if (!found && solver_failed && seeds_ < 32) found = find_vertex_preimage(q, s2_.vertex(q), 32, solver_failed);
+    if (!found && solver_failed && seeds_ < 32)
+      found = find_vertex_preimage(q, s2_.vertex(q), 32, solver_failed, nullptr);
     return found;
   }
 
   /// Eq. (3) for S2 vertex q on walks across S1 that start at the `seed_count` elements nearest
-  /// to `seed_point`.
+  /// to `seed_point` (found with `nearest` for the moved seed points, which follow each other
+  /// closely, else with the kd-tree).
   std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const WorldPoint<d>& seed_point, int seed_count,
-                                                      bool& solver_failed) {
+                                                      bool& solver_failed, NearestElements<d>* nearest) {
     const WorldPoint<d>& target = s2_.vertex(q);
     std::array<std::uint32_t, 32> seeds;
-    const int count = index1_->nearest(seed_point, seed_count, seeds);
+    const int count = nearest_seeds(*index1_, nearest, seed_point, seed_count, seeds);
     std::optional<SurfacePoint<d>> best;
     double best_rank = std::numeric_limits<double>::infinity();
     std::array<Index, 64> visited;
@@ -796,23 +764,24 @@ class Projector {
   // ---- phase 2: rays from S1 vertices ---------------------------------------------------------------
   /// The ray from S1 vertex v; `mu` is the ray parameter of the chunk's previous hit (see
   /// search_chunk), updated on return.
-  std::optional<SurfacePoint<d>> cast_ray(Index v, std::optional<double>& mu) {
+  std::optional<SurfacePoint<d>> cast_ray(Index v, std::optional<double>& mu, NearestElements<d>& nearest) {
     const WorldPoint<d>& direction = nu_[v];
     std::optional<SurfacePoint<d>> hit;
-    if (mu) hit = cast_ray(v, s1_.vertex(v) + *mu * direction, *mu);
-    if (!hit) hit = cast_ray(v, s1_.vertex(v), mu.emplace());
+    if (mu) hit = cast_ray(v, s1_.vertex(v) + *mu * direction, *mu, &nearest);
+    if (!hit) hit = cast_ray(v, s1_.vertex(v), mu.emplace(), nullptr);
     if (!hit) mu.reset();
     return hit;
   }
 
   /// The ray from S1 vertex v against S2, walking from the elements of S2 nearest to
   /// `seed_point`; `hit_mu` receives the ray parameter of the hit.
-  std::optional<SurfacePoint<d>> cast_ray(Index v, const WorldPoint<d>& seed_point, double& hit_mu) {
+  std::optional<SurfacePoint<d>> cast_ray(Index v, const WorldPoint<d>& seed_point, double& hit_mu,
+                                          NearestElements<d>* nearest) {
     const WorldPoint<d>& origin = s1_.vertex(v);
     const WorldPoint<d>& direction = nu_[v];
     if (direction.squaredNorm() == 0.0) return std::nullopt;
     std::array<std::uint32_t, 32> seeds;
-    const int count = index2_->nearest(seed_point, seeds_, seeds);
+    const int count = nearest_seeds(*index2_, nearest, seed_point, seeds_, seeds);
     std::optional<SurfacePoint<d>> best;
     double best_rank = std::numeric_limits<double>::infinity();
     std::array<Index, 64> visited;
