@@ -11,6 +11,8 @@
 // Phases 1-3 compute into per-item slots, in parallel; the builder is then fed sequentially in
 // index order, so the result does not depend on the number of threads.
 
+#include "element_index.hpp"
+
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/construct/project.hpp>
 #include <plmap/core/errors.hpp>
@@ -19,10 +21,10 @@
 #include <plmap/core/snapping.hpp>
 #include <plmap/solvers/focal_points.hpp>
 #include <plmap/solvers/projection_systems.hpp>
+#include <plmap/solvers/small_lu.hpp>
 #include <plmap/solvers/solver_kind.hpp>
 
 #include <fmt/format.h>
-#include <nanoflann.hpp>
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -51,6 +53,8 @@ std::string_view to_string(EdgeFailureReason reason) {
 
 namespace {
 
+using projection::ElementIndex;
+using projection::NearestElements;
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -75,6 +79,24 @@ void parallel_for(Index n, unsigned threads, F&& f) {
   for (auto& t : pool) t.join();
 }
 
+/// Runs f(worker, begin, end) on `threads` threads, worker k taking the k-th of contiguous ranges
+/// that cover [0, n).
+template <class F>
+void parallel_for_ranges(Index n, unsigned threads, F&& f) {
+  if (threads <= 1 || n < 64) {
+    f(0u, Index{0}, n);
+    return;
+  }
+  std::vector<std::thread> pool;
+  const Index block = (n + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
+  for (unsigned k = 0; k < threads; ++k) {
+    const Index begin = static_cast<Index>(k) * block, end = std::min<Index>(n, begin + block);
+    if (begin >= end) break;
+    pool.emplace_back([&f, k, begin, end] { f(k, begin, end); });
+  }
+  for (auto& t : pool) t.join();
+}
+
 /// Runs f(begin, end) over [0, n) cut into chunks of a fixed size, the chunks spread over
 /// `threads` threads. Work inside a chunk is sequential, so a chunk may carry state from one
 /// item to the next (a search hint) and the result still does not depend on the thread count:
@@ -85,58 +107,6 @@ void parallel_for_chunks(Index n, unsigned threads, Index chunk, F&& f) {
   auto run = [&](Index c) { f(c * chunk, std::min<Index>(n, (c + 1) * chunk)); };
   parallel_for(chunks, threads, run);
 }
-
-/// Element centroids as a nanoflann point cloud.
-template <int dim>
-struct PointCloud {
-  std::vector<Eigen::Matrix<double, dim, 1>> points;
-  std::size_t kdtree_get_point_count() const { return points.size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t k) const { return points[i](static_cast<int>(k)); }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-template <int dim>
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud<dim>>,
-                                                   PointCloud<dim>, dim, std::uint32_t>;
-
-/// Centroids of a surface's elements, their kd-tree, and the largest centroid-to-corner distance.
-template <int d>
-struct ElementIndex {
-  PointCloud<d + 1> cloud;
-  std::unique_ptr<KdTree<d + 1>> tree;
-  double radius = 0.0;
-
-  explicit ElementIndex(const Surface<d>& s) {
-    cloud.points.resize(s.element_count());
-    for (Index t = 0; t < s.element_count(); ++t) {
-      WorldPoint<d> c = WorldPoint<d>::Zero();
-      for (int k = 0; k <= d; ++k) c += s.corner(t, k);
-      c /= d + 1;
-      cloud.points[t] = c;
-      for (int k = 0; k <= d; ++k) radius = std::max(radius, (s.corner(t, k) - c).norm());
-    }
-    tree = std::make_unique<KdTree<d + 1>>(d + 1, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  }
-
-  /// Up to `k` (<= 32) nearest elements, nearest first.
-  int nearest(const WorldPoint<d>& x, int k, std::array<std::uint32_t, 32>& out) const {
-    if (cloud.points.empty()) return 0;
-    std::array<double, 32> dist;
-    return static_cast<int>(tree->knnSearch(x.data(), static_cast<std::size_t>(k), out.data(), dist.data()));
-  }
-
-  std::vector<Index> within(const WorldPoint<d>& x, double r) const {
-    std::vector<std::pair<std::uint32_t, double>> hits;
-    if (!cloud.points.empty()) tree->radiusSearch(x.data(), r * r, hits, nanoflann::SearchParams());
-    std::vector<Index> out;
-    for (const auto& h : hits) out.push_back(static_cast<Index>(h.first));
-    std::sort(out.begin(), out.end());
-    return out;
-  }
-};
 
 enum class PlaceKind : std::uint8_t { vertex, edge, element };
 
@@ -158,26 +128,46 @@ using Crossing = std::conditional_t<d == 2, EdgeCrossing, VertexCrossing>;
 
 enum class WalkEnd : std::uint8_t { reached, left_boundary, failed };
 
+/// How a walk along the preimage of an S2 edge ended; its crossings are appended to the
+/// PlanBuffer it was given.
 template <int d>
 struct WalkResult {
   WalkEnd end = WalkEnd::failed;
-  std::vector<Crossing<d>> crossings;
+  int crossing_count = 0;
   EdgeFailureReason reason = EdgeFailureReason::discontinuity;
   Place<d> stop;
   double eta = 0.0;
   int steps = 0;
 };
 
+/// What phase 3 plans for the S2 edges of one block, in flat arrays owned by one worker thread
+/// and reused from block to block: once they have grown, planning allocates nothing per edge or
+/// per walk (the per-edge vectors of pieces and crossings this replaces were millions of small
+/// allocations).
 template <int d>
-struct Piece {
+struct PlanBuffer {
+  /// A piece of an S2 edge's preimage: crossings [begin, end) of `crossings`.
+  struct Piece {
+    std::uint32_t begin, end;
+    bool from_first, to_second;
+  };
   std::vector<Crossing<d>> crossings;
-  bool from_first = true, to_second = true;
+  std::vector<Piece> pieces;
+  std::vector<EdgeNotInserted<d>> failures;
+  /// scratch of the walks: the S1 elements at the current point and at the walk's end
+  std::vector<Index> candidates, end_elements;
+
+  void clear() {
+    crossings.clear();
+    pieces.clear();
+    failures.clear();
+  }
 };
 
-template <int d>
-struct EdgePlan {
-  std::vector<Piece<d>> pieces;
-  std::vector<EdgeNotInserted<d>> failures;
+/// The plan of one S2 edge: which worker's PlanBuffer holds it and where.
+struct PlannedEdge {
+  unsigned worker = 0;
+  std::uint32_t pieces_begin = 0, pieces_end = 0, failures_begin = 0, failures_end = 0;
   bool outside = false;
 };
 
@@ -211,8 +201,9 @@ class Projector {
     std::vector<std::optional<SurfacePoint<d>>> preimage(n2v);
     parallel_for_chunks(n2v, threads_, search_chunk, [&](Index begin, Index end) {
       SearchOffset offset;  // target minus preimage of the previous vertex found
+      NearestElements<d> nearest(*index1_);
       for (Index q = begin; q < end; ++q) {
-        preimage[q] = find_vertex_preimage(q, offset);
+        preimage[q] = find_vertex_preimage(q, offset, nearest);
         offset.valid = preimage[q].has_value();
         if (offset.valid)
           offset.value = s2_.vertex(q) - s1_.world_position(preimage[q]->element, preimage[q]->local);
@@ -230,24 +221,27 @@ class Projector {
     bopt.drop_conflicting_edges = true;
     MapBuilder<d> builder(s1_ptr_, s2_ptr_, bopt);
     target_place_.assign(n2v, std::nullopt);
-    if constexpr (d == 2) used_on_edge_.assign(s1_.edge_count(), {});
+    if constexpr (d == 2) used_first_.assign(s1_.edge_count(), invalid_index);
     crossed_vertex_.assign(n1v, invalid_index);
     vertex_state_.assign(n1v, VertexState::free);
     vertex_image_.assign(n1v, std::nullopt);
     report.target_vertices = n2v;
     report.domain_vertices = n1v;
-    const std::vector<bool> loses = coincident_preimage_losers(preimage);
+    // target_place_ first holds every preimage's place; those that are not inserted lose it below
+    for (Index q = 0; q < n2v; ++q)
+      if (preimage[q]) target_place_[q] = place_of(*preimage[q]);
+    const std::vector<bool> loses = coincident_preimage_losers();
     for (Index q = 0; q < n2v; ++q) {
       if (!preimage[q]) continue;
-      const Place<d> place = place_of(*preimage[q]);
+      const Place<d> place = *target_place_[q];
       if (loses[q] || (place.kind == PlaceKind::vertex && vertex_state_[place.index] != VertexState::free)) {
         ++report.vertex_conflicts;
+        target_place_[q].reset();
         continue;
       }
       builder.add_vertex_preimage(q, {preimage[q]->element, place_local(*preimage[q])});
-      target_place_[q] = place;
       if constexpr (d == 2)
-        if (place.kind == PlaceKind::edge) used_on_edge_[place.index].push_back({place.t, -1 - q});
+        if (place.kind == PlaceKind::edge) add_used_parameter(place.index, place.t, -1 - q);
       ++report.vertex_preimages;
       if (place.kind == PlaceKind::vertex) {
         vertex_state_[place.index] = VertexState::corner;
@@ -256,14 +250,16 @@ class Projector {
       }
     }
     report.seconds.insertion += seconds_since(t0);
+    std::vector<std::optional<SurfacePoint<d>>>().swap(preimage);
 
     // ---- 2. ghost nodes ------------------------------------------------------------------------
     t0 = Clock::now();
     std::vector<std::optional<SurfacePoint<d>>> hit(n1v);
     parallel_for_chunks(n1v, threads_, search_chunk, [&](Index begin, Index end) {
       std::optional<double> mu;  // ray parameter of the previous hit
+      NearestElements<d> nearest(*index2_);
       for (Index v = begin; v < end; ++v)
-        if (vertex_state_[v] == VertexState::free) hit[v] = cast_ray(v, mu);
+        if (vertex_state_[v] == VertexState::free) hit[v] = cast_ray(v, mu, nearest);
     });
     report.seconds.ghost_nodes = seconds_since(t0);
     t0 = Clock::now();
@@ -296,6 +292,7 @@ class Projector {
       vertex_image_[v] = image;
     }
     report.seconds.insertion += seconds_since(t0);
+    std::vector<std::optional<SurfacePoint<d>>>().swap(hit);
 
     // ---- 3. edge preimages ---------------------------------------------------------------------
     t0 = Clock::now();
@@ -303,64 +300,14 @@ class Projector {
     entries_.assign(n2e, {});
     find_boundary_entries();
     for (const auto& list : entries_) report.boundary_entries += static_cast<Index>(list.size());
-    std::vector<EdgePlan<d>> plans(n2e);
-    parallel_for(n2e, threads_, [&](Index e) { plans[e] = plan_edge(e); });
-    report.seconds.edge_walks = seconds_since(t0);
+    report.seconds.edge_walks += seconds_since(t0);
 
-    t0 = Clock::now();
     report.target_edges = n2e;
-    std::vector<std::pair<char, int>> counted(n2e, {0, 0});  // per edge: inserted whole, pieces
-    for (Index e = 0; e < n2e; ++e) {
-      auto& plan = plans[e];
-      if (plan.outside) {
-        ++report.edges_outside;
-        builder.add_edge_outside_domain(e);
-      }
-      bool whole = false;
-      int pieces = 0;
-      for (const auto& piece : plan.pieces) {
-        if (const auto clash = find_used_point(piece)) {
-          EdgeNotInserted<d> f;
-          f.target_edge = e;
-          f.reason = EdgeFailureReason::builder_rejected;
-          f.domain_element = clash->element;
-          f.domain_point = clash->point;
-          f.detail = clash->detail;
-          plan.failures.push_back(std::move(f));
-          continue;
-        }
-        try {
-          if (piece.from_first && piece.to_second) {
-            if constexpr (d == 2)
-              builder.add_edge(e, std::span<const EdgeCrossing>(piece.crossings));
-            else
-              builder.add_edge(e, std::span<const VertexCrossing>(piece.crossings));
-            whole = true;
-          } else {
-            if constexpr (d == 2)
-              builder.add_edge_piece(e, std::span<const EdgeCrossing>(piece.crossings), piece.from_first,
-                                     piece.to_second);
-            else
-              builder.add_edge_piece(e, std::span<const VertexCrossing>(piece.crossings), piece.from_first,
-                                     piece.to_second);
-            ++pieces;
-          }
-          mark_used_points(piece, e);
-        } catch (const BuilderError& error) {
-          EdgeNotInserted<d> f;
-          f.target_edge = e;
-          f.reason = EdgeFailureReason::builder_rejected;
-          f.detail = error.what();
-          plan.failures.push_back(std::move(f));
-        }
-      }
-      counted[e] = {whole ? 1 : 0, pieces};
-      if (whole) ++report.edges_inserted;
-      if (pieces > 0) ++report.edges_partly_inserted;
-      report.edge_pieces += pieces;
-      for (auto& f : plan.failures) report.edges_not_inserted.push_back(std::move(f));
-    }
-    report.seconds.insertion += seconds_since(t0);
+    // per edge: bit 31 set if inserted whole, the lower bits count the pieces inserted
+    std::vector<std::uint32_t> counted(n2e, 0);
+    plan_and_insert_edges(builder, report, counted);
+    // what the projection no longer needs, freed before finalize (which has the memory peak)
+    release_search_data();
 
     t0 = Clock::now();
     FinalizeReport dropped;
@@ -369,9 +316,10 @@ class Projector {
     report.reversed_faces = dropped.reversed_faces;
     for (std::size_t i = 0; i < dropped.dropped_edges.size(); ++i) {
       const Index e = dropped.dropped_edges[i];
-      if (counted[e].first) --report.edges_inserted;
-      if (counted[e].second > 0) --report.edges_partly_inserted;
-      report.edge_pieces -= counted[e].second;
+      const Index pieces = static_cast<Index>(counted[e] & ~inserted_whole);
+      if (counted[e] & inserted_whole) --report.edges_inserted;
+      if (pieces > 0) --report.edges_partly_inserted;
+      report.edge_pieces -= pieces;
       EdgeNotInserted<d> f;
       f.target_edge = e;
       f.reason = EdgeFailureReason::overlap;
@@ -408,6 +356,15 @@ class Projector {
     index1_ = std::make_unique<ElementIndex<d>>(s1_);
     index2_ = std::make_unique<ElementIndex<d>>(s2_);
     walk_limit_ = 2 * static_cast<int>(s1_.element_count()) + 16;
+    focal_free_.resize(s1_.element_count());
+    parallel_for(s1_.element_count(), threads_, [&](Index t) {
+      std::array<WorldPoint<d>, d + 1> corners, directions;
+      for (int k = 0; k <= d; ++k) {
+        corners[k] = s1_.corner(t, k);
+        directions[k] = nu_[s1_.element(t)[k]];
+      }
+      focal_free_[t] = focal_free_distance<d>(corners, directions);
+    });
   }
 
   // ---- helpers on places ------------------------------------------------------------------------
@@ -502,6 +459,11 @@ class Projector {
   /// The ray from local point xi of S1 element t reaches distance mu before any focal point of
   /// the direction field (solvers/focal_points.hpp): beyond one the projection is folded.
   bool unfolded_in(Index t, const LocalPoint<d>& xi, double mu) const {
+    return std::abs(mu) <= focal_free_[t] || reaches_without_focal_point_in(t, xi, mu);
+  }
+
+  /// The focal test itself, for distances beyond the element's focal-free distance.
+  bool reaches_without_focal_point_in(Index t, const LocalPoint<d>& xi, double mu) const {
     std::array<WorldPoint<d>, d + 1> corners, directions;
     for (int k = 0; k <= d; ++k) {
       corners[k] = s1_.corner(t, k);
@@ -514,19 +476,22 @@ class Projector {
   /// that contains the point, since the regions on all of them end there.
   bool unfolded_at(const Place<d>& p, double mu) const {
     if (p.kind == PlaceKind::element) return unfolded_in(p.index, p.local, mu);
+    const double distance = std::abs(mu);
     if (p.kind == PlaceKind::vertex) {
       for (Index t : s1_.vertex_elements(p.index))
-        if (!unfolded_in(t, local_of_corner(s1_, t, p.index), mu)) return false;
+        if (!(distance <= focal_free_[t]) && !reaches_without_focal_point_in(t, local_of_corner(s1_, t, p.index), mu))
+          return false;
       return true;
     }
     if constexpr (d == 2) {
       const auto ev = s1_.edge_vertices(p.index);
       for (const auto& incidence : s1_.edge_elements(p.index)) {
         const Index t = incidence.element;
+        if (distance <= focal_free_[t]) continue;
         Barycentric<2> b = Barycentric<2>::Zero();
         b(s1_.local_corner(t, ev[0])) = 1.0 - p.t;
         b(s1_.local_corner(t, ev[1])) = p.t;
-        if (!unfolded_in(t, local_from_barycentric<2>(b), mu)) return false;
+        if (!reaches_without_focal_point_in(t, local_from_barycentric<2>(b), mu)) return false;
       }
     }
     return true;
@@ -566,8 +531,8 @@ class Projector {
     std::string detail;
   };
 
-  std::optional<UsedPoint> find_used_point(const Piece<d>& piece) const {
-    for (const auto& c : piece.crossings) {
+  std::optional<UsedPoint> find_used_point(std::span<const Crossing<d>> crossings) const {
+    for (const auto& c : crossings) {
       Index vertex = invalid_index;
       if constexpr (d == 2) {
         const auto ev = s1_.edge_vertices(c.domain_edge);
@@ -575,8 +540,9 @@ class Projector {
         if (snap == EdgeSnap::first_vertex) vertex = ev[0];
         else if (snap == EdgeSnap::second_vertex) vertex = ev[1];
         else {
-          for (const auto& [t, owner] : used_on_edge_[c.domain_edge])
-            if (std::abs(t - c.domain_parameter) <= opt_.snap_tolerance) {
+          for (Index i = used_first_[c.domain_edge]; i != invalid_index; i = used_parameters_[i].next)
+            if (const Index owner = used_parameters_[i].owner;
+                std::abs(used_parameters_[i].t - c.domain_parameter) <= opt_.snap_tolerance) {
               const Place<d> at = edge_place(c.domain_edge, c.domain_parameter);
               return UsedPoint{s1_.edge_elements(c.domain_edge).front().element, world_of(at),
                                fmt::format("its preimage meets {} on S1 edge {} at {:.17g}: the projection is not "
@@ -599,18 +565,27 @@ class Projector {
     return std::nullopt;
   }
 
-  void mark_used_points(const Piece<d>& piece, Index e) {
-    for (const auto& c : piece.crossings) {
+  void mark_used_points(std::span<const Crossing<d>> crossings, Index e) {
+    for (const auto& c : crossings) {
       if constexpr (d == 2) {
         const auto ev = s1_.edge_vertices(c.domain_edge);
         const EdgeSnap snap = snap_edge_parameter(c.domain_parameter, opt_.snap_tolerance);
         if (snap == EdgeSnap::first_vertex) crossed_vertex_[ev[0]] = e;
         else if (snap == EdgeSnap::second_vertex) crossed_vertex_[ev[1]] = e;
-        else used_on_edge_[c.domain_edge].push_back({c.domain_parameter, e});
+        else add_used_parameter(c.domain_edge, c.domain_parameter, e);
       } else {
         crossed_vertex_[c.domain_vertex] = e;
       }
     }
+  }
+
+  /// Appends to S1 edge `edge`'s list of used parameters (see used_first_).
+  void add_used_parameter(Index edge, double t, Index owner) {
+    const Index entry = static_cast<Index>(used_parameters_.size());
+    used_parameters_.push_back({t, owner, invalid_index});
+    Index* link = &used_first_[edge];
+    while (*link != invalid_index) link = &used_parameters_[*link].next;
+    *link = entry;
   }
 
   // ---- phase 1: eq. (3) ---------------------------------------------------------------------------
@@ -621,46 +596,57 @@ class Projector {
   /// smallest index) is kept; the others are marked here and counted as vertex conflicts, and
   /// their edges are reported by the walks. Preimages on the same S1 vertex keep the old rule
   /// (first come), which gives the same winner as long as only one of them is nearest.
-  std::vector<bool> coincident_preimage_losers(const std::vector<std::optional<SurfacePoint<d>>>& preimage) const {
+  /// Reads the places of all preimages from target_place_.
+  std::vector<bool> coincident_preimage_losers() const {
+    // Group the preimages by the S1 edge or element they lie on (a counting sort: almost every
+    // group has a single member, which keeps its place without further work).
+    const Index n2v = static_cast<Index>(target_place_.size());
+    const Index edge_keys = d == 2 ? s1_.edge_count() : 0;
+    auto key = [&](const Place<d>& p) { return p.kind == PlaceKind::edge ? p.index : edge_keys + p.index; };
+    std::vector<Index> group_begin(static_cast<std::size_t>(edge_keys + s1_.element_count()) + 1, 0);
+    auto grouped = [&](Index q) { return target_place_[q] && target_place_[q]->kind != PlaceKind::vertex; };
+    for (Index q = 0; q < n2v; ++q)
+      if (grouped(q)) ++group_begin[key(*target_place_[q]) + 1];
+    for (std::size_t k = 1; k < group_begin.size(); ++k) group_begin[k] += group_begin[k - 1];
+    std::vector<Index> members(static_cast<std::size_t>(group_begin.back()));
+    {
+      std::vector<Index> cursor(group_begin.begin(), group_begin.end() - 1);
+      for (Index q = 0; q < n2v; ++q)
+        if (grouped(q)) members[cursor[key(*target_place_[q])]++] = q;
+    }
+    std::vector<bool> loses(target_place_.size(), false);
     struct Item {
-      Place<d> place;
       double distance;
       Index q;
     };
-    std::vector<Item> items;
-    for (Index q = 0; q < static_cast<Index>(preimage.size()); ++q) {
-      if (!preimage[q]) continue;
-      const Place<d> p = place_of(*preimage[q]);
-      if (p.kind == PlaceKind::vertex) continue;
-      items.push_back({p, (s2_.vertex(q) - world_of(p)).norm(), q});
-    }
-    std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
-      if (a.place.kind != b.place.kind) return a.place.kind < b.place.kind;
-      if (a.place.index != b.place.index) return a.place.index < b.place.index;
-      if (a.distance != b.distance) return a.distance < b.distance;
-      return a.q < b.q;
-    });
-    std::vector<bool> loses(preimage.size(), false);
-    for (std::size_t i = 0; i < items.size();) {
-      std::size_t end = i;
-      while (end < items.size() && items[end].place.kind == items[i].place.kind &&
-             items[end].place.index == items[i].place.index)
-        ++end;
-      // within one S1 edge or element, nearest first: a point loses if it coincides with a kept one
-      std::vector<std::size_t> kept;
-      for (std::size_t k = i; k < end; ++k) {
-        const bool same = std::any_of(kept.begin(), kept.end(), [&](std::size_t w) {
-          const double gap = items[k].place.kind == PlaceKind::edge
-                                 ? std::abs(items[k].place.t - items[w].place.t)
-                                 : (items[k].place.local - items[w].place.local).template lpNorm<Eigen::Infinity>();
+    std::vector<Item> group;
+    std::vector<const Place<d>*> kept;
+    for (std::size_t g = 0; g + 1 < group_begin.size(); ++g) {
+      if (group_begin[g + 1] - group_begin[g] < 2) continue;
+      // within one S1 edge or element, nearest first (then the smallest q): a point loses if it
+      // coincides with a kept one
+      group.clear();
+      for (Index i = group_begin[g]; i < group_begin[g + 1]; ++i) {
+        const Index q = members[i];
+        group.push_back({(s2_.vertex(q) - world_of(*target_place_[q])).norm(), q});
+      }
+      std::sort(group.begin(), group.end(), [](const Item& a, const Item& b) {
+        return a.distance != b.distance ? a.distance < b.distance : a.q < b.q;
+      });
+      kept.clear();
+      for (const Item& item : group) {
+        const Place<d>& place = *target_place_[item.q];
+        const bool same = std::any_of(kept.begin(), kept.end(), [&](const Place<d>* w) {
+          const double gap = place.kind == PlaceKind::edge
+                                 ? std::abs(place.t - w->t)
+                                 : (place.local - w->local).template lpNorm<Eigen::Infinity>();
           return gap <= opt_.snap_tolerance;
         });
         if (same)
-          loses[items[k].q] = true;
+          loses[item.q] = true;
         else
-          kept.push_back(k);
+          kept.push_back(&place);
       }
-      i = end;
     }
     return loses;
   }
@@ -677,6 +663,18 @@ class Projector {
   // on the thread count.
   static constexpr Index search_chunk = 256;
 
+  /// The k elements nearest to x; for the moved seed points of a curve from `nearest`. Along a
+  /// curve the moved seed points of consecutive items follow each other, and most answers come
+  /// from the centroids kept from an earlier, wider query. On a surface the vertex order is at
+  /// best row by row, and a wide query covers too few of the following points to pay (3 answers
+  /// from 21,000 queries on the L5 spheres): there the tree answers every query.
+  static int nearest_seeds(const ElementIndex<d>& index, NearestElements<d>* nearest, const WorldPoint<d>& x, int k,
+                           std::array<std::uint32_t, 32>& seeds) {
+    if (d == 1 && nearest) return nearest->nearest(x, k, seeds);
+    std::array<double, 32> squared_distances;
+    return index.nearest(x, k, seeds.data(), squared_distances.data());
+  }
+
   /// A plain flag and value rather than std::optional, on which GCC 12 warns falsely
   /// (maybe-uninitialized) for Eigen members.
   struct SearchOffset {
@@ -684,10 +682,11 @@ class Projector {
     WorldPoint<d> value = WorldPoint<d>::Zero();
   };
 
-  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const SearchOffset& offset) {
+  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const SearchOffset& offset,
+                                                      NearestElements<d>& nearest) {
     bool solver_failed = false;
     if (offset.valid) {
-      auto found = find_vertex_preimage(q, s2_.vertex(q) - offset.value, seeds_, solver_failed);
+      auto found = find_vertex_preimage(q, s2_.vertex(q) - offset.value, seeds_, solver_failed, &nearest);
       if (found) return found;
     }
     return find_vertex_preimage(q);
@@ -695,22 +694,24 @@ class Projector {
 
   std::optional<SurfacePoint<d>> find_vertex_preimage(Index q) {
     bool solver_failed = false;
-    auto found = find_vertex_preimage(q, s2_.vertex(q), seeds_, solver_failed);
+    auto found = find_vertex_preimage(q, s2_.vertex(q), seeds_, solver_failed, nullptr);
     // The elements nearest to q may all be tangential to the directions (eq. 3 is singular there),
     // e.g. the horizontal sheets of a T-junction when the vertical sheet is the one that sees S2:
     // their walks end at once, before reaching the element that holds the preimage. Only then is
     // the search repeated from more seeds, so the usual case costs nothing extra.
-    if (!found && solver_failed && seeds_ < 32) found = find_vertex_preimage(q, s2_.vertex(q), 32, solver_failed);
+    if (!found && solver_failed && seeds_ < 32)
+      found = find_vertex_preimage(q, s2_.vertex(q), 32, solver_failed, nullptr);
     return found;
   }
 
   /// Eq. (3) for S2 vertex q on walks across S1 that start at the `seed_count` elements nearest
-  /// to `seed_point`.
+  /// to `seed_point` (found with `nearest` for the moved seed points, which follow each other
+  /// closely, else with the kd-tree).
   std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const WorldPoint<d>& seed_point, int seed_count,
-                                                      bool& solver_failed) {
+                                                      bool& solver_failed, NearestElements<d>* nearest) {
     const WorldPoint<d>& target = s2_.vertex(q);
     std::array<std::uint32_t, 32> seeds;
-    const int count = index1_->nearest(seed_point, seed_count, seeds);
+    const int count = nearest_seeds(*index1_, nearest, seed_point, seed_count, seeds);
     std::optional<SurfacePoint<d>> best;
     double best_rank = std::numeric_limits<double>::infinity();
     std::array<Index, 64> visited;
@@ -763,23 +764,24 @@ class Projector {
   // ---- phase 2: rays from S1 vertices ---------------------------------------------------------------
   /// The ray from S1 vertex v; `mu` is the ray parameter of the chunk's previous hit (see
   /// search_chunk), updated on return.
-  std::optional<SurfacePoint<d>> cast_ray(Index v, std::optional<double>& mu) {
+  std::optional<SurfacePoint<d>> cast_ray(Index v, std::optional<double>& mu, NearestElements<d>& nearest) {
     const WorldPoint<d>& direction = nu_[v];
     std::optional<SurfacePoint<d>> hit;
-    if (mu) hit = cast_ray(v, s1_.vertex(v) + *mu * direction, *mu);
-    if (!hit) hit = cast_ray(v, s1_.vertex(v), mu.emplace());
+    if (mu) hit = cast_ray(v, s1_.vertex(v) + *mu * direction, *mu, &nearest);
+    if (!hit) hit = cast_ray(v, s1_.vertex(v), mu.emplace(), nullptr);
     if (!hit) mu.reset();
     return hit;
   }
 
   /// The ray from S1 vertex v against S2, walking from the elements of S2 nearest to
   /// `seed_point`; `hit_mu` receives the ray parameter of the hit.
-  std::optional<SurfacePoint<d>> cast_ray(Index v, const WorldPoint<d>& seed_point, double& hit_mu) {
+  std::optional<SurfacePoint<d>> cast_ray(Index v, const WorldPoint<d>& seed_point, double& hit_mu,
+                                          NearestElements<d>* nearest) {
     const WorldPoint<d>& origin = s1_.vertex(v);
     const WorldPoint<d>& direction = nu_[v];
     if (direction.squaredNorm() == 0.0) return std::nullopt;
     std::array<std::uint32_t, 32> seeds;
-    const int count = index2_->nearest(seed_point, seeds_, seeds);
+    const int count = nearest_seeds(*index2_, nearest, seed_point, seeds_, seeds);
     std::optional<SurfacePoint<d>> best;
     double best_rank = std::numeric_limits<double>::infinity();
     std::array<Index, 64> visited;
@@ -799,7 +801,7 @@ class Projector {
         a.col(d) = -direction;
         const double det = a.determinant();
         if (!(std::abs(det) > 1e-12 * integer_power(scale, d))) break;  // ray parallel to the element
-        const Eigen::Matrix<double, d + 1, 1> x = a.partialPivLu().solve(origin - s2_.corner(t, 0));
+        const Eigen::Matrix<double, d + 1, 1> x = solve_with_partial_pivoting<d + 1>(a, origin - s2_.corner(t, 0));
         const LocalPoint<d> y = x.template head<d>();
         const Barycentric<d> b = barycentric_from_local<d>(y);
         int worst = 0;
@@ -839,6 +841,33 @@ class Projector {
     double lambda = 0.0, mu = 0.0, eta = 0.0;
   };
 
+  /// The answers of eq. (4) for the S2 edge of one walk, by S1 edge. Consecutive steps of a walk
+  /// share an element whose other edges were solved in the step before, and a walk from an S1
+  /// vertex meets each edge at the vertex in two elements: the answer depends only on the two
+  /// edges, so it is looked up instead of solved again. The last `capacity` answers are kept,
+  /// enough for a step from a vertex of any usual valence and the step after it.
+  struct CrossingMemo {
+    static constexpr int capacity = 16;
+    std::array<Index, capacity> edges;
+    std::array<CrossingCandidate, capacity> answers;
+    int size = 0, next = 0;
+
+    template <class Solve>
+    const CrossingCandidate& get(Index edge, Solve&& solve) {
+      for (int i = 0; i < size; ++i)
+        if (edges[i] == edge) return answers[i];
+      const int slot = next;
+      next = (next + 1) % capacity;
+      if (size < capacity) ++size;
+      edges[slot] = edge;
+      answers[slot] = solve();
+      return answers[slot];
+    }
+  };
+
+  /// How far outside [0, 1] the S1 edge parameter of a solution of eq. (4) may lie (rounding).
+  static constexpr double crossing_lambda_slack = 1e-9;
+
   /// Eq. (4): where the projection of S2 edge (qa, qb) crosses S1 edge `edge` (d = 2).
   CrossingCandidate solve_crossing(Index edge, const WorldPoint<d>& qa, const WorldPoint<d>& qb,
                                    long long& calls, long long& failures) const
@@ -850,6 +879,8 @@ class Projector {
     sys.edge = {s1_.vertex(ev[0]), s1_.vertex(ev[1])};
     sys.directions = {nu_[ev[0]], nu_[ev[1]]};
     sys.target = {qa, qb};
+    // A crossing outside [-1e-9, 1 + 1e-9] is rejected below whatever the solver returns.
+    if (sys.misses_the_edge(opt_.solver_tolerance, crossing_lambda_slack)) return c;
     ++calls;
     const auto r = solver_.solve(sys, sys.initial_guess());
     if (!r.converged) {
@@ -867,7 +898,7 @@ class Projector {
       const double s = sys.scale();
       if (!(std::abs(j.determinant()) > 1e-10 * s * s * j.col(1).norm())) return c;
     }
-    if (c.lambda < -1e-9 || c.lambda > 1.0 + 1e-9) return c;
+    if (c.lambda < -crossing_lambda_slack || c.lambda > 1.0 + crossing_lambda_slack) return c;
     if (!distance_ok(c.mu, sys.scale())) {
       c.beyond_limit = true;
       return c;
@@ -887,7 +918,7 @@ class Projector {
     a.col(1) = qa - qb;
     const double scale = (qb - qa).norm();
     if (!(std::abs(a.determinant()) > 1e-12 * scale)) return c;
-    const Eigen::Vector2d x = a.partialPivLu().solve(qa - s1_.vertex(w));
+    const Eigen::Vector2d x = solve_with_partial_pivoting<2>(a, qa - s1_.vertex(w));
     c.mu = x(0);
     c.eta = x(1);
     c.lambda = 0.0;
@@ -902,8 +933,8 @@ class Projector {
   /// Walks along the preimage of S2 edge e from `start` (at parameter eta0) towards `end`.
   /// With `reversed`, the walk runs from the second vertex towards the first: eta (and every
   /// parameter in the result) is then measured from the second vertex; see plan_edge.
-  WalkResult<d> walk(Index e, const Place<d>& start, double eta0, const std::optional<Place<d>>& end,
-                     bool reversed = false) const {
+  WalkResult<d> walk(Index e, const Place<d>& start, double eta0, const std::optional<Place<d>>& end, bool reversed,
+                     PlanBuffer<d>& buffer) const {
     WalkResult<d> w;
     auto tv = target_edge_vertices(e);
     if (reversed) std::swap(tv[0], tv[1]);
@@ -911,8 +942,10 @@ class Projector {
     const double eta_slack = 1e-9;
     Place<d> cur = start;
     double eta = eta0;
-    std::vector<Index> cand, end_elements;
+    std::vector<Index>& cand = buffer.candidates;
+    std::vector<Index>& end_elements = buffer.end_elements;
     if (end) elements_of(*end, end_elements);
+    CrossingMemo memo;
     long long calls = 0, failures = 0;
     for (w.steps = 0; w.steps < walk_limit_; ++w.steps) {
       elements_of(cur, cand);
@@ -948,7 +981,7 @@ class Projector {
           if constexpr (d == 2) {
             const Index edge = s1_.element_edge(t, k);
             if (cur.kind == PlaceKind::edge && cur.index == edge) continue;
-            c = solve_crossing(edge, qa, qb, calls, failures);
+            c = memo.get(edge, [&] { return solve_crossing(edge, qa, qb, calls, failures); });
             if (!c.valid) {
               solver_failed |= c.solver_failed;
               beyond_limit |= c.beyond_limit;
@@ -1022,7 +1055,8 @@ class Projector {
         return w;
       }
       if constexpr (d == 2) best_crossing.target_parameter = best_eta;
-      w.crossings.push_back(best_crossing);
+      buffer.crossings.push_back(best_crossing);
+      ++w.crossing_count;
       cur = best_place;
       eta = best_eta;
       if constexpr (d == 2) {
@@ -1060,8 +1094,18 @@ class Projector {
     return f;
   }
 
-  EdgePlan<d> plan_edge(Index e) const {
-    EdgePlan<d> plan;
+  /// Walks along S2 edge e and appends its pieces (and what could not be walked) to `buffer`.
+  PlannedEdge plan_edge(Index e, unsigned worker, PlanBuffer<d>& buffer) const {
+    PlannedEdge plan;
+    plan.worker = worker;
+    plan.pieces_begin = static_cast<std::uint32_t>(buffer.pieces.size());
+    plan.failures_begin = static_cast<std::uint32_t>(buffer.failures.size());
+    auto& crossings = buffer.crossings;
+    // a piece ends at the last crossing appended
+    auto add_piece = [&](std::size_t begin, bool from_first, bool to_second) {
+      buffer.pieces.push_back(
+          {static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(crossings.size()), from_first, to_second});
+    };
     const auto tv = target_edge_vertices(e);
     const auto& pa = target_place_[tv[0]];
     const auto& pb = target_place_[tv[1]];
@@ -1070,64 +1114,169 @@ class Projector {
     // walked is where that walk left S1 (or a re-detection of it), not a new piece.
     double covered_until = -1.0;
     if (pa) {
-      WalkResult<d> w = walk(e, *pa, 0.0, pb);
+      const std::size_t begin = crossings.size();
+      const WalkResult<d> w = walk(e, *pa, 0.0, pb, false, buffer);
       if (w.end == WalkEnd::failed) {
-        plan.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+        crossings.resize(begin);
+        buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
         covered_until = w.eta;
         first_walk_failed = true;
       } else {
         const bool reached = w.end == WalkEnd::reached;
         reached_second |= reached;
         covered_until = reached ? 1.0 : w.eta;
-        if (!w.crossings.empty() || reached) plan.pieces.push_back({std::move(w.crossings), true, reached});
+        if (w.crossing_count > 0 || reached)
+          add_piece(begin, true, reached);
+        else
+          crossings.resize(begin);
       }
     }
     for (const auto& entry : entries_[e]) {
       if (entry.eta <= covered_until + 1e-9) continue;
-      WalkResult<d> w = walk(e, entry.place, entry.eta, pb);
+      const std::size_t begin = crossings.size();
+      crossings.push_back(entry.crossing);  // the piece starts where the edge enters S1
+      const WalkResult<d> w = walk(e, entry.place, entry.eta, pb, false, buffer);
       covered_until = w.end == WalkEnd::reached ? 1.0 : w.eta;
       if (w.end == WalkEnd::failed) {
+        crossings.resize(begin);
         if (w.steps == 0 && w.reason != EdgeFailureReason::solver_failure) continue;  // an exit
-        plan.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+        buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
         continue;
       }
-      if (w.end == WalkEnd::left_boundary && w.crossings.empty()) continue;
+      if (w.end == WalkEnd::left_boundary && w.crossing_count == 0) {
+        crossings.resize(begin);
+        continue;
+      }
       const bool reached = w.end == WalkEnd::reached;
       reached_second |= reached;
-      Piece<d> piece;
-      piece.crossings.push_back(entry.crossing);
-      piece.crossings.insert(piece.crossings.end(), w.crossings.begin(), w.crossings.end());
-      piece.from_first = false;
-      piece.to_second = reached;
-      plan.pieces.push_back(std::move(piece));
+      add_piece(begin, false, reached);
     }
     // The second vertex has a preimage that no walk reached: the edge enters S1 across its boundary
     // at a point the boundary-entry search cannot see (that search needs an image of one end of
     // the S1 boundary edge; both may lie outside S2 or over a hole of S2). Walking backwards from
     // the second vertex finds the entry as the point where the reversed walk leaves S1.
     if (pb && !reached_second && !first_walk_failed) {
-      WalkResult<d> w = walk(e, *pb, 0.0, std::nullopt, true);
-      if (w.end == WalkEnd::left_boundary && !w.crossings.empty()) {
-        Piece<d> piece;
-        for (auto it = w.crossings.rbegin(); it != w.crossings.rend(); ++it) {
-          piece.crossings.push_back(*it);
-          piece.crossings.back().target_parameter = 1.0 - it->target_parameter;
-        }
-        piece.from_first = false;
-        piece.to_second = true;
-        plan.pieces.push_back(std::move(piece));
+      const std::size_t begin = crossings.size();
+      const WalkResult<d> w = walk(e, *pb, 0.0, std::nullopt, true, buffer);
+      if (w.end == WalkEnd::left_boundary && w.crossing_count > 0) {
+        // measured from the first vertex again, in the edge's direction
+        std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(begin), crossings.end());
+        for (std::size_t i = begin; i < crossings.size(); ++i)
+          crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
+        add_piece(begin, false, true);
         reached_second = true;
-      } else if (w.end == WalkEnd::failed && w.reason != EdgeFailureReason::endpoint_without_preimage) {
-        plan.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
+      } else {
+        crossings.resize(begin);
+        if (w.end == WalkEnd::failed && w.reason != EdgeFailureReason::endpoint_without_preimage)
+          buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
       }
     }
-    if (pb && !reached_second && plan.failures.empty() && !on_boundary(*pb))
-      plan.failures.push_back(failure(e, EdgeFailureReason::endpoint_without_preimage, *pb, 1.0,
-                                      fmt::format("the S2 vertex {} has no preimage", tv[0])));
+    if (pb && !reached_second && buffer.failures.size() == plan.failures_begin && !on_boundary(*pb))
+      buffer.failures.push_back(failure(e, EdgeFailureReason::endpoint_without_preimage, *pb, 1.0,
+                                        fmt::format("the S2 vertex {} has no preimage", tv[0])));
+    plan.pieces_end = static_cast<std::uint32_t>(buffer.pieces.size());
+    plan.failures_end = static_cast<std::uint32_t>(buffer.failures.size());
     // No piece and nothing wrong: the edge lies outside D (it may touch S1's boundary at an
     // endpoint and leave at once).
-    if (plan.pieces.empty() && plan.failures.empty()) plan.outside = true;
+    plan.outside = plan.pieces_begin == plan.pieces_end && plan.failures_begin == plan.failures_end;
     return plan;
+  }
+
+  // ---- insertion of the planned edges -----------------------------------------------------------
+  /// S2 edges planned and inserted per block (see run()): large enough that the threads of a
+  /// block have work, small enough that a block's plans take little memory.
+  static constexpr Index plan_block = 4096;
+  /// In the per-edge count of what was inserted: the edge was inserted whole.
+  static constexpr std::uint32_t inserted_whole = 1u << 31;
+
+  /// Phase 3 proper. The edges are planned in blocks of consecutive indices (in parallel, into
+  /// per-worker flat buffers) and each block is fed to the builder, in index order, before the
+  /// next one is planned: the walks read nothing the insertion changes, so this is the same as
+  /// planning all edges first, and only one block's plans are ever held in memory.
+  void plan_and_insert_edges(MapBuilder<d>& builder, ProjectionReport<d>& report, std::vector<std::uint32_t>& counted) {
+    const Index n2e = s2_.edge_count();
+    std::vector<PlanBuffer<d>> buffers(std::max(1u, threads_));
+    std::vector<PlannedEdge> planned(static_cast<std::size_t>(std::min(n2e, plan_block)));
+    for (Index block = 0; block < n2e; block += plan_block) {
+      const Index block_end = std::min(n2e, block + plan_block);
+      auto t0 = Clock::now();
+      for (auto& buffer : buffers) buffer.clear();
+      parallel_for_ranges(block_end - block, threads_, [&](unsigned worker, Index begin, Index end) {
+        for (Index i = begin; i < end; ++i) planned[i] = plan_edge(block + i, worker, buffers[worker]);
+      });
+      report.seconds.edge_walks += seconds_since(t0);
+      t0 = Clock::now();
+      for (Index e = block; e < block_end; ++e)
+        counted[e] = insert_planned_edge(e, planned[e - block], buffers[planned[e - block].worker], builder, report);
+      report.seconds.insertion += seconds_since(t0);
+    }
+  }
+
+  /// Feeds the planned pieces of S2 edge e to the builder and reports what was left out. Returns
+  /// inserted_whole if the edge was inserted whole, or'ed with the number of pieces inserted.
+  std::uint32_t insert_planned_edge(Index e, const PlannedEdge& plan, PlanBuffer<d>& buffer, MapBuilder<d>& builder,
+                                    ProjectionReport<d>& report) {
+    if (plan.outside) {
+      ++report.edges_outside;
+      builder.add_edge_outside_domain(e);
+    }
+    bool whole = false;
+    std::uint32_t pieces = 0;
+    std::vector<EdgeNotInserted<d>> rejected;
+    for (std::uint32_t p = plan.pieces_begin; p < plan.pieces_end; ++p) {
+      const auto& piece = buffer.pieces[p];
+      const std::span<const Crossing<d>> crossings(buffer.crossings.data() + piece.begin, piece.end - piece.begin);
+      if (const auto clash = find_used_point(crossings)) {
+        EdgeNotInserted<d> f;
+        f.target_edge = e;
+        f.reason = EdgeFailureReason::builder_rejected;
+        f.domain_element = clash->element;
+        f.domain_point = clash->point;
+        f.detail = clash->detail;
+        rejected.push_back(std::move(f));
+        continue;
+      }
+      try {
+        if (piece.from_first && piece.to_second) {
+          builder.add_edge(e, crossings);
+          whole = true;
+        } else {
+          builder.add_edge_piece(e, crossings, piece.from_first, piece.to_second);
+          ++pieces;
+        }
+        mark_used_points(crossings, e);
+      } catch (const BuilderError& error) {
+        EdgeNotInserted<d> f;
+        f.target_edge = e;
+        f.reason = EdgeFailureReason::builder_rejected;
+        f.detail = error.what();
+        rejected.push_back(std::move(f));
+      }
+    }
+    if (whole) ++report.edges_inserted;
+    if (pieces > 0) ++report.edges_partly_inserted;
+    report.edge_pieces += static_cast<Index>(pieces);
+    for (std::uint32_t f = plan.failures_begin; f < plan.failures_end; ++f)
+      report.edges_not_inserted.push_back(std::move(buffer.failures[f]));
+    for (auto& f : rejected) report.edges_not_inserted.push_back(std::move(f));
+    return (whole ? inserted_whole : 0u) | pieces;
+  }
+
+  /// Frees what only the phases before finalize need.
+  void release_search_data() {
+    index1_.reset();
+    index2_.reset();
+    auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
+    release(entries_);
+    release(target_place_);
+    release(vertex_state_);
+    release(vertex_image_);
+    release(used_first_);
+    release(used_parameters_);
+    release(crossed_vertex_);
+    release(focal_free_);
+    release(nu_);
+    release(n2_);
   }
 
   /// Points where S2 edges cross S1's boundary, per S2 edge, sorted by the edge parameter.
@@ -1199,6 +1348,8 @@ class Projector {
   ProjectionOptions opt_;
   Solver solver_;
   std::vector<WorldPoint<d>> nu_, n2_;
+  /// Per S1 element: up to this |mu| no ray of the element passes a focal point (focal_points.hpp).
+  std::vector<double> focal_free_;
   double limit_ = 0.0;
   int seeds_ = 8;
   unsigned threads_ = 1;
@@ -1208,9 +1359,15 @@ class Projector {
   std::vector<VertexState> vertex_state_;
   std::vector<std::optional<SurfacePoint<d>>> vertex_image_;
   std::vector<std::vector<BoundaryEntry<d>>> entries_;
-  /// Per S1 edge (d = 2): parameters already holding a node, with their owner (an S2 edge, or
-  /// -1 - q for the preimage of S2 vertex q). Per S1 vertex: the S2 edge whose preimage passes it.
-  std::vector<std::vector<std::pair<double, Index>>> used_on_edge_;
+  /// Per S1 edge (d = 2): the parameters already holding a node, with their owner (an S2 edge,
+  /// or -1 - q for the preimage of S2 vertex q), as lists in insertion order linked through one
+  /// array (used_first_[edge] is the first entry). Per S1 vertex: the S2 edge whose preimage passes it.
+  struct UsedParameter {
+    double t;
+    Index owner, next;
+  };
+  std::vector<Index> used_first_;
+  std::vector<UsedParameter> used_parameters_;
   std::vector<Index> crossed_vertex_;
   mutable std::atomic<long long> solver_calls_{0}, solver_failures_{0};
 };

@@ -113,3 +113,47 @@ RC_GTEST_PROP(FocalPoints, TheVerdictIsScaleInvariant, ()) {
 }
 
 }  // namespace
+
+// focal_free_distance lets the projection skip the focal test: below it, the test must accept
+// every point of the element (with the projection's slack) at every distance.
+RC_GTEST_PROP(FocalPoints, NoFocalPointWithinTheFocalFreeDistance, ()) {
+  const auto coord = [] { return *rc::gen::inRange(-1000, 1001) / 1000.0; };
+  const double s = std::pow(10.0, *rc::gen::inRange(-6, 7));
+  Corners2 corners;
+  for (auto& c : corners) c = s * WorldPoint<2>(coord(), coord(), 0.2 * coord());
+  std::array<WorldPoint<2>, 3> n;
+  // from parallel to strongly converging or diverging fields
+  const double spread = *rc::gen::element(0.0, 0.01, 0.3, 1.0, 3.0);
+  for (auto& d : n) d = WorldPoint<2>(spread * coord(), spread * coord(), 1.0).normalized();
+  const double m = focal_free_distance<2>(corners, n);
+  RC_ASSERT(m >= 0.0);
+  if (m == 0.0) return;
+  for (int i = 0; i < 20; ++i) {
+    // barycentric weights down to -1e-9
+    const double b1 = (coord() + 1.0) / 2.0, b2 = (1.0 - b1) * (coord() + 1.0) / 2.0;
+    const LocalPoint<2> xi(i == 0 ? -1e-9 : b1, i == 1 ? -1e-9 : b2);
+    const double mu = std::isfinite(m) ? m * coord() : s * 1e6 * coord();
+    RC_ASSERT(reaches_without_focal_point<2>(corners, n, xi, mu));
+  }
+}
+
+TEST(FocalPoints, TheFocalFreeDistanceIsAPartOfTheFocalDistance) {
+  // converging to a line at t = 1: J(t) = 1 - t
+  std::array<WorldPoint<2>, 3> n;
+  for (int k = 0; k < 3; ++k) n[k] = WorldPoint<2>(-triangle[k].x(), 0, 1);
+  const double m = focal_free_distance<2>(triangle, n);
+  EXPECT_GT(m, 0.1);
+  EXPECT_LT(m, 1.0);
+  // constant directions never fold; tangential ones get no free distance
+  const std::array<WorldPoint<2>, 3> up = {WorldPoint<2>(0, 0, 1), WorldPoint<2>(0, 0, 1), WorldPoint<2>(0, 0, 1)};
+  EXPECT_EQ(focal_free_distance<2>(triangle, up), std::numeric_limits<double>::infinity());
+  const std::array<WorldPoint<2>, 3> flat = {WorldPoint<2>(1, 0, 0), WorldPoint<2>(1, 0, 0), WorldPoint<2>(1, 0, 0)};
+  EXPECT_EQ(focal_free_distance<2>(triangle, flat), 0.0);
+  // a curve converging to its centre of curvature at t = 1
+  const Corners1 segment = {WorldPoint<1>(-1, 0), WorldPoint<1>(1, 0)};
+  const auto towards_centre = towards<1>(segment, WorldPoint<1>(0.0, 1.0));
+  const double c = focal_free_distance<1>(segment, towards_centre);
+  EXPECT_GT(c, 0.1);
+  EXPECT_LT(c, 1.0);
+  EXPECT_TRUE(reaches_without_focal_point<1>(segment, towards_centre, LocalPoint<1>(0.0), c));
+}

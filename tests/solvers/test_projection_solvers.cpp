@@ -11,6 +11,9 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <cmath>
+#include <functional>
+
 using namespace plmap;
 
 namespace {
@@ -222,4 +225,76 @@ TYPED_TEST(ProjectionSolverTest, BothSolversFindTheCrossingOnTheEdgesOfAQuadrati
   ASSERT_TRUE(r.converged);
   const double root = (1.0 + std::sqrt(3.4)) / 4.0;
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(r.x(k), root, 1e-10) << k;
+}
+
+// misses_the_edge lets the projection skip eq. (4) on S1 edges the S2 edge's projection does not
+// cross. It must never skip a system with a solution on the edge, also when that solution lies
+// just inside the edge's ends or the field is curved, and it must skip the clear misses.
+TEST(EdgeCrossingSystem, MissesTheEdgeOnlyWithoutASolutionOnIt) {
+  const auto s = saddle_crossing();
+  EXPECT_FALSE(s.misses_the_edge(1e-12, 1e-9));  // the root at lambda ~ 0.711
+  // q(eta) = (3 + eta, 0.3, eta) meets the sweep of the edge's line at lambda ~ 3.06 and at
+  // lambda ~ 0.44 with eta ~ -2.56: off the S2 edge, but a solution with lambda on the S1 edge
+  EdgeCrossingSystem beside = s;
+  beside.target = {Eigen::Vector3d(3, 0.3, 0), Eigen::Vector3d(4, 0.3, 1)};
+  EXPECT_FALSE(beside.root_on_the_edges().has_value());
+  EXPECT_FALSE(beside.misses_the_edge(1e-12, 1e-9));
+  // q(eta) = (3, 0.3 + eta, 0.4 eta): P(lambda) = (lambda - 3)(0.8 lambda - 1.4), roots off the edge
+  EdgeCrossingSystem apart = s;
+  apart.target = {Eigen::Vector3d(3, 0.3, 0), Eigen::Vector3d(3, 1.3, 0.4)};
+  EXPECT_TRUE(apart.misses_the_edge(1e-12, 1e-9));
+  // an S2 edge along the S1 edge's sweep: P vanishes identically, nothing can be excluded
+  EdgeCrossingSystem along;
+  along.edge = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0)};
+  along.directions = {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0, 0, 1)};
+  along.target = {Eigen::Vector3d(-1, 0, 0.5), Eigen::Vector3d(2, 0, 0.5)};
+  EXPECT_FALSE(along.misses_the_edge(1e-12, 1e-9));
+}
+
+namespace {
+/// A random edge pair (curved field, any scale and offset) whose projection crosses at the given
+/// lambda, with eta = 0.4 and mu = 0.3 (times the scale).
+EdgeCrossingSystem crossing_at(double lambda, double scale, const Eigen::Vector3d& offset,
+                               const std::function<double()>& coord) {
+  EdgeCrossingSystem s;
+  s.edge = {offset, offset + scale * Eigen::Vector3d(1.0, 0.2 * coord(), 0.2 * coord())};
+  for (auto& n : s.directions) n = Eigen::Vector3d(0.5 * coord(), 0.5 * coord(), 1.0).normalized();
+  const Eigen::Vector3d p = s.edge[0] + lambda * (s.edge[1] - s.edge[0]);
+  const Eigen::Vector3d nu = s.directions[0] + lambda * (s.directions[1] - s.directions[0]);
+  const Eigen::Vector3d q = p + 0.3 * scale * nu;
+  const Eigen::Vector3d g = scale * Eigen::Vector3d(0.3 * coord(), 1.0, 0.3 * coord());
+  s.target = {q - 0.4 * g, q + 0.6 * g};
+  return s;
+}
+}  // namespace
+
+RC_GTEST_PROP(EdgeCrossingSystem, NeverMissesACrossingTheSolversFind, ()) {
+  const auto coord = [] { return *rc::gen::inRange(-1000, 1001) / 1000.0; };
+  const double scale = std::pow(10.0, *rc::gen::inRange(-6, 7));
+  const Eigen::Vector3d offset = std::pow(10.0, *rc::gen::inRange(-6, 4)) * Eigen::Vector3d(coord(), coord(), coord());
+  // crossings at the ends of the edge, just inside and outside the slack, and well away
+  const double lambda = *rc::gen::element(0.0, 1.0, -1e-9, 1.0 + 1e-9, -1e-7, 1.0 + 1e-7, 0.5, -0.3, 1.7,
+                                          -1e-12, 1.0 + 1e-12);
+  const auto s = crossing_at(lambda, scale, offset, coord);
+  const bool missed = s.misses_the_edge(1e-12, 1e-9);
+  for (const bool newton : {true, false}) {
+    const auto r =
+        newton ? DampedNewtonSolver{}.solve(s, s.initial_guess()) : CeresTinySolver{}.solve(s, s.initial_guess());
+    if (r.converged && r.x(0) >= -1e-9 && r.x(0) <= 1.0 + 1e-9) RC_ASSERT(!missed);
+  }
+  if (lambda >= -1e-9 && lambda <= 1.0 + 1e-9) RC_ASSERT(!missed);
+}
+
+TEST(EdgeCrossingSystem, MissesTheEdgeWhenTheOnlyCrossingIsClearlyOffIt) {
+  // constant directions: P is linear, its one root is the crossing
+  const auto one = [] { return 0.0; };
+  for (double scale : {1e-6, 1.0, 1e6}) {
+    const Eigen::Vector3d offset(3 * scale, -2 * scale, 0.5 * scale);
+    EXPECT_TRUE(crossing_at(1.7, scale, offset, one).misses_the_edge(1e-12, 1e-9)) << scale;
+    EXPECT_TRUE(crossing_at(-0.3, scale, offset, one).misses_the_edge(1e-12, 1e-9)) << scale;
+    EXPECT_TRUE(crossing_at(1.0 + 1e-6, scale, offset, one).misses_the_edge(1e-12, 1e-9)) << scale;
+    EXPECT_FALSE(crossing_at(1.0, scale, offset, one).misses_the_edge(1e-12, 1e-9)) << scale;
+    EXPECT_FALSE(crossing_at(-1e-9, scale, offset, one).misses_the_edge(1e-12, 1e-9)) << scale;
+    EXPECT_FALSE(crossing_at(1.0 + 1e-9 + 1e-13, scale, offset, one).misses_the_edge(1e-12, 1e-9)) << scale;
+  }
 }

@@ -10,6 +10,7 @@
 /// the residual, or the iteration limit end the solve with converged = false.
 
 #include <plmap/solvers/nonlinear_system.hpp>
+#include <plmap/solvers/small_lu.hpp>
 
 #include <Eigen/LU>
 
@@ -29,6 +30,17 @@ struct DampedNewtonOptions {
 struct DampedNewtonSolver {
   DampedNewtonOptions options;
 
+  /// J dx = -F by partially pivoted LU; for the projection's 2x2 and 3x3 systems the hand-written
+  /// copy of Eigen's algorithm (small_lu.hpp), same bits at a fraction of the cost.
+  template <SmallNonlinearSystem System>
+  static typename System::Vector newton_step(const typename System::Jacobian& j,
+                                             const typename System::Vector& minus_f) {
+    if constexpr (System::size == 2 || System::size == 3)
+      return solve_with_partial_pivoting<System::size>(j, minus_f);
+    else
+      return Eigen::PartialPivLU<typename System::Jacobian>(j).solve(minus_f);
+  }
+
   template <SmallNonlinearSystem System>
   SolveResult<System::size> solve(const System& system, const typename System::Vector& initial) const {
     using Vector = typename System::Vector;
@@ -40,8 +52,7 @@ struct DampedNewtonSolver {
     double norm = r.norm();
     int it = 0;
     for (; it < options.max_iterations && norm > tolerance; ++it) {
-      const Eigen::PartialPivLU<typename System::Jacobian> lu(system.jacobian(x));
-      const Vector dx = lu.solve(-r);
+      const Vector dx = newton_step<System>(system.jacobian(x), -r);
       if (!dx.allFinite()) break;  // singular Jacobian
       double damping = 1.0;
       bool accepted = false;

@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace plmap {
 
@@ -86,6 +87,65 @@ bool reaches_without_focal_point(const std::array<WorldPoint<d>, d + 1>& corners
     }
   }
   return true;
+}
+
+/// A distance up to which no ray of the element meets a focal point: reaches_without_focal_point
+/// is true for every local point of the element (barycentric weights down to -1e-9, the slack
+/// of the projection's inside tests) and every |mu| <= the returned value. 0 where the
+/// directions are nearly tangential to the element or point to both of its sides.
+///
+/// The projection asks the focal test for almost every solution it accepts, and on the usual
+/// element the answer is obviously yes: J(t) = a_0 + a_1 t (+ a_2 t^2) with |a_0| bounded below
+/// and |a_1|, |a_2| bounded above over the element (J is linear in nu, and nu(xi) is a convex
+/// combination of the corner directions). Where |a_1| |mu| + |a_2| mu^2 <= |a_0| / 2, J keeps
+/// the sign of a_0 with a margin far above the test's zero threshold and its rounding, so the
+/// test would accept: this distance, computed once per element, answers it without the
+/// polynomial.
+template <int d>
+  requires SurfaceDimension<d>
+double focal_free_distance(const std::array<WorldPoint<d>, d + 1>& corners,
+                           const std::array<WorldPoint<d>, d + 1>& directions) {
+  double longest_direction = 0.0;
+  for (int k = 0; k <= d; ++k) longest_direction = std::max(longest_direction, directions[k].norm());
+  longest_direction *= 1.0 + 1e-6;  // nu at local points barely outside the element
+  // J's coefficients are a_k = N_k . nu(xi) for vectors N_k of the element (d = 1: a_k =
+  // det[E_k, nu] with E_0 = the edge, E_1 = the difference of the directions).
+  double a0_smallest = std::numeric_limits<double>::infinity(), a0_largest = 0.0;
+  int sign = 0;
+  double n0_length, a1_largest, a2_largest = 0.0;
+  auto take_a0 = [&](double a0) {
+    const int s = a0 > 0.0 ? 1 : (a0 < 0.0 ? -1 : 0);
+    if (sign == 0) sign = s;
+    if (s == 0 || s != sign) sign = 2;  // mixed or zero: no bound
+    a0_smallest = std::min(a0_smallest, std::abs(a0));
+    a0_largest = std::max(a0_largest, std::abs(a0));
+  };
+  if constexpr (d == 1) {
+    const Eigen::Vector2d e = corners[1] - corners[0], f = directions[1] - directions[0];
+    for (int k = 0; k <= 1; ++k) take_a0(e.x() * directions[k].y() - e.y() * directions[k].x());
+    n0_length = e.norm();
+    a1_largest = f.norm() * longest_direction;
+  } else {
+    const Eigen::Vector3d e1 = corners[1] - corners[0], e2 = corners[2] - corners[0];
+    const Eigen::Vector3d f1 = directions[1] - directions[0], f2 = directions[2] - directions[0];
+    const Eigen::Vector3d n0 = e1.cross(e2);
+    for (int k = 0; k <= 2; ++k) take_a0(n0.dot(directions[k]));
+    n0_length = n0.norm();
+    a1_largest = (f1.cross(e2) + e1.cross(f2)).norm() * longest_direction;
+    a2_largest = f1.cross(f2).norm() * longest_direction;
+  }
+  // The margin: a_0 far from zero relative to its scale, so that nu slightly outside the
+  // element and the rounding of a_0 cannot change its sign or come near the zero threshold.
+  if (sign == 2 || !(a0_smallest > 1e-6 * n0_length * longest_direction) || !std::isfinite(a0_largest)) return 0.0;
+  const double budget = 0.5 * a0_smallest;  // |a_1| m + |a_2| m^2 <= budget
+  double m;
+  if (a2_largest > 0.0)
+    m = 2.0 * budget / (a1_largest + std::sqrt(a1_largest * a1_largest + 4.0 * a2_largest * budget));
+  else if (a1_largest > 0.0)
+    m = budget / a1_largest;
+  else
+    return std::numeric_limits<double>::infinity();
+  return std::isfinite(m) ? 0.99 * m : 0.0;
 }
 
 }  // namespace plmap

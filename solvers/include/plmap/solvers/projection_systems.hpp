@@ -21,6 +21,7 @@
 
 #include <plmap/core/types.hpp>
 #include <plmap/solvers/nonlinear_system.hpp>
+#include <plmap/solvers/small_lu.hpp>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -28,6 +29,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace plmap {
@@ -78,8 +80,7 @@ struct VertexProjectionSystem {
     nu /= d + 1;
     for (int i = 0; i < d; ++i) a.col(i) = corners[i + 1] - corners[0];
     a.col(d) = nu;
-    const Eigen::PartialPivLU<Jacobian> lu(a);
-    Vector x = lu.solve(target - corners[0]);
+    Vector x = solve_with_partial_pivoting<d + 1>(a, target - corners[0]);
     if (!x.allFinite() || std::abs(a.determinant()) <= 1e-14 * integer_power(scale(), d) * nu.norm()) {
       x.setConstant(1.0 / (d + 1));
       x(d) = 0.0;
@@ -171,6 +172,52 @@ struct EdgeCrossingSystem {
     return best;
   }
 
+  /// True if no point that a solver accepts as a solution, |F(x)| <= relative_tolerance *
+  /// scale(), has lambda within [-lambda_slack, 1 + lambda_slack]: the projection of the S2
+  /// edge's line provably misses the S1 edge, and solving would only produce a point that the
+  /// caller rejects. About half of the systems a walk across S1 poses are of this kind.
+  ///
+  /// Why it is conclusive: eq. (4) has a solution with parameter lambda iff p(lambda) - q_0,
+  /// nu(lambda) and g = q_1 - q_0 are linearly dependent, i.e. iff the quadratic
+  ///     P(lambda) = det[w + lambda e, n_0 + lambda f, g]   (w = p_0 - q_0, e, f as above)
+  /// vanishes. A point x accepted with residual r = F(x) solves the system exactly with q_0
+  /// moved by r, so |P(lambda)| = |det[r, nu(lambda), g]| <= |r| |nu(lambda)| |g| there. If
+  /// |P| exceeds that bound (plus the rounding of P and of the residual) on the whole interval,
+  /// no accepted point lies in it. P is a quadratic, so its smallest absolute value on an
+  /// interval where it keeps its sign is at an end or at its vertex. The margins make the test
+  /// inconclusive (false) near tangential and degenerate configurations: those are solved.
+  bool misses_the_edge(double relative_tolerance, double lambda_slack) const {
+    const Eigen::Vector3d e = edge[1] - edge[0], f = directions[1] - directions[0];
+    const Eigen::Vector3d g = target[1] - target[0], w = edge[0] - target[0];
+    const Eigen::Vector3d u = directions[0].cross(g), v = f.cross(g);
+    const double k0 = w.dot(u), k1 = e.dot(u) + w.dot(v), k2 = e.dot(v);
+    if (!std::isfinite(k0 + k1 + k2)) return false;
+    auto p = [&](double lambda) { return (k2 * lambda + k1) * lambda + k0; };
+    const double lo = -lambda_slack, hi = 1.0 + lambda_slack;
+    const double at_lo = p(lo), at_hi = p(hi);
+    if ((at_lo > 0.0) != (at_hi > 0.0)) return false;  // a root in between: the common case of a crossing
+    double smallest = std::min(std::abs(at_lo), std::abs(at_hi));
+    if (k2 != 0.0) {
+      const double vertex = -k1 / (2.0 * k2);
+      if (vertex > lo && vertex < hi) {
+        const double at_vertex = p(vertex);
+        if ((at_vertex > 0.0) != (at_lo > 0.0)) return false;
+        smallest = std::min(smallest, std::abs(at_vertex));
+      }
+    }
+    // The bound, with 1-norms (>= Euclidean norms) because they are cheap. The residual a solver
+    // computes is rounded in absolute coordinates: the bound covers what that rounding can hide.
+    auto norm1 = [](const Eigen::Vector3d& x) { return std::abs(x(0)) + std::abs(x(1)) + std::abs(x(2)); };
+    constexpr double eps = std::numeric_limits<double>::epsilon();
+    const double e_len = norm1(e), g_len = norm1(g), w_len = norm1(w), f_len = norm1(f);
+    const double n_len = std::max(norm1(directions[0]), norm1(directions[1])) + f_len * lambda_slack;
+    const double coordinates = norm1(edge[0]) + norm1(target[0]) + w_len + e_len + g_len;
+    const double residual = relative_tolerance * std::max(e_len, g_len) + 16.0 * eps * coordinates;
+    // rounding of the coefficients and of the evaluation of P for |lambda| <= 1 + slack
+    const double rounding = 32.0 * eps * (w_len + e_len) * (norm1(directions[0]) + f_len) * g_len;
+    return smallest > 2.0 * (residual * n_len * g_len + rounding);
+  }
+
   /// The solution with nu frozen at the edge midpoint (exact for constant direction fields);
   /// (1/2, 0, 1/2) if that is singular.
   Vector frozen_midpoint_guess() const {
@@ -178,8 +225,7 @@ struct EdgeCrossingSystem {
     a.col(0) = edge[1] - edge[0];
     a.col(1) = 0.5 * (directions[0] + directions[1]);
     a.col(2) = target[0] - target[1];
-    const Eigen::PartialPivLU<Jacobian> lu(a);
-    Vector x = lu.solve(target[0] - edge[0]);
+    Vector x = solve_with_partial_pivoting<3>(a, target[0] - edge[0]);
     const double s = scale();
     if (!x.allFinite() || std::abs(a.determinant()) <= 1e-14 * s * s * a.col(1).norm())
       x = Vector(0.5, 0.0, 0.5);
