@@ -27,17 +27,27 @@
 
 namespace plmap::detail {
 
+/// A constraint of the closure: an edge between vertices a < b, either a piece of the element
+/// boundary, a graph edge (a piece of an S2 edge's preimage), or both.
+struct ClosureSegment {
+  int a, b;
+  bool graph;
+};
+
 /// A triangulation of the reference triangle that contains every graph edge.
 struct ElementClosure {
   std::vector<std::array<int, 3>> triangles;  ///< vertex ids, counter-clockwise
   /// Triangle across the side opposite corner i, or -1 (element boundary).
   std::vector<std::array<int, 3>> neighbors;
+  /// Bit i set: the side opposite corner i is a graph edge.
+  std::vector<std::uint8_t> graph_sides;
   std::vector<int> face;  ///< face of the graph each triangle belongs to
   int face_count = 0;
 
   void clear() {
     triangles.clear();
     neighbors.clear();
+    graph_sides.clear();
     face.clear();
     face_count = 0;
   }
@@ -45,27 +55,37 @@ struct ElementClosure {
 
 /// Buffers reused from element to element, so the fast path does not allocate in steady state.
 struct ClosureScratch {
-  std::vector<int> out_begin, out_half_edge, position, next, half_edge_face, cycle, polygon;
-  std::vector<char> visited;
-  std::vector<int> order;
-  std::vector<std::pair<std::uint64_t, int>> side_keys;
+  std::vector<int> out_begin, out_half_edge, position, next, half_edge_face, cycle, polygon, polygon_side,
+      half_edge_side, from, to;
+  std::vector<LocalPoint<2>> direction, sorted_points;
+  std::vector<char> visited, upper;
 };
 
 /// Tries the fast path. `points` are the element's vertices in local coordinates (all distinct
-/// is checked), `segments` the constraint edges (element boundary pieces and graph edges, each
-/// once), `boundary_start` a half-edge (a, b) of the element boundary taken counter-clockwise.
-/// Returns false, leaving `out` unspecified, when the graph is not one it handles.
-bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const std::array<int, 2>> segments,
+/// is checked), `segments` the constraint edges, each once and sorted by (a, b) (the order
+/// decides the order of the faces and so of the triangles), `boundary_start` a half-edge (a, b)
+/// of the element boundary taken counter-clockwise. Returns false, leaving `out` unspecified,
+/// when the graph is not one it handles.
+bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const ClosureSegment> segments,
                     std::array<int, 2> boundary_start, ElementClosure& out, ClosureScratch& scratch);
 
 /// Whether the closed polygon `poly` (indices into `points`) turns left or goes straight at every
 /// vertex, never doubles back, and winds exactly once: then it is convex and simple. Exact.
 bool convex_and_winding_once(std::span<const LocalPoint<2>> points, const std::vector<int>& poly);
 
+/// A neighbour of a vertex in the closure, in counter-clockwise order around the vertex.
+struct RingEntry {
+  int vertex;
+  /// The closure triangles on either side of the edge to `vertex`: `before` precedes it and
+  /// `after` follows it counter-clockwise around the centre; -1 outside the element.
+  int before, after;
+  bool graph;  ///< the edge is a graph edge
+};
+
 /// For each vertex, its neighbours in the closure in counter-clockwise order: boundary vertices
 /// start right after the outside, interior vertices at their smallest neighbour. Written as
-/// CSR arrays (ring_begin has points + 1 entries).
+/// CSR arrays (ring_begin has vertex_count + 1 entries). `incident` is scratch.
 void closure_rings(const ElementClosure& closure, int vertex_count, std::vector<int>& ring_begin,
-                   std::vector<int>& ring);
+                   std::vector<RingEntry>& ring, std::vector<int>& incident);
 
 }  // namespace plmap::detail

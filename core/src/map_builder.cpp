@@ -110,7 +110,9 @@ class Buckets {
 /// Per S1 element, the outcome of the triangulation step, which finalize() assembles into the
 /// flat arrays right away (one per thread, reused from element to element).
 struct ElementTriangulation {
-  std::vector<Index> slots;  // builder node of each slot (node order of the element)
+  std::vector<Index> slots;               // builder node of each slot (node order of the element)
+  std::vector<LocalPoint<2>> positions;   // of the slots, then of the virtual corners
+  std::vector<std::int8_t> location;      // of the slots: corner, local edge, or -1 (inside)
   struct Triangle {
     std::array<int, 3> corners;    // slots, ccw (triangles touching a virtual corner are dropped)
     std::array<int, 3> neighbors;  // triangle across the side opposite corner i, or -1
@@ -122,9 +124,11 @@ struct ElementTriangulation {
     int sign = 0;
   };
   std::vector<Component> components;
-  // Neighbours of each slot in ccw order (CSR), each entry 2 * slot + 1 for a graph edge, + 0 for
-  // a closure edge; closure edges are filtered once the regions are known.
-  std::vector<int> ring_begin, ring;
+  // Neighbours of each slot in ccw order (CSR), with the triangles on either side of the edge
+  // (numbered as in `triangles`, -1 if none or dropped): a closure edge is kept only next to a
+  // region, which is known once the orientation is.
+  std::vector<int> ring_begin;
+  std::vector<detail::RingEntry> ring;
   std::vector<int> edge_slots;                // along local edges 0, 1, 2, corners included
   std::array<int, 4> edge_slots_begin{};
   int centroid_triangle = -1;
@@ -132,6 +136,8 @@ struct ElementTriangulation {
   /// Empties it for the next element, keeping the buffers.
   void clear() {
     slots.clear();
+    positions.clear();
+    location.clear();
     triangles.clear();
     components.clear();
     ring_begin.clear();
@@ -1084,22 +1090,24 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     // ---- triangle surfaces: a constrained triangulation per S1 element ------------------------
     const std::array<LocalPoint<2>, 3> ref = {reference_corner<2>(0), reference_corner<2>(1),
                                               reference_corner<2>(2)};
+    // Local position of a point at parameter s along local edge k (from corner k). Points must lie
+    // exactly on their edge line, or exact predicates would see them a rounding step off it.
+    // Edges 0 (y = 0) and 2 (x = 0) are exact anyway; on edge 1 (x + y = 1) the second
+    // coordinate is 1 - first, which is exact when first >= 1/2.
+    auto on_local_edge = [](int k, double s) -> LocalPoint<2> {
+      if (k == 0) return LocalPoint<2>(s, 0.0);
+      if (k == 2) return LocalPoint<2>(0.0, 1.0 - s);
+      if (s >= 0.5) return LocalPoint<2>(1.0 - s, s);
+      const double x = 1.0 - s;
+      return LocalPoint<2>(x, 1.0 - x);
+    };
     auto node_local = [&](Index node, Index t) -> LocalPoint<2> {
       const auto& p = im.nodes[node].place;
       if (p.kind == PlaceKind::vertex) return ref[s1.local_corner(t, p.index)];
       if (p.kind == PlaceKind::element) return p.local;
       for (int k = 0; k < 3; ++k)
-        if (s1.element_edge(t, k) == p.index) {
-          const double s = s1.local_edge_is_forward(t, k) ? p.t : 1.0 - p.t;
-          // Points must lie exactly on their edge line, or exact predicates would see them
-          // a rounding step off it. Edges 0 (y = 0) and 2 (x = 0) are exact anyway; on edge 1
-          // (x + y = 1) the second coordinate is 1 - first, which is exact when first >= 1/2.
-          if (k == 0) return LocalPoint<2>(s, 0.0);
-          if (k == 2) return LocalPoint<2>(0.0, 1.0 - s);
-          if (s >= 0.5) return LocalPoint<2>(1.0 - s, s);
-          const double x = 1.0 - s;
-          return LocalPoint<2>(x, 1.0 - x);
-        }
+        if (s1.element_edge(t, k) == p.index)
+          return on_local_edge(k, s1.local_edge_is_forward(t, k) ? p.t : 1.0 - p.t);
       return LocalPoint<2>::Zero();
     };
 
@@ -1111,42 +1119,56 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       Cdt cdt;
       detail::ElementClosure closure;
       detail::ClosureScratch scratch;
-      std::vector<LocalPoint<2>> points;
-      std::vector<std::array<int, 2>> segments;
-      std::vector<int> ring_begin, ring;
+      std::vector<detail::ClosureSegment> segments;
+      // Constraints as (a, b, graph) packed into one integer each, a < b: sorting integers is
+      // cheaper than comparing pairs, and the order is the order of (a, b).
+      std::vector<std::uint64_t> segment_keys;
+      std::vector<int> ring_begin, incident;
+      std::vector<detail::RingEntry> ring;
+      // Slot of each builder node on the element being closed, -1 elsewhere: the graph edges
+      // name builder nodes, and elements may carry thousands of them. Entries of the previous
+      // element are reset when the next one starts (also after an exception).
+      std::vector<int> slot_of_node;
       // per-element scratch, kept to avoid allocating for every element
       std::array<std::vector<int>, 3> edge_inner;
-      std::vector<std::pair<Index, int>> slot_of;
-      std::vector<std::pair<int, int>> graph_pairs;
       std::vector<char> has_virtual;
-      std::vector<int> face_order, face_begin, comp_nodes, face_to_triangle;
+      std::vector<int> face_order, face_begin, comp_nodes, face_to_triangle, vertex_stamp;
+      std::vector<LocalPoint<2>> on_candidate;  // per vertex: its image on a candidate S2 element
       long long votes = 0;
+    };
+    auto segment_key = [](int a, int b, bool graph) {
+      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 33) |
+             (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::max(a, b))) << 1) |
+             static_cast<std::uint64_t>(graph);
     };
 
     // The general path: a constrained Delaunay triangulation of the same graph. Also the place
     // where invalid input (crossing edges, a node on another edge) is diagnosed.
-    auto close_by_cdt = [&](Index t, Workspace& w, int vertex_count,
-                            const std::vector<std::pair<int, int>>& graph_pairs) {
+    auto close_by_cdt = [&](Index t, Workspace& w, int vertex_count) {
+      const auto& points = w.et.positions;
       Cdt& cdt = w.cdt;
       cdt.clear();
       std::vector<Cdt::Vertex_handle> vh(vertex_count);
       for (int i = 0; i < vertex_count; ++i) {
         const auto before = cdt.number_of_vertices();
-        vh[i] = cdt.insert(Kernel::Point_2(w.points[i](0), w.points[i](1)));
+        vh[i] = cdt.insert(Kernel::Point_2(points[i](0), points[i](1)));
         if (cdt.number_of_vertices() == before)
           throw BuilderError(fmt::format("two nodes coincide on S1 element {} at local ({}, {})", t,
-                                         w.points[i](0), w.points[i](1)));
+                                         points[i](0), points[i](1)));
         vh[i]->info() = i;
       }
       try {
-        for (const auto& [a, b] : w.segments) cdt.insert_constraint(vh[a], vh[b]);
+        for (const auto& seg : w.segments) cdt.insert_constraint(vh[seg.a], vh[seg.b]);
       } catch (const Cdt::Intersection_of_constraints_exception&) {
         throw BuilderError(fmt::format("graph edges cross each other on S1 element {}", t));
       }
-      for (const auto& [a, b] : graph_pairs)
-        if (!cdt.is_edge(vh[a], vh[b]))
+      for (const auto& seg : w.segments)
+        if (seg.graph && !cdt.is_edge(vh[seg.a], vh[seg.b]))
           throw BuilderError(fmt::format(
               "a graph edge on S1 element {} passes through another node (or its endpoints coincide)", t));
+      auto is_graph_edge = [&](int a, int b) {
+        return std::binary_search(w.segment_keys.begin(), w.segment_keys.end(), segment_key(a, b, true));
+      };
       auto& closure = w.closure;
       closure.clear();
       int nf = 0;
@@ -1155,6 +1177,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) face_of[f->info()] = f;
       closure.triangles.resize(nf);
       closure.neighbors.resize(nf);
+      closure.graph_sides.assign(nf, 0);
       closure.face.assign(nf, -1);
       for (int f = 0; f < nf; ++f)
         for (int i = 0; i < 3; ++i) {
@@ -1162,6 +1185,11 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           const auto g = face_of[f]->neighbor(i);
           closure.neighbors[f][i] = cdt.is_infinite(g) ? -1 : g->info();
         }
+      for (int f = 0; f < nf; ++f)
+        for (int i = 0; i < 3; ++i)
+          if (face_of[f]->is_constrained(i) &&
+              is_graph_edge(closure.triangles[f][(i + 1) % 3], closure.triangles[f][(i + 2) % 3]))
+            closure.graph_sides[f] = static_cast<std::uint8_t>(closure.graph_sides[f] | (1u << i));
       // faces of the graph: flood fill across unconstrained sides
       std::vector<int> stack;
       for (int f0 = 0; f0 < nf; ++f0) {
@@ -1184,6 +1212,8 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
 
     auto close_element = [&](Index t, Workspace& w) {
       auto& et = w.et;
+      if (w.slot_of_node.size() != im.nodes.size()) w.slot_of_node.assign(im.nodes.size(), -1);
+      for (Index n : et.slots) w.slot_of_node[n] = -1;  // the previous element's
       et.clear();
       // slots: present corners, then edge nodes along edges 0, 1, 2, then interior nodes
       std::array<int, 3> corner_slot{-1, -1, -1};
@@ -1192,6 +1222,8 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         if (n != invalid_index) {
           corner_slot[k] = static_cast<int>(et.slots.size());
           et.slots.push_back(n);
+          et.positions.push_back(ref[k]);
+          et.location.push_back(static_cast<std::int8_t>(k));
         }
       }
       auto& edge_inner = w.edge_inner;
@@ -1203,10 +1235,18 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           const Index n = fwd ? list[i] : list[list.size() - 1 - i];
           edge_inner[k].push_back(static_cast<int>(et.slots.size()));
           et.slots.push_back(n);
+          const double edge_t = im.nodes[n].place.t;
+          et.positions.push_back(on_local_edge(k, fwd ? edge_t : 1.0 - edge_t));
+          et.location.push_back(static_cast<std::int8_t>(k));
         }
       }
-      for (Index n : interior_nodes[t]) et.slots.push_back(n);
+      for (Index n : interior_nodes[t]) {
+        et.slots.push_back(n);
+        et.positions.push_back(im.nodes[n].place.local);
+        et.location.push_back(-1);
+      }
       const int ns = static_cast<int>(et.slots.size());
+      for (int i = 0; i < ns; ++i) w.slot_of_node[et.slots[i]] = i;
       for (int k = 0; k < 3; ++k) {
         auto& es = et.edge_slots;
         et.edge_slots_begin[k] = static_cast<int>(es.size());
@@ -1219,34 +1259,34 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
 
       // Vertices: the slots, then one "virtual" vertex per missing corner; faces touching a
       // virtual vertex lie outside D.
-      w.points.clear();
-      for (int i = 0; i < ns; ++i) w.points.push_back(node_local(et.slots[i], t));
       std::array<int, 3> corner_vertex{};
       for (int k = 0; k < 3; ++k) {
         if (corner_slot[k] >= 0) {
           corner_vertex[k] = corner_slot[k];
         } else {
-          corner_vertex[k] = static_cast<int>(w.points.size());
-          w.points.push_back(ref[k]);
+          corner_vertex[k] = static_cast<int>(et.positions.size());
+          et.positions.push_back(ref[k]);
         }
       }
-      const int vertex_count = static_cast<int>(w.points.size());
+      const int vertex_count = static_cast<int>(et.positions.size());
 
-      // graph edges as slot pairs (builder node -> slot via a sorted table: elements may carry
-      // thousands of nodes)
-      auto& graph_pairs = w.graph_pairs;
-      graph_pairs.clear();
-      auto& slot_of = w.slot_of;
-      slot_of.resize(ns);
-      for (int i = 0; i < ns; ++i) slot_of[i] = {et.slots[i], i};
-      std::sort(slot_of.begin(), slot_of.end());
-      auto find_slot = [&](Index node) {
-        const auto it = std::lower_bound(slot_of.begin(), slot_of.end(), std::make_pair(node, -1));
-        return it != slot_of.end() && it->first == node ? it->second : -1;
-      };
+      // constraints: the element boundary between consecutive points, and the graph edges
+      auto& keys = w.segment_keys;
+      keys.clear();
+      std::array<int, 2> boundary_start{};
+      for (int k = 0; k < 3; ++k) {
+        int previous = corner_vertex[k];
+        auto add_piece = [&](int next) {
+          if (k == 0 && previous == corner_vertex[0]) boundary_start = {previous, next};
+          keys.push_back(segment_key(previous, next, false));
+          previous = next;
+        };
+        for (int i : edge_inner[k]) add_piece(i);
+        add_piece(corner_vertex[(k + 1) % 3]);
+      }
       auto add_graph = [&](Index sidx) {
         const auto& seg = im.segments[sidx];
-        const int a = find_slot(seg.a), b = find_slot(seg.b);
+        const int a = w.slot_of_node[seg.a], b = w.slot_of_node[seg.b];
         if (a < 0 || b < 0)
           throw BuilderError(fmt::format(
               "internal: a piece of the preimage of S2 edge {} lacks an endpoint on S1 element {}",
@@ -1254,34 +1294,25 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         if (a == b)
           throw BuilderError(fmt::format(
               "a graph edge on S1 element {} passes through another node (or its endpoints coincide)", t));
-        graph_pairs.emplace_back(std::min(a, b), std::max(a, b));
+        keys.push_back(segment_key(a, b, true));
       };
       for (Index sidx : element_segments[t]) add_graph(sidx);
       for (int k = 0; k < 3; ++k)
         for (Index sidx : edge_segments[s1.element_edge(t, k)]) add_graph(sidx);
-      std::sort(graph_pairs.begin(), graph_pairs.end());
-      graph_pairs.erase(std::unique(graph_pairs.begin(), graph_pairs.end()), graph_pairs.end());
-
-      // constraints: the element boundary between consecutive points, and the graph edges
+      std::sort(keys.begin(), keys.end());
+      // each edge once: a boundary piece that is also a graph edge is a graph edge
       w.segments.clear();
-      std::array<int, 2> boundary_start{};
-      for (int k = 0; k < 3; ++k) {
-        int previous = corner_vertex[k];
-        auto add_piece = [&](int next) {
-          if (k == 0 && previous == corner_vertex[0]) boundary_start = {previous, next};
-          w.segments.push_back({std::min(previous, next), std::max(previous, next)});
-          previous = next;
-        };
-        for (int i : edge_inner[k]) add_piece(i);
-        add_piece(corner_vertex[(k + 1) % 3]);
+      for (std::size_t i = 0; i < keys.size(); ++i) {
+        const auto a = static_cast<int>(keys[i] >> 33), b = static_cast<int>((keys[i] >> 1) & 0xffffffffu);
+        const bool graph = (keys[i] & 1u) != 0;
+        if (!w.segments.empty() && w.segments.back().a == a && w.segments.back().b == b)
+          w.segments.back().graph = w.segments.back().graph || graph;
+        else
+          w.segments.push_back({a, b, graph});
       }
-      for (const auto& [a, b] : graph_pairs) w.segments.push_back({a, b});
-      std::sort(w.segments.begin(), w.segments.end());
-      w.segments.erase(std::unique(w.segments.begin(), w.segments.end()), w.segments.end());
 
-      if (!detail::close_by_faces(w.points, w.segments, boundary_start, w.closure, w.scratch)) {
-        close_by_cdt(t, w, vertex_count, graph_pairs);
-      }
+      if (!detail::close_by_faces(et.positions, w.segments, boundary_start, w.closure, w.scratch))
+        close_by_cdt(t, w, vertex_count);
       const auto& closure = w.closure;
       const int nf = static_cast<int>(closure.triangles.size());
       const int ncomp = closure.face_count;
@@ -1307,17 +1338,26 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       }
       et.components.assign(ncomp, {});
       auto& comp_nodes = w.comp_nodes;
+      auto& stamp = w.vertex_stamp;
+      stamp.assign(vertex_count, -1);
+      w.on_candidate.resize(vertex_count);
       for (int c = 0; c < ncomp; ++c) {
         if (has_virtual[c]) continue;
+        // the face's nodes; of those with the most support vertices (the fewest candidate
+        // elements), the first slot is where the search starts
         comp_nodes.clear();
+        int best = -1;
         for (int q = face_begin[c]; q < face_begin[c + 1]; ++q)
-          for (int i = 0; i < 3; ++i) comp_nodes.push_back(closure.triangles[face_order[q]][i]);
-        std::sort(comp_nodes.begin(), comp_nodes.end());
-        comp_nodes.erase(std::unique(comp_nodes.begin(), comp_nodes.end()), comp_nodes.end());
-        // start from the node with the most support vertices: it has the fewest candidates
-        int best = comp_nodes[0];
-        for (int i : comp_nodes)
-          if (im.nodes[et.slots[i]].image.count > im.nodes[et.slots[best]].image.count) best = i;
+          for (int i = 0; i < 3; ++i) {
+            const int v = closure.triangles[face_order[q]][i];
+            if (stamp[v] == c) continue;
+            stamp[v] = c;
+            comp_nodes.push_back(v);
+            const int count = im.nodes[et.slots[v]].image.count;
+            if (best < 0 || count > im.nodes[et.slots[best]].image.count ||
+                (count == im.nodes[et.slots[best]].image.count && v < best))
+              best = v;
+          }
         const Support<2>& best_support = im.nodes[et.slots[best]].image;
         double best_area = 0.0;
         for (Index cand : s2.vertex_elements(best_support.vertex[0])) {
@@ -1327,12 +1367,13 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           if (!all) continue;
           for (int k = 0; k < 3; ++k) all = all && im.edge_inserted[s2.element_edge(cand, k)];
           if (!all) continue;
+          auto& y = w.on_candidate;
+          for (int i : comp_nodes) y[i] = support_local<2>(s2, im.nodes[et.slots[i]].image, cand);
           double area = 0.0;
           for (int q = face_begin[c]; q < face_begin[c + 1]; ++q) {
             const auto& tr = closure.triangles[face_order[q]];
-            std::array<LocalPoint<2>, 3> y;
-            for (int i = 0; i < 3; ++i) y[i] = support_local<2>(s2, im.nodes[et.slots[tr[i]]].image, cand);
-            area += (y[1] - y[0])(0) * (y[2] - y[0])(1) - (y[1] - y[0])(1) * (y[2] - y[0])(0);
+            const LocalPoint<2> u = y[tr[1]] - y[tr[0]], v = y[tr[2]] - y[tr[0]];
+            area += u(0) * v(1) - u(1) * v(0);
           }
           if (std::abs(area) > std::abs(best_area)) {
             best_area = area;
@@ -1362,25 +1403,25 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       }
       // the walk starts from the triangle at the element's centroid
       const LocalPoint<2> centroid(1.0 / 3.0, 1.0 / 3.0);
+      const auto& points = et.positions;
       for (int f = 0; f < nf && et.centroid_triangle < 0; ++f) {
         const auto& tr = closure.triangles[f];
-        if (orient2d(w.points[tr[0]], w.points[tr[1]], centroid) >= 0 &&
-            orient2d(w.points[tr[1]], w.points[tr[2]], centroid) >= 0 &&
-            orient2d(w.points[tr[2]], w.points[tr[0]], centroid) >= 0)
+        if (orient2d(points[tr[0]], points[tr[1]], centroid) >= 0 &&
+            orient2d(points[tr[1]], points[tr[2]], centroid) >= 0 &&
+            orient2d(points[tr[2]], points[tr[0]], centroid) >= 0)
           et.centroid_triangle = face_to_triangle[f];
       }
       // neighbours in ccw order: circulate the triangles around each node (combinatorial)
-      detail::closure_rings(closure, vertex_count, w.ring_begin, w.ring);
+      detail::closure_rings(closure, vertex_count, w.ring_begin, w.ring, w.incident);
       et.ring_begin.resize(ns + 1);
       et.ring_begin[0] = 0;
       et.ring.reserve(w.ring_begin[ns]);
+      auto kept_triangle = [&](int f) { return f >= 0 ? face_to_triangle[f] : -1; };
       for (int i = 0; i < ns; ++i) {
         for (int r = w.ring_begin[i]; r < w.ring_begin[i + 1]; ++r) {
-          const int j = w.ring[r];
-          if (j >= ns) continue;  // virtual corner
-          const bool graph = std::binary_search(graph_pairs.begin(), graph_pairs.end(),
-                                                std::make_pair(std::min(i, j), std::max(i, j)));
-          et.ring.push_back(2 * j + (graph ? 1 : 0));
+          const auto& entry = w.ring[r];
+          if (entry.vertex >= ns) continue;  // virtual corner
+          et.ring.push_back({entry.vertex, kept_triangle(entry.before), kept_triangle(entry.after), entry.graph});
         }
         et.ring_begin[i + 1] = static_cast<int>(et.ring.size());
       }
@@ -1445,15 +1486,8 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     // faces mapped with the map's orientation become regions, and that orientation is voted on
     // by all elements: the pass assembles with a guess (the vote of a sample of elements, or the
     // orientation given in the options) and runs again in the rare case the full vote differs.
-    auto side_key = [](int a, int b) {
-      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
-             static_cast<std::uint32_t>(std::max(a, b));
-    };
     struct AssemblyScratch {
       std::vector<Index> triangle_region;
-      // Slot pairs (smaller, larger) that border a region, packed into one integer each: sorting
-      // and searching integers is cheaper than comparing pairs.
-      std::vector<std::uint64_t> region_sides;
       Index reversed_faces = 0;  // faces with a target element but the other orientation
     };
     auto start_part = [](MapData<2>& part) {
@@ -1463,53 +1497,40 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       part.neighbor_begin.assign(1, 0);
       part.edge_node_begin.assign(1, 0);
     };
-    auto assemble_element = [&](Index t, const ElementTriangulation& et, MapData<2>& part, int orientation,
+    auto assemble_element = [&](const ElementTriangulation& et, MapData<2>& part, int orientation,
                                 AssemblyScratch& sc) {
       const Index base = static_cast<Index>(part.node_type.size());
       const Index rbase = static_cast<Index>(part.region_target.size());
       const int ns = static_cast<int>(et.slots.size());
       // regions: triangles of components with a target element and the map's orientation
       sc.triangle_region.assign(et.triangles.size(), invalid_index);
-      sc.region_sides.clear();
       for (const auto& comp : et.components)
         if (comp.target != invalid_index && comp.sign != orientation) ++sc.reversed_faces;
       Index nr = 0;
       for (std::size_t f = 0; f < et.triangles.size(); ++f) {
-        const auto& tr = et.triangles[f];
-        const auto& comp = et.components[tr.component];
+        const auto& comp = et.components[et.triangles[f].component];
         if (comp.target == invalid_index || comp.sign != orientation) continue;
         sc.triangle_region[f] = rbase + nr++;
-        for (int i = 0; i < 3; ++i) {
-          const int a = tr.corners[i], b = tr.corners[(i + 1) % 3];
-          sc.region_sides.push_back(side_key(a, b));
-        }
       }
-      std::sort(sc.region_sides.begin(), sc.region_sides.end());
+      auto is_region = [&](int f) { return f >= 0 && sc.triangle_region[f] != invalid_index; };
       for (int i = 0; i < ns; ++i) {
         const auto& bn = im.nodes[et.slots[i]];
-        const LocalPoint<2> x = node_local(et.slots[i], t);
-        part.node_position.push_back(x);
-        int location = -1;
+        part.node_position.push_back(et.positions[i]);
         NodeType type = NodeType::interior;
-        if (bn.place.kind == PlaceKind::vertex) {
-          location = s1.local_corner(t, bn.place.index);
+        if (bn.place.kind == PlaceKind::vertex)
           type = bn.kind == BuilderNodeKind::ghost ? NodeType::ghost : NodeType::corner;
-        } else if (bn.place.kind == PlaceKind::edge) {
-          for (int k = 0; k < 3; ++k)
-            if (s1.element_edge(t, k) == bn.place.index) location = k;
+        else if (bn.place.kind == PlaceKind::edge)
           type = bn.kind == BuilderNodeKind::intersection ? NodeType::intersection : NodeType::touching;
-        }
         part.node_type.push_back(type);
-        part.node_location.push_back(static_cast<std::int8_t>(location));
+        part.node_location.push_back(et.location[i]);
         part.node_image.push_back({bn.image.element, support_local<2>(s2, bn.image, bn.image.element)});
         part.node_target.push_back(bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target);
+        // graph edges, and closure edges that border a region
         for (int r = et.ring_begin[i]; r < et.ring_begin[i + 1]; ++r) {
-          const int j = et.ring[r] >> 1;
-          const bool graph = (et.ring[r] & 1) != 0;
-          if (!graph && !std::binary_search(sc.region_sides.begin(), sc.region_sides.end(), side_key(i, j)))
-            continue;
-          part.neighbor.push_back(base + j);
-          part.neighbor_edge_kind.push_back(graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure);
+          const auto& entry = et.ring[r];
+          if (!entry.graph && !is_region(entry.before) && !is_region(entry.after)) continue;
+          part.neighbor.push_back(base + entry.vertex);
+          part.neighbor_edge_kind.push_back(entry.graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure);
         }
         part.neighbor_begin.push_back(static_cast<Index>(part.neighbor.size()));
       }
@@ -1612,7 +1633,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           try {
             close_element(t, workspaces[k]);
             // after a failure the part is discarded: only the failures are still collected
-            if (failures[k].empty()) assemble_element(t, workspaces[k].et, parts[k], orientation, scratch);
+            if (failures[k].empty()) assemble_element(workspaces[k].et, parts[k], orientation, scratch);
           } catch (...) {
             failures[k].emplace_back(t, std::current_exception());
             if (!drop) return;  // finalize throws: the part and its count are not used

@@ -52,10 +52,34 @@ inline int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Ei
   return detail::orient2d_exact(a.x(), a.y(), b.x(), b.y(), c.x(), c.y());
 }
 
+namespace detail {
+/// Exact in-circle test via CGAL; used when the floating-point filter is inconclusive.
+int incircle_exact(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                   const Eigen::Vector2d& d);
+}  // namespace detail
+
 /// +1 if d lies strictly inside the circle through the counter-clockwise points a, b, c, 0 if on
-/// it, -1 if outside. Exact (CGAL's filtered predicate).
-int incircle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
-             const Eigen::Vector2d& d);
+/// it, -1 if outside. Exact. Inline, like orient2d: the Lawson flips of every element's closure
+/// ask it, and the static error bound decides nearly all of them without the out-of-line call.
+inline int incircle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                    const Eigen::Vector2d& d) {
+  const double adx = a.x() - d.x(), ady = a.y() - d.y();
+  const double bdx = b.x() - d.x(), bdy = b.y() - d.y();
+  const double cdx = c.x() - d.x(), cdy = c.y() - d.y();
+  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy, alift = adx * adx + ady * ady;
+  const double cdxady = cdx * ady, adxcdy = adx * cdy, blift = bdx * bdx + bdy * bdy;
+  const double adxbdy = adx * bdy, bdxady = bdx * ady, clift = cdx * cdx + cdy * cdy;
+  const double det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady);
+  const double permanent = (std::abs(bdxcdy) + std::abs(cdxbdy)) * alift +
+                           (std::abs(cdxady) + std::abs(adxcdy)) * blift +
+                           (std::abs(adxbdy) + std::abs(bdxady)) * clift;
+  // Bound on the rounding error of det (Shewchuk's iccerrboundA = (10 + 96 eps) eps).
+  constexpr double error_factor = 1.1102230246251568e-15;
+  const double bound = error_factor * permanent;
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  return detail::incircle_exact(a, b, c, d);
+}
 
 /// Exact sign of a . b - style comparisons are not needed elsewhere; for segments:
 /// true if the closed segments [p, q] and [r, s] share a point other than a common endpoint.
