@@ -55,10 +55,18 @@ struct ElementClosure {
 
 /// Buffers reused from element to element, so the fast path does not allocate in steady state.
 struct ClosureScratch {
-  std::vector<int> out_begin, out_half_edge, position, next, half_edge_face, cycle, polygon, polygon_side,
-      half_edge_side, from, to;
-  std::vector<LocalPoint<2>> direction, sorted_points;
-  std::vector<char> visited, upper;
+  struct HalfEdge {
+    LocalPoint<2> direction;  // to - from, as computed in floating point
+    int from, to;
+    int next;      // the next half-edge of the face on its left
+    int face;      // that face
+    int position;  // index in the counter-clockwise order around `from`
+    int side;      // the triangle side (3 t + i) it became, or -1 (outer face)
+    bool upper;    // direction angle in [0, pi)
+  };
+  std::vector<HalfEdge> half_edges;
+  std::vector<int> out_begin, out_half_edge, cursor, face_done, flips;
+  std::vector<LocalPoint<2>> sorted_points;
 };
 
 /// Tries the fast path. `points` are the element's vertices in local coordinates (all distinct
@@ -71,7 +79,7 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
 
 /// Whether the closed polygon `poly` (indices into `points`) turns left or goes straight at every
 /// vertex, never doubles back, and winds exactly once: then it is convex and simple. Exact.
-bool convex_and_winding_once(std::span<const LocalPoint<2>> points, const std::vector<int>& poly);
+bool convex_and_winding_once(std::span<const LocalPoint<2>> points, std::span<const int> poly);
 
 /// A neighbour of a vertex in the closure, in counter-clockwise order around the vertex.
 struct RingEntry {
@@ -82,10 +90,10 @@ struct RingEntry {
   bool graph;  ///< the edge is a graph edge
 };
 
-/// For each vertex, its neighbours in the closure in counter-clockwise order: boundary vertices
-/// start right after the outside, interior vertices at their smallest neighbour. Written as
-/// CSR arrays (ring_begin has vertex_count + 1 entries). `incident` is scratch.
-void closure_rings(const ElementClosure& closure, int vertex_count, std::vector<int>& ring_begin,
-                   std::vector<RingEntry>& ring, std::vector<int>& incident);
+/// For each of the first `wanted` vertices, its neighbours in the closure in counter-clockwise
+/// order: boundary vertices start right after the outside, interior vertices at their smallest
+/// neighbour. Written as CSR arrays (ring_begin has wanted + 1 entries). `start` is scratch.
+void closure_rings(const ElementClosure& closure, int vertex_count, int wanted, std::vector<int>& ring_begin,
+                   std::vector<RingEntry>& ring, std::vector<int>& start);
 
 }  // namespace plmap::detail

@@ -113,35 +113,24 @@ struct ElementTriangulation {
   std::vector<Index> slots;               // builder node of each slot (node order of the element)
   std::vector<LocalPoint<2>> positions;   // of the slots, then of the virtual corners
   std::vector<std::int8_t> location;      // of the slots: corner, local edge, or -1 (inside)
-  struct Triangle {
-    std::array<int, 3> corners;    // slots, ccw (triangles touching a virtual corner are dropped)
-    std::array<int, 3> neighbors;  // triangle across the side opposite corner i, or -1
-    int component;                 // face of the graph
-  };
-  std::vector<Triangle> triangles;
+  // The closure itself (triangles, neighbours, faces; triangles touching a virtual corner lie
+  // outside D) and the rings stay in the workspace that computed them; per face of the graph:
   struct Component {
     Index target = invalid_index;
     int sign = 0;
+    bool outside = false;  // touches a virtual corner
   };
   std::vector<Component> components;
-  // Neighbours of each slot in ccw order (CSR), with the triangles on either side of the edge
-  // (numbered as in `triangles`, -1 if none or dropped): a closure edge is kept only next to a
-  // region, which is known once the orientation is.
-  std::vector<int> ring_begin;
-  std::vector<detail::RingEntry> ring;
   std::vector<int> edge_slots;                // along local edges 0, 1, 2, corners included
   std::array<int, 4> edge_slots_begin{};
-  int centroid_triangle = -1;
+  int centroid_triangle = -1;                 // a closure triangle inside D, or -1
 
   /// Empties it for the next element, keeping the buffers.
   void clear() {
     slots.clear();
     positions.clear();
     location.clear();
-    triangles.clear();
     components.clear();
-    ring_begin.clear();
-    ring.clear();
     edge_slots.clear();
     edge_slots_begin = {};
     centroid_triangle = -1;
@@ -743,18 +732,27 @@ bool support_in_element(const Surface<d>& s2, const Support<d>& s, Index t) {
   return true;
 }
 
-/// Local coordinates of a support on an S2 element that contains it (exact transfer).
+[[noreturn, gnu::cold]] void throw_not_in_element(Index t, Index vertex) {
+  throw BuilderError(fmt::format("internal: an image is re-expressed on S2 element {}, which does not "
+                                 "contain its S2 vertex {}",
+                                 t, vertex));
+}
+
+/// Local coordinates of a support on an S2 element that contains it (exact transfer): the
+/// weights of the element's corners 1 .. d, copied. Called for every node and region corner.
 template <int d>
 LocalPoint<d> support_local(const Surface<d>& s2, const Support<d>& s, Index t) {
-  Barycentric<d> b = Barycentric<d>::Zero();
+  const auto& corners = s2.element(t);
+  LocalPoint<d> y = LocalPoint<d>::Zero();
   for (int i = 0; i < s.count; ++i) {
-    const int k = s2.local_corner(t, s.vertex[i]);
-    if (k < 0)
-      throw BuilderError(fmt::format("internal: an image is re-expressed on S2 element {}, which "
-                                     "does not contain its S2 vertex {}", t, s.vertex[i]));
-    b(k) = s.weight[i];
+    const Index v = s.vertex[i];
+    if (v == corners[0]) continue;
+    int k = 1;
+    while (k <= d && corners[k] != v) ++k;
+    if (k > d) throw_not_in_element(t, v);
+    y(k - 1) = s.weight[i];
   }
-  return local_from_barycentric<d>(b);
+  return y;
 }
 
 /// The affine map taking the corners `from` to `to`. Closure triangles can be slivers, whose
@@ -1131,8 +1129,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       std::vector<int> slot_of_node;
       // per-element scratch, kept to avoid allocating for every element
       std::array<std::vector<int>, 3> edge_inner;
-      std::vector<char> has_virtual;
-      std::vector<int> face_order, face_begin, comp_nodes, face_to_triangle, vertex_stamp;
+      std::vector<int> face_order, face_begin, comp_nodes, vertex_stamp;
       std::vector<LocalPoint<2>> on_candidate;  // per vertex: its image on a candidate S2 element
       long long votes = 0;
     };
@@ -1255,7 +1252,10 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         if (corner_slot[(k + 1) % 3] >= 0) es.push_back(corner_slot[(k + 1) % 3]);
       }
       et.edge_slots_begin[3] = static_cast<int>(et.edge_slots.size());
-      if (ns == 0) return;
+      if (ns == 0) {  // nothing of the map on this element
+        w.closure.clear();
+        return;
+      }
 
       // Vertices: the slots, then one "virtual" vertex per missing corner; faces touching a
       // virtual vertex lie outside D.
@@ -1317,17 +1317,16 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       const int nf = static_cast<int>(closure.triangles.size());
       const int ncomp = closure.face_count;
 
-      // classify faces: virtual corner → outside; else common S2 element and image sign
-      auto& has_virtual = w.has_virtual;
-      has_virtual.assign(ncomp, 0);
-      // triangles grouped by face (counting sort)
-      auto& face_begin = w.face_begin;
+      // Classify the faces: touching a virtual corner → outside D; else the S2 element all its
+      // nodes map into, and the sign of its image there.
+      et.components.assign(ncomp, {});
+      auto& face_begin = w.face_begin;  // triangles grouped by face (counting sort)
       auto& face_order = w.face_order;
       face_begin.assign(ncomp + 1, 0);
       for (int f = 0; f < nf; ++f) {
         ++face_begin[closure.face[f] + 1];
-        for (int i = 0; i < 3; ++i)
-          if (closure.triangles[f][i] >= ns) has_virtual[closure.face[f]] = 1;
+        const auto& tr = closure.triangles[f];
+        if (tr[0] >= ns || tr[1] >= ns || tr[2] >= ns) et.components[closure.face[f]].outside = true;
       }
       for (int c = 0; c < ncomp; ++c) face_begin[c + 1] += face_begin[c];
       face_order.resize(nf);
@@ -1336,38 +1335,42 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         cursor.assign(face_begin.begin(), face_begin.end() - 1);
         for (int f = 0; f < nf; ++f) face_order[cursor[closure.face[f]]++] = f;
       }
-      et.components.assign(ncomp, {});
       auto& comp_nodes = w.comp_nodes;
       auto& stamp = w.vertex_stamp;
       stamp.assign(vertex_count, -1);
       w.on_candidate.resize(vertex_count);
+      auto& y = w.on_candidate;
       for (int c = 0; c < ncomp; ++c) {
-        if (has_virtual[c]) continue;
-        // the face's nodes; of those with the most support vertices (the fewest candidate
-        // elements), the first slot is where the search starts
+        auto& comp = et.components[c];
+        if (comp.outside) continue;
+        // The face's nodes, and the S2 vertices carrying their images: an S2 element containing
+        // every image has them all as corners.
         comp_nodes.clear();
-        int best = -1;
+        std::array<Index, 3> support_union{};
+        int union_size = 0;
         for (int q = face_begin[c]; q < face_begin[c + 1]; ++q)
           for (int i = 0; i < 3; ++i) {
             const int v = closure.triangles[face_order[q]][i];
             if (stamp[v] == c) continue;
             stamp[v] = c;
             comp_nodes.push_back(v);
-            const int count = im.nodes[et.slots[v]].image.count;
-            if (best < 0 || count > im.nodes[et.slots[best]].image.count ||
-                (count == im.nodes[et.slots[best]].image.count && v < best))
-              best = v;
+            const Support<2>& support = im.nodes[et.slots[v]].image;
+            for (int j = 0; j < support.count; ++j) {
+              const Index x = support.vertex[j];
+              int u = 0;
+              while (u < union_size && u < 3 && support_union[u] != x) ++u;
+              if (u == union_size) {
+                if (union_size < 3) support_union[u] = x;
+                ++union_size;  // more than 3: no S2 element contains them all
+              }
+            }
           }
-        const Support<2>& best_support = im.nodes[et.slots[best]].image;
-        double best_area = 0.0;
-        for (Index cand : s2.vertex_elements(best_support.vertex[0])) {
-          if (!support_in_element<2>(s2, best_support, cand)) continue;
-          bool all = true;
-          for (int i : comp_nodes) all = all && support_in_element<2>(s2, im.nodes[et.slots[i]].image, cand);
-          if (!all) continue;
-          for (int k = 0; k < 3; ++k) all = all && im.edge_inserted[s2.element_edge(cand, k)];
-          if (!all) continue;
-          auto& y = w.on_candidate;
+        // The candidates are the S2 elements containing all the images, tried in the order of the
+        // star of one support vertex; of those with every edge inserted, the one where the face's
+        // image has the largest area wins (ties: the first).
+        auto try_candidate = [&](Index cand, double& best_area) {
+          for (int k = 0; k < 3; ++k)
+            if (!im.edge_inserted[s2.element_edge(cand, k)]) return;
           for (int i : comp_nodes) y[i] = support_local<2>(s2, im.nodes[et.slots[i]].image, cand);
           double area = 0.0;
           for (int q = face_begin[c]; q < face_begin[c + 1]; ++q) {
@@ -1377,54 +1380,50 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           }
           if (std::abs(area) > std::abs(best_area)) {
             best_area = area;
-            et.components[c].target = cand;
+            comp.target = cand;
+          }
+        };
+        double best_area = 0.0;
+        if (union_size == 3) {
+          // Three S2 vertices: only the S2 element with exactly these corners (elements are
+          // distinct vertex sets) can contain every image.
+          for (Index cand : s2.vertex_elements(support_union[0]))
+            if (s2.local_corner(cand, support_union[1]) >= 0 && s2.local_corner(cand, support_union[2]) >= 0) {
+              try_candidate(cand, best_area);
+              break;
+            }
+        } else if (union_size < 3) {
+          // All images on one S2 edge or vertex: every element around it contains them. The
+          // search starts from a node with the most support vertices, the first such slot.
+          int best = comp_nodes[0];
+          for (int i : comp_nodes) {
+            const int count = im.nodes[et.slots[i]].image.count, best_count = im.nodes[et.slots[best]].image.count;
+            if (count > best_count || (count == best_count && i < best)) best = i;
+          }
+          const Support<2>& best_support = im.nodes[et.slots[best]].image;
+          for (Index cand : s2.vertex_elements(best_support.vertex[0])) {
+            bool all = true;
+            for (int i : comp_nodes) all = all && support_in_element<2>(s2, im.nodes[et.slots[i]].image, cand);
+            if (all) try_candidate(cand, best_area);
           }
         }
-        if (et.components[c].target != invalid_index) {
-          et.components[c].sign = best_area > 0 ? 1 : -1;
-          w.votes += et.components[c].sign * static_cast<long long>(face_begin[c + 1] - face_begin[c]);
+        if (comp.target != invalid_index) {
+          comp.sign = best_area > 0 ? 1 : -1;
+          w.votes += comp.sign * static_cast<long long>(face_begin[c + 1] - face_begin[c]);
         }
       }
-      // keep the triangles with real vertices only
-      auto& face_to_triangle = w.face_to_triangle;
-      face_to_triangle.assign(nf, -1);
-      int kept = 0;
-      for (int f = 0; f < nf; ++f)
-        if (!has_virtual[closure.face[f]]) face_to_triangle[f] = kept++;
-      et.triangles.reserve(kept);
-      for (int f = 0; f < nf; ++f) {
-        if (face_to_triangle[f] < 0) continue;
-        ElementTriangulation::Triangle tr{closure.triangles[f], {-1, -1, -1}, closure.face[f]};
-        for (int i = 0; i < 3; ++i) {
-          const int g = closure.neighbors[f][i];
-          if (g >= 0) tr.neighbors[i] = face_to_triangle[g];
-        }
-        et.triangles.push_back(tr);
-      }
-      // the walk starts from the triangle at the element's centroid
+      // the walk starts from the triangle at the element's centroid (the first inside D)
       const LocalPoint<2> centroid(1.0 / 3.0, 1.0 / 3.0);
       const auto& points = et.positions;
       for (int f = 0; f < nf && et.centroid_triangle < 0; ++f) {
         const auto& tr = closure.triangles[f];
-        if (orient2d(points[tr[0]], points[tr[1]], centroid) >= 0 &&
+        if (!et.components[closure.face[f]].outside && orient2d(points[tr[0]], points[tr[1]], centroid) >= 0 &&
             orient2d(points[tr[1]], points[tr[2]], centroid) >= 0 &&
             orient2d(points[tr[2]], points[tr[0]], centroid) >= 0)
-          et.centroid_triangle = face_to_triangle[f];
+          et.centroid_triangle = f;
       }
       // neighbours in ccw order: circulate the triangles around each node (combinatorial)
-      detail::closure_rings(closure, vertex_count, w.ring_begin, w.ring, w.incident);
-      et.ring_begin.resize(ns + 1);
-      et.ring_begin[0] = 0;
-      et.ring.reserve(w.ring_begin[ns]);
-      auto kept_triangle = [&](int f) { return f >= 0 ? face_to_triangle[f] : -1; };
-      for (int i = 0; i < ns; ++i) {
-        for (int r = w.ring_begin[i]; r < w.ring_begin[i + 1]; ++r) {
-          const auto& entry = w.ring[r];
-          if (entry.vertex >= ns) continue;  // virtual corner
-          et.ring.push_back({entry.vertex, kept_triangle(entry.before), kept_triangle(entry.after), entry.graph});
-        }
-        et.ring_begin[i + 1] = static_cast<int>(et.ring.size());
-      }
+      detail::closure_rings(closure, vertex_count, ns, w.ring_begin, w.ring, w.incident);
     };
 
     // Elements are independent: close them on all threads. Errors are reported for the
@@ -1497,19 +1496,21 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       part.neighbor_begin.assign(1, 0);
       part.edge_node_begin.assign(1, 0);
     };
-    auto assemble_element = [&](const ElementTriangulation& et, MapData<2>& part, int orientation,
-                                AssemblyScratch& sc) {
+    auto assemble_element = [&](const Workspace& w, MapData<2>& part, int orientation, AssemblyScratch& sc) {
+      const ElementTriangulation& et = w.et;
+      const detail::ElementClosure& closure = w.closure;
       const Index base = static_cast<Index>(part.node_type.size());
       const Index rbase = static_cast<Index>(part.region_target.size());
       const int ns = static_cast<int>(et.slots.size());
-      // regions: triangles of components with a target element and the map's orientation
-      sc.triangle_region.assign(et.triangles.size(), invalid_index);
+      const int nf = static_cast<int>(closure.triangles.size());
+      // regions: triangles of faces inside D with a target element and the map's orientation
+      sc.triangle_region.assign(nf, invalid_index);
       for (const auto& comp : et.components)
         if (comp.target != invalid_index && comp.sign != orientation) ++sc.reversed_faces;
       Index nr = 0;
-      for (std::size_t f = 0; f < et.triangles.size(); ++f) {
-        const auto& comp = et.components[et.triangles[f].component];
-        if (comp.target == invalid_index || comp.sign != orientation) continue;
+      for (int f = 0; f < nf; ++f) {
+        const auto& comp = et.components[closure.face[f]];
+        if (comp.outside || comp.target == invalid_index || comp.sign != orientation) continue;
         sc.triangle_region[f] = rbase + nr++;
       }
       auto is_region = [&](int f) { return f >= 0 && sc.triangle_region[f] != invalid_index; };
@@ -1525,10 +1526,10 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         part.node_location.push_back(et.location[i]);
         part.node_image.push_back({bn.image.element, support_local<2>(s2, bn.image, bn.image.element)});
         part.node_target.push_back(bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target);
-        // graph edges, and closure edges that border a region
-        for (int r = et.ring_begin[i]; r < et.ring_begin[i + 1]; ++r) {
-          const auto& entry = et.ring[r];
-          if (!entry.graph && !is_region(entry.before) && !is_region(entry.after)) continue;
+        // graph edges, and closure edges that border a region (virtual corners are not nodes)
+        for (int r = w.ring_begin[i]; r < w.ring_begin[i + 1]; ++r) {
+          const auto& entry = w.ring[r];
+          if (entry.vertex >= ns || (!entry.graph && !is_region(entry.before) && !is_region(entry.after))) continue;
           part.neighbor.push_back(base + entry.vertex);
           part.neighbor_edge_kind.push_back(entry.graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure);
         }
@@ -1540,18 +1541,18 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           part.edge_node.push_back(base + et.edge_slots[q]);
         part.edge_node_begin.push_back(static_cast<Index>(part.edge_node.size()));
       }
-      for (std::size_t f = 0; f < et.triangles.size(); ++f) {
+      for (int f = 0; f < nf; ++f) {
         if (sc.triangle_region[f] == invalid_index) continue;
-        const auto& tr = et.triangles[f];
-        const Index target = et.components[tr.component].target;
+        const auto& tr = closure.triangles[f];
+        const Index target = et.components[closure.face[f]].target;
         std::array<Index, 3> corners, neighbors;
         std::array<LocalPoint<2>, 3> from, to;
         for (int i = 0; i < 3; ++i) {
-          const int s = tr.corners[i];
+          const int s = tr[i];
           corners[i] = base + s;
-          const int g = tr.neighbors[i];
+          const int g = closure.neighbors[f][i];
           neighbors[i] = g >= 0 ? sc.triangle_region[g] : invalid_index;
-          from[i] = part.node_position[base + s];
+          from[i] = et.positions[s];
           to[i] = support_local<2>(s2, im.nodes[et.slots[s]].image, target);
         }
         part.region_corners.push_back(corners);
@@ -1633,7 +1634,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           try {
             close_element(t, workspaces[k]);
             // after a failure the part is discarded: only the failures are still collected
-            if (failures[k].empty()) assemble_element(workspaces[k].et, parts[k], orientation, scratch);
+            if (failures[k].empty()) assemble_element(workspaces[k], parts[k], orientation, scratch);
           } catch (...) {
             failures[k].emplace_back(t, std::current_exception());
             if (!drop) return;  // finalize throws: the part and its count are not used

@@ -208,17 +208,29 @@ TEST(ElementClosure, FastPathMatchesItsReferenceOnRandomGraphs) {
     // some face had to be cut into several triangles (ears, and diagonals to flip)
     cut += closure.triangles.size() > static_cast<std::size_t>(closure.face_count);
     const int nv = static_cast<int>(g.points.size());
-    detail::closure_rings(closure, nv, ring_begin, ring, incident);
+    detail::closure_rings(closure, nv, nv, ring_begin, ring, incident);
     reference::Closure as_closed{closure.triangles, closure.neighbors, closure.face, closure.face_count};
     reference::closure_rings(as_closed, nv, expected_begin, expected_ring);
     ASSERT_EQ(ring_begin, expected_begin) << "trial " << trial;
-    for (std::size_t r = 0; r < ring.size(); ++r) {
-      ASSERT_EQ(ring[r].vertex, expected_ring[r]) << "trial " << trial;
-      // the triangles beside the edge contain it, and its graph flag is theirs
-      for (int f : {ring[r].before, ring[r].after}) {
-        if (f < 0) continue;
-        const auto& tri = closure.triangles[f];
-        ASSERT_TRUE(std::count(tri.begin(), tri.end(), ring[r].vertex) == 1) << "trial " << trial;
+    auto is_graph_segment = [&](int a, int b) {
+      return std::any_of(g.segments.begin(), g.segments.end(), [&](const auto& s) {
+        return s.graph && s.a == std::min(a, b) && s.b == std::max(a, b);
+      });
+    };
+    for (int v = 0; v < nv; ++v) {
+      const int first = ring_begin[v], last = ring_begin[v + 1];
+      for (int r = first; r < last; ++r) {
+        ASSERT_EQ(ring[r].vertex, expected_ring[r]) << "trial " << trial;
+        ASSERT_EQ(ring[r].graph, is_graph_segment(v, ring[r].vertex)) << "trial " << trial;
+        // the triangle after an entry is the one before the next entry, and holds v and both
+        const int following = r + 1 < last ? r + 1 : first;
+        ASSERT_EQ(ring[r].after, r + 1 < last || ring[r].after >= 0 ? ring[following].before : -1)
+            << "trial " << trial;
+        if (ring[r].after >= 0) {
+          const auto& tri = closure.triangles[ring[r].after];
+          for (int x : {v, ring[r].vertex, ring[following].vertex})
+            ASSERT_EQ(std::count(tri.begin(), tri.end(), x), 1) << "trial " << trial;
+        }
       }
     }
   }
@@ -238,7 +250,7 @@ TEST(ElementClosure, RingsNameTheTrianglesBesideEachEdge) {
   c.face_count = 1;
   std::vector<int> begin, incident;
   std::vector<detail::RingEntry> ring;
-  detail::closure_rings(c, 4, begin, ring, incident);
+  detail::closure_rings(c, 4, 4, begin, ring, incident);
   ASSERT_EQ(begin, (std::vector<int>{0, 3, 5, 8, 10}));
   EXPECT_EQ(ring[0].vertex, 1);
   EXPECT_EQ(ring[0].before, -1);
