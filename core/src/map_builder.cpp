@@ -35,22 +35,26 @@ namespace {
 enum class PlaceKind : std::uint8_t { vertex, edge, element };
 
 /// A point of S1: a vertex, a point on an edge (d = 2; parameter from the smaller-index vertex),
-/// or a point inside an element.
+/// or a point inside an element. The builder holds one per node (millions), so the parameter
+/// and the local coordinates share storage, unaligned: a node takes 80 bytes instead of 96.
 template <int d>
 struct Place {
-  PlaceKind kind = PlaceKind::vertex;
+  using Coordinates = Eigen::Matrix<double, d, 1, Eigen::DontAlign>;
+  Coordinates coords = Coordinates::Zero();  // kind == element: local; kind == edge: (t, 0)
   Index index = invalid_index;
-  double t = 0.0;                            // kind == edge
-  LocalPoint<d> local = LocalPoint<d>::Zero();  // kind == element
+  PlaceKind kind = PlaceKind::vertex;
+
+  double t() const { return coords(0); }          // kind == edge
+  LocalPoint<d> local() const { return coords; }  // kind == element
 };
 
 /// Image of a node on S2 as the S2 vertices carrying its barycentric weight.
 template <int d>
 struct Support {
-  int count = 0;
-  std::array<Index, d + 1> vertex{};
   std::array<double, d + 1> weight{};
+  std::array<Index, d + 1> vertex{};
   Index element = invalid_index;  // an S2 element containing the image (for the stored form)
+  std::uint8_t count = 0;
 };
 
 enum class BuilderNodeKind : std::uint8_t { vertex_preimage, ghost, intersection };
@@ -58,10 +62,11 @@ enum class BuilderNodeKind : std::uint8_t { vertex_preimage, ghost, intersection
 template <int d>
 struct BuilderNode {
   Place<d> place;
-  BuilderNodeKind kind;
-  Index target;  // S2 vertex / S2 edge / invalid
   Support<d> image;
+  Index target;  // S2 vertex / S2 edge / invalid
+  BuilderNodeKind kind;
 };
+static_assert(sizeof(BuilderNode<2>) <= 80 && sizeof(BuilderNode<1>) <= 64, "builder nodes are kept compact");
 
 /// A straight piece of an S2 edge's preimage between two nodes: inside element `where`, or (d = 2)
 /// along S1 edge `where`.
@@ -225,12 +230,12 @@ struct MapBuilder<d>::Impl {
         place.kind = PlaceKind::edge;
         place.index = s1->find_edge(u, v);
         // parameter from the smaller-index vertex
-        place.t = u < v ? b(which[1]) : b(which[0]);
+        place.coords(0) = u < v ? b(which[1]) : b(which[0]);
       }
     } else {
       place.kind = PlaceKind::element;
       place.index = p.element;
-      place.local = local_from_barycentric<d>(b);
+      place.coords = local_from_barycentric<d>(b);
     }
     return place;
   }
@@ -294,7 +299,7 @@ struct MapBuilder<d>::Impl {
   // ---- node entry -----------------------------------------------------------------------------
   Index new_node(const Place<d>& place, BuilderNodeKind kind, Index target, const Support<d>& image) {
     const auto id = static_cast<Index>(nodes.size());
-    nodes.push_back({place, kind, target, image});
+    nodes.push_back({place, image, target, kind});
     if (place.kind == PlaceKind::vertex) node_at_domain_vertex[place.index] = id;
     if (kind == BuilderNodeKind::vertex_preimage) preimage_of_target_vertex[target] = id;
     return id;
@@ -346,35 +351,53 @@ struct MapBuilder<d>::Impl {
       case PlaceKind::edge:
         if constexpr (d == 2) {
           const auto ev = s1->edge_vertices(p.index);
-          return (1.0 - p.t) * s1->vertex(ev[0]) + p.t * s1->vertex(ev[1]);
+          return (1.0 - p.t()) * s1->vertex(ev[0]) + p.t() * s1->vertex(ev[1]);
         }
         break;
-      case PlaceKind::element: return s1->world_position(p.index, p.local);
+      case PlaceKind::element: return s1->world_position(p.index, p.local());
     }
     return WorldPoint<d>::Zero();
   }
 
   static bool same_place(const Place<d>& a, const Place<d>& b) {
-    return a.kind == b.kind && a.index == b.index && a.t == b.t && a.local == b.local;
+    return a.kind == b.kind && a.index == b.index && a.coords == b.coords;
   }
 
-  /// S1 elements containing a place (sorted).
-  std::vector<Index> elements_of(const Place<d>& p) const {
-    switch (p.kind) {
-      case PlaceKind::vertex: {
-        auto s = s1->vertex_elements(p.index);
-        return {s.begin(), s.end()};
+  /// S1 elements containing a place, in increasing order, as a view into the surface's
+  /// adjacency (no allocation: every piece of every inserted edge asks it twice).
+  class ElementsOf {
+   public:
+    ElementsOf(const Surface<d>& s1, const Place<d>& p) {
+      switch (p.kind) {
+        case PlaceKind::vertex: {
+          const auto star = s1.vertex_elements(p.index);
+          elements_ = star.data();
+          size_ = star.size();
+          break;
+        }
+        case PlaceKind::edge:
+          if constexpr (d == 2) {
+            const auto incidences = s1.edge_elements(p.index);
+            incidences_ = incidences.data();
+            size_ = incidences.size();
+          }
+          break;
+        case PlaceKind::element:
+          single_ = p.index;
+          elements_ = &single_;
+          size_ = 1;
+          break;
       }
-      case PlaceKind::edge: {
-        std::vector<Index> out;
-        if constexpr (d == 2)
-          for (const auto& inc : s1->edge_elements(p.index)) out.push_back(inc.element);
-        return out;
-      }
-      case PlaceKind::element: return {p.index};
     }
-    return {};
-  }
+    std::size_t size() const { return size_; }
+    Index operator[](std::size_t i) const { return incidences_ ? incidences_[i].element : elements_[i]; }
+
+   private:
+    const Index* elements_ = nullptr;
+    const EdgeIncidence* incidences_ = nullptr;
+    std::size_t size_ = 0;
+    Index single_ = invalid_index;
+  };
 
   /// Where the straight segment between two places lies: along an S1 edge, or in one element.
   Segment locate_segment(Index a, Index b, Index target_edge) const {
@@ -396,19 +419,31 @@ struct MapBuilder<d>::Impl {
       if (along == invalid_index) along = edge_through(pb, pa);
       if (along != invalid_index) return {a, b, target_edge, true, along};
     }
-    const auto ea = elements_of(pa), eb = elements_of(pb);
-    std::vector<Index> common;
-    std::set_intersection(ea.begin(), ea.end(), eb.begin(), eb.end(), std::back_inserter(common));
-    if (common.empty())
+    // the elements both places lie in (both lists sorted): the first two found
+    const ElementsOf ea(*s1, pa), eb(*s1, pb);
+    std::array<Index, 2> common{};
+    int found = 0;
+    for (std::size_t i = 0, j = 0; i < ea.size() && j < eb.size() && found < 2;) {
+      if (ea[i] < eb[j]) {
+        ++i;
+      } else if (eb[j] < ea[i]) {
+        ++j;
+      } else {
+        common[found++] = ea[i];
+        ++i;
+        ++j;
+      }
+    }
+    if (found == 0)
       throw BuilderError(fmt::format(
           "the preimage of S2 {} {} jumps between points that share no S1 element "
           "(missing or misordered crossings?)",
           d == 2 ? "edge" : "segment", target_edge));
-    if (common.size() > 1)
+    if (found > 1)
       throw BuilderError(fmt::format(
           "the preimage of S2 {} {} has a piece whose S1 element is ambiguous (elements {} and {})",
           d == 2 ? "edge" : "segment", target_edge, common[0], common[1]));
-    return {a, b, target_edge, false, common.front()};
+    return {a, b, target_edge, false, common[0]};
   }
 
   // ---- edge entry -----------------------------------------------------------------------------
@@ -568,7 +603,7 @@ typename MapBuilder<d>::NodeHandle MapBuilder<d>::add_vertex_preimage_on_edge(In
   } else {
     p.kind = PlaceKind::edge;
     p.index = domain_edge;
-    p.t = t;
+    p.coords(0) = t;
   }
   return impl_->add_vertex_preimage(target_vertex, p);
 }
@@ -612,7 +647,7 @@ const std::vector<typename Impl::CrossingPlace>& crossing_places(Impl& im, Index
     } else {
       p.kind = PlaceKind::edge;
       p.index = c.domain_edge;
-      p.t = c.domain_parameter;
+      p.coords(0) = c.domain_parameter;
     }
     places.push_back({p, c.target_parameter});
   }
@@ -901,9 +936,9 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     for (Index e = 0; e < n1e; ++e) {
       const auto list = edge_nodes.group(e);
       std::sort(list.begin(), list.end(),
-                [&](Index a, Index b) { return im.nodes[a].place.t < im.nodes[b].place.t; });
+                [&](Index a, Index b) { return im.nodes[a].place.t() < im.nodes[b].place.t(); });
       for (std::size_t i = 1; i < list.size(); ++i)
-        if (im.nodes[list[i]].place.t == im.nodes[list[i - 1]].place.t)
+        if (im.nodes[list[i]].place.t() == im.nodes[list[i - 1]].place.t())
           throw BuilderError(fmt::format("two nodes at the same point of S1 edge {}",
                                          im.nodes[list[i]].place.index));
     }
@@ -953,7 +988,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         slots.clear();
         const auto& c = s1.element(t);
         if (Index n = im.node_at_domain_vertex[c[0]]; n != invalid_index) slots.push_back({n, 0.0});
-        for (Index n : interior_nodes[t]) slots.push_back({n, im.nodes[n].place.local(0)});
+        for (Index n : interior_nodes[t]) slots.push_back({n, im.nodes[n].place.coords(0)});
         if (Index n = im.node_at_domain_vertex[c[1]]; n != invalid_index) slots.push_back({n, 1.0});
         std::sort(slots.begin(), slots.end(), [](const Slot& x, const Slot& y) { return x.s < y.s; });
         for (std::size_t i = 1; i < slots.size(); ++i)
@@ -1102,10 +1137,10 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     auto node_local = [&](Index node, Index t) -> LocalPoint<2> {
       const auto& p = im.nodes[node].place;
       if (p.kind == PlaceKind::vertex) return ref[s1.local_corner(t, p.index)];
-      if (p.kind == PlaceKind::element) return p.local;
+      if (p.kind == PlaceKind::element) return p.local();
       for (int k = 0; k < 3; ++k)
         if (s1.element_edge(t, k) == p.index)
-          return on_local_edge(k, s1.local_edge_is_forward(t, k) ? p.t : 1.0 - p.t);
+          return on_local_edge(k, s1.local_edge_is_forward(t, k) ? p.t() : 1.0 - p.t());
       return LocalPoint<2>::Zero();
     };
 
@@ -1232,14 +1267,14 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           const Index n = fwd ? list[i] : list[list.size() - 1 - i];
           edge_inner[k].push_back(static_cast<int>(et.slots.size()));
           et.slots.push_back(n);
-          const double edge_t = im.nodes[n].place.t;
+          const double edge_t = im.nodes[n].place.t();
           et.positions.push_back(on_local_edge(k, fwd ? edge_t : 1.0 - edge_t));
           et.location.push_back(static_cast<std::int8_t>(k));
         }
       }
       for (Index n : interior_nodes[t]) {
         et.slots.push_back(n);
-        et.positions.push_back(im.nodes[n].place.local);
+        et.positions.push_back(im.nodes[n].place.local());
         et.location.push_back(-1);
       }
       const int ns = static_cast<int>(et.slots.size());
