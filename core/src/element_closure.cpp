@@ -134,9 +134,13 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
   if (nv < 3) return false;
   const LocalPoint<2>* p = points.data();
 
-  // Distinct points (coincident nodes are an error the general path reports): sorted by value,
-  // equal points are neighbours.
-  {
+  // Distinct points (coincident nodes are an error the general path reports): few points are
+  // compared pairwise, many sorted by value (equal points are then neighbours).
+  if (nv <= 32) {
+    for (int i = 1; i < nv; ++i)
+      for (int j = 0; j < i; ++j)
+        if (p[i] == p[j]) return false;
+  } else {
     auto& sorted = s.sorted_points;
     sorted.assign(points.begin(), points.end());
     std::sort(sorted.begin(), sorted.end(), [](const LocalPoint<2>& a, const LocalPoint<2>& b) {

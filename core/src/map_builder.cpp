@@ -87,6 +87,23 @@ using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
     Kernel, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
 
+/// Sorts a short range by insertion, a long one with std::sort. For up to 16 items this is
+/// exactly what std::sort does (libstdc++ sorts such ranges by a stable insertion sort), without
+/// its calls; the d = 1 finalize sorts a handful of items per element.
+template <class T, class Less>
+void sort_small(std::span<T> items, Less less) {
+  if (items.size() > 16) {
+    std::sort(items.begin(), items.end(), less);
+    return;
+  }
+  for (std::size_t i = 1; i < items.size(); ++i) {
+    T item = items[i];
+    std::size_t j = i;
+    for (; j > 0 && less(item, items[j - 1]); --j) items[j] = items[j - 1];
+    items[j] = item;
+  }
+}
+
 /// Items grouped by a key in [0, groups) as CSR arrays: two allocations for all groups, where a
 /// vector per group would cost one per S1 element or edge (millions on large maps).
 class Buckets {
@@ -966,7 +983,6 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       Index node;
       double s;
     };
-    std::vector<Slot> slots;
     int votes = 0;
     struct PendingRegion {
       Index a, b, target;
@@ -985,20 +1001,31 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       all_regions.clear();
       all_slots.clear();
       for (Index t = 0; t < n1; ++t) {
-        slots.clear();
+        // the element's slots go straight to the end of all_slots
+        const std::size_t first_slot = all_slots.size();
         const auto& c = s1.element(t);
-        if (Index n = im.node_at_domain_vertex[c[0]]; n != invalid_index) slots.push_back({n, 0.0});
-        for (Index n : interior_nodes[t]) slots.push_back({n, im.nodes[n].place.coords(0)});
-        if (Index n = im.node_at_domain_vertex[c[1]]; n != invalid_index) slots.push_back({n, 1.0});
-        std::sort(slots.begin(), slots.end(), [](const Slot& x, const Slot& y) { return x.s < y.s; });
+        if (Index n = im.node_at_domain_vertex[c[0]]; n != invalid_index) all_slots.push_back({n, 0.0});
+        for (Index n : interior_nodes[t]) all_slots.push_back({n, im.nodes[n].place.coords(0)});
+        if (Index n = im.node_at_domain_vertex[c[1]]; n != invalid_index) all_slots.push_back({n, 1.0});
+        const std::span<Slot> slots(all_slots.data() + first_slot, all_slots.size() - first_slot);
+        sort_small(slots, [](const Slot& x, const Slot& y) { return x.s < y.s; });
         for (std::size_t i = 1; i < slots.size(); ++i)
           if (slots[i].s == slots[i - 1].s)
             throw BuilderError(fmt::format("two nodes at the same point of S1 element {}", t));
-        // nodes per segment are few except in stress tests; binary search keeps it O(n log n)
-        slot_index.resize(slots.size());
-        for (std::size_t i = 0; i < slots.size(); ++i) slot_index[i] = {slots[i].node, static_cast<int>(i)};
-        std::sort(slot_index.begin(), slot_index.end());
+        // Few nodes per segment, except in stress tests: searched in place, or by binary search
+        // in a sorted table when there are many.
+        const bool many = slots.size() > 16;
+        if (many) {
+          slot_index.resize(slots.size());
+          for (std::size_t i = 0; i < slots.size(); ++i) slot_index[i] = {slots[i].node, static_cast<int>(i)};
+          std::sort(slot_index.begin(), slot_index.end());
+        }
         auto slot_of = [&](Index node) {
+          if (!many) {
+            for (std::size_t i = 0; i < slots.size(); ++i)
+              if (slots[i].node == node) return static_cast<int>(i);
+            return -1;
+          }
           const auto it = std::lower_bound(slot_index.begin(), slot_index.end(), std::make_pair(node, -1));
           return it != slot_index.end() && it->first == node ? it->second : -1;
         };
@@ -1028,7 +1055,6 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           votes += yb > ya ? 1 : -1;
           all_regions.push_back({i, j, seg.target_edge, sign});
         }
-        all_slots.insert(all_slots.end(), slots.begin(), slots.end());
         regions_begin[t + 1] = all_regions.size();
         slots_begin[t + 1] = all_slots.size();
       }
@@ -1045,20 +1071,24 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       bucket();
     }
     m.orientation = im.options.orientation != 0 ? im.options.orientation : (votes >= 0 ? 1 : -1);
-    // Every array's final size is known (or bounded) now: reserve it once.
-    m.node_position.reserve(all_slots.size());
-    m.node_type.reserve(all_slots.size());
-    m.node_location.reserve(all_slots.size());
-    m.node_image.reserve(all_slots.size());
-    m.node_target.reserve(all_slots.size());
-    m.neighbor_begin.reserve(all_slots.size() + 1);
-    m.neighbor.reserve(2 * all_regions.size());
-    m.neighbor_edge_kind.reserve(2 * all_regions.size());
-    m.region_corners.reserve(all_regions.size());
-    m.region_neighbors.reserve(all_regions.size());
-    m.region_target.reserve(all_regions.size());
-    m.region_map.reserve(all_regions.size());
-    std::vector<char> left, right;
+    // Sizes are known now (nodes; regions and neighbour entries once the orientation has
+    // filtered the regions): the arrays are sized once and written in place.
+    std::size_t kept = 0;
+    for (const auto& r : all_regions) kept += r.sign == m.orientation ? 1 : 0;
+    const std::size_t node_count = all_slots.size();
+    m.node_position.resize(node_count);
+    m.node_type.resize(node_count);
+    m.node_location.resize(node_count);
+    m.node_image.resize(node_count);
+    m.node_target.resize(node_count);
+    m.neighbor_begin.resize(node_count + 1);
+    m.neighbor.resize(2 * kept);
+    m.neighbor_edge_kind.resize(2 * kept);
+    m.region_corners.resize(kept);
+    m.region_neighbors.resize(kept);
+    m.region_target.resize(kept);
+    m.region_map.resize(kept);
+    std::size_t entry = 0, region = 0;
     for (Index t = 0; t < n1; ++t) {
       const std::span<const Slot> sl(all_slots.data() + slots_begin[t], all_slots.data() + slots_begin[t + 1]);
       std::span<PendingRegion> regs(all_regions.data() + regions_begin[t], all_regions.data() + regions_begin[t + 1]);
@@ -1067,58 +1097,59 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       const auto kept_end = std::remove_if(regs.begin(), regs.end(), [&](const PendingRegion& r) { return r.sign != m.orientation; });
       if (report) report->reversed_faces += static_cast<Index>(regs.end() - kept_end);
       regs = regs.first(static_cast<std::size_t>(kept_end - regs.begin()));
-      std::sort(regs.begin(), regs.end(), [](const auto& x, const auto& y) { return x.a < y.a; });
-      const Index base = static_cast<Index>(m.node_type.size());
-      left.assign(sl.size(), 0);
-      right.assign(sl.size(), 0);
-      for (const auto& r : regs) {
-        right[r.a] = 1;
-        left[r.b] = 1;
-      }
+      sort_small(regs, [](const auto& x, const auto& y) { return x.a < y.a; });
+      const auto base = static_cast<Index>(slots_begin[t]);
+      // Every region joins consecutive slots (b = a + 1), so sorted by a they are sorted by b:
+      // one cursor finds the region ending at a slot, one the region starting there.
+      std::size_t ending = 0, starting = 0;
       for (std::size_t i = 0; i < sl.size(); ++i) {
         const auto& bn = im.nodes[sl[i].node];
-        LocalPoint<1> pos;
-        pos(0) = sl[i].s;
-        m.node_position.push_back(pos);
+        const std::size_t n = slots_begin[t] + i;
+        m.node_position[n](0) = sl[i].s;
         const bool at_corner = bn.place.kind == PlaceKind::vertex;
-        m.node_type.push_back(bn.kind == BuilderNodeKind::ghost ? NodeType::ghost
-                              : at_corner                       ? NodeType::corner
-                                                                : NodeType::interior);
-        m.node_location.push_back(at_corner ? static_cast<std::int8_t>(sl[i].s == 0.0 ? 0 : 1) : -1);
-        m.node_image.push_back({bn.image.element, support_local<1>(s2, bn.image, bn.image.element)});
-        m.node_target.push_back(bn.kind == BuilderNodeKind::vertex_preimage ? bn.target : invalid_index);
-        if (left[i]) {
-          m.neighbor.push_back(base + static_cast<Index>(i) - 1);
-          m.neighbor_edge_kind.push_back(GraphEdgeKind::target_edge);
+        m.node_type[n] = bn.kind == BuilderNodeKind::ghost ? NodeType::ghost
+                         : at_corner                       ? NodeType::corner
+                                                           : NodeType::interior;
+        m.node_location[n] = at_corner ? static_cast<std::int8_t>(sl[i].s == 0.0 ? 0 : 1) : std::int8_t{-1};
+        m.node_image[n] = {bn.image.element, support_local<1>(s2, bn.image, bn.image.element)};
+        m.node_target[n] = bn.kind == BuilderNodeKind::vertex_preimage ? bn.target : invalid_index;
+        const auto slot = static_cast<Index>(i);
+        while (ending < regs.size() && regs[ending].b < slot) ++ending;
+        if (ending < regs.size() && regs[ending].b == slot) {
+          m.neighbor[entry] = base + slot - 1;
+          m.neighbor_edge_kind[entry++] = GraphEdgeKind::target_edge;
         }
-        if (right[i]) {
-          m.neighbor.push_back(base + static_cast<Index>(i) + 1);
-          m.neighbor_edge_kind.push_back(GraphEdgeKind::target_edge);
+        while (starting < regs.size() && regs[starting].a < slot) ++starting;
+        if (starting < regs.size() && regs[starting].a == slot) {
+          m.neighbor[entry] = base + slot + 1;
+          m.neighbor_edge_kind[entry++] = GraphEdgeKind::target_edge;
         }
-        m.neighbor_begin.push_back(static_cast<Index>(m.neighbor.size()));
+        m.neighbor_begin[n + 1] = static_cast<Index>(entry);
       }
-      m.node_begin[t + 1] = static_cast<Index>(m.node_type.size());
-      const Index rbase = static_cast<Index>(m.region_target.size());
-      for (std::size_t k = 0; k < regs.size(); ++k) {
+      m.node_begin[t + 1] = static_cast<Index>(slots_begin[t + 1]);
+      const auto rbase = static_cast<Index>(region);
+      for (std::size_t k = 0; k < regs.size(); ++k, ++region) {
         const auto& r = regs[k];
         const Index r_id = rbase + static_cast<Index>(k);
-        m.region_corners.push_back({base + r.a, base + r.b});
+        m.region_corners[region] = {base + r.a, base + r.b};
         // neighbour opposite corner 0 lies beyond corner 1 (the next region), and vice versa
         const Index next = (k + 1 < regs.size() && regs[k + 1].a == r.b) ? r_id + 1 : invalid_index;
         const Index prev = (k > 0 && regs[k - 1].b == r.a) ? r_id - 1 : invalid_index;
-        m.region_neighbors.push_back({next, prev});
-        m.region_target.push_back(r.target);
+        m.region_neighbors[region] = {next, prev};
+        m.region_target[region] = r.target;
         std::array<LocalPoint<1>, 2> from, to;
         from[0](0) = sl[r.a].s;
         from[1](0) = sl[r.b].s;
         to[0] = support_local<1>(s2, im.nodes[sl[r.a].node].image, r.target);
         to[1] = support_local<1>(s2, im.nodes[sl[r.b].node].image, r.target);
-        m.region_map.push_back(affine_through<1>(from, to));
+        m.region_map[region] = affine_through<1>(from, to);
         if (m.start_region[t] == invalid_index || (sl[r.a].s <= 0.5 && sl[r.b].s >= 0.5))
           m.start_region[t] = r_id;
       }
-      m.region_begin[t + 1] = static_cast<Index>(m.region_target.size());
+      m.region_begin[t + 1] = static_cast<Index>(region);
     }
+    m.neighbor.resize(entry);  // a slot between two regions was counted by both
+    m.neighbor_edge_kind.resize(entry);
   } else {
     // ---- triangle surfaces: a constrained triangulation per S1 element ------------------------
     const std::array<LocalPoint<2>, 3> ref = {reference_corner<2>(0), reference_corner<2>(1),
