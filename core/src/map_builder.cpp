@@ -1554,21 +1554,27 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     struct AssemblyScratch {
       std::vector<Index> triangle_region;
       Index reversed_faces = 0;  // faces with a target element but the other orientation
-    };
-    auto start_part = [](MapData<2>& part) {
-      part = MapData<2>{};
-      part.node_begin.assign(1, 0);
-      part.region_begin.assign(1, 0);
-      part.neighbor_begin.assign(1, 0);
-      part.edge_node_begin.assign(1, 0);
+      // Where the next element's values go in the block's part, whose arrays are sized up front
+      // (see size_part) and written in place.
+      std::size_t elements = 0, nodes = 0, entries = 0, edge_nodes = 0, regions = 0;
     };
     auto assemble_element = [&](const Workspace& w, MapData<2>& part, int orientation, AssemblyScratch& sc) {
       const ElementTriangulation& et = w.et;
       const detail::ElementClosure& closure = w.closure;
-      const Index base = static_cast<Index>(part.node_type.size());
-      const Index rbase = static_cast<Index>(part.region_target.size());
+      const auto base = static_cast<Index>(sc.nodes);
+      const auto rbase = static_cast<Index>(sc.regions);
       const int ns = static_cast<int>(et.slots.size());
       const int nf = static_cast<int>(closure.triangles.size());
+      // The sizes are bounds from the closure sizes; should one ever be short, grow it.
+      auto room = [](auto& array, std::size_t needed) {
+        if (array.size() < needed) array.resize(std::max(needed, array.size() + array.size() / 2));
+      };
+      room(part.neighbor, sc.entries + w.ring.size());
+      room(part.neighbor_edge_kind, sc.entries + w.ring.size());
+      room(part.region_corners, sc.regions + static_cast<std::size_t>(nf));
+      room(part.region_neighbors, sc.regions + static_cast<std::size_t>(nf));
+      room(part.region_target, sc.regions + static_cast<std::size_t>(nf));
+      room(part.region_map, sc.regions + static_cast<std::size_t>(nf));
       // regions: triangles of faces inside D with a target element and the map's orientation
       sc.triangle_region.assign(nf, invalid_index);
       for (const auto& comp : et.components)
@@ -1582,37 +1588,40 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       auto is_region = [&](int f) { return f >= 0 && sc.triangle_region[f] != invalid_index; };
       for (int i = 0; i < ns; ++i) {
         const auto& bn = im.nodes[et.slots[i]];
-        part.node_position.push_back(et.positions[i]);
+        const std::size_t n = sc.nodes + static_cast<std::size_t>(i);
+        part.node_position[n] = et.positions[i];
         NodeType type = NodeType::interior;
         if (bn.place.kind == PlaceKind::vertex)
           type = bn.kind == BuilderNodeKind::ghost ? NodeType::ghost : NodeType::corner;
         else if (bn.place.kind == PlaceKind::edge)
           type = bn.kind == BuilderNodeKind::intersection ? NodeType::intersection : NodeType::touching;
-        part.node_type.push_back(type);
-        part.node_location.push_back(et.location[i]);
-        part.node_image.push_back({bn.image.element, support_local<2>(s2, bn.image, bn.image.element)});
-        part.node_target.push_back(bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target);
+        part.node_type[n] = type;
+        part.node_location[n] = et.location[i];
+        part.node_image[n] = {bn.image.element, support_local<2>(s2, bn.image, bn.image.element)};
+        part.node_target[n] = bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target;
         // graph edges, and closure edges that border a region (virtual corners are not nodes)
         for (int r = w.ring_begin[i]; r < w.ring_begin[i + 1]; ++r) {
           const auto& entry = w.ring[r];
           if (entry.vertex >= ns || (!entry.graph && !is_region(entry.before) && !is_region(entry.after))) continue;
-          part.neighbor.push_back(base + entry.vertex);
-          part.neighbor_edge_kind.push_back(entry.graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure);
+          part.neighbor[sc.entries] = base + entry.vertex;
+          part.neighbor_edge_kind[sc.entries++] = entry.graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure;
         }
-        part.neighbor_begin.push_back(static_cast<Index>(part.neighbor.size()));
+        part.neighbor_begin[n + 1] = static_cast<Index>(sc.entries);
       }
-      part.node_begin.push_back(static_cast<Index>(part.node_type.size()));
+      sc.nodes += static_cast<std::size_t>(ns);
+      part.node_begin[sc.elements + 1] = static_cast<Index>(sc.nodes);
       for (int k = 0; k < 3; ++k) {
         for (int q = et.edge_slots_begin[k]; q < et.edge_slots_begin[k + 1]; ++q)
-          part.edge_node.push_back(base + et.edge_slots[q]);
-        part.edge_node_begin.push_back(static_cast<Index>(part.edge_node.size()));
+          part.edge_node[sc.edge_nodes++] = base + et.edge_slots[q];
+        part.edge_node_begin[3 * sc.elements + static_cast<std::size_t>(k) + 1] = static_cast<Index>(sc.edge_nodes);
       }
       for (int f = 0; f < nf; ++f) {
         if (sc.triangle_region[f] == invalid_index) continue;
         const auto& tr = closure.triangles[f];
         const Index target = et.components[closure.face[f]].target;
-        std::array<Index, 3> corners, neighbors;
         std::array<LocalPoint<2>, 3> from, to;
+        auto& corners = part.region_corners[sc.regions];
+        auto& neighbors = part.region_neighbors[sc.regions];
         for (int i = 0; i < 3; ++i) {
           const int s = tr[i];
           corners[i] = base + s;
@@ -1621,19 +1630,19 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           from[i] = et.positions[s];
           to[i] = support_local<2>(s2, im.nodes[et.slots[s]].image, target);
         }
-        part.region_corners.push_back(corners);
-        part.region_neighbors.push_back(neighbors);
-        part.region_target.push_back(target);
-        part.region_map.push_back(affine_through<2>(from, to));
+        part.region_target[sc.regions] = target;
+        part.region_map[sc.regions] = affine_through<2>(from, to);
+        ++sc.regions;
       }
-      part.region_begin.push_back(static_cast<Index>(part.region_target.size()));
+      part.region_begin[sc.elements + 1] = static_cast<Index>(sc.regions);
       if (nr > 0) {
         const int ct = et.centroid_triangle;
-        part.start_region.push_back((ct >= 0 && sc.triangle_region[ct] != invalid_index) ? sc.triangle_region[ct]
-                                                                                     : rbase);
+        part.start_region[sc.elements] =
+            (ct >= 0 && sc.triangle_region[ct] != invalid_index) ? sc.triangle_region[ct] : rbase;
       } else {
-        part.start_region.push_back(invalid_index);
+        part.start_region[sc.elements] = invalid_index;
       }
+      ++sc.elements;
     };
 
     // ---- close and assemble every element -----------------------------------------------------
@@ -1647,12 +1656,14 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     const Index block = (n1 + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
     // Closes and assembles every element; returns the elements that could not be closed, in
     // element order (blocks are in element order).
-    // A block's arrays are reserved before it is assembled: nodes and edge arrays exactly, the
-    // rest by the size of each element's closure (a triangulation of n points, h of them on the
-    // element boundary, has 2n - h - 2 triangles and 3n - h - 3 sides), which is exact unless
-    // faces lie outside D. Growing by push_back instead would copy the map several times and
-    // first-touch up to twice its memory, and the final shrink_to_fit would copy it again.
-    auto reserve_part = [&](MapData<2>& part, Index begin, Index end) {
+    // A block's arrays are sized before it is assembled, and written in place: nodes and edge
+    // arrays exactly, the rest by the size of each element's closure (a triangulation of n
+    // points, h of them on the element boundary, has 2n - h - 2 triangles and 3n - h - 3 sides),
+    // which is exact unless faces lie outside D, and trimmed at the end. Growing by push_back
+    // instead would copy the map several times and first-touch up to twice its memory, and the
+    // final shrink_to_fit would copy it again; and a push_back per value costs more than the
+    // store.
+    auto size_part = [&](MapData<2>& part, Index begin, Index end) {
       std::size_t nodes = 0, on_edges = 0, triangles = 0, sides = 0;
       for (Index t = begin; t < end; ++t) {
         std::size_t corners = 0, edge_inner = 0;
@@ -1669,23 +1680,33 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         sides += 3 * n - h - 3;
       }
       const std::size_t elements = static_cast<std::size_t>(end - begin);
-      part.node_begin.reserve(elements + 1);
-      part.region_begin.reserve(elements + 1);
-      part.start_region.reserve(elements);
-      part.edge_node_begin.reserve(3 * elements + 1);
-      part.node_position.reserve(nodes);
-      part.node_type.reserve(nodes);
-      part.node_location.reserve(nodes);
-      part.node_image.reserve(nodes);
-      part.node_target.reserve(nodes);
-      part.neighbor_begin.reserve(nodes + 1);
-      part.edge_node.reserve(on_edges);
-      part.neighbor.reserve(2 * sides);
-      part.neighbor_edge_kind.reserve(2 * sides);
-      part.region_corners.reserve(triangles);
-      part.region_neighbors.reserve(triangles);
-      part.region_target.reserve(triangles);
-      part.region_map.reserve(triangles);
+      part = MapData<2>{};
+      part.node_begin.resize(elements + 1);
+      part.region_begin.resize(elements + 1);
+      part.start_region.resize(elements);
+      part.edge_node_begin.resize(3 * elements + 1);
+      part.node_position.resize(nodes);
+      part.node_type.resize(nodes);
+      part.node_location.resize(nodes);
+      part.node_image.resize(nodes);
+      part.node_target.resize(nodes);
+      part.neighbor_begin.resize(nodes + 1);
+      part.edge_node.resize(on_edges);
+      part.neighbor.resize(2 * sides);
+      part.neighbor_edge_kind.resize(2 * sides);
+      part.region_corners.resize(triangles);
+      part.region_neighbors.resize(triangles);
+      part.region_target.resize(triangles);
+      part.region_map.resize(triangles);
+    };
+    // Cuts a block's arrays to what was written (the regions and neighbour entries were bounds).
+    auto trim_part = [](MapData<2>& part, const AssemblyScratch& sc) {
+      part.neighbor.resize(sc.entries);
+      part.neighbor_edge_kind.resize(sc.entries);
+      part.region_corners.resize(sc.regions);
+      part.region_neighbors.resize(sc.regions);
+      part.region_target.resize(sc.regions);
+      part.region_map.resize(sc.regions);
     };
     auto close_and_assemble = [&](int orientation) {
       workspaces.assign(threads, Workspace{});
@@ -1693,8 +1714,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       run_blocks([&](unsigned k) {
         const Index begin = std::min<Index>(n1, static_cast<Index>(k) * block);
         const Index end = std::min<Index>(n1, begin + block);
-        start_part(parts[k]);
-        reserve_part(parts[k], begin, end);
+        size_part(parts[k], begin, end);
         AssemblyScratch scratch;
         for (Index t = begin; t < end; ++t) {
           try {
@@ -1707,6 +1727,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           }
         }
         reversed_faces[k] = scratch.reversed_faces;
+        trim_part(parts[k], scratch);
       });
       std::vector<std::pair<Index, std::exception_ptr>> failed;
       for (auto& list : failures) failed.insert(failed.end(), list.begin(), list.end());
