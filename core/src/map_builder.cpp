@@ -143,6 +143,9 @@ struct ElementTriangulation {
     bool outside = false;  // touches a virtual corner
   };
   std::vector<Component> components;
+  // Per closure triangle of a face with a target: its corners' images on the target element
+  // (computed when the target is chosen, used again for the region's affine map).
+  std::vector<std::array<LocalPoint<2>, 3>> corner_images;
   std::vector<int> edge_slots;                // along local edges 0, 1, 2, corners included
   std::array<int, 4> edge_slots_begin{};
   int centroid_triangle = -1;                 // a closure triangle inside D, or -1
@@ -1386,6 +1389,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       // Classify the faces: touching a virtual corner → outside D; else the S2 element all its
       // nodes map into, and the sign of its image there.
       et.components.assign(ncomp, {});
+      et.corner_images.resize(nf);
       auto& face_begin = w.face_begin;  // triangles grouped by face (counting sort)
       auto& face_order = w.face_order;
       face_begin.assign(ncomp + 1, 0);
@@ -1447,6 +1451,10 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           if (std::abs(area) > std::abs(best_area)) {
             best_area = area;
             comp.target = cand;
+            for (int q = face_begin[c]; q < face_begin[c + 1]; ++q) {
+              const auto& tr = closure.triangles[face_order[q]];
+              et.corner_images[face_order[q]] = {y[tr[0]], y[tr[1]], y[tr[2]]};
+            }
           }
         };
         double best_area = 0.0;
@@ -1619,7 +1627,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         if (sc.triangle_region[f] == invalid_index) continue;
         const auto& tr = closure.triangles[f];
         const Index target = et.components[closure.face[f]].target;
-        std::array<LocalPoint<2>, 3> from, to;
+        std::array<LocalPoint<2>, 3> from;
         auto& corners = part.region_corners[sc.regions];
         auto& neighbors = part.region_neighbors[sc.regions];
         for (int i = 0; i < 3; ++i) {
@@ -1628,10 +1636,9 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           const int g = closure.neighbors[f][i];
           neighbors[i] = g >= 0 ? sc.triangle_region[g] : invalid_index;
           from[i] = et.positions[s];
-          to[i] = support_local<2>(s2, im.nodes[et.slots[s]].image, target);
         }
         part.region_target[sc.regions] = target;
-        part.region_map[sc.regions] = affine_through<2>(from, to);
+        part.region_map[sc.regions] = affine_through<2>(from, et.corner_images[f]);
         ++sc.regions;
       }
       part.region_begin[sc.elements + 1] = static_cast<Index>(sc.regions);
