@@ -367,55 +367,26 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
   return true;
 }
 
-void closure_rings(const ElementClosure& closure, int vertex_count, int wanted, std::vector<int>& ring_begin,
-                   std::vector<RingEntry>& ring, std::vector<int>& start) {
+void ring_starts(const ElementClosure& closure, int vertex_count, std::vector<int>& start) {
   const int nt = static_cast<int>(closure.triangles.size());
   const auto* tri = closure.triangles.data();
   const auto* nb = closure.neighbors.data();
-  const auto* graph_sides = closure.graph_sides.data();
-  // Where each vertex's ring starts, as a corner 3 t + i: a boundary vertex's fan starts at the
-  // one triangle whose side v-a (opposite corner i + 2) is on the boundary; an interior vertex's
-  // anywhere (its ring is rotated to its smallest neighbour below).
   start.assign(vertex_count, -1);
   for (int t = 0; t < nt; ++t)
     for (int i = 0; i < 3; ++i) {
       const int v = tri[t][i];
       if (start[v] < 0 || nb[t][(i + 2) % 3] < 0) start[v] = 3 * t + i;
     }
+}
+
+void closure_rings(const ElementClosure& closure, int vertex_count, int wanted, std::vector<int>& ring_begin,
+                   std::vector<RingEntry>& ring, std::vector<int>& start) {
+  ring_starts(closure, vertex_count, start);
   ring_begin.resize(wanted + 1);
   ring_begin[0] = 0;
   ring.clear();
-  auto graph = [&](int t, int i) { return ((graph_sides[t] >> i) & 1u) != 0; };
   for (int v = 0; v < wanted; ++v) {
-    if (start[v] < 0) {
-      ring_begin[v + 1] = static_cast<int>(ring.size());
-      continue;
-    }
-    // Around v in triangle (v, a, b): a comes before b counter-clockwise; the next triangle
-    // shares side v-b (opposite a), the previous one side v-a (opposite b).
-    int t = start[v] / 3, i = start[v] % 3;
-    const int first_triangle = t;
-    const int before_first = nb[t][(i + 2) % 3];
-    const bool boundary = before_first < 0;
-    const std::size_t first = ring.size();
-    ring.push_back({tri[t][(i + 1) % 3], before_first, t, graph(t, (i + 2) % 3)});
-    for (int guard = 0; guard <= nt; ++guard) {
-      const int next = nb[t][(i + 1) % 3];
-      if (next < 0) {
-        ring.push_back({tri[t][(i + 2) % 3], t, -1, graph(t, (i + 1) % 3)});
-        break;
-      }
-      if (next == first_triangle) break;
-      const int previous = t;
-      t = next;
-      i = tri[t][0] == v ? 0 : (tri[t][1] == v ? 1 : 2);
-      ring.push_back({tri[t][(i + 1) % 3], previous, t, graph(t, (i + 2) % 3)});
-    }
-    if (!boundary) {
-      const auto smallest = std::min_element(ring.begin() + static_cast<std::ptrdiff_t>(first), ring.end(),
-                                             [](const RingEntry& x, const RingEntry& y) { return x.vertex < y.vertex; });
-      std::rotate(ring.begin() + static_cast<std::ptrdiff_t>(first), smallest, ring.end());
-    }
+    visit_ring(closure, v, start[v], [&](const RingEntry& entry) { ring.push_back(entry); });
     ring_begin[v + 1] = static_cast<int>(ring.size());
   }
 }

@@ -90,9 +90,57 @@ struct RingEntry {
   bool graph;  ///< the edge is a graph edge
 };
 
-/// For each of the first `wanted` vertices, its neighbours in the closure in counter-clockwise
-/// order: boundary vertices start right after the outside, interior vertices at their smallest
-/// neighbour. Written as CSR arrays (ring_begin has wanted + 1 entries). `start` is scratch.
+/// Where each vertex's ring starts, as a corner 3 t + i (vertex = triangles[t][i]), -1 for a
+/// vertex of no triangle: for a vertex on the boundary, the one triangle whose side v-a (a the
+/// next corner) is on the boundary; for an interior vertex, any.
+void ring_starts(const ElementClosure& closure, int vertex_count, std::vector<int>& start);
+
+/// Calls visit(const RingEntry&) for the neighbours of vertex v in the closure in
+/// counter-clockwise order: a boundary vertex's starting right after the outside, an interior
+/// vertex's at its smallest neighbour. `start` is v's entry of ring_starts. Combinatorial: the
+/// triangles around v are circulated, no angle is compared.
+template <class Visit>
+void visit_ring(const ElementClosure& closure, int v, int start, Visit&& visit) {
+  if (start < 0) return;
+  const auto* tri = closure.triangles.data();
+  const auto* nb = closure.neighbors.data();
+  const int nt = static_cast<int>(closure.triangles.size());
+  auto corner_of = [&](int t) { return tri[t][0] == v ? 0 : (tri[t][1] == v ? 1 : 2); };
+  auto graph = [&](int t, int i) { return ((closure.graph_sides[t] >> i) & 1u) != 0; };
+  // Around v in triangle (v, a, b): a comes before b counter-clockwise; the next triangle shares
+  // side v-b (opposite a), the previous one side v-a (opposite b).
+  int t = start / 3, i = start % 3;
+  if (nb[t][(i + 2) % 3] >= 0) {  // interior: go round once to find the smallest neighbour
+    int u = t, j = i;
+    for (int guard = 0; guard < nt; ++guard) {
+      const int next = nb[u][(j + 1) % 3];
+      if (next < 0 || next == start / 3) break;
+      u = next;
+      j = corner_of(u);
+      if (tri[u][(j + 1) % 3] < tri[t][(i + 1) % 3]) {
+        t = u;
+        i = j;
+      }
+    }
+  }
+  const int first = t;
+  visit(RingEntry{tri[t][(i + 1) % 3], nb[t][(i + 2) % 3], t, graph(t, (i + 2) % 3)});
+  for (int guard = 0; guard < nt; ++guard) {
+    const int next = nb[t][(i + 1) % 3];
+    if (next < 0) {
+      visit(RingEntry{tri[t][(i + 2) % 3], t, -1, graph(t, (i + 1) % 3)});
+      return;
+    }
+    if (next == first) return;
+    const int previous = t;
+    t = next;
+    i = corner_of(t);
+    visit(RingEntry{tri[t][(i + 1) % 3], previous, t, graph(t, (i + 2) % 3)});
+  }
+}
+
+/// The rings of the first `wanted` vertices as CSR arrays (ring_begin has wanted + 1 entries).
+/// `start` is scratch.
 void closure_rings(const ElementClosure& closure, int vertex_count, int wanted, std::vector<int>& ring_begin,
                    std::vector<RingEntry>& ring, std::vector<int>& start);
 

@@ -1190,8 +1190,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       // Constraints as (a, b, graph) packed into one integer each, a < b: sorting integers is
       // cheaper than comparing pairs, and the order is the order of (a, b).
       std::vector<std::uint64_t> segment_keys;
-      std::vector<int> ring_begin, incident;
-      std::vector<detail::RingEntry> ring;
+      std::vector<int> ring_start;  // per vertex, see detail::ring_starts
       // Slot of each builder node on the element being closed, -1 elsewhere: the graph edges
       // name builder nodes, and elements may carry thousands of them. Entries of the previous
       // element are reset when the next one starts (also after an exception).
@@ -1496,8 +1495,8 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
             orient2d(points[tr[2]], points[tr[0]], centroid) >= 0)
           et.centroid_triangle = f;
       }
-      // neighbours in ccw order: circulate the triangles around each node (combinatorial)
-      detail::closure_rings(closure, vertex_count, ns, w.ring_begin, w.ring, w.incident);
+      // where each node's ring of neighbours starts (they are circulated at assembly)
+      detail::ring_starts(closure, vertex_count, w.ring_start);
     };
 
     // Elements are independent: close them on all threads. Errors are reported for the
@@ -1577,8 +1576,9 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       auto room = [](auto& array, std::size_t needed) {
         if (array.size() < needed) array.resize(std::max(needed, array.size() + array.size() / 2));
       };
-      room(part.neighbor, sc.entries + w.ring.size());
-      room(part.neighbor_edge_kind, sc.entries + w.ring.size());
+      // each closure side gives at most two entries, and a triangle has three sides
+      room(part.neighbor, sc.entries + 6 * static_cast<std::size_t>(nf));
+      room(part.neighbor_edge_kind, sc.entries + 6 * static_cast<std::size_t>(nf));
       room(part.region_corners, sc.regions + static_cast<std::size_t>(nf));
       room(part.region_neighbors, sc.regions + static_cast<std::size_t>(nf));
       room(part.region_target, sc.regions + static_cast<std::size_t>(nf));
@@ -1608,12 +1608,11 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         part.node_image[n] = {bn.image.element, support_local<2>(s2, bn.image, bn.image.element)};
         part.node_target[n] = bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target;
         // graph edges, and closure edges that border a region (virtual corners are not nodes)
-        for (int r = w.ring_begin[i]; r < w.ring_begin[i + 1]; ++r) {
-          const auto& entry = w.ring[r];
-          if (entry.vertex >= ns || (!entry.graph && !is_region(entry.before) && !is_region(entry.after))) continue;
+        detail::visit_ring(closure, i, w.ring_start[i], [&](const detail::RingEntry& entry) {
+          if (entry.vertex >= ns || (!entry.graph && !is_region(entry.before) && !is_region(entry.after))) return;
           part.neighbor[sc.entries] = base + entry.vertex;
           part.neighbor_edge_kind[sc.entries++] = entry.graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure;
-        }
+        });
         part.neighbor_begin[n + 1] = static_cast<Index>(sc.entries);
       }
       sc.nodes += static_cast<std::size_t>(ns);
