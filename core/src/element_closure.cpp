@@ -208,7 +208,9 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
     he[h].next = around[at == out_begin[v] ? out_begin[v + 1] - 1 : at - 1];
     he[h].face = -1;
   }
+  // Faces are numbered in the order of their first (smallest) half-edge, where each is traced from.
   int faces = 0;
+  s.face_first.clear();
   for (int h0 = 0; h0 < nh; ++h0) {
     if (he[h0].face >= 0) continue;
     int h = h0, guard = 0;
@@ -217,6 +219,7 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
       h = he[h].next;
       if (++guard > nh) return false;
     } while (h != h0);
+    s.face_first.push_back(h0);
     ++faces;
   }
   // A connected plane graph has E - V + 2 faces; fewer means parts floating inside a face.
@@ -239,7 +242,6 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
   out.neighbors.reserve(2 * static_cast<std::size_t>(nv));
   out.graph_sides.reserve(2 * static_cast<std::size_t>(nv));
   out.face.reserve(2 * static_cast<std::size_t>(nv));
-  s.face_done.assign(faces, 0);
   s.flips.clear();
   int face_id = 0;
   // The polygon of the face being cut, and the owner of each of its sides poly[m] -> poly[m + 1]:
@@ -266,10 +268,9 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
     out.face.push_back(face_id);
     return t;
   };
-  for (int h0 = 0; h0 < nh; ++h0) {
-    const int f = he[h0].face;
-    if (f == outer || s.face_done[f]) continue;
-    s.face_done[f] = 1;
+  for (int f = 0; f < faces; ++f) {
+    if (f == outer) continue;
+    const int h0 = s.face_first[f];
     int k = 0;
     int h = h0;
     do {
@@ -280,6 +281,16 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
       h = he[h].next;
     } while (h != h0);
     if (k < 3) return false;
+    if (k == 3) {  // already a triangle (most faces): counter-clockwise is all there is to check
+      if (poly[0] == poly[1] || poly[1] == poly[2] || poly[2] == poly[0]) return false;
+      if (orient2d(p[poly[0]], p[poly[1]], p[poly[2]]) <= 0) return false;
+      const int t = add_triangle(poly[0], poly[1], poly[2]);
+      attach(3 * t + 0, poly_side[1]);
+      attach(3 * t + 1, poly_side[2]);
+      attach(3 * t + 2, poly_side[0]);
+      ++face_id;
+      continue;
+    }
     // A vertex twice on one face: dangling edge or pinched face.
     for (int i = 1; i < k; ++i)
       for (int j = 0; j < i; ++j)

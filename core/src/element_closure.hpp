@@ -65,7 +65,7 @@ struct ClosureScratch {
     bool upper;    // direction angle in [0, pi)
   };
   std::vector<HalfEdge> half_edges;
-  std::vector<int> out_begin, out_half_edge, cursor, face_done, flips;
+  std::vector<int> out_begin, out_half_edge, cursor, face_first, flips;
   std::vector<LocalPoint<2>> sorted_points;
 };
 
