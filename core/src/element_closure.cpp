@@ -32,7 +32,8 @@ int turn_sign(const LocalPoint<2>& u, const LocalPoint<2>& v, const LocalPoint<2
   const double left = u.x() * v.y(), right = u.y() * v.x();
   const double det = left - right;
   constexpr double error_factor = 3.3306690738754716e-16;  // as in orient2d
-  const double bound = error_factor * (std::abs(left) + std::abs(right));
+  // never below 2^-940, as in orient2d: no decision where underflow could matter
+  const double bound = std::max(error_factor * (std::abs(left) + std::abs(right)), 0x1p-940);
   if (det > bound) return 1;
   if (-det > bound) return -1;
   return orient2d(c, a, b);
