@@ -6,18 +6,12 @@
 #include <plmap/core/predicates.hpp>
 
 #include <algorithm>
-#include <numeric>
+#include <cmath>
 #include <tuple>
 
 namespace plmap::detail {
 
 namespace {
-
-/// 0 for directions in the upper half plane (angle in [0, pi)), 1 for the lower one; exact,
-/// because it only compares coordinates.
-int half_plane(const LocalPoint<2>& center, const LocalPoint<2>& p) {
-  return (p.y() > center.y() || (p.y() == center.y() && p.x() > center.x())) ? 0 : 1;
-}
 
 /// Shape of a candidate ear: area over the sum of squared sides (largest for equilateral).
 double ear_shape(const LocalPoint<2>& a, const LocalPoint<2>& b, const LocalPoint<2>& c) {
@@ -30,25 +24,43 @@ double ear_shape(const LocalPoint<2>& a, const LocalPoint<2>& b, const LocalPoin
 // cubic in the face size.
 constexpr int largest_face = 96;
 
+/// Exact sign of the cross product of the directions u = a - c and v = b - c (the orientation of
+/// c, a, b), given u and v as computed in floating point: the same static filter as orient2d, whose
+/// bound covers the rounding of the differences, and orient2d itself when the filter cannot tell.
+int turn_sign(const LocalPoint<2>& u, const LocalPoint<2>& v, const LocalPoint<2>& c,
+              const LocalPoint<2>& a, const LocalPoint<2>& b) {
+  const double left = u.x() * v.y(), right = u.y() * v.x();
+  const double det = left - right;
+  constexpr double error_factor = 3.3306690738754716e-16;  // as in orient2d
+  // never below 2^-940, as in orient2d: no decision where underflow could matter
+  const double bound = std::max(error_factor * (std::abs(left) + std::abs(right)), 0x1p-940);
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  return orient2d(c, a, b);
+}
+
+/// Sides of triangles are numbered 3 t + i (the side opposite corner i of triangle t). While a
+/// face is being cut, each side of the remaining polygon is owned by a half-edge of the graph
+/// (h >= 0) or by the side of a triangle already cut off (encoded as -1 - side).
+constexpr int owned_by_side(int side) { return -1 - side; }
+
 /// Lawson flips inside faces: a diagonal (a side whose two triangles belong to the same face)
 /// whose far vertex lies inside the other triangle's circumcircle is flipped, until none is left.
 /// Graph edges and the element boundary are never flipped, so the result is the constrained
-/// Delaunay triangulation of each face (up to cocircular ties).
-void make_faces_delaunay(std::span<const LocalPoint<2>> points, ElementClosure& out,
-                         ClosureScratch& s) {
+/// Delaunay triangulation of each face (up to cocircular ties). `stack` starts with the diagonals
+/// as sides 3 t + i whose other triangle comes after t, in increasing order; it is used up.
+void make_faces_delaunay(std::span<const LocalPoint<2>> points, ElementClosure& out, std::vector<int>& stack) {
+  if (stack.empty()) return;  // every face a triangle: no diagonal
   auto& tri = out.triangles;
   auto& nb = out.neighbors;
+  auto& graph = out.graph_sides;
   const int nt = static_cast<int>(tri.size());
-  auto& stack = s.polygon;  // (triangle, side) pairs as 3 * t + i
-  stack.clear();
-  for (int t = 0; t < nt; ++t)
-    for (int i = 0; i < 3; ++i)
-      if (nb[t][i] > t && out.face[nb[t][i]] == out.face[t]) stack.push_back(3 * t + i);
   auto side_towards = [&](int u, int t) {
     for (int j = 0; j < 3; ++j)
       if (nb[u][j] == t) return j;
     return -1;
   };
+  auto graph_bit = [&](int t, int i) -> std::uint8_t { return (graph[t] >> i) & 1u; };
   // Each flip removes a non-Delaunay side for good; the bound only guards against a logic error.
   for (long budget = 16L * nt * nt + 64; !stack.empty() && budget > 0; --budget) {
     const int t = stack.back() / 3, i = stack.back() % 3;
@@ -67,10 +79,15 @@ void make_faces_delaunay(std::span<const LocalPoint<2>> points, ElementClosure& 
     const int t_opp_b = nb[t][(i + 2) % 3];  // across side p-a
     const int u_opp_b = nb[u][(j + 1) % 3];  // across side a-q (u = (q, b, a))
     const int u_opp_a = nb[u][(j + 2) % 3];  // across side q-b
+    // The four outer sides keep their graph flags; the new diagonal p-q is not a graph edge.
+    const std::uint8_t g_bp = graph_bit(t, (i + 1) % 3), g_pa = graph_bit(t, (i + 2) % 3);
+    const std::uint8_t g_aq = graph_bit(u, (j + 1) % 3), g_qb = graph_bit(u, (j + 2) % 3);
     tri[t] = {p, a, q};
     nb[t] = {u_opp_b, u, t_opp_b};
+    graph[t] = static_cast<std::uint8_t>(g_aq | (g_pa << 2));
     tri[u] = {q, b, p};
     nb[u] = {t_opp_a, t, u_opp_a};
+    graph[u] = static_cast<std::uint8_t>(g_bp | (g_qb << 2));
     if (u_opp_b >= 0) nb[u_opp_b][side_towards(u_opp_b, u)] = t;
     if (t_opp_a >= 0) nb[t_opp_a][side_towards(t_opp_a, t)] = u;
     stack.push_back(3 * t + 0);
@@ -87,7 +104,7 @@ void make_faces_delaunay(std::span<const LocalPoint<2>> points, ElementClosure& 
 /// orient2d, and the direction of a side (its half plane, whether two sides point opposite ways)
 /// only by comparing coordinates. The direction angle only grows, by less than pi per vertex, so
 /// it passes from the lower half plane into the upper one once per turn round.
-bool convex_and_winding_once(std::span<const LocalPoint<2>> points, const std::vector<int>& poly) {
+bool convex_and_winding_once(std::span<const LocalPoint<2>> points, std::span<const int> poly) {
   const int k = static_cast<int>(poly.size());
   auto sign = [](double from, double to) { return (to > from) - (to < from); };
   auto upper = [&](int i) {  // side i runs from poly[i] to poly[i + 1]
@@ -109,76 +126,101 @@ bool convex_and_winding_once(std::span<const LocalPoint<2>> points, const std::v
   return rounds == 1;
 }
 
-bool close_by_faces(std::span<const LocalPoint<2>> points,
-                    std::span<const std::array<int, 2>> segments, std::array<int, 2> boundary_start,
-                    ElementClosure& out, ClosureScratch& s) {
+bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const ClosureSegment> segments,
+                    std::array<int, 2> boundary_start, ElementClosure& out, ClosureScratch& s) {
   out.clear();
   const int nv = static_cast<int>(points.size());
   const int ne = static_cast<int>(segments.size());
   const int nh = 2 * ne;
   if (nv < 3) return false;
+  const LocalPoint<2>* p = points.data();
 
-  // Distinct points (coincident nodes are an error the general path reports).
-  s.order.resize(nv);
-  std::iota(s.order.begin(), s.order.end(), 0);
-  std::sort(s.order.begin(), s.order.end(), [&](int a, int b) {
-    return std::tie(points[a].x(), points[a].y()) < std::tie(points[b].x(), points[b].y());
-  });
-  for (int i = 1; i < nv; ++i)
-    if (points[s.order[i]] == points[s.order[i - 1]]) return false;
+  // Distinct points (coincident nodes are an error the general path reports): few points are
+  // compared pairwise, many sorted by value (equal points are then neighbours).
+  if (nv <= 32) {
+    for (int i = 1; i < nv; ++i)
+      for (int j = 0; j < i; ++j)
+        if (p[i] == p[j]) return false;
+  } else {
+    auto& sorted = s.sorted_points;
+    sorted.assign(points.begin(), points.end());
+    std::sort(sorted.begin(), sorted.end(), [](const LocalPoint<2>& a, const LocalPoint<2>& b) {
+      return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+    });
+    for (int i = 1; i < nv; ++i)
+      if (sorted[i] == sorted[i - 1]) return false;
+  }
 
   // Half-edge h = 2i + r runs from segments[i][r] to segments[i][1 - r]; its twin is h ^ 1.
-  auto origin = [&](int h) { return segments[h >> 1][h & 1]; };
-  auto target = [&](int h) { return segments[h >> 1][1 - (h & 1)]; };
+  s.half_edges.resize(nh);
+  ClosureScratch::HalfEdge* he = s.half_edges.data();
+  for (int i = 0; i < ne; ++i) {
+    const int a = segments[i].a, b = segments[i].b;
+    he[2 * i].from = he[2 * i + 1].to = a;
+    he[2 * i].to = he[2 * i + 1].from = b;
+  }
   s.out_begin.assign(nv + 1, 0);
-  for (int h = 0; h < nh; ++h) ++s.out_begin[origin(h) + 1];
+  int* out_begin = s.out_begin.data();
+  for (int h = 0; h < nh; ++h) ++out_begin[he[h].from + 1];
   for (int v = 0; v < nv; ++v) {
-    if (s.out_begin[v + 1] < 2) return false;  // isolated or dangling: not a plain tiling
-    s.out_begin[v + 1] += s.out_begin[v];
+    if (out_begin[v + 1] < 2) return false;  // isolated or dangling: not a plain tiling
+    out_begin[v + 1] += out_begin[v];
   }
   s.out_half_edge.resize(nh);
-  s.position.resize(nh);
-  {
-    s.cycle.assign(s.out_begin.begin(), s.out_begin.end() - 1);  // fill cursors
-    for (int h = 0; h < nh; ++h) s.out_half_edge[s.cycle[origin(h)]++] = h;
+  int* around = s.out_half_edge.data();
+  s.cursor.assign(out_begin, out_begin + nv);
+  for (int h = 0; h < nh; ++h) around[s.cursor[he[h].from]++] = h;
+  // Counter-clockwise order of the edges around each vertex, decided by exact predicates only:
+  // first the half plane of the direction (angle in [0, pi) or [pi, 2 pi), by comparing
+  // coordinates), then within a half plane the orientation.
+  for (int h = 0; h < nh; ++h) {
+    const LocalPoint<2>& c = p[he[h].from];
+    const LocalPoint<2>& q = p[he[h].to];
+    he[h].direction = q - c;
+    he[h].upper = q.y() > c.y() || (q.y() == c.y() && q.x() > c.x());
+    he[h].side = -1;
   }
-  // Counter-clockwise order of the edges around each vertex, decided by exact predicates only.
-  bool degenerate = false;
+  auto turn = [&](int ha, int hb) {  // orientation of (from, to(ha), to(hb)), exact
+    return turn_sign(he[ha].direction, he[hb].direction, p[he[ha].from], p[he[ha].to], p[he[hb].to]);
+  };
+  auto precedes = [&](int ha, int hb) {  // strictly, counter-clockwise from angle 0
+    if (he[ha].upper != he[hb].upper) return he[ha].upper;
+    return turn(ha, hb) > 0;
+  };
   for (int v = 0; v < nv; ++v) {
-    const LocalPoint<2>& c = points[v];
-    auto first = s.out_half_edge.begin() + s.out_begin[v];
-    auto last = s.out_half_edge.begin() + s.out_begin[v + 1];
-    std::sort(first, last, [&](int ha, int hb) {
-      const LocalPoint<2>& a = points[target(ha)];
-      const LocalPoint<2>& b = points[target(hb)];
-      const int qa = half_plane(c, a), qb = half_plane(c, b);
-      if (qa != qb) return qa < qb;
-      const int o = orient2d(c, a, b);
-      if (o == 0 && ha != hb) degenerate = true;  // two edges leave v in the same direction
-      return o > 0;
-    });
-    for (int i = s.out_begin[v]; i < s.out_begin[v + 1]; ++i) s.position[s.out_half_edge[i]] = i;
+    int* first = around + out_begin[v];
+    const int degree = out_begin[v + 1] - out_begin[v];
+    for (int i = 1; i < degree; ++i) {  // insertion sort: degrees are small
+      const int h = first[i];
+      int j = i;
+      for (; j > 0 && precedes(h, first[j - 1]); --j) first[j] = first[j - 1];
+      first[j] = h;
+    }
+    // Two edges leaving v in the same direction (an overlap) end up side by side.
+    for (int i = 1; i < degree; ++i)
+      if (he[first[i - 1]].upper == he[first[i]].upper && turn(first[i - 1], first[i]) == 0) return false;
+    for (int i = 0; i < degree; ++i) he[first[i]].position = out_begin[v] + i;
   }
-  if (degenerate) return false;
 
   // The face left of u->v continues with the edge that precedes v->u around v.
-  s.next.resize(nh);
   for (int h = 0; h < nh; ++h) {
-    const int twin = h ^ 1;
-    const int v = origin(twin);
-    const int p = s.position[twin];
-    s.next[h] = s.out_half_edge[p == s.out_begin[v] ? s.out_begin[v + 1] - 1 : p - 1];
+    const int v = he[h].to;
+    const int at = he[h ^ 1].position;
+    he[h].next = around[at == out_begin[v] ? out_begin[v + 1] - 1 : at - 1];
+    he[h].face = -1;
   }
-  s.half_edge_face.assign(nh, -1);
+  // Faces are numbered in the order of their first (smallest) half-edge, where each is traced from.
   int faces = 0;
+  s.face_first.clear();
   for (int h0 = 0; h0 < nh; ++h0) {
-    if (s.half_edge_face[h0] >= 0) continue;
+    if (he[h0].face >= 0) continue;
     int h = h0, guard = 0;
     do {
-      s.half_edge_face[h] = faces;
-      h = s.next[h];
+      he[h].face = faces;
+      h = he[h].next;
       if (++guard > nh) return false;
     } while (h != h0);
+    s.face_first.push_back(h0);
     ++faces;
   }
   // A connected plane graph has E - V + 2 faces; fewer means parts floating inside a face.
@@ -186,70 +228,116 @@ bool close_by_faces(std::span<const LocalPoint<2>> points,
 
   int boundary_half_edge = -1;
   for (int i = 0; i < ne && boundary_half_edge < 0; ++i) {
-    if (segments[i][0] == boundary_start[0] && segments[i][1] == boundary_start[1]) boundary_half_edge = 2 * i;
-    if (segments[i][1] == boundary_start[0] && segments[i][0] == boundary_start[1]) boundary_half_edge = 2 * i + 1;
+    if (segments[i].a == boundary_start[0] && segments[i].b == boundary_start[1]) boundary_half_edge = 2 * i;
+    if (segments[i].b == boundary_start[0] && segments[i].a == boundary_start[1]) boundary_half_edge = 2 * i + 1;
   }
   if (boundary_half_edge < 0) return false;
-  const int outer = s.half_edge_face[boundary_half_edge ^ 1];
-  if (s.half_edge_face[boundary_half_edge] == outer) return false;
+  const int outer = he[boundary_half_edge ^ 1].face;
+  if (he[boundary_half_edge].face == outer) return false;
 
-  // Renumber the inner faces 0 .. faces - 2 and cut each into triangles.
-  s.visited.assign(nv, 0);
-  s.cycle.assign(faces, 0);  // cycle[f] = 1 once face f has been triangulated
+  // Renumber the inner faces 0 .. faces - 2 and cut each into triangles. Once the inner faces are
+  // known to tile the element (each a simple counter-clockwise polygon, the outer face its
+  // boundary), the triangles form a triangulation with 2 V - B - 2 triangles (B vertices on the
+  // boundary), and every diagonal lies inside its face, so no side is shared by three triangles.
+  out.triangles.reserve(2 * static_cast<std::size_t>(nv));
+  out.neighbors.reserve(2 * static_cast<std::size_t>(nv));
+  out.graph_sides.reserve(2 * static_cast<std::size_t>(nv));
+  out.face.reserve(2 * static_cast<std::size_t>(nv));
+  s.flips.clear();
   int face_id = 0;
-  std::vector<int>& poly = s.polygon;
-  for (int h0 = 0; h0 < nh; ++h0) {
-    const int f = s.half_edge_face[h0];
-    if (f == outer || s.cycle[f]) continue;
-    s.cycle[f] = 1;
-    poly.clear();
+  // The polygon of the face being cut, and the owner of each of its sides poly[m] -> poly[m + 1]:
+  // a graph half-edge, or the diagonal of a triangle cut off earlier.
+  std::array<int, largest_face> poly, poly_side;
+  // The sides of a new triangle are paired with what owned them: a graph half-edge (paired with
+  // its twin's triangle once every face is cut) or a diagonal cut earlier in the same face.
+  auto attach = [&](int side, int owner) {
+    const int t = side / 3, i = side % 3;
+    if (owner >= 0) {
+      he[owner].side = side;
+      if (segments[owner >> 1].graph) out.graph_sides[t] = static_cast<std::uint8_t>(out.graph_sides[t] | (1u << i));
+    } else {
+      const int other = -1 - owner;
+      out.neighbors[t][i] = other / 3;
+      out.neighbors[other / 3][other % 3] = t;
+    }
+  };
+  auto add_triangle = [&](int a, int b, int c) {
+    const int t = static_cast<int>(out.triangles.size());
+    out.triangles.push_back({a, b, c});
+    out.neighbors.push_back({-1, -1, -1});
+    out.graph_sides.push_back(0);
+    out.face.push_back(face_id);
+    return t;
+  };
+  for (int f = 0; f < faces; ++f) {
+    if (f == outer) continue;
+    const int h0 = s.face_first[f];
+    int k = 0;
     int h = h0;
     do {
-      const int v = origin(h);
-      if (s.visited[v]) {  // a vertex twice on one face: dangling edge or pinched face
-        for (int u : poly) s.visited[u] = 0;
-        return false;
-      }
-      s.visited[v] = 1;
-      poly.push_back(v);
-      h = s.next[h];
+      if (k == largest_face) return false;
+      poly[k] = he[h].from;
+      poly_side[k] = h;
+      ++k;
+      h = he[h].next;
     } while (h != h0);
-    for (int u : poly) s.visited[u] = 0;
-    const int k = static_cast<int>(poly.size());
-    if (k < 3 || k > largest_face) return false;
+    if (k < 3) return false;
+    if (k == 3) {  // already a triangle (most faces): counter-clockwise is all there is to check
+      if (poly[0] == poly[1] || poly[1] == poly[2] || poly[2] == poly[0]) return false;
+      if (orient2d(p[poly[0]], p[poly[1]], p[poly[2]]) <= 0) return false;
+      const int t = add_triangle(poly[0], poly[1], poly[2]);
+      attach(3 * t + 0, poly_side[1]);
+      attach(3 * t + 1, poly_side[2]);
+      attach(3 * t + 2, poly_side[0]);
+      ++face_id;
+      continue;
+    }
+    // A vertex twice on one face: dangling edge or pinched face.
+    for (int i = 1; i < k; ++i)
+      for (int j = 0; j < i; ++j)
+        if (poly[i] == poly[j]) return false;
 
     // Counter-clockwise: the turn at the lexicographically smallest vertex is a left turn.
     int low = 0;
     for (int i = 1; i < k; ++i)
-      if (std::tie(points[poly[i]].x(), points[poly[i]].y()) <
-          std::tie(points[poly[low]].x(), points[poly[low]].y()))
-        low = i;
-    if (orient2d(points[poly[(low + k - 1) % k]], points[poly[low]], points[poly[(low + 1) % k]]) <= 0)
+      if (std::tie(p[poly[i]].x(), p[poly[i]].y()) < std::tie(p[poly[low]].x(), p[poly[low]].y())) low = i;
+    if (orient2d(p[poly[low == 0 ? k - 1 : low - 1]], p[poly[low]], p[poly[low + 1 == k ? 0 : low + 1]]) <= 0)
       return false;
     // Simple: no two sides meet except consecutive ones at their common vertex. A convex face
     // that winds once is simple, and that is decided in O(k); other faces take the O(k^2) test.
-    if (k > 3 && !convex_and_winding_once(points, poly))
+    const bool convex = k == 3 || convex_and_winding_once(points, std::span<const int>(poly.data(), k));
+    if (!convex)
       for (int i = 0; i < k; ++i)
         for (int j = i + 1; j < k; ++j)
-          if (segments_cross_properly(points[poly[i]], points[poly[(i + 1) % k]], points[poly[j]],
-                                      points[poly[(j + 1) % k]]))
+          if (segments_cross_properly(p[poly[i]], p[poly[(i + 1) % k]], p[poly[j]], p[poly[(j + 1) % k]]))
             return false;
 
     // Ear clipping; of the ears, the best-shaped one goes first.
-    while (poly.size() > 3) {
-      const int m = static_cast<int>(poly.size());
+    for (int m = k; m > 3; --m) {
       int best = -1;
       double best_shape = 0.0;
       for (int i = 0; i < m; ++i) {
-        const LocalPoint<2>& a = points[poly[(i + m - 1) % m]];
-        const LocalPoint<2>& b = points[poly[i]];
-        const LocalPoint<2>& c = points[poly[(i + 1) % m]];
+        const int before = i == 0 ? m - 1 : i - 1, after = i + 1 == m ? 0 : i + 1;
+        const LocalPoint<2>& a = p[poly[before]];
+        const LocalPoint<2>& b = p[poly[i]];
+        const LocalPoint<2>& c = p[poly[after]];
         if (orient2d(a, b, c) <= 0) continue;
+        // An ear is empty when no other vertex lies in the closed triangle a, b, c.
         bool empty = true;
-        for (int j = 0; j < m && empty; ++j) {
-          if (j == i || j == (i + 1) % m || j == (i + m - 1) % m) continue;
-          const LocalPoint<2>& x = points[poly[j]];
-          if (orient2d(a, b, x) >= 0 && orient2d(b, c, x) >= 0 && orient2d(c, a, x) >= 0) empty = false;
+        if (convex) {
+          // The vertices of a convex polygon (and of what is left of one after cutting ears) are
+          // in convex position: the chord c-a has b strictly on one side and all other vertices
+          // on the other side or on the chord. One of them on the chord means the chord is a
+          // supporting line, so all of them are on it, the one after c among them; and then that
+          // one lies on the closed segment c-a (the polygon does not double back), in the ear.
+          const int beyond = after + 1 == m ? 0 : after + 1;
+          empty = orient2d(c, a, p[poly[beyond]]) < 0;
+        } else {
+          for (int j = 0; j < m && empty; ++j) {
+            if (j == i || j == after || j == before) continue;
+            const LocalPoint<2>& x = p[poly[j]];
+            if (orient2d(a, b, x) >= 0 && orient2d(b, c, x) >= 0 && orient2d(c, a, x) >= 0) empty = false;
+          }
         }
         if (!empty) continue;
         const double shape = ear_shape(a, b, c);
@@ -259,97 +347,59 @@ bool close_by_faces(std::span<const LocalPoint<2>> points,
         }
       }
       if (best < 0) return false;
-      out.triangles.push_back({poly[(best + m - 1) % m], poly[best], poly[(best + 1) % m]});
-      out.face.push_back(face_id);
-      poly.erase(poly.begin() + best);
+      const int before = best == 0 ? m - 1 : best - 1, after = best + 1 == m ? 0 : best + 1;
+      const int t = add_triangle(poly[before], poly[best], poly[after]);
+      attach(3 * t + 0, poly_side[best]);
+      attach(3 * t + 2, poly_side[before]);
+      // The diagonal poly[before] -> poly[after] is side 1 of t; its other triangle comes later
+      // in the same face, so it is a candidate for a Lawson flip.
+      poly_side[before] = owned_by_side(3 * t + 1);
+      s.flips.push_back(3 * t + 1);
+      std::copy(poly.begin() + best + 1, poly.begin() + m, poly.begin() + best);
+      std::copy(poly_side.begin() + best + 1, poly_side.begin() + m, poly_side.begin() + best);
     }
-    if (orient2d(points[poly[0]], points[poly[1]], points[poly[2]]) <= 0) return false;
-    out.triangles.push_back({poly[0], poly[1], poly[2]});
-    out.face.push_back(face_id);
+    if (orient2d(p[poly[0]], p[poly[1]], p[poly[2]]) <= 0) return false;
+    const int t = add_triangle(poly[0], poly[1], poly[2]);
+    attach(3 * t + 0, poly_side[1]);
+    attach(3 * t + 1, poly_side[2]);
+    attach(3 * t + 2, poly_side[0]);
     ++face_id;
   }
   out.face_count = face_id;
 
-  // Neighbours: pair the triangle sides by their vertex pair.
-  // Side ts = 3 t + i (opposite corner i) gets the key (smaller vertex, larger vertex) packed into
-  // one integer, computed once: sorting the keys is much cheaper than comparing vertex pairs.
-  const int nt = static_cast<int>(out.triangles.size());
-  auto& keys = s.side_keys;
-  keys.resize(3 * static_cast<std::size_t>(nt));
-  for (int ts = 0; ts < 3 * nt; ++ts) {
-    const auto& tri = out.triangles[ts / 3];
-    const auto a = static_cast<std::uint32_t>(tri[(ts % 3 + 1) % 3]), b = static_cast<std::uint32_t>(tri[(ts % 3 + 2) % 3]);
-    keys[ts] = {(static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b), ts};
+  // Triangles on either side of a graph edge or boundary piece: the twin half-edge's triangle,
+  // none where the twin is on the outer face.
+  for (int h = 0; h < nh; ++h) {
+    const int side = he[h].side;
+    if (side < 0) continue;
+    const int twin_side = he[h ^ 1].side;
+    out.neighbors[side / 3][side % 3] = twin_side >= 0 ? twin_side / 3 : -1;
   }
-  std::sort(keys.begin(), keys.end());
-  out.neighbors.assign(nt, {-1, -1, -1});
-  for (int i = 0; i < 3 * nt;) {
-    int j = i + 1;
-    while (j < 3 * nt && keys[j].first == keys[i].first) ++j;
-    if (j - i > 2) return false;
-    if (j - i == 2) {
-      const int x = keys[i].second, y = keys[i + 1].second;
-      out.neighbors[x / 3][x % 3] = y / 3;
-      out.neighbors[y / 3][y % 3] = x / 3;
-    }
-    i = j;
-  }
-  make_faces_delaunay(points, out, s);
+  make_faces_delaunay(points, out, s.flips);
   return true;
 }
 
-void closure_rings(const ElementClosure& closure, int vertex_count, std::vector<int>& ring_begin,
-                   std::vector<int>& ring) {
+void ring_starts(const ElementClosure& closure, int vertex_count, std::vector<int>& start) {
   const int nt = static_cast<int>(closure.triangles.size());
-  // one incident (triangle, corner) per vertex
-  std::vector<int> incident(vertex_count, -1);
+  const auto* tri = closure.triangles.data();
+  const auto* nb = closure.neighbors.data();
+  start.assign(vertex_count, -1);
   for (int t = 0; t < nt; ++t)
-    for (int i = 0; i < 3; ++i)
-      if (incident[closure.triangles[t][i]] < 0) incident[closure.triangles[t][i]] = 3 * t + i;
-  ring_begin.assign(1, 0);
+    for (int i = 0; i < 3; ++i) {
+      const int v = tri[t][i];
+      if (start[v] < 0 || nb[t][(i + 2) % 3] < 0) start[v] = 3 * t + i;
+    }
+}
+
+void closure_rings(const ElementClosure& closure, int vertex_count, int wanted, std::vector<int>& ring_begin,
+                   std::vector<RingEntry>& ring, std::vector<int>& start) {
+  ring_starts(closure, vertex_count, start);
+  ring_begin.resize(wanted + 1);
+  ring_begin[0] = 0;
   ring.clear();
-  auto corner_of = [&](int t, int v) {
-    const auto& tri = closure.triangles[t];
-    return tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
-  };
-  for (int v = 0; v < vertex_count; ++v) {
-    if (incident[v] < 0) {
-      ring_begin.push_back(static_cast<int>(ring.size()));
-      continue;
-    }
-    // Around v in triangle (v, a, b): a comes before b counter-clockwise; the next triangle
-    // shares side v-b (opposite a), the previous one side v-a (opposite b).
-    int t = incident[v] / 3;
-    const int t0 = t;
-    bool boundary = false;
-    for (int guard = 0; guard <= nt; ++guard) {
-      const int prev = closure.neighbors[t][(corner_of(t, v) + 2) % 3];
-      if (prev < 0) {
-        boundary = true;
-        break;
-      }
-      t = prev;
-      if (t == t0) break;
-    }
-    const std::size_t first = ring.size();
-    const int start = t;
-    ring.push_back(closure.triangles[t][(corner_of(t, v) + 1) % 3]);
-    for (int guard = 0; guard <= nt; ++guard) {
-      const int i = corner_of(t, v);
-      const int next = closure.neighbors[t][(i + 1) % 3];
-      if (next < 0) {
-        ring.push_back(closure.triangles[t][(i + 2) % 3]);
-        break;
-      }
-      t = next;
-      if (t == start) break;
-      ring.push_back(closure.triangles[t][(corner_of(t, v) + 1) % 3]);
-    }
-    if (!boundary) {
-      const auto smallest = std::min_element(ring.begin() + static_cast<std::ptrdiff_t>(first), ring.end());
-      std::rotate(ring.begin() + static_cast<std::ptrdiff_t>(first), smallest, ring.end());
-    }
-    ring_begin.push_back(static_cast<int>(ring.size()));
+  for (int v = 0; v < wanted; ++v) {
+    visit_ring(closure, v, start[v], [&](const RingEntry& entry) { ring.push_back(entry); });
+    ring_begin[v + 1] = static_cast<int>(ring.size());
   }
 }
 

@@ -35,22 +35,26 @@ namespace {
 enum class PlaceKind : std::uint8_t { vertex, edge, element };
 
 /// A point of S1: a vertex, a point on an edge (d = 2; parameter from the smaller-index vertex),
-/// or a point inside an element.
+/// or a point inside an element. The builder holds one per node (millions), so the parameter
+/// and the local coordinates share storage, unaligned: a node takes 80 bytes instead of 96.
 template <int d>
 struct Place {
-  PlaceKind kind = PlaceKind::vertex;
+  using Coordinates = Eigen::Matrix<double, d, 1, Eigen::DontAlign>;
+  Coordinates coords = Coordinates::Zero();  // kind == element: local; kind == edge: (t, 0)
   Index index = invalid_index;
-  double t = 0.0;                            // kind == edge
-  LocalPoint<d> local = LocalPoint<d>::Zero();  // kind == element
+  PlaceKind kind = PlaceKind::vertex;
+
+  double t() const { return coords(0); }          // kind == edge
+  LocalPoint<d> local() const { return coords; }  // kind == element
 };
 
 /// Image of a node on S2 as the S2 vertices carrying its barycentric weight.
 template <int d>
 struct Support {
-  int count = 0;
-  std::array<Index, d + 1> vertex{};
   std::array<double, d + 1> weight{};
+  std::array<Index, d + 1> vertex{};
   Index element = invalid_index;  // an S2 element containing the image (for the stored form)
+  std::uint8_t count = 0;
 };
 
 enum class BuilderNodeKind : std::uint8_t { vertex_preimage, ghost, intersection };
@@ -58,10 +62,11 @@ enum class BuilderNodeKind : std::uint8_t { vertex_preimage, ghost, intersection
 template <int d>
 struct BuilderNode {
   Place<d> place;
-  BuilderNodeKind kind;
-  Index target;  // S2 vertex / S2 edge / invalid
   Support<d> image;
+  Index target;  // S2 vertex / S2 edge / invalid
+  BuilderNodeKind kind;
 };
+static_assert(sizeof(BuilderNode<2>) <= 80 && sizeof(BuilderNode<1>) <= 64, "builder nodes are kept compact");
 
 /// A straight piece of an S2 edge's preimage between two nodes: inside element `where`, or (d = 2)
 /// along S1 edge `where`.
@@ -81,6 +86,23 @@ using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 // constructed intersection point: crossing graph edges raise an exception.
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
     Kernel, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
+
+/// Sorts a short range by insertion, a long one with std::sort. For up to 16 items this is
+/// exactly what std::sort does (libstdc++ sorts such ranges by a stable insertion sort), without
+/// its calls; the d = 1 finalize sorts a handful of items per element.
+template <class T, class Less>
+void sort_small(std::span<T> items, Less less) {
+  if (items.size() > 16) {
+    std::sort(items.begin(), items.end(), less);
+    return;
+  }
+  for (std::size_t i = 1; i < items.size(); ++i) {
+    T item = items[i];
+    std::size_t j = i;
+    for (; j > 0 && less(item, items[j - 1]); --j) items[j] = items[j - 1];
+    items[j] = item;
+  }
+}
 
 /// Items grouped by a key in [0, groups) as CSR arrays: two allocations for all groups, where a
 /// vector per group would cost one per S1 element or edge (millions on large maps).
@@ -110,34 +132,34 @@ class Buckets {
 /// Per S1 element, the outcome of the triangulation step, which finalize() assembles into the
 /// flat arrays right away (one per thread, reused from element to element).
 struct ElementTriangulation {
-  std::vector<Index> slots;  // builder node of each slot (node order of the element)
-  struct Triangle {
-    std::array<int, 3> corners;    // slots, ccw (triangles touching a virtual corner are dropped)
-    std::array<int, 3> neighbors;  // triangle across the side opposite corner i, or -1
-    int component;                 // face of the graph
-  };
-  std::vector<Triangle> triangles;
+  std::vector<Index> slots;               // builder node of each slot (node order of the element)
+  std::vector<LocalPoint<2>> positions;   // of the slots, then of the virtual corners
+  std::vector<std::int8_t> location;      // of the slots: corner, local edge, or -1 (inside)
+  // The closure itself (triangles, neighbours, faces; triangles touching a virtual corner lie
+  // outside D) and the rings stay in the workspace that computed them; per face of the graph:
   struct Component {
     Index target = invalid_index;
     int sign = 0;
+    bool outside = false;  // touches a virtual corner
   };
   std::vector<Component> components;
-  // Neighbours of each slot in ccw order (CSR), each entry 2 * slot + 1 for a graph edge, + 0 for
-  // a closure edge; closure edges are filtered once the regions are known.
-  std::vector<int> ring_begin, ring;
+  // Per closure triangle of a face with a target: its corners' images on the target element
+  // (computed when the target is chosen, used again for the region's affine map).
+  std::vector<std::array<LocalPoint<2>, 3>> corner_images;
   std::vector<int> edge_slots;                // along local edges 0, 1, 2, corners included
   std::array<int, 4> edge_slots_begin{};
-  int centroid_triangle = -1;
+  int corner_count = 0;                       // slots at corners of the element
+  int centroid_triangle = -1;                 // a closure triangle inside D, or -1
 
   /// Empties it for the next element, keeping the buffers.
   void clear() {
     slots.clear();
-    triangles.clear();
+    positions.clear();
+    location.clear();
     components.clear();
-    ring_begin.clear();
-    ring.clear();
     edge_slots.clear();
     edge_slots_begin = {};
+    corner_count = 0;
     centroid_triangle = -1;
   }
 };
@@ -230,12 +252,12 @@ struct MapBuilder<d>::Impl {
         place.kind = PlaceKind::edge;
         place.index = s1->find_edge(u, v);
         // parameter from the smaller-index vertex
-        place.t = u < v ? b(which[1]) : b(which[0]);
+        place.coords(0) = u < v ? b(which[1]) : b(which[0]);
       }
     } else {
       place.kind = PlaceKind::element;
       place.index = p.element;
-      place.local = local_from_barycentric<d>(b);
+      place.coords = local_from_barycentric<d>(b);
     }
     return place;
   }
@@ -299,7 +321,7 @@ struct MapBuilder<d>::Impl {
   // ---- node entry -----------------------------------------------------------------------------
   Index new_node(const Place<d>& place, BuilderNodeKind kind, Index target, const Support<d>& image) {
     const auto id = static_cast<Index>(nodes.size());
-    nodes.push_back({place, kind, target, image});
+    nodes.push_back({place, image, target, kind});
     if (place.kind == PlaceKind::vertex) node_at_domain_vertex[place.index] = id;
     if (kind == BuilderNodeKind::vertex_preimage) preimage_of_target_vertex[target] = id;
     return id;
@@ -351,35 +373,53 @@ struct MapBuilder<d>::Impl {
       case PlaceKind::edge:
         if constexpr (d == 2) {
           const auto ev = s1->edge_vertices(p.index);
-          return (1.0 - p.t) * s1->vertex(ev[0]) + p.t * s1->vertex(ev[1]);
+          return (1.0 - p.t()) * s1->vertex(ev[0]) + p.t() * s1->vertex(ev[1]);
         }
         break;
-      case PlaceKind::element: return s1->world_position(p.index, p.local);
+      case PlaceKind::element: return s1->world_position(p.index, p.local());
     }
     return WorldPoint<d>::Zero();
   }
 
   static bool same_place(const Place<d>& a, const Place<d>& b) {
-    return a.kind == b.kind && a.index == b.index && a.t == b.t && a.local == b.local;
+    return a.kind == b.kind && a.index == b.index && a.coords == b.coords;
   }
 
-  /// S1 elements containing a place (sorted).
-  std::vector<Index> elements_of(const Place<d>& p) const {
-    switch (p.kind) {
-      case PlaceKind::vertex: {
-        auto s = s1->vertex_elements(p.index);
-        return {s.begin(), s.end()};
+  /// S1 elements containing a place, in increasing order, as a view into the surface's
+  /// adjacency (no allocation: every piece of every inserted edge asks it twice).
+  class ElementsOf {
+   public:
+    ElementsOf(const Surface<d>& s1, const Place<d>& p) {
+      switch (p.kind) {
+        case PlaceKind::vertex: {
+          const auto star = s1.vertex_elements(p.index);
+          elements_ = star.data();
+          size_ = star.size();
+          break;
+        }
+        case PlaceKind::edge:
+          if constexpr (d == 2) {
+            const auto incidences = s1.edge_elements(p.index);
+            incidences_ = incidences.data();
+            size_ = incidences.size();
+          }
+          break;
+        case PlaceKind::element:
+          single_ = p.index;
+          elements_ = &single_;
+          size_ = 1;
+          break;
       }
-      case PlaceKind::edge: {
-        std::vector<Index> out;
-        if constexpr (d == 2)
-          for (const auto& inc : s1->edge_elements(p.index)) out.push_back(inc.element);
-        return out;
-      }
-      case PlaceKind::element: return {p.index};
     }
-    return {};
-  }
+    std::size_t size() const { return size_; }
+    Index operator[](std::size_t i) const { return incidences_ ? incidences_[i].element : elements_[i]; }
+
+   private:
+    const Index* elements_ = nullptr;
+    const EdgeIncidence* incidences_ = nullptr;
+    std::size_t size_ = 0;
+    Index single_ = invalid_index;
+  };
 
   /// Where the straight segment between two places lies: along an S1 edge, or in one element.
   Segment locate_segment(Index a, Index b, Index target_edge) const {
@@ -401,19 +441,31 @@ struct MapBuilder<d>::Impl {
       if (along == invalid_index) along = edge_through(pb, pa);
       if (along != invalid_index) return {a, b, target_edge, true, along};
     }
-    const auto ea = elements_of(pa), eb = elements_of(pb);
-    std::vector<Index> common;
-    std::set_intersection(ea.begin(), ea.end(), eb.begin(), eb.end(), std::back_inserter(common));
-    if (common.empty())
+    // the elements both places lie in (both lists sorted): the first two found
+    const ElementsOf ea(*s1, pa), eb(*s1, pb);
+    std::array<Index, 2> common{};
+    int found = 0;
+    for (std::size_t i = 0, j = 0; i < ea.size() && j < eb.size() && found < 2;) {
+      if (ea[i] < eb[j]) {
+        ++i;
+      } else if (eb[j] < ea[i]) {
+        ++j;
+      } else {
+        common[found++] = ea[i];
+        ++i;
+        ++j;
+      }
+    }
+    if (found == 0)
       throw BuilderError(fmt::format(
           "the preimage of S2 {} {} jumps between points that share no S1 element "
           "(missing or misordered crossings?)",
           d == 2 ? "edge" : "segment", target_edge));
-    if (common.size() > 1)
+    if (found > 1)
       throw BuilderError(fmt::format(
           "the preimage of S2 {} {} has a piece whose S1 element is ambiguous (elements {} and {})",
           d == 2 ? "edge" : "segment", target_edge, common[0], common[1]));
-    return {a, b, target_edge, false, common.front()};
+    return {a, b, target_edge, false, common[0]};
   }
 
   // ---- edge entry -----------------------------------------------------------------------------
@@ -573,7 +625,7 @@ typename MapBuilder<d>::NodeHandle MapBuilder<d>::add_vertex_preimage_on_edge(In
   } else {
     p.kind = PlaceKind::edge;
     p.index = domain_edge;
-    p.t = t;
+    p.coords(0) = t;
   }
   return impl_->add_vertex_preimage(target_vertex, p);
 }
@@ -617,7 +669,7 @@ const std::vector<typename Impl::CrossingPlace>& crossing_places(Impl& im, Index
     } else {
       p.kind = PlaceKind::edge;
       p.index = c.domain_edge;
-      p.t = c.domain_parameter;
+      p.coords(0) = c.domain_parameter;
     }
     places.push_back({p, c.target_parameter});
   }
@@ -737,18 +789,27 @@ bool support_in_element(const Surface<d>& s2, const Support<d>& s, Index t) {
   return true;
 }
 
-/// Local coordinates of a support on an S2 element that contains it (exact transfer).
+[[noreturn, gnu::cold]] void throw_not_in_element(Index t, Index vertex) {
+  throw BuilderError(fmt::format("internal: an image is re-expressed on S2 element {}, which does not "
+                                 "contain its S2 vertex {}",
+                                 t, vertex));
+}
+
+/// Local coordinates of a support on an S2 element that contains it (exact transfer): the
+/// weights of the element's corners 1 .. d, copied. Called for every node and region corner.
 template <int d>
 LocalPoint<d> support_local(const Surface<d>& s2, const Support<d>& s, Index t) {
-  Barycentric<d> b = Barycentric<d>::Zero();
+  const auto& corners = s2.element(t);
+  LocalPoint<d> y = LocalPoint<d>::Zero();
   for (int i = 0; i < s.count; ++i) {
-    const int k = s2.local_corner(t, s.vertex[i]);
-    if (k < 0)
-      throw BuilderError(fmt::format("internal: an image is re-expressed on S2 element {}, which "
-                                     "does not contain its S2 vertex {}", t, s.vertex[i]));
-    b(k) = s.weight[i];
+    const Index v = s.vertex[i];
+    if (v == corners[0]) continue;
+    int k = 1;
+    while (k <= d && corners[k] != v) ++k;
+    if (k > d) throw_not_in_element(t, v);
+    y(k - 1) = s.weight[i];
   }
-  return local_from_barycentric<d>(b);
+  return y;
 }
 
 /// The affine map taking the corners `from` to `to`. Closure triangles can be slivers, whose
@@ -897,9 +958,9 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     for (Index e = 0; e < n1e; ++e) {
       const auto list = edge_nodes.group(e);
       std::sort(list.begin(), list.end(),
-                [&](Index a, Index b) { return im.nodes[a].place.t < im.nodes[b].place.t; });
+                [&](Index a, Index b) { return im.nodes[a].place.t() < im.nodes[b].place.t(); });
       for (std::size_t i = 1; i < list.size(); ++i)
-        if (im.nodes[list[i]].place.t == im.nodes[list[i - 1]].place.t)
+        if (im.nodes[list[i]].place.t() == im.nodes[list[i - 1]].place.t())
           throw BuilderError(fmt::format("two nodes at the same point of S1 edge {}",
                                          im.nodes[list[i]].place.index));
     }
@@ -927,7 +988,6 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       Index node;
       double s;
     };
-    std::vector<Slot> slots;
     int votes = 0;
     struct PendingRegion {
       Index a, b, target;
@@ -946,20 +1006,31 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       all_regions.clear();
       all_slots.clear();
       for (Index t = 0; t < n1; ++t) {
-        slots.clear();
+        // the element's slots go straight to the end of all_slots
+        const std::size_t first_slot = all_slots.size();
         const auto& c = s1.element(t);
-        if (Index n = im.node_at_domain_vertex[c[0]]; n != invalid_index) slots.push_back({n, 0.0});
-        for (Index n : interior_nodes[t]) slots.push_back({n, im.nodes[n].place.local(0)});
-        if (Index n = im.node_at_domain_vertex[c[1]]; n != invalid_index) slots.push_back({n, 1.0});
-        std::sort(slots.begin(), slots.end(), [](const Slot& x, const Slot& y) { return x.s < y.s; });
+        if (Index n = im.node_at_domain_vertex[c[0]]; n != invalid_index) all_slots.push_back({n, 0.0});
+        for (Index n : interior_nodes[t]) all_slots.push_back({n, im.nodes[n].place.coords(0)});
+        if (Index n = im.node_at_domain_vertex[c[1]]; n != invalid_index) all_slots.push_back({n, 1.0});
+        const std::span<Slot> slots(all_slots.data() + first_slot, all_slots.size() - first_slot);
+        sort_small(slots, [](const Slot& x, const Slot& y) { return x.s < y.s; });
         for (std::size_t i = 1; i < slots.size(); ++i)
           if (slots[i].s == slots[i - 1].s)
             throw BuilderError(fmt::format("two nodes at the same point of S1 element {}", t));
-        // nodes per segment are few except in stress tests; binary search keeps it O(n log n)
-        slot_index.resize(slots.size());
-        for (std::size_t i = 0; i < slots.size(); ++i) slot_index[i] = {slots[i].node, static_cast<int>(i)};
-        std::sort(slot_index.begin(), slot_index.end());
+        // Few nodes per segment, except in stress tests: searched in place, or by binary search
+        // in a sorted table when there are many.
+        const bool many = slots.size() > 16;
+        if (many) {
+          slot_index.resize(slots.size());
+          for (std::size_t i = 0; i < slots.size(); ++i) slot_index[i] = {slots[i].node, static_cast<int>(i)};
+          std::sort(slot_index.begin(), slot_index.end());
+        }
         auto slot_of = [&](Index node) {
+          if (!many) {
+            for (std::size_t i = 0; i < slots.size(); ++i)
+              if (slots[i].node == node) return static_cast<int>(i);
+            return -1;
+          }
           const auto it = std::lower_bound(slot_index.begin(), slot_index.end(), std::make_pair(node, -1));
           return it != slot_index.end() && it->first == node ? it->second : -1;
         };
@@ -989,7 +1060,6 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           votes += yb > ya ? 1 : -1;
           all_regions.push_back({i, j, seg.target_edge, sign});
         }
-        all_slots.insert(all_slots.end(), slots.begin(), slots.end());
         regions_begin[t + 1] = all_regions.size();
         slots_begin[t + 1] = all_slots.size();
       }
@@ -1006,20 +1076,24 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       bucket();
     }
     m.orientation = im.options.orientation != 0 ? im.options.orientation : (votes >= 0 ? 1 : -1);
-    // Every array's final size is known (or bounded) now: reserve it once.
-    m.node_position.reserve(all_slots.size());
-    m.node_type.reserve(all_slots.size());
-    m.node_location.reserve(all_slots.size());
-    m.node_image.reserve(all_slots.size());
-    m.node_target.reserve(all_slots.size());
-    m.neighbor_begin.reserve(all_slots.size() + 1);
-    m.neighbor.reserve(2 * all_regions.size());
-    m.neighbor_edge_kind.reserve(2 * all_regions.size());
-    m.region_corners.reserve(all_regions.size());
-    m.region_neighbors.reserve(all_regions.size());
-    m.region_target.reserve(all_regions.size());
-    m.region_map.reserve(all_regions.size());
-    std::vector<char> left, right;
+    // Sizes are known now (nodes; regions and neighbour entries once the orientation has
+    // filtered the regions): the arrays are sized once and written in place.
+    std::size_t kept = 0;
+    for (const auto& r : all_regions) kept += r.sign == m.orientation ? 1 : 0;
+    const std::size_t node_count = all_slots.size();
+    m.node_position.resize(node_count);
+    m.node_type.resize(node_count);
+    m.node_location.resize(node_count);
+    m.node_image.resize(node_count);
+    m.node_target.resize(node_count);
+    m.neighbor_begin.resize(node_count + 1);
+    m.neighbor.resize(2 * kept);
+    m.neighbor_edge_kind.resize(2 * kept);
+    m.region_corners.resize(kept);
+    m.region_neighbors.resize(kept);
+    m.region_target.resize(kept);
+    m.region_map.resize(kept);
+    std::size_t entry = 0, region = 0;
     for (Index t = 0; t < n1; ++t) {
       const std::span<const Slot> sl(all_slots.data() + slots_begin[t], all_slots.data() + slots_begin[t + 1]);
       std::span<PendingRegion> regs(all_regions.data() + regions_begin[t], all_regions.data() + regions_begin[t + 1]);
@@ -1028,78 +1102,81 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       const auto kept_end = std::remove_if(regs.begin(), regs.end(), [&](const PendingRegion& r) { return r.sign != m.orientation; });
       if (report) report->reversed_faces += static_cast<Index>(regs.end() - kept_end);
       regs = regs.first(static_cast<std::size_t>(kept_end - regs.begin()));
-      std::sort(regs.begin(), regs.end(), [](const auto& x, const auto& y) { return x.a < y.a; });
-      const Index base = static_cast<Index>(m.node_type.size());
-      left.assign(sl.size(), 0);
-      right.assign(sl.size(), 0);
-      for (const auto& r : regs) {
-        right[r.a] = 1;
-        left[r.b] = 1;
-      }
+      sort_small(regs, [](const auto& x, const auto& y) { return x.a < y.a; });
+      const auto base = static_cast<Index>(slots_begin[t]);
+      // Every region joins consecutive slots (b = a + 1), so sorted by a they are sorted by b:
+      // one cursor finds the region ending at a slot, one the region starting there.
+      std::size_t ending = 0, starting = 0;
       for (std::size_t i = 0; i < sl.size(); ++i) {
         const auto& bn = im.nodes[sl[i].node];
-        LocalPoint<1> pos;
-        pos(0) = sl[i].s;
-        m.node_position.push_back(pos);
+        const std::size_t n = slots_begin[t] + i;
+        m.node_position[n](0) = sl[i].s;
         const bool at_corner = bn.place.kind == PlaceKind::vertex;
-        m.node_type.push_back(bn.kind == BuilderNodeKind::ghost ? NodeType::ghost
-                              : at_corner                       ? NodeType::corner
-                                                                : NodeType::interior);
-        m.node_location.push_back(at_corner ? static_cast<std::int8_t>(sl[i].s == 0.0 ? 0 : 1) : -1);
-        m.node_image.push_back({bn.image.element, support_local<1>(s2, bn.image, bn.image.element)});
-        m.node_target.push_back(bn.kind == BuilderNodeKind::vertex_preimage ? bn.target : invalid_index);
-        if (left[i]) {
-          m.neighbor.push_back(base + static_cast<Index>(i) - 1);
-          m.neighbor_edge_kind.push_back(GraphEdgeKind::target_edge);
+        m.node_type[n] = bn.kind == BuilderNodeKind::ghost ? NodeType::ghost
+                         : at_corner                       ? NodeType::corner
+                                                           : NodeType::interior;
+        m.node_location[n] = at_corner ? static_cast<std::int8_t>(sl[i].s == 0.0 ? 0 : 1) : std::int8_t{-1};
+        m.node_image[n] = {bn.image.element, support_local<1>(s2, bn.image, bn.image.element)};
+        m.node_target[n] = bn.kind == BuilderNodeKind::vertex_preimage ? bn.target : invalid_index;
+        const auto slot = static_cast<Index>(i);
+        while (ending < regs.size() && regs[ending].b < slot) ++ending;
+        if (ending < regs.size() && regs[ending].b == slot) {
+          m.neighbor[entry] = base + slot - 1;
+          m.neighbor_edge_kind[entry++] = GraphEdgeKind::target_edge;
         }
-        if (right[i]) {
-          m.neighbor.push_back(base + static_cast<Index>(i) + 1);
-          m.neighbor_edge_kind.push_back(GraphEdgeKind::target_edge);
+        while (starting < regs.size() && regs[starting].a < slot) ++starting;
+        if (starting < regs.size() && regs[starting].a == slot) {
+          m.neighbor[entry] = base + slot + 1;
+          m.neighbor_edge_kind[entry++] = GraphEdgeKind::target_edge;
         }
-        m.neighbor_begin.push_back(static_cast<Index>(m.neighbor.size()));
+        m.neighbor_begin[n + 1] = static_cast<Index>(entry);
       }
-      m.node_begin[t + 1] = static_cast<Index>(m.node_type.size());
-      const Index rbase = static_cast<Index>(m.region_target.size());
-      for (std::size_t k = 0; k < regs.size(); ++k) {
+      m.node_begin[t + 1] = static_cast<Index>(slots_begin[t + 1]);
+      const auto rbase = static_cast<Index>(region);
+      for (std::size_t k = 0; k < regs.size(); ++k, ++region) {
         const auto& r = regs[k];
         const Index r_id = rbase + static_cast<Index>(k);
-        m.region_corners.push_back({base + r.a, base + r.b});
+        m.region_corners[region] = {base + r.a, base + r.b};
         // neighbour opposite corner 0 lies beyond corner 1 (the next region), and vice versa
         const Index next = (k + 1 < regs.size() && regs[k + 1].a == r.b) ? r_id + 1 : invalid_index;
         const Index prev = (k > 0 && regs[k - 1].b == r.a) ? r_id - 1 : invalid_index;
-        m.region_neighbors.push_back({next, prev});
-        m.region_target.push_back(r.target);
+        m.region_neighbors[region] = {next, prev};
+        m.region_target[region] = r.target;
         std::array<LocalPoint<1>, 2> from, to;
         from[0](0) = sl[r.a].s;
         from[1](0) = sl[r.b].s;
         to[0] = support_local<1>(s2, im.nodes[sl[r.a].node].image, r.target);
         to[1] = support_local<1>(s2, im.nodes[sl[r.b].node].image, r.target);
-        m.region_map.push_back(affine_through<1>(from, to));
+        m.region_map[region] = affine_through<1>(from, to);
         if (m.start_region[t] == invalid_index || (sl[r.a].s <= 0.5 && sl[r.b].s >= 0.5))
           m.start_region[t] = r_id;
       }
-      m.region_begin[t + 1] = static_cast<Index>(m.region_target.size());
+      m.region_begin[t + 1] = static_cast<Index>(region);
     }
+    m.neighbor.resize(entry);  // a slot between two regions was counted by both
+    m.neighbor_edge_kind.resize(entry);
   } else {
     // ---- triangle surfaces: a constrained triangulation per S1 element ------------------------
     const std::array<LocalPoint<2>, 3> ref = {reference_corner<2>(0), reference_corner<2>(1),
                                               reference_corner<2>(2)};
+    // Local position of a point at parameter s along local edge k (from corner k). Points must lie
+    // exactly on their edge line, or exact predicates would see them a rounding step off it.
+    // Edges 0 (y = 0) and 2 (x = 0) are exact anyway; on edge 1 (x + y = 1) the second
+    // coordinate is 1 - first, which is exact when first >= 1/2.
+    auto on_local_edge = [](int k, double s) -> LocalPoint<2> {
+      if (k == 0) return LocalPoint<2>(s, 0.0);
+      if (k == 2) return LocalPoint<2>(0.0, 1.0 - s);
+      if (s >= 0.5) return LocalPoint<2>(1.0 - s, s);
+      const double x = 1.0 - s;
+      return LocalPoint<2>(x, 1.0 - x);
+    };
     auto node_local = [&](Index node, Index t) -> LocalPoint<2> {
       const auto& p = im.nodes[node].place;
       if (p.kind == PlaceKind::vertex) return ref[s1.local_corner(t, p.index)];
-      if (p.kind == PlaceKind::element) return p.local;
+      if (p.kind == PlaceKind::element) return p.local();
       for (int k = 0; k < 3; ++k)
-        if (s1.element_edge(t, k) == p.index) {
-          const double s = s1.local_edge_is_forward(t, k) ? p.t : 1.0 - p.t;
-          // Points must lie exactly on their edge line, or exact predicates would see them
-          // a rounding step off it. Edges 0 (y = 0) and 2 (x = 0) are exact anyway; on edge 1
-          // (x + y = 1) the second coordinate is 1 - first, which is exact when first >= 1/2.
-          if (k == 0) return LocalPoint<2>(s, 0.0);
-          if (k == 2) return LocalPoint<2>(0.0, 1.0 - s);
-          if (s >= 0.5) return LocalPoint<2>(1.0 - s, s);
-          const double x = 1.0 - s;
-          return LocalPoint<2>(x, 1.0 - x);
-        }
+        if (s1.element_edge(t, k) == p.index)
+          return on_local_edge(k, s1.local_edge_is_forward(t, k) ? p.t() : 1.0 - p.t());
       return LocalPoint<2>::Zero();
     };
 
@@ -1111,42 +1188,54 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       Cdt cdt;
       detail::ElementClosure closure;
       detail::ClosureScratch scratch;
-      std::vector<LocalPoint<2>> points;
-      std::vector<std::array<int, 2>> segments;
-      std::vector<int> ring_begin, ring;
+      std::vector<detail::ClosureSegment> segments;
+      // Constraints as (a, b, graph) packed into one integer each, a < b: sorting integers is
+      // cheaper than comparing pairs, and the order is the order of (a, b).
+      std::vector<std::uint64_t> segment_keys;
+      std::vector<int> ring_start;  // per vertex, see detail::ring_starts
+      // Slot of each builder node on the element being closed, -1 elsewhere: the graph edges
+      // name builder nodes, and elements may carry thousands of them. Entries of the previous
+      // element are reset when the next one starts (also after an exception).
+      std::vector<int> slot_of_node;
       // per-element scratch, kept to avoid allocating for every element
       std::array<std::vector<int>, 3> edge_inner;
-      std::vector<std::pair<Index, int>> slot_of;
-      std::vector<std::pair<int, int>> graph_pairs;
-      std::vector<char> has_virtual;
-      std::vector<int> face_order, face_begin, comp_nodes, face_to_triangle;
+      std::vector<int> face_order, face_begin, comp_nodes, vertex_stamp;
+      std::vector<LocalPoint<2>> on_candidate;  // per vertex: its image on a candidate S2 element
       long long votes = 0;
+    };
+    auto segment_key = [](int a, int b, bool graph) {
+      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 33) |
+             (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::max(a, b))) << 1) |
+             static_cast<std::uint64_t>(graph);
     };
 
     // The general path: a constrained Delaunay triangulation of the same graph. Also the place
     // where invalid input (crossing edges, a node on another edge) is diagnosed.
-    auto close_by_cdt = [&](Index t, Workspace& w, int vertex_count,
-                            const std::vector<std::pair<int, int>>& graph_pairs) {
+    auto close_by_cdt = [&](Index t, Workspace& w, int vertex_count) {
+      const auto& points = w.et.positions;
       Cdt& cdt = w.cdt;
       cdt.clear();
       std::vector<Cdt::Vertex_handle> vh(vertex_count);
       for (int i = 0; i < vertex_count; ++i) {
         const auto before = cdt.number_of_vertices();
-        vh[i] = cdt.insert(Kernel::Point_2(w.points[i](0), w.points[i](1)));
+        vh[i] = cdt.insert(Kernel::Point_2(points[i](0), points[i](1)));
         if (cdt.number_of_vertices() == before)
           throw BuilderError(fmt::format("two nodes coincide on S1 element {} at local ({}, {})", t,
-                                         w.points[i](0), w.points[i](1)));
+                                         points[i](0), points[i](1)));
         vh[i]->info() = i;
       }
       try {
-        for (const auto& [a, b] : w.segments) cdt.insert_constraint(vh[a], vh[b]);
+        for (const auto& seg : w.segments) cdt.insert_constraint(vh[seg.a], vh[seg.b]);
       } catch (const Cdt::Intersection_of_constraints_exception&) {
         throw BuilderError(fmt::format("graph edges cross each other on S1 element {}", t));
       }
-      for (const auto& [a, b] : graph_pairs)
-        if (!cdt.is_edge(vh[a], vh[b]))
+      for (const auto& seg : w.segments)
+        if (seg.graph && !cdt.is_edge(vh[seg.a], vh[seg.b]))
           throw BuilderError(fmt::format(
               "a graph edge on S1 element {} passes through another node (or its endpoints coincide)", t));
+      auto is_graph_edge = [&](int a, int b) {
+        return std::binary_search(w.segment_keys.begin(), w.segment_keys.end(), segment_key(a, b, true));
+      };
       auto& closure = w.closure;
       closure.clear();
       int nf = 0;
@@ -1155,6 +1244,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) face_of[f->info()] = f;
       closure.triangles.resize(nf);
       closure.neighbors.resize(nf);
+      closure.graph_sides.assign(nf, 0);
       closure.face.assign(nf, -1);
       for (int f = 0; f < nf; ++f)
         for (int i = 0; i < 3; ++i) {
@@ -1162,6 +1252,11 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           const auto g = face_of[f]->neighbor(i);
           closure.neighbors[f][i] = cdt.is_infinite(g) ? -1 : g->info();
         }
+      for (int f = 0; f < nf; ++f)
+        for (int i = 0; i < 3; ++i)
+          if (face_of[f]->is_constrained(i) &&
+              is_graph_edge(closure.triangles[f][(i + 1) % 3], closure.triangles[f][(i + 2) % 3]))
+            closure.graph_sides[f] = static_cast<std::uint8_t>(closure.graph_sides[f] | (1u << i));
       // faces of the graph: flood fill across unconstrained sides
       std::vector<int> stack;
       for (int f0 = 0; f0 < nf; ++f0) {
@@ -1184,14 +1279,19 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
 
     auto close_element = [&](Index t, Workspace& w) {
       auto& et = w.et;
+      if (w.slot_of_node.size() != im.nodes.size()) w.slot_of_node.assign(im.nodes.size(), -1);
+      for (Index n : et.slots) w.slot_of_node[n] = -1;  // the previous element's
       et.clear();
       // slots: present corners, then edge nodes along edges 0, 1, 2, then interior nodes
       std::array<int, 3> corner_slot{-1, -1, -1};
       for (int k = 0; k < 3; ++k) {
         const Index n = im.node_at_domain_vertex[s1.element(t)[k]];
         if (n != invalid_index) {
+          ++et.corner_count;
           corner_slot[k] = static_cast<int>(et.slots.size());
           et.slots.push_back(n);
+          et.positions.push_back(ref[k]);
+          et.location.push_back(static_cast<std::int8_t>(k));
         }
       }
       auto& edge_inner = w.edge_inner;
@@ -1203,10 +1303,18 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           const Index n = fwd ? list[i] : list[list.size() - 1 - i];
           edge_inner[k].push_back(static_cast<int>(et.slots.size()));
           et.slots.push_back(n);
+          const double edge_t = im.nodes[n].place.t();
+          et.positions.push_back(on_local_edge(k, fwd ? edge_t : 1.0 - edge_t));
+          et.location.push_back(static_cast<std::int8_t>(k));
         }
       }
-      for (Index n : interior_nodes[t]) et.slots.push_back(n);
+      for (Index n : interior_nodes[t]) {
+        et.slots.push_back(n);
+        et.positions.push_back(im.nodes[n].place.local());
+        et.location.push_back(-1);
+      }
       const int ns = static_cast<int>(et.slots.size());
+      for (int i = 0; i < ns; ++i) w.slot_of_node[et.slots[i]] = i;
       for (int k = 0; k < 3; ++k) {
         auto& es = et.edge_slots;
         et.edge_slots_begin[k] = static_cast<int>(es.size());
@@ -1215,38 +1323,41 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         if (corner_slot[(k + 1) % 3] >= 0) es.push_back(corner_slot[(k + 1) % 3]);
       }
       et.edge_slots_begin[3] = static_cast<int>(et.edge_slots.size());
-      if (ns == 0) return;
+      if (ns == 0) {  // nothing of the map on this element
+        w.closure.clear();
+        return;
+      }
 
       // Vertices: the slots, then one "virtual" vertex per missing corner; faces touching a
       // virtual vertex lie outside D.
-      w.points.clear();
-      for (int i = 0; i < ns; ++i) w.points.push_back(node_local(et.slots[i], t));
       std::array<int, 3> corner_vertex{};
       for (int k = 0; k < 3; ++k) {
         if (corner_slot[k] >= 0) {
           corner_vertex[k] = corner_slot[k];
         } else {
-          corner_vertex[k] = static_cast<int>(w.points.size());
-          w.points.push_back(ref[k]);
+          corner_vertex[k] = static_cast<int>(et.positions.size());
+          et.positions.push_back(ref[k]);
         }
       }
-      const int vertex_count = static_cast<int>(w.points.size());
+      const int vertex_count = static_cast<int>(et.positions.size());
 
-      // graph edges as slot pairs (builder node -> slot via a sorted table: elements may carry
-      // thousands of nodes)
-      auto& graph_pairs = w.graph_pairs;
-      graph_pairs.clear();
-      auto& slot_of = w.slot_of;
-      slot_of.resize(ns);
-      for (int i = 0; i < ns; ++i) slot_of[i] = {et.slots[i], i};
-      std::sort(slot_of.begin(), slot_of.end());
-      auto find_slot = [&](Index node) {
-        const auto it = std::lower_bound(slot_of.begin(), slot_of.end(), std::make_pair(node, -1));
-        return it != slot_of.end() && it->first == node ? it->second : -1;
-      };
+      // constraints: the element boundary between consecutive points, and the graph edges
+      auto& keys = w.segment_keys;
+      keys.clear();
+      std::array<int, 2> boundary_start{};
+      for (int k = 0; k < 3; ++k) {
+        int previous = corner_vertex[k];
+        auto add_piece = [&](int next) {
+          if (k == 0 && previous == corner_vertex[0]) boundary_start = {previous, next};
+          keys.push_back(segment_key(previous, next, false));
+          previous = next;
+        };
+        for (int i : edge_inner[k]) add_piece(i);
+        add_piece(corner_vertex[(k + 1) % 3]);
+      }
       auto add_graph = [&](Index sidx) {
         const auto& seg = im.segments[sidx];
-        const int a = find_slot(seg.a), b = find_slot(seg.b);
+        const int a = w.slot_of_node[seg.a], b = w.slot_of_node[seg.b];
         if (a < 0 || b < 0)
           throw BuilderError(fmt::format(
               "internal: a piece of the preimage of S2 edge {} lacks an endpoint on S1 element {}",
@@ -1254,49 +1365,40 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         if (a == b)
           throw BuilderError(fmt::format(
               "a graph edge on S1 element {} passes through another node (or its endpoints coincide)", t));
-        graph_pairs.emplace_back(std::min(a, b), std::max(a, b));
+        keys.push_back(segment_key(a, b, true));
       };
       for (Index sidx : element_segments[t]) add_graph(sidx);
       for (int k = 0; k < 3; ++k)
         for (Index sidx : edge_segments[s1.element_edge(t, k)]) add_graph(sidx);
-      std::sort(graph_pairs.begin(), graph_pairs.end());
-      graph_pairs.erase(std::unique(graph_pairs.begin(), graph_pairs.end()), graph_pairs.end());
-
-      // constraints: the element boundary between consecutive points, and the graph edges
+      std::sort(keys.begin(), keys.end());
+      // each edge once: a boundary piece that is also a graph edge is a graph edge
       w.segments.clear();
-      std::array<int, 2> boundary_start{};
-      for (int k = 0; k < 3; ++k) {
-        int previous = corner_vertex[k];
-        auto add_piece = [&](int next) {
-          if (k == 0 && previous == corner_vertex[0]) boundary_start = {previous, next};
-          w.segments.push_back({std::min(previous, next), std::max(previous, next)});
-          previous = next;
-        };
-        for (int i : edge_inner[k]) add_piece(i);
-        add_piece(corner_vertex[(k + 1) % 3]);
+      for (std::size_t i = 0; i < keys.size(); ++i) {
+        const auto a = static_cast<int>(keys[i] >> 33), b = static_cast<int>((keys[i] >> 1) & 0xffffffffu);
+        const bool graph = (keys[i] & 1u) != 0;
+        if (!w.segments.empty() && w.segments.back().a == a && w.segments.back().b == b)
+          w.segments.back().graph = w.segments.back().graph || graph;
+        else
+          w.segments.push_back({a, b, graph});
       }
-      for (const auto& [a, b] : graph_pairs) w.segments.push_back({a, b});
-      std::sort(w.segments.begin(), w.segments.end());
-      w.segments.erase(std::unique(w.segments.begin(), w.segments.end()), w.segments.end());
 
-      if (!detail::close_by_faces(w.points, w.segments, boundary_start, w.closure, w.scratch)) {
-        close_by_cdt(t, w, vertex_count, graph_pairs);
-      }
+      if (!detail::close_by_faces(et.positions, w.segments, boundary_start, w.closure, w.scratch))
+        close_by_cdt(t, w, vertex_count);
       const auto& closure = w.closure;
       const int nf = static_cast<int>(closure.triangles.size());
       const int ncomp = closure.face_count;
 
-      // classify faces: virtual corner → outside; else common S2 element and image sign
-      auto& has_virtual = w.has_virtual;
-      has_virtual.assign(ncomp, 0);
-      // triangles grouped by face (counting sort)
-      auto& face_begin = w.face_begin;
+      // Classify the faces: touching a virtual corner → outside D; else the S2 element all its
+      // nodes map into, and the sign of its image there.
+      et.components.assign(ncomp, {});
+      et.corner_images.resize(nf);
+      auto& face_begin = w.face_begin;  // triangles grouped by face (counting sort)
       auto& face_order = w.face_order;
       face_begin.assign(ncomp + 1, 0);
       for (int f = 0; f < nf; ++f) {
         ++face_begin[closure.face[f] + 1];
-        for (int i = 0; i < 3; ++i)
-          if (closure.triangles[f][i] >= ns) has_virtual[closure.face[f]] = 1;
+        const auto& tr = closure.triangles[f];
+        if (tr[0] >= ns || tr[1] >= ns || tr[2] >= ns) et.components[closure.face[f]].outside = true;
       }
       for (int c = 0; c < ncomp; ++c) face_begin[c + 1] += face_begin[c];
       face_order.resize(nf);
@@ -1305,85 +1407,99 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         cursor.assign(face_begin.begin(), face_begin.end() - 1);
         for (int f = 0; f < nf; ++f) face_order[cursor[closure.face[f]]++] = f;
       }
-      et.components.assign(ncomp, {});
       auto& comp_nodes = w.comp_nodes;
+      auto& stamp = w.vertex_stamp;
+      stamp.assign(vertex_count, -1);
+      w.on_candidate.resize(vertex_count);
+      auto& y = w.on_candidate;
       for (int c = 0; c < ncomp; ++c) {
-        if (has_virtual[c]) continue;
+        auto& comp = et.components[c];
+        if (comp.outside) continue;
+        // The face's nodes, and the S2 vertices carrying their images: an S2 element containing
+        // every image has them all as corners.
         comp_nodes.clear();
+        std::array<Index, 3> support_union{};
+        int union_size = 0;
         for (int q = face_begin[c]; q < face_begin[c + 1]; ++q)
-          for (int i = 0; i < 3; ++i) comp_nodes.push_back(closure.triangles[face_order[q]][i]);
-        std::sort(comp_nodes.begin(), comp_nodes.end());
-        comp_nodes.erase(std::unique(comp_nodes.begin(), comp_nodes.end()), comp_nodes.end());
-        // start from the node with the most support vertices: it has the fewest candidates
-        int best = comp_nodes[0];
-        for (int i : comp_nodes)
-          if (im.nodes[et.slots[i]].image.count > im.nodes[et.slots[best]].image.count) best = i;
-        const Support<2>& best_support = im.nodes[et.slots[best]].image;
-        double best_area = 0.0;
-        for (Index cand : s2.vertex_elements(best_support.vertex[0])) {
-          if (!support_in_element<2>(s2, best_support, cand)) continue;
-          bool all = true;
-          for (int i : comp_nodes) all = all && support_in_element<2>(s2, im.nodes[et.slots[i]].image, cand);
-          if (!all) continue;
-          for (int k = 0; k < 3; ++k) all = all && im.edge_inserted[s2.element_edge(cand, k)];
-          if (!all) continue;
+          for (int i = 0; i < 3; ++i) {
+            const int v = closure.triangles[face_order[q]][i];
+            if (stamp[v] == c) continue;
+            stamp[v] = c;
+            comp_nodes.push_back(v);
+            const Support<2>& support = im.nodes[et.slots[v]].image;
+            for (int j = 0; j < support.count; ++j) {
+              const Index x = support.vertex[j];
+              int u = 0;
+              while (u < union_size && u < 3 && support_union[u] != x) ++u;
+              if (u == union_size) {
+                if (union_size < 3) support_union[u] = x;
+                ++union_size;  // more than 3: no S2 element contains them all
+              }
+            }
+          }
+        // The candidates are the S2 elements containing all the images, tried in the order of the
+        // star of one support vertex; of those with every edge inserted, the one where the face's
+        // image has the largest area wins (ties: the first).
+        auto try_candidate = [&](Index cand, double& best_area) {
+          for (int k = 0; k < 3; ++k)
+            if (!im.edge_inserted[s2.element_edge(cand, k)]) return;
+          for (int i : comp_nodes) y[i] = support_local<2>(s2, im.nodes[et.slots[i]].image, cand);
           double area = 0.0;
           for (int q = face_begin[c]; q < face_begin[c + 1]; ++q) {
             const auto& tr = closure.triangles[face_order[q]];
-            std::array<LocalPoint<2>, 3> y;
-            for (int i = 0; i < 3; ++i) y[i] = support_local<2>(s2, im.nodes[et.slots[tr[i]]].image, cand);
-            area += (y[1] - y[0])(0) * (y[2] - y[0])(1) - (y[1] - y[0])(1) * (y[2] - y[0])(0);
+            const LocalPoint<2> u = y[tr[1]] - y[tr[0]], v = y[tr[2]] - y[tr[0]];
+            area += u(0) * v(1) - u(1) * v(0);
           }
           if (std::abs(area) > std::abs(best_area)) {
             best_area = area;
-            et.components[c].target = cand;
+            comp.target = cand;
+            for (int q = face_begin[c]; q < face_begin[c + 1]; ++q) {
+              const auto& tr = closure.triangles[face_order[q]];
+              et.corner_images[face_order[q]] = {y[tr[0]], y[tr[1]], y[tr[2]]};
+            }
+          }
+        };
+        double best_area = 0.0;
+        if (union_size == 3) {
+          // Three S2 vertices: only the S2 element with exactly these corners (elements are
+          // distinct vertex sets) can contain every image.
+          for (Index cand : s2.vertex_elements(support_union[0]))
+            if (s2.local_corner(cand, support_union[1]) >= 0 && s2.local_corner(cand, support_union[2]) >= 0) {
+              try_candidate(cand, best_area);
+              break;
+            }
+        } else if (union_size < 3) {
+          // All images on one S2 edge or vertex: every element around it contains them. The
+          // search starts from a node with the most support vertices, the first such slot.
+          int best = comp_nodes[0];
+          for (int i : comp_nodes) {
+            const int count = im.nodes[et.slots[i]].image.count, best_count = im.nodes[et.slots[best]].image.count;
+            if (count > best_count || (count == best_count && i < best)) best = i;
+          }
+          const Support<2>& best_support = im.nodes[et.slots[best]].image;
+          for (Index cand : s2.vertex_elements(best_support.vertex[0])) {
+            bool all = true;
+            for (int i : comp_nodes) all = all && support_in_element<2>(s2, im.nodes[et.slots[i]].image, cand);
+            if (all) try_candidate(cand, best_area);
           }
         }
-        if (et.components[c].target != invalid_index) {
-          et.components[c].sign = best_area > 0 ? 1 : -1;
-          w.votes += et.components[c].sign * static_cast<long long>(face_begin[c + 1] - face_begin[c]);
+        if (comp.target != invalid_index) {
+          comp.sign = best_area > 0 ? 1 : -1;
+          w.votes += comp.sign * static_cast<long long>(face_begin[c + 1] - face_begin[c]);
         }
       }
-      // keep the triangles with real vertices only
-      auto& face_to_triangle = w.face_to_triangle;
-      face_to_triangle.assign(nf, -1);
-      int kept = 0;
-      for (int f = 0; f < nf; ++f)
-        if (!has_virtual[closure.face[f]]) face_to_triangle[f] = kept++;
-      et.triangles.reserve(kept);
-      for (int f = 0; f < nf; ++f) {
-        if (face_to_triangle[f] < 0) continue;
-        ElementTriangulation::Triangle tr{closure.triangles[f], {-1, -1, -1}, closure.face[f]};
-        for (int i = 0; i < 3; ++i) {
-          const int g = closure.neighbors[f][i];
-          if (g >= 0) tr.neighbors[i] = face_to_triangle[g];
-        }
-        et.triangles.push_back(tr);
-      }
-      // the walk starts from the triangle at the element's centroid
+      // the walk starts from the triangle at the element's centroid (the first inside D)
       const LocalPoint<2> centroid(1.0 / 3.0, 1.0 / 3.0);
+      const auto& points = et.positions;
       for (int f = 0; f < nf && et.centroid_triangle < 0; ++f) {
         const auto& tr = closure.triangles[f];
-        if (orient2d(w.points[tr[0]], w.points[tr[1]], centroid) >= 0 &&
-            orient2d(w.points[tr[1]], w.points[tr[2]], centroid) >= 0 &&
-            orient2d(w.points[tr[2]], w.points[tr[0]], centroid) >= 0)
-          et.centroid_triangle = face_to_triangle[f];
+        if (!et.components[closure.face[f]].outside && orient2d(points[tr[0]], points[tr[1]], centroid) >= 0 &&
+            orient2d(points[tr[1]], points[tr[2]], centroid) >= 0 &&
+            orient2d(points[tr[2]], points[tr[0]], centroid) >= 0)
+          et.centroid_triangle = f;
       }
-      // neighbours in ccw order: circulate the triangles around each node (combinatorial)
-      detail::closure_rings(closure, vertex_count, w.ring_begin, w.ring);
-      et.ring_begin.resize(ns + 1);
-      et.ring_begin[0] = 0;
-      et.ring.reserve(w.ring_begin[ns]);
-      for (int i = 0; i < ns; ++i) {
-        for (int r = w.ring_begin[i]; r < w.ring_begin[i + 1]; ++r) {
-          const int j = w.ring[r];
-          if (j >= ns) continue;  // virtual corner
-          const bool graph = std::binary_search(graph_pairs.begin(), graph_pairs.end(),
-                                                std::make_pair(std::min(i, j), std::max(i, j)));
-          et.ring.push_back(2 * j + (graph ? 1 : 0));
-        }
-        et.ring_begin[i + 1] = static_cast<int>(et.ring.size());
-      }
+      // where each node's ring of neighbours starts (they are circulated at assembly)
+      detail::ring_starts(closure, vertex_count, w.ring_start);
     };
 
     // Elements are independent: close them on all threads. Errors are reported for the
@@ -1445,107 +1561,105 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     // faces mapped with the map's orientation become regions, and that orientation is voted on
     // by all elements: the pass assembles with a guess (the vote of a sample of elements, or the
     // orientation given in the options) and runs again in the rare case the full vote differs.
-    auto side_key = [](int a, int b) {
-      return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b))) << 32) |
-             static_cast<std::uint32_t>(std::max(a, b));
-    };
     struct AssemblyScratch {
       std::vector<Index> triangle_region;
-      // Slot pairs (smaller, larger) that border a region, packed into one integer each: sorting
-      // and searching integers is cheaper than comparing pairs.
-      std::vector<std::uint64_t> region_sides;
       Index reversed_faces = 0;  // faces with a target element but the other orientation
+      // Where the next element's values go in the block's part, whose arrays are sized up front
+      // (see size_part) and written in place.
+      std::size_t elements = 0, nodes = 0, entries = 0, edge_nodes = 0, regions = 0;
     };
-    auto start_part = [](MapData<2>& part) {
-      part = MapData<2>{};
-      part.node_begin.assign(1, 0);
-      part.region_begin.assign(1, 0);
-      part.neighbor_begin.assign(1, 0);
-      part.edge_node_begin.assign(1, 0);
-    };
-    auto assemble_element = [&](Index t, const ElementTriangulation& et, MapData<2>& part, int orientation,
-                                AssemblyScratch& sc) {
-      const Index base = static_cast<Index>(part.node_type.size());
-      const Index rbase = static_cast<Index>(part.region_target.size());
+    auto assemble_element = [&](const Workspace& w, MapData<2>& part, int orientation, AssemblyScratch& sc) {
+      const ElementTriangulation& et = w.et;
+      const detail::ElementClosure& closure = w.closure;
+      const auto base = static_cast<Index>(sc.nodes);
+      const auto rbase = static_cast<Index>(sc.regions);
       const int ns = static_cast<int>(et.slots.size());
-      // regions: triangles of components with a target element and the map's orientation
-      sc.triangle_region.assign(et.triangles.size(), invalid_index);
-      sc.region_sides.clear();
+      const int nf = static_cast<int>(closure.triangles.size());
+      // Neighbour entries and regions are written in place too, into arrays reserved by their
+      // bounds but sized only a chunk ahead of what is written: sizing them to the bound would
+      // first-touch the slack (66 MiB more peak on the L7 spheres), appending costs a push_back
+      // per value. (A bound that is ever short grows the array instead.)
+      auto room = [](auto& array, std::size_t needed) {
+        if (array.size() < needed)
+          array.resize(std::max(needed, std::min(array.capacity(), array.size() + std::size_t{4096})));
+      };
+      // the element's shares of the bounds size_part reserved: 2 entries per closure side, and
+      // 3n - h - 3 sides for n vertices, h on the boundary (3 corners and the edge nodes)
+      const std::size_t n = et.positions.size();
+      const std::size_t h = 3 + et.edge_slots.size() - static_cast<std::size_t>(2 * et.corner_count);
+      const std::size_t max_entries = ns > 0 ? 2 * (3 * n - h - 3) : 0;
+      room(part.neighbor, sc.entries + max_entries);
+      room(part.neighbor_edge_kind, sc.entries + max_entries);
+      room(part.region_corners, sc.regions + static_cast<std::size_t>(nf));
+      room(part.region_neighbors, sc.regions + static_cast<std::size_t>(nf));
+      room(part.region_target, sc.regions + static_cast<std::size_t>(nf));
+      room(part.region_map, sc.regions + static_cast<std::size_t>(nf));
+      // regions: triangles of faces inside D with a target element and the map's orientation
+      sc.triangle_region.assign(nf, invalid_index);
       for (const auto& comp : et.components)
         if (comp.target != invalid_index && comp.sign != orientation) ++sc.reversed_faces;
       Index nr = 0;
-      for (std::size_t f = 0; f < et.triangles.size(); ++f) {
-        const auto& tr = et.triangles[f];
-        const auto& comp = et.components[tr.component];
-        if (comp.target == invalid_index || comp.sign != orientation) continue;
+      for (int f = 0; f < nf; ++f) {
+        const auto& comp = et.components[closure.face[f]];
+        if (comp.outside || comp.target == invalid_index || comp.sign != orientation) continue;
         sc.triangle_region[f] = rbase + nr++;
-        for (int i = 0; i < 3; ++i) {
-          const int a = tr.corners[i], b = tr.corners[(i + 1) % 3];
-          sc.region_sides.push_back(side_key(a, b));
-        }
       }
-      std::sort(sc.region_sides.begin(), sc.region_sides.end());
+      auto is_region = [&](int f) { return f >= 0 && sc.triangle_region[f] != invalid_index; };
       for (int i = 0; i < ns; ++i) {
         const auto& bn = im.nodes[et.slots[i]];
-        const LocalPoint<2> x = node_local(et.slots[i], t);
-        part.node_position.push_back(x);
-        int location = -1;
+        const std::size_t n = sc.nodes + static_cast<std::size_t>(i);
+        part.node_position[n] = et.positions[i];
         NodeType type = NodeType::interior;
-        if (bn.place.kind == PlaceKind::vertex) {
-          location = s1.local_corner(t, bn.place.index);
+        if (bn.place.kind == PlaceKind::vertex)
           type = bn.kind == BuilderNodeKind::ghost ? NodeType::ghost : NodeType::corner;
-        } else if (bn.place.kind == PlaceKind::edge) {
-          for (int k = 0; k < 3; ++k)
-            if (s1.element_edge(t, k) == bn.place.index) location = k;
+        else if (bn.place.kind == PlaceKind::edge)
           type = bn.kind == BuilderNodeKind::intersection ? NodeType::intersection : NodeType::touching;
-        }
-        part.node_type.push_back(type);
-        part.node_location.push_back(static_cast<std::int8_t>(location));
-        part.node_image.push_back({bn.image.element, support_local<2>(s2, bn.image, bn.image.element)});
-        part.node_target.push_back(bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target);
-        for (int r = et.ring_begin[i]; r < et.ring_begin[i + 1]; ++r) {
-          const int j = et.ring[r] >> 1;
-          const bool graph = (et.ring[r] & 1) != 0;
-          if (!graph && !std::binary_search(sc.region_sides.begin(), sc.region_sides.end(), side_key(i, j)))
-            continue;
-          part.neighbor.push_back(base + j);
-          part.neighbor_edge_kind.push_back(graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure);
-        }
-        part.neighbor_begin.push_back(static_cast<Index>(part.neighbor.size()));
+        part.node_type[n] = type;
+        part.node_location[n] = et.location[i];
+        part.node_image[n] = {bn.image.element, support_local<2>(s2, bn.image, bn.image.element)};
+        part.node_target[n] = bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target;
+        // graph edges, and closure edges that border a region (virtual corners are not nodes)
+        detail::visit_ring(closure, i, w.ring_start[i], [&](const detail::RingEntry& entry) {
+          if (entry.vertex >= ns || (!entry.graph && !is_region(entry.before) && !is_region(entry.after))) return;
+          part.neighbor[sc.entries] = base + entry.vertex;
+          part.neighbor_edge_kind[sc.entries++] = entry.graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure;
+        });
+        part.neighbor_begin[n + 1] = static_cast<Index>(sc.entries);
       }
-      part.node_begin.push_back(static_cast<Index>(part.node_type.size()));
+      sc.nodes += static_cast<std::size_t>(ns);
+      part.node_begin[sc.elements + 1] = static_cast<Index>(sc.nodes);
       for (int k = 0; k < 3; ++k) {
         for (int q = et.edge_slots_begin[k]; q < et.edge_slots_begin[k + 1]; ++q)
-          part.edge_node.push_back(base + et.edge_slots[q]);
-        part.edge_node_begin.push_back(static_cast<Index>(part.edge_node.size()));
+          part.edge_node[sc.edge_nodes++] = base + et.edge_slots[q];
+        part.edge_node_begin[3 * sc.elements + static_cast<std::size_t>(k) + 1] = static_cast<Index>(sc.edge_nodes);
       }
-      for (std::size_t f = 0; f < et.triangles.size(); ++f) {
+      for (int f = 0; f < nf; ++f) {
         if (sc.triangle_region[f] == invalid_index) continue;
-        const auto& tr = et.triangles[f];
-        const Index target = et.components[tr.component].target;
-        std::array<Index, 3> corners, neighbors;
-        std::array<LocalPoint<2>, 3> from, to;
+        const auto& tr = closure.triangles[f];
+        const Index target = et.components[closure.face[f]].target;
+        std::array<LocalPoint<2>, 3> from;
+        auto& corners = part.region_corners[sc.regions];
+        auto& neighbors = part.region_neighbors[sc.regions];
         for (int i = 0; i < 3; ++i) {
-          const int s = tr.corners[i];
+          const int s = tr[i];
           corners[i] = base + s;
-          const int g = tr.neighbors[i];
+          const int g = closure.neighbors[f][i];
           neighbors[i] = g >= 0 ? sc.triangle_region[g] : invalid_index;
-          from[i] = part.node_position[base + s];
-          to[i] = support_local<2>(s2, im.nodes[et.slots[s]].image, target);
+          from[i] = et.positions[s];
         }
-        part.region_corners.push_back(corners);
-        part.region_neighbors.push_back(neighbors);
-        part.region_target.push_back(target);
-        part.region_map.push_back(affine_through<2>(from, to));
+        part.region_target[sc.regions] = target;
+        part.region_map[sc.regions] = affine_through<2>(from, et.corner_images[f]);
+        ++sc.regions;
       }
-      part.region_begin.push_back(static_cast<Index>(part.region_target.size()));
+      part.region_begin[sc.elements + 1] = static_cast<Index>(sc.regions);
       if (nr > 0) {
         const int ct = et.centroid_triangle;
-        part.start_region.push_back((ct >= 0 && sc.triangle_region[ct] != invalid_index) ? sc.triangle_region[ct]
-                                                                                     : rbase);
+        part.start_region[sc.elements] =
+            (ct >= 0 && sc.triangle_region[ct] != invalid_index) ? sc.triangle_region[ct] : rbase;
       } else {
-        part.start_region.push_back(invalid_index);
+        part.start_region[sc.elements] = invalid_index;
       }
+      ++sc.elements;
     };
 
     // ---- close and assemble every element -----------------------------------------------------
@@ -1559,12 +1673,13 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     const Index block = (n1 + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
     // Closes and assembles every element; returns the elements that could not be closed, in
     // element order (blocks are in element order).
-    // A block's arrays are reserved before it is assembled: nodes and edge arrays exactly, the
-    // rest by the size of each element's closure (a triangulation of n points, h of them on the
-    // element boundary, has 2n - h - 2 triangles and 3n - h - 3 sides), which is exact unless
-    // faces lie outside D. Growing by push_back instead would copy the map several times and
-    // first-touch up to twice its memory, and the final shrink_to_fit would copy it again.
-    auto reserve_part = [&](MapData<2>& part, Index begin, Index end) {
+    // A block's arrays are sized before it is assembled: nodes and edge arrays exactly (written
+    // in place: a push_back per value costs more than the store), the rest reserved by the size
+    // of each element's closure (a triangulation of n points, h of them on the element boundary,
+    // has 2n - h - 2 triangles and 3n - h - 3 sides), which is exact unless faces lie outside D.
+    // Growing by push_back instead would copy the map several times and first-touch up to twice
+    // its memory, and the final shrink_to_fit would copy it again.
+    auto size_part = [&](MapData<2>& part, Index begin, Index end) {
       std::size_t nodes = 0, on_edges = 0, triangles = 0, sides = 0;
       for (Index t = begin; t < end; ++t) {
         std::size_t corners = 0, edge_inner = 0;
@@ -1581,17 +1696,20 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         sides += 3 * n - h - 3;
       }
       const std::size_t elements = static_cast<std::size_t>(end - begin);
-      part.node_begin.reserve(elements + 1);
-      part.region_begin.reserve(elements + 1);
-      part.start_region.reserve(elements);
-      part.edge_node_begin.reserve(3 * elements + 1);
-      part.node_position.reserve(nodes);
-      part.node_type.reserve(nodes);
-      part.node_location.reserve(nodes);
-      part.node_image.reserve(nodes);
-      part.node_target.reserve(nodes);
-      part.neighbor_begin.reserve(nodes + 1);
-      part.edge_node.reserve(on_edges);
+      part = MapData<2>{};
+      part.node_begin.resize(elements + 1);
+      part.region_begin.resize(elements + 1);
+      part.start_region.resize(elements);
+      part.edge_node_begin.resize(3 * elements + 1);
+      part.node_position.resize(nodes);
+      part.node_type.resize(nodes);
+      part.node_location.resize(nodes);
+      part.node_image.resize(nodes);
+      part.node_target.resize(nodes);
+      part.neighbor_begin.resize(nodes + 1);
+      part.edge_node.resize(on_edges);
+      // Neighbour entries and regions are bounded, not known: reserved (their slack stays
+      // untouched, so it costs no resident memory) and sized as they are written.
       part.neighbor.reserve(2 * sides);
       part.neighbor_edge_kind.reserve(2 * sides);
       part.region_corners.reserve(triangles);
@@ -1605,20 +1723,26 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       run_blocks([&](unsigned k) {
         const Index begin = std::min<Index>(n1, static_cast<Index>(k) * block);
         const Index end = std::min<Index>(n1, begin + block);
-        start_part(parts[k]);
-        reserve_part(parts[k], begin, end);
+        size_part(parts[k], begin, end);
         AssemblyScratch scratch;
         for (Index t = begin; t < end; ++t) {
           try {
             close_element(t, workspaces[k]);
             // after a failure the part is discarded: only the failures are still collected
-            if (failures[k].empty()) assemble_element(t, workspaces[k].et, parts[k], orientation, scratch);
+            if (failures[k].empty()) assemble_element(workspaces[k], parts[k], orientation, scratch);
           } catch (...) {
             failures[k].emplace_back(t, std::current_exception());
             if (!drop) return;  // finalize throws: the part and its count are not used
           }
         }
         reversed_faces[k] = scratch.reversed_faces;
+        // cut the arrays sized ahead back to what was written
+        parts[k].neighbor.resize(scratch.entries);
+        parts[k].neighbor_edge_kind.resize(scratch.entries);
+        parts[k].region_corners.resize(scratch.regions);
+        parts[k].region_neighbors.resize(scratch.regions);
+        parts[k].region_target.resize(scratch.regions);
+        parts[k].region_map.resize(scratch.regions);
       });
       std::vector<std::pair<Index, std::exception_ptr>> failed;
       for (auto& list : failures) failed.insert(failed.end(), list.begin(), list.end());

@@ -12,15 +12,15 @@ int orient2d_exact(double ax, double ay, double bx, double by, double cx, double
   return o == CGAL::LEFT_TURN ? 1 : (o == CGAL::RIGHT_TURN ? -1 : 0);
 }
 
-}  // namespace detail
-
-int incircle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
-             const Eigen::Vector2d& d) {
+int incircle_exact(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                   const Eigen::Vector2d& d) {
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   const auto side = CGAL::side_of_oriented_circle(K::Point_2(a.x(), a.y()), K::Point_2(b.x(), b.y()),
                                                   K::Point_2(c.x(), c.y()), K::Point_2(d.x(), d.y()));
   return side == CGAL::ON_POSITIVE_SIDE ? 1 : (side == CGAL::ON_NEGATIVE_SIDE ? -1 : 0);
 }
+
+}  // namespace detail
 
 bool segments_cross_properly(const Eigen::Vector2d& p, const Eigen::Vector2d& q,
                              const Eigen::Vector2d& r, const Eigen::Vector2d& s) {

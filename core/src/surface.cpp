@@ -211,14 +211,6 @@ WorldPoint<d> Surface<d>::element_normal(Index t) const {
 
 template <int d>
   requires SurfaceDimension<d>
-int Surface<d>::local_corner(Index t, Index v) const {
-  for (int k = 0; k <= d; ++k)
-    if (elements_[t][k] == v) return k;
-  return -1;
-}
-
-template <int d>
-  requires SurfaceDimension<d>
 Index Surface<d>::find_edge(Index a, Index b) const
   requires(d == 2)
 {

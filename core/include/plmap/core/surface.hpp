@@ -76,8 +76,14 @@ class Surface {
     return {vertex_element_.data() + vertex_element_begin_[v],
             vertex_element_.data() + vertex_element_begin_[v + 1]};
   }
-  /// Which corner of element t is vertex v, or -1.
-  int local_corner(Index t, Index v) const;
+  /// Which corner of element t is vertex v, or -1. (Inline: the map builder asks it millions of
+  /// times, to re-express images on S2 elements.)
+  int local_corner(Index t, Index v) const {
+    const auto& c = elements_[t];
+    for (int k = 0; k <= d; ++k)
+      if (c[k] == v) return k;
+    return -1;
+  }
 
   // ---- edges (d = 2) ----
   /// The two vertices of edge e, smaller index first.
