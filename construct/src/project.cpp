@@ -12,10 +12,12 @@
 // index order, so the result does not depend on the number of threads.
 
 #include "element_index.hpp"
+#include "image_overlaps.hpp"
 
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/construct/project.hpp>
 #include <plmap/core/errors.hpp>
+#include <plmap/core/face_removal.hpp>
 #include <plmap/core/map_builder.hpp>
 #include <plmap/core/regions.hpp>
 #include <plmap/core/snapping.hpp>
@@ -312,6 +314,19 @@ class Projector {
     t0 = Clock::now();
     FinalizeReport dropped;
     PlMap<d> map = std::move(builder).finalize(&dropped);
+    // The image measures give the covered measures and show where images overlap on S2: two
+    // sheets of S1 whose rays reach the same part of S2, of which the farther one leaves D.
+    ImageMeasures images = image_measures(map);
+    if (opt_.keep_nearer_sheet) {
+      const std::vector<Index> farther = projection::farther_overlapping_regions(map, images);
+      if (!farther.empty()) {
+        FaceRemovalReport removal;
+        map = remove_faces(map, std::span<const Index>(farther), &removal);
+        report.occluded_faces = removal.removed_faces;
+        report.occluded_regions = removal.removed_regions;
+        images = image_measures(map);
+      }
+    }
     report.seconds.finalize = seconds_since(t0);
     report.reversed_faces = dropped.reversed_faces;
     for (std::size_t i = 0; i < dropped.dropped_edges.size(); ++i) {
@@ -335,9 +350,8 @@ class Projector {
     ProjectionMeasures measures;
     measures.domain = s1_.measure();
     measures.target = s2_.measure();
-    const CoveredMeasure covered = covered_measure(map);
-    measures.covered_domain = covered.domain;
-    measures.covered_target = covered.target;
+    measures.covered_domain = images.covered.domain;
+    measures.covered_target = images.covered.target;
     report.seconds.total = seconds_since(t_total);
     return ProjectionResult<d>{std::move(map), std::move(report), measures};
   }

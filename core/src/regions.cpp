@@ -83,11 +83,11 @@ double local_simplex_measure(const std::array<LocalPoint<d>, d + 1>& x) {
 // per element first (S1: consecutive regions; S2: one running sum per S2 element) and scaled once.
 // The image corners are moved onto the region's S2 element exactly, as remote_intersection does.
 template <int d>
-CoveredMeasure covered_measure(const PlMap<d>& map) {
+ImageMeasures image_measures(const PlMap<d>& map) {
   const auto& m = map.data();
   const Surface<d>& s2 = map.target();
-  CoveredMeasure c;
-  std::vector<double> target_local(static_cast<std::size_t>(s2.element_count()), 0.0);
+  ImageMeasures out;
+  out.per_target.assign(static_cast<std::size_t>(s2.element_count()), 0.0);
   std::array<LocalPoint<d>, d + 1> x, y;
   for (Index t = 0; t < map.domain().element_count(); ++t) {
     if (map.regions_begin(t) == map.regions_end(t)) continue;
@@ -100,14 +100,19 @@ CoveredMeasure covered_measure(const PlMap<d>& map) {
         y[i] = transfer_to_element(s2, m.node_image[n], target).value_or(apply<d>(m.region_map[r], x[i]));
       }
       local += local_simplex_measure<d>(x);
-      target_local[static_cast<std::size_t>(target)] += local_simplex_measure<d>(y);
+      out.per_target[static_cast<std::size_t>(target)] += local_simplex_measure<d>(y);
     }
-    c.domain += local * map.domain().element_measure(t);
+    out.covered.domain += local * map.domain().element_measure(t);
   }
   for (Index t2 = 0; t2 < s2.element_count(); ++t2)
-    if (target_local[static_cast<std::size_t>(t2)] != 0.0)
-      c.target += target_local[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
-  return c;
+    if (out.per_target[static_cast<std::size_t>(t2)] != 0.0)
+      out.covered.target += out.per_target[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
+  return out;
+}
+
+template <int d>
+CoveredMeasure covered_measure(const PlMap<d>& map) {
+  return image_measures(map).covered;
 }
 
 template struct RemoteIntersection<1>;
@@ -118,5 +123,7 @@ template std::vector<RemoteIntersection<1>> remote_intersections(const PlMap<1>&
 template std::vector<RemoteIntersection<2>> remote_intersections(const PlMap<2>&);
 template CoveredMeasure covered_measure(const PlMap<1>&);
 template CoveredMeasure covered_measure(const PlMap<2>&);
+template ImageMeasures image_measures(const PlMap<1>&);
+template ImageMeasures image_measures(const PlMap<2>&);
 
 }  // namespace plmap

@@ -184,7 +184,10 @@ void project_steep_hill_in_domain(bool check_verify) {
     for (const char* solver : {"newton", "ceres"}) {
       const auto r = project<2>(s1, s2, {.solver = solver});
       expect_sound(r, *s2, check_verify);
-      EXPECT_GT(r.measures.covered_domain, 0.1);
+      // S2 is coarse (cells of 0.44 against S1's 0.07): the folds and the faces of the farther
+      // sheet that the flanks' images overlap (ProjectionOptions::keep_nearer_sheet) leave few
+      // whole faces; a part of the hill is covered all the same.
+      EXPECT_GT(r.measures.covered_domain, 0.05);
       EXPECT_FALSE(r.report.edges_not_inserted.empty());  // the fold is reported
       expect_sound(project<2>(s1, s2, {.solver = solver, .max_distance = 4.2}), *s2, check_verify);
     }
@@ -194,13 +197,11 @@ void project_steep_hill_in_domain(bool check_verify) {
 
 TEST(ProjectEdgeCases, SteepHillInDomainUnderAPlaneNeitherThrowsNorHangs) { project_steep_hill_in_domain(false); }
 
-// DISABLED: preimages beyond a focal point of the normals (the concave foot of the hill) are
-// rejected now (solvers/focal_points.hpp), but the convex flanks fan out without a focal point
-// and their rays reach the same part of S2 as the rays of the flat part around the hill: two
-// unfolded sheets overlap on S2 (verify: coverage/image_overlap, e.g. a whole S2 triangle mapped
-// into the flank and pieces of it into the flat part). Rejecting that needs a global test of
-// injectivity on S2, which project() does not have yet.
-TEST(ProjectEdgeCases, DISABLED_SteepHillInDomainUnderAPlaneGivesAValidMap) { project_steep_hill_in_domain(true); }
+// Preimages beyond a focal point of the normals (the concave foot of the hill) are rejected
+// (solvers/focal_points.hpp); the convex flanks fan out without a focal point and their rays reach
+// the same part of S2 as the rays of the flat part around the hill: of two overlapping faces the
+// one farther from its image leaves D (ProjectionOptions::keep_nearer_sheet), so the map is valid.
+TEST(ProjectEdgeCases, SteepHillInDomainUnderAPlaneGivesAValidMap) { project_steep_hill_in_domain(true); }
 
 TEST(ProjectEdgeCases, ARayBeyondTheFocalLineOfATroughIsAFold) {
   // S1: a trough, part of the cylinder of radius 1 around the line x = 0, z = 1 seen from inside

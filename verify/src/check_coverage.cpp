@@ -8,6 +8,8 @@
 
 #include "check_context.hpp"
 
+#include <plmap/core/triangle_overlap.hpp>
+
 namespace plmap::detail {
 
 namespace {
@@ -15,31 +17,6 @@ namespace {
 using Vec2 = Eigen::Vector2d;
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-/// Area of the intersection of two counter-clockwise triangles (Sutherland–Hodgman clipping of
-/// a by the three half-planes of b; at most 9 vertices, no allocation).
-double intersection_area(const std::array<Vec2, 3>& a, const std::array<Vec2, 3>& b) {
-  std::array<Vec2, 12> poly, next;
-  int count = 3;
-  for (int i = 0; i < 3; ++i) poly[i] = a[i];
-  for (int j = 0; j < 3 && count > 0; ++j) {
-    const Vec2& p = b[j];
-    const Vec2 dir = b[(j + 1) % 3] - p;
-    int out = 0;
-    for (int i = 0; i < count; ++i) {
-      const Vec2& cur = poly[i];
-      const Vec2& nxt = poly[(i + 1) % count];
-      const double sc = cross(dir, cur - p), sn = cross(dir, nxt - p);
-      if (sc >= 0) next[out++] = cur;
-      if ((sc >= 0) != (sn >= 0)) next[out++] = cur + (nxt - cur) * (sc / (sc - sn));
-    }
-    count = out;
-    std::swap(poly, next);
-  }
-  double area = 0.0;
-  for (int i = 0; i < count; ++i) area += cross(poly[i], poly[(i + 1) % count]);
-  return 0.5 * area;
-}
 
 template <int d>
 struct ImagePiece {
@@ -123,7 +100,7 @@ void run_coverage(const MapContext<d>& ctx, ViolationSink& sink) {
       if constexpr (d == 1)
         overlap = std::min(a.xmax, p.xmax) - std::max(a.xmin, p.xmin);
       else
-        overlap = intersection_area(a.triangle, p.triangle);
+        overlap = triangle_intersection_area(a.triangle, p.triangle);
       // An overlap counts when it is more than a relative share of the smaller piece and more
       // than corner positions off by local_tolerance could explain (a strip that wide along the
       // smaller boundary): image corners of thin regions carry the rounding of the projection.

@@ -44,6 +44,12 @@ struct ProjectionOptions {
   double snap_tolerance = 1e-10;
   /// Orientation of the map: 0 = automatic (majority), +1 preserving, -1 reversing.
   int orientation = 0;
+  /// Where two sheets of S1 project onto the same part of S2 (the projection is not injective
+  /// there: a steep hill whose flanks fan out over the plain around it, two bodies one above
+  /// the other), keep the nearer sheet: a face whose image overlaps the image of a nearer face
+  /// is left out of D (ProjectionReport::occluded_faces), as a vertex preimage keeps the nearest
+  /// solution. With false such maps are returned as they are, and fail verify's coverage check.
+  bool keep_nearer_sheet = true;
 };
 
 }  // namespace plmap

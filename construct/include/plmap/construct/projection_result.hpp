@@ -87,6 +87,11 @@ struct ProjectionReport {
   /// Faces of the graph left out of D because they map with the orientation opposite to the
   /// map's (FinalizeReport::reversed_faces): a fold that no edge failure reports.
   Index reversed_faces = 0;
+  /// Faces left out of D because their images overlap on S2 the images of faces whose points lie
+  /// nearer to their images (ProjectionOptions::keep_nearer_sheet), and their regions. An
+  /// element whose left-out face lay strictly inside it loses all its regions (core/face_removal.hpp).
+  Index occluded_faces = 0;
+  Index occluded_regions = 0;
   std::vector<EdgeNotInserted<d>> edges_not_inserted;
   /// Solver calls and how many did not converge (eq. 3 and eq. 4 together).
   long long solver_calls = 0;

@@ -43,4 +43,14 @@ struct CoveredMeasure {
 template <int d>
 CoveredMeasure covered_measure(const PlMap<d>& map);
 
+/// covered_measure, and per S2 element the images of its regions in its local coordinates, as d!
+/// times their measure: 1 where they cover the element exactly once, more where they overlap.
+struct ImageMeasures {
+  CoveredMeasure covered;
+  std::vector<double> per_target;  ///< one per S2 element
+};
+
+template <int d>
+ImageMeasures image_measures(const PlMap<d>& map);
+
 }  // namespace plmap

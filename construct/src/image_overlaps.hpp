@@ -1,0 +1,44 @@
+#pragma once
+/// \file
+/// Where normal projection is not injective: two sheets of S1 whose rays reach the same part of
+/// S2 (a steep hill in S1 whose flanks fan out over the plain around it, two bodies one above the
+/// other). Vertex preimages already keep the nearest solution, but faces formed from ghost nodes
+/// and boundary entries on the farther sheet can still map onto S2 elements that the nearer sheet
+/// covers, and the map would then fail the coverage invariant (images overlap on S2).
+///
+/// farther_overlapping_regions() finds those faces' regions: per S2 element, if the images of its
+/// regions add up to more than the element, it compares them pairwise, and of two overlapping
+/// regions names the one whose points lie farther from their images. project() then removes
+/// their faces (core/face_removal.hpp): of the two sheets the nearer one stays, as for a vertex
+/// preimage.
+
+#include <plmap/core/pl_map.hpp>
+#include <plmap/core/regions.hpp>
+
+#include <vector>
+
+namespace plmap::projection {
+
+/// Tolerances as verify's coverage check uses them (VerifyOptions): an overlap counts when it
+/// exceeds `measure_tolerance` times the smaller image and what corners off by
+/// `position_tolerance` (local coordinates) along the smaller boundary could explain.
+struct OverlapTolerances {
+  double measure_tolerance = 1e-8;
+  double position_tolerance = 1e-9;
+};
+
+/// The regions (sorted, each once) whose images overlap the image of a region whose points lie
+/// nearer to their images (ties: the larger region index is named). `images` are the map's
+/// image_measures (core/regions.hpp), which project() computes anyway for the covered measures:
+/// only S2 elements whose images add up to more than the element are looked at.
+template <int d>
+  requires SurfaceDimension<d>
+std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageMeasures& images,
+                                               const OverlapTolerances& tolerances = {});
+
+extern template std::vector<Index> farther_overlapping_regions<1>(const PlMap<1>&, const ImageMeasures&,
+                                                                  const OverlapTolerances&);
+extern template std::vector<Index> farther_overlapping_regions<2>(const PlMap<2>&, const ImageMeasures&,
+                                                                  const OverlapTolerances&);
+
+}  // namespace plmap::projection

@@ -1,0 +1,86 @@
+// farther_overlapping_regions (construct/src/image_overlaps.hpp): of two regions whose images
+// overlap on S2, the one farther from its image is named; maps whose images tile S2 name none.
+
+#include "image_overlaps.hpp"
+#include "projection_fixtures.hpp"
+
+#include <plmap/construct/project.hpp>
+#include <plmap/core/face_removal.hpp>
+#include <plmap/core/map_builder.hpp>
+
+#include <gtest/gtest.h>
+
+using namespace plmap;
+using namespace plmap::test;
+
+namespace {
+
+/// S1: two triangles, one above the other (z = 1 and z = 0); S2: one triangle at z = 2. The upper
+/// triangle's corners are the preimages of S2's corners; the lower one's corners are ghost nodes
+/// mapping into S2's triangle, so both S1 triangles map into it and their images overlap.
+PlMap<2> stacked_triangles() {
+  auto s1 = std::make_shared<const Surface<2>>(
+      std::vector<WorldPoint<2>>{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {0.2, 0.2, 0}, {0.7, 0.2, 0}, {0.2, 0.7, 0}},
+      std::vector<ElementCorners<2>>{{0, 1, 2}, {3, 4, 5}});
+  auto s2 = std::make_shared<const Surface<2>>(std::vector<WorldPoint<2>>{{0, 0, 2}, {1, 0, 2}, {0, 1, 2}},
+                                               std::vector<ElementCorners<2>>{{0, 1, 2}});
+  MapBuilder<2> b(s1, s2);
+  for (Index v = 0; v < 3; ++v) b.add_vertex_preimage_at_vertex(v, v);
+  b.add_ghost_node(3, {0, LocalPoint<2>(0.2, 0.2)});
+  b.add_ghost_node(4, {0, LocalPoint<2>(0.7, 0.2)});
+  b.add_ghost_node(5, {0, LocalPoint<2>(0.2, 0.7)});
+  b.add_target_element(0);
+  return std::move(b).finalize();
+}
+
+/// The same with curves: segments at y = 1 and y = 0 under one S2 segment at y = 2, which is
+/// inserted as two pieces, one on each sheet (between ghost nodes mapping into it).
+PlMap<1> stacked_segments() {
+  auto s1 = std::make_shared<const Surface<1>>(std::vector<WorldPoint<1>>{{0.1, 1}, {0.9, 1}, {0.3, 0}, {0.6, 0}},
+                                               std::vector<ElementCorners<1>>{{0, 1}, {2, 3}});
+  auto s2 = std::make_shared<const Surface<1>>(std::vector<WorldPoint<1>>{{0, 2}, {1, 2}},
+                                               std::vector<ElementCorners<1>>{{0, 1}});
+  MapBuilder<1> b(s1, s2);
+  const std::array<double, 4> at = {0.1, 0.9, 0.3, 0.6};
+  for (Index v = 0; v < 4; ++v) b.add_ghost_node(v, {0, LocalPoint<1>(at[v])});
+  const std::array<VertexCrossing, 2> upper = {VertexCrossing{0, 0.1}, VertexCrossing{1, 0.9}};
+  const std::array<VertexCrossing, 2> lower = {VertexCrossing{2, 0.3}, VertexCrossing{3, 0.6}};
+  b.add_edge_piece(0, upper, false, false);
+  b.add_edge_piece(0, lower, false, false);
+  return std::move(b).finalize();
+}
+
+}  // namespace
+
+TEST(ImageOverlaps, TheFartherOfTwoStackedTrianglesIsNamed) {
+  const PlMap<2> map = stacked_triangles();
+  ASSERT_EQ(map.region_count(), 2);
+  ASSERT_NE(verify_violations(map), "");  // the images overlap on S2: not a valid map
+  const auto farther = projection::farther_overlapping_regions(map, image_measures(map));
+  ASSERT_EQ(farther.size(), 1u);
+  EXPECT_EQ(map.node_element(map.data().region_corners[farther[0]][0]), 1);  // the lower triangle
+  const PlMap<2> kept = remove_faces(map, std::span<const Index>(farther));
+  EXPECT_EQ(kept.region_count(), 1);
+  EXPECT_EQ(verify_violations(kept), "");
+  EXPECT_TRUE(projection::farther_overlapping_regions(kept, image_measures(kept)).empty());
+}
+
+TEST(ImageOverlaps, TheFartherOfTwoStackedSegmentsIsNamed) {
+  const PlMap<1> map = stacked_segments();
+  ASSERT_EQ(map.region_count(), 2);
+  ASSERT_NE(verify_violations(map), "");
+  const auto farther = projection::farther_overlapping_regions(map, image_measures(map));
+  ASSERT_EQ(farther.size(), 1u);
+  EXPECT_EQ(map.node_element(map.data().region_corners[farther[0]][0]), 1);
+  EXPECT_EQ(verify_violations(remove_faces(map, std::span<const Index>(farther))), "");
+}
+
+TEST(ImageOverlaps, TilingImagesNameNothing) {
+  // A projection between two planes: the images tile S2 where S1 lies under it.
+  const auto s1 = grid(12, 12, 0.0, 1.0, 0.0, 1.0, 0.0, false, 0.15);
+  const auto s2 = grid(17, 17, -0.2, 1.2, -0.2, 1.2, 0.3, true, 0.15);
+  const auto r = project<2>(s1, s2, {.keep_nearer_sheet = false});
+  ASSERT_GT(r.map.region_count(), 100);
+  EXPECT_TRUE(projection::farther_overlapping_regions(r.map, image_measures(r.map)).empty());
+  EXPECT_EQ(r.report.occluded_faces, 0);
+}
