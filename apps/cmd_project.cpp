@@ -94,6 +94,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   j["regions"] = result.map.region_count();
   j["nodes"] = result.map.node_count();
   j["vertex_preimages"] = r.vertex_preimages;
+  j["vertices_found_by_ray_hits"] = r.vertices_found_by_ray_hits;
   j["ghost_nodes"] = r.ghost_nodes;
   j["edges_inserted"] = r.edges_inserted;
   j["edges_partly_inserted"] = r.edges_partly_inserted;

@@ -89,6 +89,75 @@ double overlap(const Image<d>& a, const Image<d>& b) {
   }
 }
 
+/// The S1 elements adjacent to element t (across its edges; d = 1 across its vertices).
+template <int d>
+void for_each_neighbour(const Surface<d>& s, Index t, auto&& f) {
+  if constexpr (d == 2) {
+    for (int k = 0; k < 3; ++k)
+      for (const auto& incidence : s.edge_elements(s.element_edge(t, k)))
+        if (incidence.element != t) f(incidence.element);
+  } else {
+    for (Index v : s.element(t))
+      for (Index u : s.vertex_elements(v))
+        if (u != t) f(u);
+  }
+}
+
+/// Marks as crowded every S2 element whose regions lie on S1 elements that do not form one
+/// edge-connected set. The preimage of an S2 element on one sheet is connected; it falls apart
+/// where two sheets map onto the element (and, harmlessly, where S1's boundary or a vertex it
+/// passes cuts it: those elements are then checked pairwise for nothing).
+template <int d>
+void mark_disconnected_preimages(const PlMap<d>& map, std::vector<char>& crowded) {
+  const auto& m = map.data();
+  const Surface<d>& s1 = map.domain();
+  const Index n2 = map.target().element_count(), nt = s1.element_count();
+  // per S2 element, the S1 elements with a region on it (each once: regions of one element are
+  // consecutive), as a compressed list
+  std::vector<Index> first(static_cast<std::size_t>(n2) + 1, 0), last_seen(static_cast<std::size_t>(n2), invalid_index);
+  for (Index t = 0; t < nt; ++t)
+    for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
+      if (const Index t2 = m.region_target[r]; last_seen[t2] != t) {
+        last_seen[t2] = t;
+        ++first[t2 + 1];
+      }
+  for (Index t2 = 0; t2 < n2; ++t2) first[t2 + 1] += first[t2];
+  std::vector<Index> elements(static_cast<std::size_t>(first[n2]));
+  {
+    std::vector<Index> fill(first.begin(), first.end() - 1);
+    std::fill(last_seen.begin(), last_seen.end(), invalid_index);
+    for (Index t = 0; t < nt; ++t)
+      for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
+        if (const Index t2 = m.region_target[r]; last_seen[t2] != t) {
+          last_seen[t2] = t;
+          elements[fill[t2]++] = t;
+        }
+  }
+  // one search through the S1 elements of each S2 element; member and reached are stamped
+  // with the S2 element, so they need no clearing
+  std::vector<Index> member(static_cast<std::size_t>(nt), invalid_index), reached(static_cast<std::size_t>(nt), invalid_index);
+  std::vector<Index> stack;
+  for (Index t2 = 0; t2 < n2; ++t2) {
+    if (crowded[t2] || first[t2 + 1] - first[t2] < 2) continue;
+    for (Index i = first[t2]; i < first[t2 + 1]; ++i) member[elements[i]] = t2;
+    Index count = 0;
+    stack.assign(1, elements[first[t2]]);
+    reached[elements[first[t2]]] = t2;
+    while (!stack.empty()) {
+      const Index t = stack.back();
+      stack.pop_back();
+      ++count;
+      for_each_neighbour(s1, t, [&](Index u) {
+        if (member[u] == t2 && reached[u] != t2) {
+          reached[u] = t2;
+          stack.push_back(u);
+        }
+      });
+    }
+    if (count < first[t2 + 1] - first[t2]) crowded[t2] = 1;
+  }
+}
+
 }  // namespace
 
 template <int d>
@@ -99,15 +168,17 @@ std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageM
   const Index n2 = map.target().element_count();
   const Index nt = map.domain().element_count();
 
-  // The images on one S2 element tile part of it, so they can only overlap where they add up to
-  // more than the element (per_target is d! times the measure: 1 for the whole element).
   std::vector<char> crowded(static_cast<std::size_t>(n2), 0);
-  bool any = false;
+  // The images on one S2 element from one sheet of S1 tile part of it without overlapping (the
+  // builder has dropped the edges where a sheet folds). So images can overlap only where they
+  // add up to more than the element (per_target is d! times the measure: 1 for the whole
+  // element), or where they come from parts of S1 that are not connected through elements
+  // mapping onto it: two sheets, each covering only part of the element.
   for (Index t2 = 0; t2 < n2; ++t2)
     if (images.per_target[static_cast<std::size_t>(t2)] > 1.0 + tolerances.measure_tolerance)
-      crowded[static_cast<std::size_t>(t2)] = any = true;
-  if (!any) return {};
-
+      crowded[static_cast<std::size_t>(t2)] = 1;
+  mark_disconnected_preimages(map, crowded);
+  if (std::find(crowded.begin(), crowded.end(), 1) == crowded.end()) return {};
   // The images on the crowded elements, grouped by element, compared pairwise.
   std::vector<std::vector<Image<d>>> on_target(static_cast<std::size_t>(n2));
   for (Index t = 0; t < nt; ++t)

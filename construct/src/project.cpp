@@ -197,9 +197,20 @@ class Projector {
     setup();
     report.seconds.setup = seconds_since(t0);
 
-    // ---- 1. vertex preimages -------------------------------------------------------------------
+    // ---- 1. rays from S1 vertices, then vertex preimages -------------------------------------
+    // The rays come first (they do not depend on the preimages): their hits on S2 seed the
+    // second search for S2 vertices that the search from nearby S1 elements does not map.
     t0 = Clock::now();
     const Index n2v = s2_.vertex_count(), n1v = s1_.vertex_count();
+    std::vector<std::optional<SurfacePoint<d>>> hit(n1v);
+    parallel_for_chunks(n1v, threads_, search_chunk, [&](Index begin, Index end) {
+      std::optional<double> mu;  // ray parameter of the previous hit
+      NearestElements<d> nearest(*index2_);
+      for (Index v = begin; v < end; ++v) hit[v] = cast_ray(v, mu, nearest);
+    });
+    report.seconds.ghost_nodes = seconds_since(t0);
+
+    t0 = Clock::now();
     std::vector<std::optional<SurfacePoint<d>>> preimage(n2v);
     parallel_for_chunks(n2v, threads_, search_chunk, [&](Index begin, Index end) {
       SearchOffset offset;  // target minus preimage of the previous vertex found
@@ -211,6 +222,7 @@ class Projector {
           offset.value = s2_.vertex(q) - s1_.world_position(preimage[q]->element, preimage[q]->local);
       }
     });
+    report.vertices_found_by_ray_hits = find_remaining_preimages_from_hits(hit, preimage);
     report.seconds.vertex_preimages = seconds_since(t0);
 
     t0 = Clock::now();
@@ -255,18 +267,10 @@ class Projector {
     std::vector<std::optional<SurfacePoint<d>>>().swap(preimage);
 
     // ---- 2. ghost nodes ------------------------------------------------------------------------
-    t0 = Clock::now();
-    std::vector<std::optional<SurfacePoint<d>>> hit(n1v);
-    parallel_for_chunks(n1v, threads_, search_chunk, [&](Index begin, Index end) {
-      std::optional<double> mu;  // ray parameter of the previous hit
-      NearestElements<d> nearest(*index2_);
-      for (Index v = begin; v < end; ++v)
-        if (vertex_state_[v] == VertexState::free) hit[v] = cast_ray(v, mu, nearest);
-    });
-    report.seconds.ghost_nodes = seconds_since(t0);
+    // S1 vertices that became preimages of S2 vertices in phase 1 are no longer free.
     t0 = Clock::now();
     for (Index v = 0; v < n1v; ++v) {
-      if (!hit[v]) continue;
+      if (!hit[v] || vertex_state_[v] != VertexState::free) continue;
       Barycentric<d> b = clean_barycentric(hit[v]->local);
       int at_vertex = -1;
       for (int k = 0; k <= d; ++k)
@@ -723,9 +727,16 @@ class Projector {
   /// closely, else with the kd-tree).
   std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const WorldPoint<d>& seed_point, int seed_count,
                                                       bool& solver_failed, NearestElements<d>* nearest) {
-    const WorldPoint<d>& target = s2_.vertex(q);
     std::array<std::uint32_t, 32> seeds;
     const int count = nearest_seeds(*index1_, nearest, seed_point, seed_count, seeds);
+    return walk_to_preimage(q, seeds, count, solver_failed);
+  }
+
+  /// Eq. (3) for S2 vertex q on walks across S1 from the first `count` of `seeds`: the solution
+  /// of least rank among those that pass every check, or nothing.
+  std::optional<SurfacePoint<d>> walk_to_preimage(Index q, const std::array<std::uint32_t, 32>& seeds, int count,
+                                                  bool& solver_failed) {
+    const WorldPoint<d>& target = s2_.vertex(q);
     std::optional<SurfacePoint<d>> best;
     double best_rank = std::numeric_limits<double>::infinity();
     std::array<Index, 64> visited;
@@ -773,6 +784,97 @@ class Projector {
     solver_failures_ += failures;
     solver_failed = failures > 0;
     return best;
+  }
+
+  /// The second search, for the S2 vertices that find_vertex_preimage left without a preimage;
+  /// returns how many it maps. The first search walks from the S1 elements whose centroids lie
+  /// nearest to q, and those can all lie on a sheet of S1 that is nearer to S2 but does not
+  /// reach q (a body above a wider one: the upper body's elements are the nearest to every S2
+  /// vertex above both). The rays know better: an S1 vertex whose ray hits S2 next to q lies on
+  /// a sheet that sees q, so here the walks start from the stars of the S1 vertices with the
+  /// hits nearest to q. Hits farther from q than `reach` (the largest distance between the hits
+  /// of two corners of one S1 element, with a margin) cannot belong to an element holding q's
+  /// preimage and are not tried, so S2 vertices far outside S1's shadow cost one tree query.
+  /// Whether the rays from the corners of S1 element t all hit S2 and their hits span a simplex
+  /// of the element's orientation (seen along the mean direction). Preimages found by the second
+  /// search must pass this: where rays have crossed (beyond a focal line of the field, which a
+  /// twisted discrete field can hide from the focal test, whose polynomial then has no real
+  /// root) the hits are mirrored, and such an element does not see S2 as a sheet.
+  bool rays_keep_orientation(Index t, const projection::PointCloud<d + 1>& hits,
+                             const std::vector<Index>& hit_id) const {
+    std::array<WorldPoint<d>, d + 1> c, h;
+    WorldPoint<d> direction = WorldPoint<d>::Zero();
+    for (int k = 0; k <= d; ++k) {
+      const Index v = s1_.element(t)[k];
+      if (hit_id[v] == invalid_index) return false;
+      c[k] = s1_.vertex(v);
+      h[k] = hits.points[hit_id[v]];
+      direction += nu_[v];
+    }
+    const auto side = [&](const std::array<WorldPoint<d>, d + 1>& p) {
+      if constexpr (d == 2)
+        return (p[1] - p[0]).cross(p[2] - p[0]).dot(direction);
+      else
+        return (p[1] - p[0]).x() * direction.y() - (p[1] - p[0]).y() * direction.x();
+    };
+    return side(c) * side(h) > 0.0;
+  }
+
+  Index find_remaining_preimages_from_hits(const std::vector<std::optional<SurfacePoint<d>>>& hit,
+                                           std::vector<std::optional<SurfacePoint<d>>>& preimage) {
+    std::vector<Index> missing;
+    for (Index q = 0; q < s2_.vertex_count(); ++q)
+      if (!preimage[q]) missing.push_back(q);
+    if (missing.empty()) return 0;
+    // the hits as a point cloud, and the S1 vertex of each
+    projection::PointCloud<d + 1> cloud;
+    std::vector<Index> hit_vertex, cloud_id(s1_.vertex_count(), invalid_index);
+    for (Index v = 0; v < s1_.vertex_count(); ++v) {
+      if (!hit[v]) continue;
+      cloud_id[v] = static_cast<Index>(cloud.points.size());
+      cloud.points.push_back(s2_.world_position(hit[v]->element, hit[v]->local));
+      hit_vertex.push_back(v);
+    }
+    if (cloud.points.empty()) return 0;
+    double reach = 0.0;
+    for (Index t = 0; t < s1_.element_count(); ++t) {
+      const auto corners = s1_.element(t);
+      for (int a = 0; a <= d; ++a)
+        for (int b = a + 1; b <= d; ++b) {
+          const Index ia = cloud_id[corners[a]], ib = cloud_id[corners[b]];
+          if (ia != invalid_index && ib != invalid_index)
+            reach = std::max(reach, (cloud.points[ia] - cloud.points[ib]).norm());
+        }
+    }
+    reach *= 1.5;
+    const projection::KdTree<d + 1> tree(d + 1, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+    std::vector<std::optional<SurfacePoint<d>>> found(missing.size());
+    parallel_for_chunks(static_cast<Index>(missing.size()), threads_, search_chunk, [&](Index begin, Index end) {
+      constexpr int nearest_hits = 4;
+      for (Index i = begin; i < end; ++i) {
+        const Index q = missing[i];
+        std::array<std::uint32_t, nearest_hits> ids;
+        std::array<double, nearest_hits> squared;
+        const int n = static_cast<int>(tree.knnSearch(s2_.vertex(q).data(), nearest_hits, ids.data(), squared.data()));
+        std::array<std::uint32_t, 32> seeds;
+        int count = 0;
+        for (int j = 0; j < n && squared[j] <= reach * reach; ++j)
+          for (Index t : s1_.vertex_elements(hit_vertex[ids[j]]))
+            if (count < 32 && std::find(seeds.begin(), seeds.begin() + count, t) == seeds.begin() + count)
+              seeds[count++] = static_cast<std::uint32_t>(t);
+        if (count == 0) continue;
+        bool solver_failed = false;
+        found[i] = walk_to_preimage(q, seeds, count, solver_failed);
+        if (found[i] && !rays_keep_orientation(found[i]->element, cloud, cloud_id)) found[i].reset();
+      }
+    });
+    Index mapped = 0;
+    for (std::size_t i = 0; i < missing.size(); ++i)
+      if (found[i]) {
+        preimage[missing[i]] = found[i];
+        ++mapped;
+      }
+    return mapped;
   }
 
   // ---- phase 2: rays from S1 vertices ---------------------------------------------------------------

@@ -72,6 +72,9 @@ struct ProjectionReport {
   /// already carries another preimage, or onto the same point of an S1 edge or element as
   /// another (the nearest one is kept).
   Index vertex_conflicts = 0;
+  /// Of vertex_preimages: those found only by the second search, from the S1 vertices whose
+  /// rays hit S2 next to the S2 vertex (e.g. under a nearer sheet of S1 that does not reach it).
+  Index vertices_found_by_ray_hits = 0;
   Index domain_vertices = 0;
   Index ghost_nodes = 0;  ///< S1 vertices mapped into S2 (not onto an S2 vertex)
   /// S1 vertices whose ray hits S2 exactly at an S2 vertex that has no preimage of its own: they
