@@ -786,15 +786,6 @@ class Projector {
     return best;
   }
 
-  /// The second search, for the S2 vertices that find_vertex_preimage left without a preimage;
-  /// returns how many it maps. The first search walks from the S1 elements whose centroids lie
-  /// nearest to q, and those can all lie on a sheet of S1 that is nearer to S2 but does not
-  /// reach q (a body above a wider one: the upper body's elements are the nearest to every S2
-  /// vertex above both). The rays know better: an S1 vertex whose ray hits S2 next to q lies on
-  /// a sheet that sees q, so here the walks start from the stars of the S1 vertices with the
-  /// hits nearest to q. Hits farther from q than `reach` (the largest distance between the hits
-  /// of two corners of one S1 element, with a margin) cannot belong to an element holding q's
-  /// preimage and are not tried, so S2 vertices far outside S1's shadow cost one tree query.
   /// Whether the rays from the corners of S1 element t all hit S2 and their hits span a simplex
   /// of the element's orientation (seen along the mean direction). Preimages found by the second
   /// search must pass this: where rays have crossed (beyond a focal line of the field, which a
@@ -820,6 +811,15 @@ class Projector {
     return side(c) * side(h) > 0.0;
   }
 
+  /// The second search, for the S2 vertices that find_vertex_preimage left without a preimage;
+  /// returns how many it maps. The first search walks from the S1 elements whose centroids lie
+  /// nearest to q, and those can all lie on a sheet of S1 that is nearer to S2 but does not
+  /// reach q (a body above a wider one: the upper body's elements are the nearest to every S2
+  /// vertex above both). The rays know better: an S1 vertex whose ray hits S2 next to q lies on
+  /// a sheet that sees q, so here the walks start from the stars of the S1 vertices with the
+  /// hits nearest to q. Hits farther from q than `reach` (the largest distance between the hits
+  /// of two corners of one S1 element, with a margin) cannot belong to an element holding q's
+  /// preimage and are not tried, so S2 vertices far outside S1's shadow cost one tree query.
   Index find_remaining_preimages_from_hits(const std::vector<std::optional<SurfacePoint<d>>>& hit,
                                            std::vector<std::optional<SurfacePoint<d>>>& preimage) {
     std::vector<Index> missing;
