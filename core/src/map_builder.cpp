@@ -834,6 +834,9 @@ AffineMap<d> affine_through(const std::array<LocalPoint<d>, d + 1>& from,
 
 /// Joins the parts assembled per block of elements (each numbered from 0) into one map: arrays
 /// are concatenated and node, region and entry indices shifted by the sizes of the parts before.
+/// One array at a time, with the parts' copies of it released as soon as it is joined: the
+/// parts and the map are then never held whole at once (with two blocks the peak of the 200k
+/// plane pair was the map twice over).
 template <class RunBlocks>
 void concatenate_parts(std::vector<MapData<2>>& parts, Index elements, MapData<2>& m,
                        RunBlocks&& run_blocks) {
@@ -846,8 +849,9 @@ void concatenate_parts(std::vector<MapData<2>>& parts, Index elements, MapData<2
     m.orientation = orientation;
     return;
   }
-  std::vector<std::size_t> node0(np + 1, 0), region0(np + 1, 0), entry0(np + 1, 0), edge0(np + 1, 0),
-      element0(np + 1, 0);
+  // offsets[k]: where part k starts in the joined arrays, by what the arrays count
+  using Offsets = std::vector<std::size_t>;
+  Offsets node0(np + 1, 0), region0(np + 1, 0), entry0(np + 1, 0), edge0(np + 1, 0), element0(np + 1, 0);
   for (std::size_t k = 0; k < np; ++k) {
     node0[k + 1] = node0[k] + parts[k].node_type.size();
     region0[k + 1] = region0[k] + parts[k].region_target.size();
@@ -857,59 +861,60 @@ void concatenate_parts(std::vector<MapData<2>>& parts, Index elements, MapData<2
   }
   if (element0[np] != static_cast<std::size_t>(elements))
     throw BuilderError("internal: the assembled blocks do not cover every element");
-  const std::size_t nn = node0[np], nr = region0[np], ne = entry0[np], ng = edge0[np];
-  m.node_position.resize(nn);
-  m.node_type.resize(nn);
-  m.node_location.resize(nn);
-  m.node_image.resize(nn);
-  m.node_target.resize(nn);
-  m.neighbor_begin.assign(nn + 1, 0);
-  m.neighbor.resize(ne);
-  m.neighbor_edge_kind.resize(ne);
-  m.edge_node_begin.assign(3 * static_cast<std::size_t>(elements) + 1, 0);
-  m.edge_node.resize(ng);
-  m.region_corners.resize(nr);
-  m.region_neighbors.resize(nr);
-  m.region_target.resize(nr);
-  m.region_map.resize(nr);
-  m.node_begin.assign(static_cast<std::size_t>(elements) + 1, 0);
-  m.region_begin.assign(static_cast<std::size_t>(elements) + 1, 0);
-  m.start_region.assign(static_cast<std::size_t>(elements), invalid_index);
-  run_blocks([&](unsigned k) {
-    MapData<2>& p = parts[k];
-    const auto dn = static_cast<Index>(node0[k]), dr = static_cast<Index>(region0[k]);
-    const auto de = static_cast<Index>(entry0[k]), dg = static_cast<Index>(edge0[k]);
-    const std::size_t e0 = element0[k];
-    auto copy = [](const auto& from, auto& to, std::size_t at) {
-      std::copy(from.begin(), from.end(), to.begin() + static_cast<std::ptrdiff_t>(at));
-    };
-    copy(p.node_position, m.node_position, node0[k]);
-    copy(p.node_type, m.node_type, node0[k]);
-    copy(p.node_location, m.node_location, node0[k]);
-    copy(p.node_image, m.node_image, node0[k]);
-    copy(p.node_target, m.node_target, node0[k]);
-    copy(p.neighbor_edge_kind, m.neighbor_edge_kind, entry0[k]);
-    copy(p.region_target, m.region_target, region0[k]);
-    copy(p.region_map, m.region_map, region0[k]);
-    for (std::size_t i = 0; i < p.neighbor.size(); ++i) m.neighbor[entry0[k] + i] = p.neighbor[i] + dn;
-    for (std::size_t i = 0; i + 1 < p.neighbor_begin.size(); ++i)
-      m.neighbor_begin[node0[k] + i + 1] = p.neighbor_begin[i + 1] + de;
-    for (std::size_t i = 0; i < p.edge_node.size(); ++i) m.edge_node[edge0[k] + i] = p.edge_node[i] + dn;
-    for (std::size_t i = 0; i + 1 < p.edge_node_begin.size(); ++i)
-      m.edge_node_begin[3 * e0 + i + 1] = p.edge_node_begin[i + 1] + dg;
-    for (std::size_t i = 0; i < p.region_corners.size(); ++i)
-      for (int c = 0; c < 3; ++c) {
-        m.region_corners[region0[k] + i][c] = p.region_corners[i][c] + dn;
-        const Index nb = p.region_neighbors[i][c];
-        m.region_neighbors[region0[k] + i][c] = nb == invalid_index ? invalid_index : nb + dr;
-      }
-    for (std::size_t i = 0; i < p.start_region.size(); ++i) {
-      m.node_begin[e0 + i + 1] = p.node_begin[i + 1] + dn;
-      m.region_begin[e0 + i + 1] = p.region_begin[i + 1] + dr;
-      m.start_region[e0 + i] = p.start_region[i] == invalid_index ? invalid_index : p.start_region[i] + dr;
-    }
-    p = MapData<2>{};  // release the part
+  Offsets edge_begin0(np + 1, 0);  // edge_node_begin has three entries per element
+  for (std::size_t k = 0; k <= np; ++k) edge_begin0[k] = 3 * element0[k];
+
+  // Joins array `field` of the parts at `at` (each part's values passed through shift(k, value)),
+  // then releases the parts' copies.
+  auto join = [&](auto field, const Offsets& at, auto shift) {
+    auto& out = m.*field;
+    out.resize(at[np]);
+    run_blocks([&](unsigned k) {
+      auto& in = parts[k].*field;
+      for (std::size_t i = 0; i < in.size(); ++i) out[at[k] + i] = shift(k, in[i]);
+      std::remove_reference_t<decltype(in)>().swap(in);
+    });
+  };
+  // The same for a CSR begin array: a leading 0, then each part's ends shifted by the values of
+  // the parts before.
+  auto join_begins = [&](std::vector<Index> MapData<2>::*field, const Offsets& at, const Offsets& values) {
+    auto& out = m.*field;
+    out.assign(at[np] + 1, 0);
+    run_blocks([&](unsigned k) {
+      auto& in = parts[k].*field;
+      for (std::size_t i = 0; i + 1 < in.size(); ++i)
+        out[at[k] + i + 1] = in[i + 1] + static_cast<Index>(values[k]);
+      std::vector<Index>().swap(in);
+    });
+  };
+  const auto same = [](unsigned, const auto& value) { return value; };
+  const auto node_index = [&](unsigned k, Index n) { return n + static_cast<Index>(node0[k]); };
+  const auto region_index = [&](unsigned k, Index r) {
+    return r == invalid_index ? invalid_index : r + static_cast<Index>(region0[k]);
+  };
+  join(&MapData<2>::node_position, node0, same);
+  join(&MapData<2>::node_type, node0, same);
+  join(&MapData<2>::node_location, node0, same);
+  join(&MapData<2>::node_image, node0, same);
+  join(&MapData<2>::node_target, node0, same);
+  join_begins(&MapData<2>::neighbor_begin, node0, entry0);
+  join(&MapData<2>::neighbor, entry0, node_index);
+  join(&MapData<2>::neighbor_edge_kind, entry0, same);
+  join_begins(&MapData<2>::edge_node_begin, edge_begin0, edge0);
+  join(&MapData<2>::edge_node, edge0, node_index);
+  join(&MapData<2>::region_corners, region0, [&](unsigned k, std::array<Index, 3> c) {
+    for (Index& n : c) n = node_index(k, n);
+    return c;
   });
+  join(&MapData<2>::region_neighbors, region0, [&](unsigned k, std::array<Index, 3> c) {
+    for (Index& r : c) r = region_index(k, r);
+    return c;
+  });
+  join(&MapData<2>::region_target, region0, same);
+  join(&MapData<2>::region_map, region0, same);
+  join_begins(&MapData<2>::node_begin, element0, node0);
+  join_begins(&MapData<2>::region_begin, element0, region0);
+  join(&MapData<2>::start_region, element0, region_index);
 }
 
 /// Gives back the slack of arrays that were reserved by an upper bound, so the map holds about
