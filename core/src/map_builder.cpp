@@ -124,6 +124,11 @@ class Buckets {
   Index group_count() const { return static_cast<Index>(begin_.size()) - 1; }
   std::span<const Index> operator[](Index g) const { return {items_.data() + begin_[g], items_.data() + begin_[g + 1]}; }
   std::span<Index> group(Index g) { return {items_.data() + begin_[g], items_.data() + begin_[g + 1]}; }
+  /// Gives the memory back (the buckets are empty afterwards).
+  void release() {
+    std::vector<Index>().swap(begin_);
+    std::vector<Index>().swap(items_);
+  }
 
  private:
   std::vector<Index> begin_, items_;
@@ -1081,6 +1086,12 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       bucket();
     }
     m.orientation = im.options.orientation != 0 ? im.options.orientation : (votes >= 0 ? 1 : -1);
+    // From here on only the slots, the pending regions and the nodes are read. The segments and
+    // the buckets go before the map's arrays are sized, which is where finalize's memory peaks
+    // (1M circles: 510 -> 449 MiB above the inputs).
+    std::vector<Segment>().swap(im.segments);
+    for (Buckets* b : {&interior_nodes, &edge_nodes, &element_segments, &edge_segments}) b->release();
+    std::vector<std::pair<Index, int>>().swap(slot_index);
     // Sizes are known now (nodes; regions and neighbour entries once the orientation has
     // filtered the regions): the arrays are sized once and written in place.
     std::size_t kept = 0;
