@@ -817,9 +817,9 @@ class Projector {
   /// reach q (a body above a wider one: the upper body's elements are the nearest to every S2
   /// vertex above both). The rays know better: an S1 vertex whose ray hits S2 next to q lies on
   /// a sheet that sees q, so here the walks start from the stars of the S1 vertices with the
-  /// hits nearest to q. Hits farther from q than `reach` (the largest distance between the hits
-  /// of two corners of one S1 element, with a margin) cannot belong to an element holding q's
-  /// preimage and are not tried, so S2 vertices far outside S1's shadow cost one tree query.
+  /// hits nearest to q. A hit farther from q than the largest distance between the hits of two
+  /// corners of an element around its vertex (with a margin) cannot belong to an element holding
+  /// q's preimage and is not tried, so S2 vertices far outside S1's shadow cost one tree query.
   Index find_remaining_preimages_from_hits(const std::vector<std::optional<SurfacePoint<d>>>& hit,
                                            std::vector<std::optional<SurfacePoint<d>>>& preimage) {
     std::vector<Index> missing;
@@ -836,17 +836,21 @@ class Projector {
       hit_vertex.push_back(v);
     }
     if (cloud.points.empty()) return 0;
-    double reach = 0.0;
+    // reach[i]: 1.5 times the largest distance between the hits of two corners of an element
+    // around the S1 vertex of hit i (a local bound: grazing rays elsewhere do not widen it)
+    std::vector<double> reach(cloud.points.size(), 0.0);
     for (Index t = 0; t < s1_.element_count(); ++t) {
       const auto corners = s1_.element(t);
+      double diameter = 0.0;
       for (int a = 0; a <= d; ++a)
         for (int b = a + 1; b <= d; ++b) {
           const Index ia = cloud_id[corners[a]], ib = cloud_id[corners[b]];
           if (ia != invalid_index && ib != invalid_index)
-            reach = std::max(reach, (cloud.points[ia] - cloud.points[ib]).norm());
+            diameter = std::max(diameter, (cloud.points[ia] - cloud.points[ib]).norm());
         }
+      for (Index v : corners)
+        if (cloud_id[v] != invalid_index) reach[cloud_id[v]] = std::max(reach[cloud_id[v]], 1.5 * diameter);
     }
-    reach *= 1.5;
     const projection::KdTree<d + 1> tree(d + 1, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
     std::vector<std::optional<SurfacePoint<d>>> found(missing.size());
     parallel_for_chunks(static_cast<Index>(missing.size()), threads_, search_chunk, [&](Index begin, Index end) {
@@ -858,10 +862,12 @@ class Projector {
         const int n = static_cast<int>(tree.knnSearch(s2_.vertex(q).data(), nearest_hits, ids.data(), squared.data()));
         std::array<std::uint32_t, 32> seeds;
         int count = 0;
-        for (int j = 0; j < n && squared[j] <= reach * reach; ++j)
+        for (int j = 0; j < n; ++j) {
+          if (!(squared[j] <= reach[ids[j]] * reach[ids[j]])) continue;
           for (Index t : s1_.vertex_elements(hit_vertex[ids[j]]))
             if (count < 32 && std::find(seeds.begin(), seeds.begin() + count, t) == seeds.begin() + count)
               seeds[count++] = static_cast<std::uint32_t>(t);
+        }
         if (count == 0) continue;
         bool solver_failed = false;
         found[i] = walk_to_preimage(q, seeds, count, solver_failed);
