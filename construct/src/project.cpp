@@ -1216,6 +1216,29 @@ class Projector {
     return f;
   }
 
+  /// For plan_edge: the piece of S2 edge e that ends where the edge leaves S1 at `exit`, found by
+  /// walking from there towards the first vertex until the walk leaves S1 (as the walk from the
+  /// second vertex in plan_edge). Appended as a piece if it is one and lies beyond
+  /// `covered_until` (where the walks before it ended); returns whether it was.
+  bool walk_back_from_exit(Index e, const BoundaryEntry<d>& exit, double covered_until,
+                             PlanBuffer<d>& buffer) const {
+    auto& crossings = buffer.crossings;
+    const std::size_t begin = crossings.size();
+    const WalkResult<d> w = walk(e, exit.place, 1.0 - exit.eta, std::nullopt, true, buffer);
+    const double back_to = 1.0 - w.eta;  // in the edge's direction
+    if (w.end != WalkEnd::left_boundary || w.crossing_count == 0 || !(back_to >= covered_until - 1e-9)) {
+      crossings.resize(begin);  // nothing over S1 before the exit, or not a clean piece
+      return false;
+    }
+    // measured from the first vertex again, in the edge's direction, ending at the exit
+    std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(begin), crossings.end());
+    for (std::size_t i = begin; i < crossings.size(); ++i)
+      crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
+    crossings.push_back(exit.crossing);
+    buffer.pieces.push_back({static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(crossings.size()), false, false});
+    return true;
+  }
+
   /// Walks along S2 edge e and appends its pieces (and what could not be walked) to `buffer`.
   PlannedEdge plan_edge(Index e, unsigned worker, PlanBuffer<d>& buffer) const {
     PlannedEdge plan;
@@ -1258,15 +1281,24 @@ class Projector {
       const std::size_t begin = crossings.size();
       crossings.push_back(entry.crossing);  // the piece starts where the edge enters S1
       const WalkResult<d> w = walk(e, entry.place, entry.eta, pb, false, buffer);
+      const double walked_until = covered_until;  // before this entry
       covered_until = w.end == WalkEnd::reached ? 1.0 : w.eta;
       if (w.end == WalkEnd::failed) {
         crossings.resize(begin);
-        if (w.steps == 0 && w.reason != EdgeFailureReason::solver_failure) continue;  // an exit
+        if (w.steps == 0 && w.reason != EdgeFailureReason::solver_failure) {
+          // An exit: the edge leaves S1 here. If no walk has come this far, the stretch before
+          // it may still lie over S1 with neither of its ends found (it enters across a
+          // boundary edge whose end vertices both miss S2, and the first vertex has no
+          // preimage): walking backwards from the exit finds it.
+          walk_back_from_exit(e, entry, walked_until, buffer);
+          continue;
+        }
         buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
         continue;
       }
-      if (w.end == WalkEnd::left_boundary && w.crossing_count == 0) {
+      if (w.end == WalkEnd::left_boundary && w.crossing_count == 0) {  // an exit, as above
         crossings.resize(begin);
+        walk_back_from_exit(e, entry, walked_until, buffer);
         continue;
       }
       const bool reached = w.end == WalkEnd::reached;

@@ -7,6 +7,7 @@
 
 #include <plmap/construct/project.hpp>
 #include <plmap/core/regions.hpp>
+#include <plmap/core/triangle_overlap.hpp>
 #include <plmap/verify/generators/rc_generators.hpp>
 
 #include <gtest/gtest.h>
@@ -454,6 +455,41 @@ TEST(ProjectEdgeCases, TargetEdgesEnteringWhereNoBoundaryVertexSeesTheTarget) {
   EXPECT_TRUE(r.report.edges_not_inserted.empty()) << describe_failures(r.report);
   EXPECT_EQ(r.report.edges_partly_inserted, 2);
   EXPECT_NEAR(r.measures.covered_domain, 0.5 * 0.3 * 0.0375, 1e-12);
+}
+
+TEST(ProjectEdgeCases, TargetEdgeFromOutsideIntoAHoleWithNoEndFound) {
+  // S1: the unit square with the hole [0.25, 0.5] x [0.5, 0.75], its left side one boundary edge
+  // from (0, 0) to (0, 1). S2: the triangle A (-0.5, 0.4), B (0.45, 0.6), C (0.6, 0.3). Edge AB
+  // enters S1 across the left side, whose ends both lie outside S2, and leaves it into the hole,
+  // where B lies: neither end has a preimage, and the boundary-entry search finds only the point
+  // where it leaves (across the hole's left side, whose end (0.25, 0.5) lies inside S2). The
+  // stretch before that point is found by walking back from it (it once was not: AB was taken
+  // for an edge outside D and the faces beside it were lost, found by PlanarPairsCoverTheExactOverlap
+  // with 1500 cases).
+  auto s1 = std::make_shared<const Surface<2>>(
+      std::vector<WorldPoint<2>>{{1, 1, 0}, {0.5, 0.5, 0}, {1, 0, 0}, {0.5, 0.75, 0}, {0.5, 1, 0},
+                                 {0, 1, 0}, {0, 0, 0}, {0.25, 0.5, 0}, {0.5, 0, 0}, {0.25, 0.75, 0}},
+      std::vector<ElementCorners<2>>{{0, 1, 2}, {0, 3, 1}, {0, 4, 3}, {5, 6, 7}, {1, 7, 8},
+                                     {1, 8, 2}, {3, 4, 9}, {9, 5, 7}, {8, 7, 6}, {4, 5, 9}});
+  // A, C, B: counter-clockwise, as triangle_intersection_area wants; S2 faces S1 (clockwise)
+  const std::array<Eigen::Vector2d, 3> acb{Eigen::Vector2d(-0.5, 0.4), Eigen::Vector2d(0.6, 0.3),
+                                           Eigen::Vector2d(0.45, 0.6)};
+  auto s2 = std::make_shared<const Surface<2>>(
+      std::vector<WorldPoint<2>>{{acb[0].x(), acb[0].y(), 0.1}, {acb[1].x(), acb[1].y(), 0.1}, {acb[2].x(), acb[2].y(), 0.1}},
+      std::vector<ElementCorners<2>>{{0, 2, 1}});
+  // the exact overlap: the S2 triangle clipped by every S1 triangle
+  double overlap = 0.0;
+  for (Index t = 0; t < s1->element_count(); ++t) {
+    std::array<Eigen::Vector2d, 3> corners;
+    for (int k = 0; k < 3; ++k) corners[k] = s1->corner(t, k).head<2>();
+    overlap += triangle_intersection_area(corners, acb);
+  }
+  ASSERT_GT(overlap, 0.1);
+  const auto r = project<2>(s1, s2);
+  expect_sound(r, *s2);
+  EXPECT_TRUE(r.report.edges_not_inserted.empty()) << describe_failures(r.report);
+  EXPECT_EQ(r.report.edges_outside, 0);
+  EXPECT_NEAR(r.measures.covered_domain, overlap, 1e-12);
 }
 
 namespace {
