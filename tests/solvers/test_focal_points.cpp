@@ -99,6 +99,9 @@ RC_GTEST_PROP(FocalPoints, TheVerdictIsScaleInvariant, ()) {
   const double mu = *rc::gen::inRange(-300, 300) / 10.0;
   const int element_exponent = *rc::gen::inRange(-6, 7);
   const int direction_exponent = *rc::gen::inRange(-6, 7);
+  // Exactly at the focal distance (|mu| = 1, where the determinant vanishes) the verdict is
+  // rounding's, and scaling may flip it (found with 1000 cases: mu = 1, s = 1e-6, l = 0.1).
+  RC_PRE(std::abs(std::abs(mu) - 1.0) > 1e-6);
   const double s = std::pow(10.0, element_exponent), l = std::pow(10.0, direction_exponent);
   const auto n = towards<2>(triangle, WorldPoint<2>(0.4, 0.1, focus_height));
   Corners2 scaled;
@@ -108,8 +111,7 @@ RC_GTEST_PROP(FocalPoints, TheVerdictIsScaleInvariant, ()) {
   RC_ASSERT(reaches_without_focal_point<2>(scaled, scaled_n, inside, mu * s / l) ==
             reaches_without_focal_point<2>(triangle, n, inside, mu));
   // and the focal distance is where the verdict changes: the focus lies at t = 1
-  if (std::abs(mu) > 0 && std::abs(std::abs(mu) - 1.0) > 1e-6)
-    RC_ASSERT(reaches_without_focal_point<2>(triangle, n, inside, mu) == (mu < 1.0));
+  if (std::abs(mu) > 0) RC_ASSERT(reaches_without_focal_point<2>(triangle, n, inside, mu) == (mu < 1.0));
 }
 
 }  // namespace
