@@ -62,25 +62,6 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// Runs f(i) for i in [0, n) on `threads` threads in contiguous blocks.
-template <class F>
-void parallel_for(Index n, unsigned threads, F&& f) {
-  if (threads <= 1 || n < 64) {
-    for (Index i = 0; i < n; ++i) f(i);
-    return;
-  }
-  std::vector<std::thread> pool;
-  const Index block = (n + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
-  for (unsigned k = 0; k < threads; ++k) {
-    const Index begin = static_cast<Index>(k) * block, end = std::min<Index>(n, begin + block);
-    if (begin >= end) break;
-    pool.emplace_back([&f, begin, end] {
-      for (Index i = begin; i < end; ++i) f(i);
-    });
-  }
-  for (auto& t : pool) t.join();
-}
-
 /// Runs f(worker, begin, end) on `threads` threads, worker k taking the k-th of contiguous ranges
 /// that cover [0, n).
 template <class F>
@@ -97,6 +78,14 @@ void parallel_for_ranges(Index n, unsigned threads, F&& f) {
     pool.emplace_back([&f, k, begin, end] { f(k, begin, end); });
   }
   for (auto& t : pool) t.join();
+}
+
+/// Runs f(i) for i in [0, n) on `threads` threads in contiguous blocks.
+template <class F>
+void parallel_for(Index n, unsigned threads, F&& f) {
+  parallel_for_ranges(n, threads, [&f](unsigned, Index begin, Index end) {
+    for (Index i = begin; i < end; ++i) f(i);
+  });
 }
 
 /// Runs f(begin, end) over [0, n) cut into chunks of a fixed size, the chunks spread over

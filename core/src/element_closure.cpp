@@ -269,6 +269,17 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
     out.face.push_back(face_id);
     return t;
   };
+  // The triangle poly[0..2] that is left of a face (or is the whole face): false if it is not
+  // counter-clockwise, else it closes the face.
+  auto close_face = [&]() {
+    if (orient2d(p[poly[0]], p[poly[1]], p[poly[2]]) <= 0) return false;
+    const int t = add_triangle(poly[0], poly[1], poly[2]);
+    attach(3 * t + 0, poly_side[1]);
+    attach(3 * t + 1, poly_side[2]);
+    attach(3 * t + 2, poly_side[0]);
+    ++face_id;
+    return true;
+  };
   for (int f = 0; f < faces; ++f) {
     if (f == outer) continue;
     const int h0 = s.face_first[f];
@@ -284,12 +295,7 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
     if (k < 3) return false;
     if (k == 3) {  // already a triangle (most faces): counter-clockwise is all there is to check
       if (poly[0] == poly[1] || poly[1] == poly[2] || poly[2] == poly[0]) return false;
-      if (orient2d(p[poly[0]], p[poly[1]], p[poly[2]]) <= 0) return false;
-      const int t = add_triangle(poly[0], poly[1], poly[2]);
-      attach(3 * t + 0, poly_side[1]);
-      attach(3 * t + 1, poly_side[2]);
-      attach(3 * t + 2, poly_side[0]);
-      ++face_id;
+      if (!close_face()) return false;
       continue;
     }
     // A vertex twice on one face: dangling edge or pinched face.
@@ -358,12 +364,7 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
       std::copy(poly.begin() + best + 1, poly.begin() + m, poly.begin() + best);
       std::copy(poly_side.begin() + best + 1, poly_side.begin() + m, poly_side.begin() + best);
     }
-    if (orient2d(p[poly[0]], p[poly[1]], p[poly[2]]) <= 0) return false;
-    const int t = add_triangle(poly[0], poly[1], poly[2]);
-    attach(3 * t + 0, poly_side[1]);
-    attach(3 * t + 1, poly_side[2]);
-    attach(3 * t + 2, poly_side[0]);
-    ++face_id;
+    if (!close_face()) return false;
   }
   out.face_count = face_id;
 

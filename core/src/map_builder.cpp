@@ -922,6 +922,17 @@ void concatenate_parts(std::vector<MapData<2>>& parts, Index elements, MapData<2
   join(&MapData<2>::start_region, element0, region_index);
 }
 
+/// Sizes the per-node arrays of a map (or of a part of one) for `nodes` nodes.
+template <int d>
+void size_node_arrays(MapData<d>& m, std::size_t nodes) {
+  m.node_position.resize(nodes);
+  m.node_type.resize(nodes);
+  m.node_location.resize(nodes);
+  m.node_image.resize(nodes);
+  m.node_target.resize(nodes);
+  m.neighbor_begin.resize(nodes + 1);
+}
+
 /// Gives back the slack of arrays that were reserved by an upper bound, so the map holds about
 /// what it needs; slack under 1/16 of an array is kept, as copying the array to save it would
 /// cost more time (and first-touched memory) than the slack is worth.
@@ -1097,12 +1108,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     std::size_t kept = 0;
     for (const auto& r : all_regions) kept += r.sign == m.orientation ? 1 : 0;
     const std::size_t node_count = all_slots.size();
-    m.node_position.resize(node_count);
-    m.node_type.resize(node_count);
-    m.node_location.resize(node_count);
-    m.node_image.resize(node_count);
-    m.node_target.resize(node_count);
-    m.neighbor_begin.resize(node_count + 1);
+    size_node_arrays(m, node_count);
     m.neighbor.resize(2 * kept);
     m.neighbor_edge_kind.resize(2 * kept);
     m.region_corners.resize(kept);
@@ -1717,12 +1723,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       part.region_begin.resize(elements + 1);
       part.start_region.resize(elements);
       part.edge_node_begin.resize(3 * elements + 1);
-      part.node_position.resize(nodes);
-      part.node_type.resize(nodes);
-      part.node_location.resize(nodes);
-      part.node_image.resize(nodes);
-      part.node_target.resize(nodes);
-      part.neighbor_begin.resize(nodes + 1);
+      size_node_arrays(part, nodes);
       part.edge_node.resize(on_edges);
       // Neighbour entries and regions are bounded, not known: reserved (their slack stays
       // untouched, so it costs no resident memory) and sized as they are written.
