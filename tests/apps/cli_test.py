@@ -4,6 +4,8 @@ and checks exit codes, JSON output, the files written and the error messages.
 
     cli_test.py --list                                  the case names, one per line
     cli_test.py --plmap BIN --work DIR CASE             runs one case in DIR (emptied first)
+
+Cases live here and in cli_cases_*.py beside this file (one file per topic).
 """
 
 import argparse
@@ -408,6 +410,20 @@ def generate_is_reproducible():
     j = run_json("info", "hole.off", "--json")
     expect(close(j["measure"], 1.0 - 0.25 * 0.25), f"square minus hole: {j['measure']}")
     expect_clean_error(["generate", "grid", "--cells", 3, "--hole", "-o", "h.off"], mention="4")
+
+
+def load_case_files():
+    """Runs every cli_cases_*.py beside this file in this module's namespace, so that each topic
+    keeps its cases in a file of its own while sharing run(), expect() and the CASES registry."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    for name in sorted(os.listdir(here)):
+        if name.startswith("cli_cases_") and name.endswith(".py"):
+            path = os.path.join(here, name)
+            with open(path) as f:
+                exec(compile(f.read(), path, "exec"), globals())
+
+
+load_case_files()
 
 
 def main():
