@@ -5,7 +5,8 @@ namespace plmap::surface_io_detail {
 
 namespace {
 
-std::size_t read_section_count(Cursor& cursor, std::string_view keyword) {
+/// Reads "<keyword> <count>"; `noun` names one item in messages ("vertex count 5 ...").
+std::size_t read_section_count(Cursor& cursor, std::string_view keyword, std::string_view noun) {
   std::string_view line;
   if (!cursor.read_content_line(line))
     cursor.fail(fmt::format("file ends where '{} <count>' was expected", keyword));
@@ -14,9 +15,9 @@ std::size_t read_section_count(Cursor& cursor, std::string_view keyword) {
   if (word != keyword)
     cursor.fail_at(word, fmt::format("expected '{} <count>', found '{}'", keyword, word.substr(0, 40)));
   const std::string_view count = t.next();
-  const std::int64_t n = read_integer(cursor, count, fmt::format("the {} count", keyword));
-  if (!t.empty()) cursor.fail_at(line, fmt::format("unexpected text after the {} count", keyword));
-  return checked_count(cursor, cursor.offset_of(count), n, 2, keyword);
+  const std::int64_t n = read_integer(cursor, count, fmt::format("the {} count", noun));
+  if (!t.empty()) cursor.fail_at(line, fmt::format("unexpected text after the {} count", noun));
+  return checked_count(cursor, cursor.offset_of(count), n, 2, noun);
 }
 
 }  // namespace
@@ -35,7 +36,7 @@ RawMesh<1> parse_curve_text(Cursor& cursor, const SurfaceReadOptions&) {
       cursor.fail_at(version, fmt::format("unsupported curve format version '{}'", version.substr(0, 40)));
     if (!t.empty()) cursor.fail_at(line, "unexpected text after the version");
   }
-  const std::size_t nv = read_section_count(cursor, "vertices");
+  const std::size_t nv = read_section_count(cursor, "vertices", "vertex");
   mesh.vertices.reserve(nv);
   for (std::size_t i = 0; i < nv; ++i) {
     if (!cursor.read_content_line(line)) cursor.fail(fmt::format("file ends after {} of {} vertices", i, nv));
@@ -45,7 +46,7 @@ RawMesh<1> parse_curve_text(Cursor& cursor, const SurfaceReadOptions&) {
     if (!t.empty()) cursor.fail_at(line, fmt::format("vertex {} has more than 2 coordinates", i));
     mesh.vertices.push_back(p);
   }
-  const std::size_t ns = read_section_count(cursor, "segments");
+  const std::size_t ns = read_section_count(cursor, "segments", "segment");
   mesh.elements.reserve(ns);
   for (std::size_t s = 0; s < ns; ++s) {
     if (!cursor.read_content_line(line)) cursor.fail(fmt::format("file ends after {} of {} segments", s, ns));
@@ -57,7 +58,7 @@ RawMesh<1> parse_curve_text(Cursor& cursor, const SurfaceReadOptions&) {
     mesh.element_offset.push_back(cursor.offset_of(line));
   }
   if (cursor.read_content_line(line)) cursor.fail_at(line, "unexpected text after the last segment");
-  check_elements(cursor, mesh);
+  check_elements(cursor, mesh, VertexNumbering::zero_based);
   return mesh;
 }
 

@@ -1,8 +1,9 @@
 // Gmsh MSH reader: versions 2.2 and 4.1, ASCII and binary. Hand-written: libgmsh-dev would
 // bring the whole mesher with process-global state into plmap_core, and its errors are not
 // located the way plmap's are. Triangles (element type 2) make a triangle surface, lines
-// (type 1) make a curve; other element types are skipped. Only nodes used by the kept elements
-// become vertices, in the order of the $Nodes section.
+// (type 1) make a curve; elements of other dimensions are skipped, elements of the same dimension
+// that plmap cannot read refuse the file (see skip_other_type). Only nodes used by the kept
+// elements become vertices, in the order of the $Nodes section.
 #include "surface_parse_support.hpp"
 
 #include <unordered_map>
@@ -11,12 +12,52 @@ namespace plmap::surface_io_detail {
 
 namespace {
 
-/// Nodes per element for Gmsh's element types 1..31 (0 = unknown). Needed to skip elements of
-/// other types in binary files, where there are no line breaks to skip by.
-int nodes_per_element_type(std::int64_t type) {
-  static constexpr int table[] = {0, 2,  3,  4,  4,  8,  6,  5,  3,  6,  9,  10, 27, 18, 14, 1,
-                                  8, 20, 15, 13, 9,  10, 12, 15, 15, 21, 4,  5,  6,  20, 35, 56};
-  if (type < 1 || type >= static_cast<std::int64_t>(std::size(table))) return 0;
+/// What plmap knows about one of Gmsh's element types 1..31: its node count (needed to skip such
+/// elements in binary files, where there are no line breaks to skip by), its dimension (which
+/// decides whether skipping it can change the surface or curve being read) and a description
+/// for messages.
+struct ElementTypeInfo {
+  int nodes = 0;  // 0: a type plmap does not know
+  int dimension = 0;
+  std::string_view description;
+};
+
+ElementTypeInfo element_type_info(std::int64_t type) {
+  static constexpr ElementTypeInfo table[] = {
+      {},
+      {2, 1, "2-node line"},
+      {3, 2, "3-node triangle"},
+      {4, 2, "4-node quadrangle"},
+      {4, 3, "4-node tetrahedron"},
+      {8, 3, "8-node hexahedron"},
+      {6, 3, "6-node prism"},
+      {5, 3, "5-node pyramid"},
+      {3, 1, "3-node second-order line"},
+      {6, 2, "6-node second-order triangle"},
+      {9, 2, "9-node second-order quadrangle"},
+      {10, 3, "10-node second-order tetrahedron"},
+      {27, 3, "27-node second-order hexahedron"},
+      {18, 3, "18-node second-order prism"},
+      {14, 3, "14-node second-order pyramid"},
+      {1, 0, "point"},
+      {8, 2, "8-node second-order quadrangle"},
+      {20, 3, "20-node second-order hexahedron"},
+      {15, 3, "15-node second-order prism"},
+      {13, 3, "13-node second-order pyramid"},
+      {9, 2, "9-node third-order triangle"},
+      {10, 2, "10-node third-order triangle"},
+      {12, 2, "12-node fourth-order triangle"},
+      {15, 2, "15-node fourth-order triangle"},
+      {15, 2, "15-node fifth-order triangle"},
+      {21, 2, "21-node fifth-order triangle"},
+      {4, 1, "4-node third-order line"},
+      {5, 1, "5-node fourth-order line"},
+      {6, 1, "6-node fifth-order line"},
+      {20, 3, "20-node third-order tetrahedron"},
+      {35, 3, "35-node fourth-order tetrahedron"},
+      {56, 3, "56-node fifth-order tetrahedron"},
+  };
+  if (type < 1 || type >= static_cast<std::int64_t>(std::size(table))) return {};
   return table[type];
 }
 
@@ -156,6 +197,10 @@ class GmshParser {
   }
 
   void keep_element(std::span<const std::uint64_t> tags, std::size_t at) {
+    // Checked here, by tag: the vertex numbers assigned later mean nothing to the file's reader.
+    for (std::size_t k = 0; k < tags.size(); ++k)
+      for (std::size_t j = 0; j < k; ++j)
+        if (tags[j] == tags[k]) cursor_.fail_at(at, fmt::format("element uses node {} twice", tags[k]));
     RawElement<d> e;
     std::copy(tags.begin(), tags.end(), e.node_tags.begin());
     elements_.push_back(e);
@@ -179,7 +224,7 @@ class GmshParser {
         if (tag_count < 0 || static_cast<std::uint64_t>(tag_count) > line.size())
           cursor_.fail_at(line, fmt::format("bad number of element tags {}", tag_count));
         if (type != wanted_type) {
-          note_skipped(type);
+          skip_other_type(type, cursor_.offset_of(line));
           continue;
         }
         for (std::int64_t k = 0; k < tag_count; ++k) read_integer(cursor_, t.next(), "an element tag");
@@ -201,8 +246,7 @@ class GmshParser {
       const auto type = cursor_.read_binary<std::int32_t>(big_endian_, "an element type");
       const auto following = cursor_.read_binary<std::int32_t>(big_endian_, "an element block size");
       const auto tag_count = cursor_.read_binary<std::int32_t>(big_endian_, "the number of tags");
-      const int nodes = nodes_per_element_type(type);
-      if (nodes == 0) cursor_.fail_at(at, fmt::format("unknown element type {}", type));
+      const int nodes = type == wanted_type ? d + 1 : skip_other_type(type, at);
       if (following < 1 || static_cast<std::size_t>(following) > m - read)
         cursor_.fail_at(at, fmt::format("bad element block size {}", following));
       if (tag_count < 0) cursor_.fail_at(at, fmt::format("bad number of tags {}", tag_count));
@@ -211,7 +255,6 @@ class GmshParser {
       for (std::int32_t i = 0; i < following; ++i) {
         const std::size_t element_at = cursor_.position();
         if (type != wanted_type) {
-          note_skipped(type);
           cursor_.skip(4 * ints_each, "an element");
           continue;
         }
@@ -239,17 +282,18 @@ class GmshParser {
     if (binary_) return cursor_.read_binary<std::int32_t>(big_endian_, what);
     return integer_token(what);
   }
-  std::size_t count_value(std::string_view what, std::size_t min_bytes_each) {
+  /// A count of `noun`s (e.g. "node block"), read as `what` and bounded by the bytes left.
+  std::size_t count_value(std::string_view what, std::string_view noun, std::size_t min_bytes_each) {
     const std::size_t at = cursor_.position();
     const std::uint64_t v = size_value(what);
     if (v > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
       cursor_.fail_at(at, fmt::format("{} {} is too large", what, v));
-    return checked_count(cursor_, at, static_cast<std::int64_t>(v), min_bytes_each, what);
+    return checked_count(cursor_, at, static_cast<std::int64_t>(v), min_bytes_each, noun);
   }
 
   void read_nodes_v4() {
-    const std::size_t blocks = count_value("the node block count", binary_ ? 20 : 2);
-    const std::size_t total = count_value("the node count", binary_ ? 32 : 2);
+    const std::size_t blocks = count_value("the node block count", "node block", binary_ ? 20 : 2);
+    const std::size_t total = count_value("the node count", "node", binary_ ? 32 : 2);
     size_value("the smallest node tag");
     size_value("the largest node tag");
     nodes_.reserve(total);
@@ -258,7 +302,7 @@ class GmshParser {
       const std::int64_t dim = int_value("an entity dimension");
       int_value("an entity tag");
       const std::int64_t parametric = int_value("the parametric flag");
-      const std::size_t n = count_value("the block's node count", binary_ ? 32 : 2);
+      const std::size_t n = count_value("the block's node count", "node", binary_ ? 32 : 2);
       if (dim < 0 || dim > 3) cursor_.fail(fmt::format("bad entity dimension {}", dim));
       if (parametric != 0 && parametric != 1) cursor_.fail("the parametric flag must be 0 or 1");
       if (n > total - seen) cursor_.fail(fmt::format("node blocks hold more than the {} nodes announced", total));
@@ -285,8 +329,8 @@ class GmshParser {
   }
 
   void read_elements_v4() {
-    const std::size_t blocks = count_value("the element block count", binary_ ? 20 : 2);
-    const std::size_t total = count_value("the element count", binary_ ? 16 : 2);
+    const std::size_t blocks = count_value("the element block count", "element block", binary_ ? 20 : 2);
+    const std::size_t total = count_value("the element count", "element", binary_ ? 16 : 2);
     size_value("the smallest element tag");
     size_value("the largest element tag");
     std::array<std::uint64_t, d + 1> tags{};
@@ -296,17 +340,18 @@ class GmshParser {
       int_value("an entity tag");
       const std::size_t type_at = cursor_.position();
       const std::int64_t type = int_value("an element type");
-      const std::size_t n = count_value("the block's element count", binary_ ? 16 : 2);
+      const std::size_t n = count_value("the block's element count", "element", binary_ ? 16 : 2);
       if (n > total - seen) cursor_.fail(fmt::format("element blocks hold more than the {} elements announced", total));
       seen += n;
+      // An empty block drops nothing, so only a block with elements is judged.
+      const int nodes = type == wanted_type || n == 0 ? element_type_info(type).nodes
+                                                       : skip_other_type(type, type_at);
       if (binary_) {
-        const int nodes = nodes_per_element_type(type);
-        if (nodes == 0) cursor_.fail_at(type_at, fmt::format("unknown element type {}", type));
+        if (nodes == 0) cursor_.fail_at(type_at, fmt::format("unknown Gmsh element type {}", type));
         const std::size_t bytes_each = 8 * (1 + static_cast<std::size_t>(nodes));
         for (std::size_t i = 0; i < n; ++i) {
           const std::size_t at = cursor_.position();
           if (type != wanted_type) {
-            note_skipped(type);
             cursor_.skip(bytes_each, "an element");
             continue;
           }
@@ -321,10 +366,7 @@ class GmshParser {
       for (std::size_t i = 0; i < n; ++i) {
         if (!cursor_.read_content_line(line, '\0'))
           cursor_.fail(fmt::format("file ends inside an element block"));
-        if (type != wanted_type) {
-          note_skipped(type);
-          continue;
-        }
+        if (type != wanted_type) continue;  // judged above, from the block header
         Tokens t(line);
         read_integer(cursor_, t.next(), "an element tag");
         for (int k = 0; k <= d; ++k) {
@@ -340,19 +382,30 @@ class GmshParser {
     if (seen != total) cursor_.fail(fmt::format("element blocks hold {} elements, but {} were announced", seen, total));
   }
 
-  void note_skipped(std::int64_t type) {
-    if (type == 8 || type == 9) skipped_second_order_ = true;
+  /// Decides about elements of a type other than the one being read, at `at` (the element or
+  /// its block header); returns the type's node count. Elements of another dimension (points,
+  /// lines in a surface file, volumes, triangles in a curve file) are skipped on purpose: they
+  /// do not belong to the surface or curve. An element of the same dimension that plmap cannot
+  /// read (a quadrangle, a higher-order triangle or line) is part of it, and dropping it would
+  /// leave a hole, so the file is refused; so is a type plmap does not know.
+  int skip_other_type(std::int64_t type, std::size_t at) {
+    const ElementTypeInfo info = element_type_info(type);
+    if (info.nodes == 0)
+      cursor_.fail_at(at, fmt::format("unknown Gmsh element type {} (plmap knows types 1 to 31)", type));
+    if (info.dimension == d)
+      cursor_.fail_at(at, fmt::format("Gmsh element type {} ({}) cannot be read: plmap reads {} "
+                                      "from {} (type {}) only; export a first-order {} mesh",
+                                      type, info.description, d == 1 ? "curves" : "triangle surfaces",
+                                      d == 1 ? "2-node lines" : "3-node triangles", wanted_type,
+                                      d == 1 ? "line" : "triangle"));
+    return info.nodes;
   }
 
   RawMesh<d> assemble() {
     if (elements_.empty())
       throw ParseError(cursor_.file(), "",
-                       fmt::format("the file has no {} elements (Gmsh type {}){}",
-                                   d == 1 ? "line" : "triangle", wanted_type,
-                                   skipped_second_order_
-                                       ? "; it has second-order elements, which plmap does not "
-                                         "read (export a first-order mesh)"
-                                       : ""));
+                       fmt::format("the file has no {} elements (Gmsh type {})",
+                                   d == 1 ? "line" : "triangle", wanted_type));
     // Only nodes used by the kept elements become vertices, numbered in $Nodes order.
     std::vector<Index> vertex_of_node(nodes_.size(), invalid_index);
     std::vector<std::array<std::size_t, d + 1>> element_nodes(elements_.size());
@@ -389,7 +442,7 @@ class GmshParser {
       mesh.elements.push_back(corners);
       mesh.element_offset.push_back(elements_[t].offset);
     }
-    check_elements(cursor_, mesh);
+    check_elements(cursor_, mesh, VertexNumbering::internal);
     return mesh;
   }
 
@@ -400,7 +453,6 @@ class GmshParser {
   std::vector<Node> nodes_;
   std::unordered_map<std::uint64_t, std::size_t> node_index_;
   std::vector<RawElement<d>> elements_;
-  bool skipped_second_order_ = false;
 };
 
 }  // namespace

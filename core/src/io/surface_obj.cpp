@@ -33,6 +33,18 @@ std::int64_t corner_vertex(const Cursor& cursor, std::string_view token) {
   return v;
 }
 
+/// Statements that carry nothing a triangle surface is made of, skipped on purpose: texture and
+/// normal data, grouping, materials and display attributes, points and polylines (no area), and
+/// free-form curves (their control points and parameters, which belong to curves).
+bool is_skipped_statement(std::string_view keyword) {
+  static constexpr std::string_view skipped[] = {
+      "vt", "vn", "vp", "p", "l", "g", "o", "s", "mg", "usemtl", "mtllib", "usemap", "maplib",
+      "lod", "bevel", "c_interp", "d_interp", "shadow_obj", "trace_obj", "ctech", "stech",
+      "cstype", "deg", "bmat", "step", "curv", "curv2", "parm", "trim", "hole", "scrv", "sp",
+      "end", "con"};
+  return std::find(std::begin(skipped), std::end(skipped), keyword) != std::end(skipped);
+}
+
 }  // namespace
 
 RawMesh<2> parse_obj(Cursor& cursor, const SurfaceReadOptions& options) {
@@ -45,9 +57,17 @@ RawMesh<2> parse_obj(Cursor& cursor, const SurfaceReadOptions& options) {
     if (keyword == "v") {
       WorldPoint<2> p;
       for (int k = 0; k < 3; ++k) p(k) = read_coordinate(cursor, t.next(), "a vertex coordinate");
-      // An optional weight or vertex colour may follow; plmap ignores them.
+      // An optional weight or vertex colour (RGB, RGBA) may follow; plmap ignores them. More
+      // numbers than that mean several vertices on one line, which must not vanish.
+      const std::size_t extras = t.count();
+      if (extras > 4)
+        cursor.fail_at(line, fmt::format("vertex has {} numbers after its coordinates; a weight or "
+                                         "colour has at most 4 (one vertex per 'v' line)",
+                                         extras));
+      for (std::string_view extra = t.next(); !extra.empty(); extra = t.next())
+        read_coordinate(cursor, extra, "a vertex weight or colour component");
       mesh.vertices.push_back(p);
-    } else if (keyword == "f") {
+    } else if (keyword == "f" || keyword == "fo") {  // "fo" is the old name of "f"
       corners.clear();
       const auto nv = static_cast<std::int64_t>(mesh.vertices.size());
       for (std::string_view token = t.next(); !token.empty(); token = t.next()) {
@@ -63,11 +83,19 @@ RawMesh<2> parse_obj(Cursor& cursor, const SurfaceReadOptions& options) {
           cursor.fail_at(token, fmt::format("vertex index {} is out of range", v));
       }
       add_polygon(cursor, cursor.offset_of(line), corners, options, mesh);
+    } else if (keyword == "surf") {
+      // A free-form surface would be part of the surface; plmap reads polygons only.
+      cursor.fail_at(line, "free-form surface ('surf') is not supported; export the surface as "
+                           "polygons ('f')");
+    } else if (keyword == "call") {
+      cursor.fail_at(line, "'call' (reading another file) is not supported; merge the files first");
+    } else if (!is_skipped_statement(keyword)) {
+      // Anything else is corruption or an extension plmap does not know: it might carry
+      // geometry, so it is refused rather than skipped.
+      cursor.fail_at(line, fmt::format("unknown OBJ statement '{}'", keyword.substr(0, 40)));
     }
-    // Every other statement (vt, vn, vp, l, p, g, o, s, usemtl, mtllib, ...) carries nothing a
-    // triangle surface needs and is skipped, as OBJ readers traditionally do.
   }
-  check_elements(cursor, mesh);
+  check_elements(cursor, mesh, VertexNumbering::one_based);
   return mesh;
 }
 

@@ -79,10 +79,24 @@ RawMesh<2> parse_off(Cursor& cursor, const SurfaceReadOptions& options) {
                                          f, v, nv));
       corners.push_back(static_cast<Index>(v));
     }
-    // Anything after the indices is a face colour, which plmap ignores.
+    // Anything after the indices is a face colour (a colour-map index, or RGB or RGBA), which
+    // plmap ignores. More than that is not a colour: the face's vertex count is wrong or two
+    // faces share a line, and ignoring the rest would drop data.
+    const std::size_t extras = t.count();
+    if (extras > 4)
+      cursor.fail_at(line, fmt::format("face {} has {} numbers after its {} vertex indices; a face "
+                                       "colour has at most 4 (is its vertex count wrong?)",
+                                       f, extras, n));
+    for (std::string_view colour = t.next(); !colour.empty(); colour = t.next())
+      read_coordinate(cursor, colour, "a face colour component");
     add_polygon(cursor, cursor.offset_of(line), corners, options, mesh);
   }
-  check_elements(cursor, mesh);
+  // Data after the announced faces would otherwise be ignored: the counts are wrong.
+  if (cursor.read_content_line(line))
+    cursor.fail_at(line, fmt::format("unexpected line after the {} faces the header announces "
+                                     "(is the face count wrong?)",
+                                     nf));
+  check_elements(cursor, mesh, VertexNumbering::zero_based);
   return mesh;
 }
 

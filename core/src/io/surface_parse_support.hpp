@@ -251,22 +251,31 @@ inline void add_polygon(const Cursor& cursor, std::size_t at, std::span<const In
   }
 }
 
+/// How a file numbers its vertices, so that messages quote the file's own numbers: OFF and PLY
+/// count from 0, OBJ from 1; STL and Gmsh have no vertex numbers of their own (STL merges equal
+/// corners, Gmsh names nodes by tag and checks those itself).
+enum class VertexNumbering { zero_based, one_based, internal };
+
 /// Checks every element's indices against the vertex count and rejects repeated corners,
-/// naming the element's line or byte offset.
+/// naming the element's line or byte offset (not its position in the list, which after fan
+/// triangulation is no number the file shows).
 template <int d>
-void check_elements(const Cursor& cursor, const RawMesh<d>& mesh) {
+void check_elements(const Cursor& cursor, const RawMesh<d>& mesh, VertexNumbering numbering) {
   const auto nv = static_cast<std::int64_t>(mesh.vertices.size());
+  const std::int64_t base = numbering == VertexNumbering::one_based ? 1 : 0;
   for (std::size_t t = 0; t < mesh.elements.size(); ++t) {
     const auto& e = mesh.elements[t];
     for (int k = 0; k <= d; ++k) {
       if (e[k] < 0 || e[k] >= nv)
         cursor.fail_at(mesh.element_offset[t],
-                       fmt::format("element {} refers to vertex {} (0-based), but there are {} vertices",
-                                   t, e[k], nv));
+                       fmt::format("element refers to vertex {}, but the file has {} vertices{}",
+                                   e[k] + base, nv, base == 1 ? " (numbered from 1)" : ""));
       for (int j = 0; j < k; ++j)
         if (e[j] == e[k])
           cursor.fail_at(mesh.element_offset[t],
-                         fmt::format("element {} uses vertex {} (0-based) twice", t, e[k]));
+                         numbering == VertexNumbering::internal
+                             ? std::string("element has two corners at the same point")
+                             : fmt::format("element uses vertex {} twice", e[k] + base));
     }
   }
 }

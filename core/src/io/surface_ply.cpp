@@ -37,6 +37,10 @@ std::size_t scalar_bytes(Scalar s) {
   return 1;
 }
 
+bool is_index_list_name(std::string_view name) {
+  return name == "vertex_indices" || name == "vertex_index";
+}
+
 bool is_integral(Scalar s) { return s != Scalar::float32 && s != Scalar::float64; }
 
 struct Property {
@@ -167,6 +171,11 @@ RawMesh<2> parse_ply(Cursor& cursor, const SurfaceReadOptions& options) {
       p.value_type = *v;
       p.name = std::string(t.next());
       if (p.name.empty()) cursor.fail_at(line, "property without a name");
+      // With two properties of one name, which one holds the data is a guess.
+      for (const Property& other : elements.back().properties)
+        if (other.name == p.name)
+          cursor.fail_at(line, fmt::format("duplicate property '{}' in element '{}'",
+                                           p.name.substr(0, 40), elements.back().name.substr(0, 40)));
       elements.back().properties.push_back(std::move(p));
     } else {
       cursor.fail_at(line, fmt::format("unknown PLY header line '{}'", line.substr(0, 40)));
@@ -227,9 +236,12 @@ RawMesh<2> parse_ply(Cursor& cursor, const SurfaceReadOptions& options) {
       seen_faces = true;
       int list = -1;
       for (std::size_t i = 0; i < e.properties.size(); ++i)
-        if (e.properties[i].is_list &&
-            (e.properties[i].name == "vertex_indices" || e.properties[i].name == "vertex_index"))
+        if (e.properties[i].is_list && is_index_list_name(e.properties[i].name)) {
+          if (list >= 0)
+            cursor.fail_at(e.header_offset, "the face element has both 'vertex_indices' and "
+                                            "'vertex_index'; which one holds the faces is unclear");
           list = static_cast<int>(i);
+        }
       if (list < 0)
         cursor.fail_at(e.header_offset, "the face element has no list property 'vertex_indices'");
       if (!is_integral(e.properties[list].value_type))
@@ -262,7 +274,16 @@ RawMesh<2> parse_ply(Cursor& cursor, const SurfaceReadOptions& options) {
         add_polygon(cursor, face_at, corners, options, mesh);
       }
     } else {
-      // Unknown elements (edges, materials, ...) are read and discarded.
+      // Other elements (edges, materials, ...) are read and discarded, unless they hold vertex
+      // index lists: those describe surface pieces (triangle strips, polygons under another
+      // name) that would vanish.
+      for (const Property& prop : e.properties)
+        if (prop.is_list && is_index_list_name(prop.name))
+          cursor.fail_at(e.header_offset,
+                         fmt::format("element '{}' has a '{}' list{}; plmap reads surface pieces "
+                                     "from the 'face' element only",
+                                     e.name.substr(0, 40), prop.name,
+                                     e.name == "tristrips" ? " (triangle strips)" : ""));
       for (std::size_t r = 0; r < count; ++r)
         for (const Property& prop : e.properties) {
           std::size_t at = 0;
@@ -272,7 +293,19 @@ RawMesh<2> parse_ply(Cursor& cursor, const SurfaceReadOptions& options) {
     }
   }
   if (!seen_vertices) cursor.fail_at(0, "the header declares no 'vertex' element");
-  check_elements(cursor, mesh);
+  // Records after the announced ones would otherwise be ignored: a count in the header is wrong.
+  const std::string_view last = elements.empty() ? std::string_view("") : elements.back().name;
+  if (*layout == Layout::ascii) {
+    if (const std::string_view token = cursor.read_token(); !token.empty())
+      cursor.fail_at(token, fmt::format("unexpected data '{}' after the records the header announces "
+                                        "(the last element is '{}': is a count wrong?)",
+                                        token.substr(0, 40), last.substr(0, 40)));
+  } else if (!cursor.at_end()) {
+    cursor.fail(fmt::format("{} bytes follow the records the header announces (the last element "
+                            "is '{}': is a count wrong?)",
+                            cursor.remaining(), last.substr(0, 40)));
+  }
+  check_elements(cursor, mesh, VertexNumbering::zero_based);
   return mesh;
 }
 

@@ -45,10 +45,21 @@ void expect_keyword(Cursor& cursor, std::string_view keyword) {
                               : fmt::format("expected '{}', found '{}'", keyword, token.substr(0, 40)));
 }
 
+/// Reads the rest of a 'solid' or 'endsolid' line (the solid's name). A facet that starts on
+/// that line would be swallowed with the name, so the file is refused instead.
+void skip_solid_name(Cursor& cursor) {
+  std::string_view line;
+  cursor.read_line(line);
+  Tokens t(line);
+  for (std::string_view token = t.next(); !token.empty(); token = t.next())
+    if (keyword_is(token, "facet"))
+      cursor.fail_at(token, "'facet' on the line of 'solid' or 'endsolid'; each facet must start "
+                            "on a line of its own");
+}
+
 RawMesh<2> parse_ascii(Cursor& cursor) {
   RawMesh<2> mesh;
   VertexMerger merger(mesh);
-  std::string_view line;
   bool any_solid = false;
   // A file may hold several solids one after the other; they are read into one surface.
   while (true) {
@@ -57,11 +68,11 @@ RawMesh<2> parse_ascii(Cursor& cursor) {
     if (!keyword_is(solid, "solid"))
       cursor.fail_at(solid, fmt::format("expected 'solid', found '{}'", solid.substr(0, 40)));
     any_solid = true;
-    cursor.read_line(line);  // the solid's name
+    skip_solid_name(cursor);
     while (true) {
       const std::string_view token = cursor.read_token();
       if (keyword_is(token, "endsolid")) {
-        cursor.read_line(line);  // the name again
+        skip_solid_name(cursor);  // the name again
         break;
       }
       if (!keyword_is(token, "facet"))
@@ -128,6 +139,15 @@ RawMesh<2> parse_binary(Cursor& cursor) {
     mesh.elements.push_back(corners);
     mesh.element_offset.push_back(facet_at);
   }
+  // Facets after the announced count would otherwise be ignored (a larger count is caught by
+  // checked_count above). Stray bytes that cannot be a facet mean a corrupted file just as well.
+  if (const std::size_t extra = cursor.remaining(); extra >= binary_facet_bytes)
+    cursor.fail(fmt::format("the header's facet count is {}, but {} more bytes follow those facets "
+                            "(room for {} more): the count is wrong",
+                            n, extra, extra / binary_facet_bytes));
+  else if (extra > 0)
+    cursor.fail(fmt::format("{} stray bytes follow the last facet (the header's facet count is {})",
+                            extra, n));
   return mesh;
 }
 
@@ -144,13 +164,17 @@ bool stl_is_binary(std::string_view data) {
     const std::uint64_t expected =
         binary_header_bytes + 4 + static_cast<std::uint64_t>(count) * binary_facet_bytes;
     if (expected == data.size()) return true;
+    // A binary file whose header starts with "solid" and whose count is wrong: ASCII STL never
+    // holds a NUL byte, binary facets nearly always do (zero coordinates, attribute bytes). Read
+    // as binary, the wrong count is reported as such instead of as garbled ASCII.
+    if (starts_with_solid && data.find('\0', binary_header_bytes) != std::string_view::npos) return true;
   }
   return !starts_with_solid;
 }
 
 RawMesh<2> parse_stl(Cursor& cursor, const SurfaceReadOptions&) {
   RawMesh<2> mesh = stl_is_binary(cursor.data()) ? parse_binary(cursor) : parse_ascii(cursor);
-  check_elements(cursor, mesh);
+  check_elements(cursor, mesh, VertexNumbering::internal);
   return mesh;
 }
 
