@@ -122,3 +122,33 @@ TEST(SurfaceIoMessages, NoMessageRepeatsAWord) {
     EXPECT_TRUE(m.starts_with(std::string(c.name) + ":")) << m;
   }
 }
+
+namespace {
+
+std::string invalid_surface_error_of(const std::string& content, SurfaceFormat format, const std::string& file) {
+  try {
+    parse_surface<2>(content, format, file);
+  } catch (const InvalidSurfaceError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << file << ": no InvalidSurfaceError";
+  return "";
+}
+
+}  // namespace
+
+TEST(SurfaceIoMessages, SurfaceErrorsNameLinesNotInternalElementNumbers) {
+  // Surface numbers elements after polygons are split; the message uses the file's lines.
+  const std::string square = "OFF\n5 3 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n";  // faces from line 8
+  // The polygon 0 1 2 1 splits into (0 1 2) and (0 2 1).
+  EXPECT_EQ(invalid_surface_error_of(square + "4 0 1 2 1\n3 0 2 3\n3 1 4 2\n", SurfaceFormat::off, "d.off"),
+            "d.off:line 8: two pieces of the polygon at line 8 have the same three vertices");
+  EXPECT_EQ(invalid_surface_error_of(square + "4 0 1 2 3\n3 1 2 3\n3 2 1 0\n", SurfaceFormat::off, "e.off"),
+            "e.off:line 8: the elements at line 8 and line 10 have the same three vertices");
+  const std::string degenerate = invalid_surface_error_of(square + "4 0 1 4 2\n3 0 2 3\n3 1 2 4\n",
+                                                          SurfaceFormat::off, "g.off");
+  EXPECT_TRUE(degenerate.starts_with("g.off:line 8: a triangle of the polygon here is degenerate")) << degenerate;
+  const std::string single = invalid_surface_error_of(square + "3 0 1 2\n3 0 1 4\n3 0 2 3\n",
+                                                      SurfaceFormat::off, "s.off");
+  EXPECT_TRUE(single.starts_with("s.off:line 9: this element is degenerate")) << single;
+}

@@ -224,6 +224,9 @@ TEST(SurfaceIoNoSilentLoss, GmshV4RefusesABlockOfSurfaceElementsItCannotRead) {
                            "6 2 3 6\n7 3 4 6\n2 1 9 1\n8 1 2 3 5 6 4\n$EndElements\n";
   // The block header of the type-9 block is line 30.
   expect_refused(file, SurfaceFormat::gmsh, "p2v4.msh", "line 30", "type 9 (6-node second-order triangle)");
+  // An element on the block header's line (the block's count then covers the lines after it).
+  expect_refused(head + "$Elements\n1 2 1 3\n2 1 2 2 1 1 2 4\n2 2 3 4\n3 1 2 3\n$EndElements\n",
+                 SurfaceFormat::gmsh, "header.msh", "line 22", "after an element block header");
   // The same file with the block as points is read, 7 triangles.
   std::string points = file;
   points.replace(points.find("2 1 9 1\n8 1 2 3 5 6 4\n"), 21, "0 1 15 1\n8 5\n");

@@ -362,7 +362,10 @@ class GmshParser {
         continue;
       }
       std::string_view line;
-      cursor_.read_line(line);  // the rest of the block header's line
+      cursor_.read_line(line);  // the rest of the block header's line: an element there would be lost
+      if (!Tokens(line).empty())
+        cursor_.fail_at(line, "unexpected text after an element block header (elements start on "
+                              "the next line)");
       for (std::size_t i = 0; i < n; ++i) {
         if (!cursor_.read_content_line(line, '\0'))
           cursor_.fail(fmt::format("file ends inside an element block"));

@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <system_error>
 
@@ -26,19 +27,50 @@ std::string read_whole_file(const std::filesystem::path& path) {
   return std::move(content).str();
 }
 
-/// The element index that Surface's message is about ("element 12 ...", "elements 3 and 5
-/// ..."), if it names one.
-std::optional<std::size_t> element_named_in(std::string_view message) {
-  std::size_t at = message.find("element");
-  if (at == std::string_view::npos) return std::nullopt;
-  at += 7;
-  if (at < message.size() && message[at] == 's') ++at;
-  if (at >= message.size() || message[at] != ' ') return std::nullopt;
+/// Reads a decimal number at `at` in `text`, advancing `at` past it.
+std::optional<std::size_t> number_at(std::string_view text, std::size_t& at) {
   std::size_t value = 0;
-  const char* first = message.data() + at + 1;
-  const auto result = std::from_chars(first, message.data() + message.size(), value);
+  const char* first = text.data() + at;
+  const auto result = std::from_chars(first, text.data() + text.size(), value);
   if (result.ec != std::errc() || result.ptr == first) return std::nullopt;
+  at = static_cast<std::size_t>(result.ptr - text.data());
   return value;
+}
+
+/// Surface's message in the file's terms. Surface numbers elements in its own list, which after
+/// polygons are split is no number the file shows; the reader knows where each element came
+/// from. "element 12 is degenerate ..." becomes "file:line 40: this element is degenerate ...",
+/// "elements 3 and 5 have ..." becomes "file:line 8: the elements at line 8 and line 10 have
+/// ...". Messages that name no element keep their text after the file name.
+std::string located_surface_message(const std::string& file, const Cursor& cursor,
+                                    const std::vector<std::size_t>& offsets, std::string_view message) {
+  const auto located = [&](std::size_t t) { return t < offsets.size(); };
+  const auto is_polygon_piece = [&](std::size_t t) {
+    return (t > 0 && offsets[t - 1] == offsets[t]) || (t + 1 < offsets.size() && offsets[t + 1] == offsets[t]);
+  };
+  if (message.starts_with("elements ")) {
+    std::size_t at = 9;
+    const auto a = number_at(message, at);
+    if (a && located(*a) && message.substr(at).starts_with(" and ")) {
+      at += 5;
+      const auto b = number_at(message, at);
+      if (b && located(*b)) {
+        const std::string first = cursor.location(offsets[*a]);
+        const std::string second = cursor.location(offsets[*b]);
+        const std::string which = first == second ? fmt::format("two pieces of the polygon at {}", first)
+                                                  : fmt::format("the elements at {} and {}", first, second);
+        return fmt::format("{}:{}: {}{}", file, first, which, message.substr(at));
+      }
+    }
+  } else if (message.starts_with("element ")) {
+    std::size_t at = 8;
+    const auto t = number_at(message, at);
+    if (t && located(*t))
+      return fmt::format("{}:{}: {}{}", file, cursor.location(offsets[*t]),
+                         is_polygon_piece(*t) ? "a triangle of the polygon here" : "this element",
+                         message.substr(at));
+  }
+  return fmt::format("{}: {}", file, message);
 }
 
 template <int d>
@@ -84,11 +116,7 @@ Surface<d> parse_surface(std::string_view bytes, SurfaceFormat format, const std
   try {
     return Surface<d>(std::move(raw.vertices), std::move(raw.elements));
   } catch (const InvalidSurfaceError& e) {
-    // Surface names the element; add where the file defines it.
-    std::string prefix = file_name;
-    if (const auto t = element_named_in(e.what()); t && *t < offsets.size())
-      prefix += ":" + cursor.location(offsets[*t]);
-    throw InvalidSurfaceError(prefix + ": " + e.what());
+    throw InvalidSurfaceError(located_surface_message(file_name, cursor, offsets, e.what()));
   }
 }
 
