@@ -49,7 +49,8 @@ std::string command_word_error(CLI::App& app, int argc, char** argv) {
   for (int i = 1;; ++i) {
     if (level->get_subcommands([](CLI::App*) { return true; }).empty()) return {};
     const std::string of = parent.empty() ? "the commands are " : "the commands of '" + parent + "' are ";
-    if (i >= argc || argv[i][0] == '-') {
+    if (i < argc && argv[i][0] == '-') return {};  // an option: CLI11's message names it
+    if (i >= argc) {
       if (level->get_require_subcommand_min() == 0) return {};
       return "plmap: no command given" + (parent.empty() ? "" : " after '" + parent + "'") + "; " +
              of + command_names(*level);
