@@ -6,6 +6,7 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/atomic_file.hpp>
 
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -49,7 +50,13 @@ std::string command_word_error(CLI::App& app, int argc, char** argv) {
   for (int i = 1;; ++i) {
     if (level->get_subcommands([](CLI::App*) { return true; }).empty()) return {};
     const std::string of = parent.empty() ? "the commands are " : "the commands of '" + parent + "' are ";
-    if (i < argc && argv[i][0] == '-') return {};  // an option: CLI11's message names it
+    if (i < argc && argv[i][0] == '-') {
+      // An option where a command is expected: CLI11 would only say that a command is missing.
+      const std::string option(argv[i], std::strcspn(argv[i], "="));
+      if (level->get_option_no_throw(option) != nullptr) return {};
+      return "plmap: unknown option '" + option + "'" +
+             (parent.empty() ? "" : " for '" + parent + "'") + "; " + of + command_names(*level);
+    }
     if (i >= argc) {
       if (level->get_require_subcommand_min() == 0) return {};
       return "plmap: no command given" + (parent.empty() ? "" : " after '" + parent + "'") + "; " +

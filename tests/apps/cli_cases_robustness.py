@@ -166,6 +166,9 @@ def unknown_command_is_named():
     expect("grid" in line and "polyline" in line, line)
     line = expect_clean_error([], code=64, mention="no command")
     expect("eval" in line, line)
+    expect_clean_error(["--frobnicate"], code=64, mention="'--frobnicate'")
+    expect_clean_error(["build", "--json", "identity", "v.off", "-o", "m.plmap"], code=64,
+                       mention="'--json' for 'build'")
     # an unknown option is still CLI11's message, which names it
     expect_clean_error(["info", "x.off", "--frobnicate"], code=64, mention="--frobnicate")
 
