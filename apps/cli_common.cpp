@@ -232,11 +232,12 @@ void check_output_directory(const std::filesystem::path& directory,
                             const std::vector<std::string>& written_trees,
                             const std::vector<CommandInput>& inputs) {
   const std::string shown = directory.string();
+  refuse_if_input(directory, shown, inputs);
   std::error_code ec;
   if (std::filesystem::exists(directory, ec) && !std::filesystem::is_directory(directory, ec))
     throw UsageError(shown + ": is a file, expected a directory");
-  refuse_if_input(directory, shown, inputs);
-  for (const auto& name : written_files) refuse_if_input(directory / name, (directory / name).string(), inputs);
+  for (const auto& name : written_files)
+    refuse_if_input(directory / name, (directory / name).string(), inputs);
   for (const auto& tree : written_trees) {
     const auto root = std::filesystem::weakly_canonical(directory / tree, ec);
     if (ec) continue;
