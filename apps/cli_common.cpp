@@ -4,9 +4,15 @@
 #include <plmap/core/io/surface_format.hpp>
 #include <plmap/core/io/surface_reader.hpp>
 
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <system_error>
+#include <thread>
 
 namespace plmap::cli {
 
@@ -105,6 +111,157 @@ void print_text(const Json& value) {
     print_text_at(value, 0);
   else
     std::cout << scalar_text(value) << '\n';
+}
+
+const CLI::Validator non_negative_integer(
+    [](std::string& text) -> std::string {
+      const auto first = text.find_first_not_of(" \t");
+      if (first != std::string::npos && text[first] == '-')
+        return "must be a non-negative integer, not '" + text + "'";
+      return {};
+    },
+    "");  // no description: the help keeps saying UINT or INT
+
+const CLI::Validator finite_number(
+    [](std::string& text) -> std::string {
+      double value = 0.0;
+      if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value))
+        return "must be a finite number, not '" + text + "'";
+      return {};
+    },
+    "");
+
+void reject_bad_numbers(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    // The type name is followed by the validators' descriptions: "INT:POSITIVE".
+    const std::string full_type = option->get_type_name();
+    const std::string type = full_type.substr(0, full_type.find(':'));
+    if (type == "INT" || type == "UINT")
+      option->check(non_negative_integer);
+    else if (type == "FLOAT")
+      option->check(finite_number);
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) reject_bad_numbers(*sub);
+}
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+  struct stat sa {}, sb {};
+  if (::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0)
+    return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+  std::error_code ea, eb;
+  const auto ca = std::filesystem::weakly_canonical(a, ea);
+  const auto cb = std::filesystem::weakly_canonical(b, eb);
+  return !ea && !eb && ca == cb;
+}
+
+namespace {
+
+/// What kind of file an extension names, for the message when it is used for another kind.
+std::string kind_of_extension(const std::string& ext) {
+  if (ext == ".plmap") return "a map file";
+  if (format_from_extension("x" + ext)) return "a surface file";
+  if (ext == ".csv") return "a table";
+  if (ext == ".vtu" || ext == ".pvd") return "a VTK file";
+  if (ext == ".svg" || ext == ".png") return "a picture";
+  if (ext == ".toml") return "an experiment config";
+  return {};
+}
+
+struct OutputRule {
+  const char* what;                  // "a map", for the message
+  std::vector<std::string> allowed;  // lower-case extensions with the dot
+};
+
+OutputRule output_rule(OutputKind kind) {
+  switch (kind) {
+    case OutputKind::map: return {"a map", {".plmap"}};
+    case OutputKind::surface:
+      return {"a surface", {".off", ".obj", ".stl", ".ply", ".msh", ".curve"}};
+    case OutputKind::regions: return {"the regions", {".csv", ".vtu"}};
+    case OutputKind::picture: return {"a picture", {".svg", ".png"}};
+  }
+  return {"", {}};
+}
+
+std::string joined(const std::vector<std::string>& words, const char* last) {
+  std::string text;
+  for (std::size_t i = 0; i < words.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == words.size() ? last : ", ") + words[i];
+  return text;
+}
+
+void refuse_if_input(const std::filesystem::path& output, const std::string& shown,
+                     const std::vector<CommandInput>& inputs) {
+  for (const auto& input : inputs) {
+    if (input.path.empty() || !same_file(output, input.path)) continue;
+    const std::string spelled =
+        input.path.string() == shown ? "" : " (" + input.path.string() + ")";
+    throw UsageError(shown + ": is also the input " + input.role + spelled +
+                     "; writing would replace it, choose another output");
+  }
+}
+
+}  // namespace
+
+void check_output_file(const std::filesystem::path& output, OutputKind kind,
+                       const std::vector<CommandInput>& inputs) {
+  const std::string shown = output.string();
+  refuse_if_input(output, shown, inputs);
+  const OutputRule rule = output_rule(kind);
+  const std::string ext = lower_extension(output);
+  if (std::find(rule.allowed.begin(), rule.allowed.end(), ext) == rule.allowed.end()) {
+    const std::string other = kind_of_extension(ext);
+    throw UsageError(shown + ": " + rule.what + " is written as " + joined(rule.allowed, " or ") +
+                     ", not " + (ext.empty() ? std::string("a file without extension") : ext) +
+                     (other.empty() ? "" : " (" + other + ")"));
+  }
+  std::error_code ec;
+  if (std::filesystem::is_directory(output, ec))
+    throw UsageError(shown + ": is a directory, expected a file name");
+}
+
+void check_output_directory(const std::filesystem::path& directory,
+                            const std::vector<std::string>& written_files,
+                            const std::vector<std::string>& written_trees,
+                            const std::vector<CommandInput>& inputs) {
+  const std::string shown = directory.string();
+  refuse_if_input(directory, shown, inputs);
+  std::error_code ec;
+  if (std::filesystem::exists(directory, ec) && !std::filesystem::is_directory(directory, ec))
+    throw UsageError(shown + ": is a file, expected a directory");
+  for (const auto& name : written_files)
+    refuse_if_input(directory / name, (directory / name).string(), inputs);
+  for (const auto& tree : written_trees) {
+    const auto root = std::filesystem::weakly_canonical(directory / tree, ec);
+    if (ec) continue;
+    for (const auto& input : inputs) {
+      const auto where = std::filesystem::weakly_canonical(input.path, ec);
+      if (ec) continue;
+      const auto relative = where.lexically_relative(root);
+      if (!relative.empty() && *relative.begin() != "..")
+        throw UsageError((directory / tree).string() + ": holds the input " + input.role + " (" +
+                         input.path.string() + "), which the command would replace; write to "
+                         "another directory");
+    }
+  }
+}
+
+CLI::Option* add_threads_option(CLI::App& command, unsigned& threads, const std::string& help) {
+  threads = 0;
+  return command.add_option("--threads", threads, help + " (0, the default: all hardware threads)")
+      ->check(CLI::Range(0u, max_threads))
+      ->capture_default_str();
+}
+
+unsigned resolved_threads(unsigned threads) {
+  return threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
 }
 
 CLI::Option* add_dimension_option(CLI::App& command, int& dimension) {

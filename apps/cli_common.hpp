@@ -12,8 +12,10 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <variant>
+#include <vector>
 
 namespace plmap::cli {
 
@@ -28,6 +30,13 @@ inline constexpr int input_error = 2;    ///< bad input: unreadable file, unknow
 inline constexpr int usage_error = 64;   ///< bad command line (as in sysexits.h)
 inline constexpr int internal_error = 70;
 }  // namespace exit_code
+
+/// A command line that is wrong whatever the files hold (an output path that is an input, an
+/// extension of another kind of file): main() prints it and exits with usage_error (64).
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 /// A surface of either dimension.
 using AnySurface = std::variant<Surface<1>, Surface<2>>;
@@ -78,6 +87,67 @@ inline const CLI::Validator positive_number(
       return {};
     },
     "POSITIVE");
+
+/// Validator of integer options: rejects negative values, which CLI11 would otherwise wrap around
+/// to 2^64 - k for unsigned options. Every integer option of plmap is a count, an index, a level
+/// or a seed, so main() adds it to all of them (see reject_bad_numbers).
+extern const CLI::Validator non_negative_integer;
+
+/// Validator of floating-point options: rejects nan and inf (and numbers that overflow to inf),
+/// which would otherwise reach the library and come out as "-nan" in the output. main() adds it
+/// to every floating-point option.
+extern const CLI::Validator finite_number;
+
+/// Adds non_negative_integer to every integer option and finite_number to every floating-point
+/// option of `app` and all its subcommands, by the type CLI11 records for each option, so that
+/// an option added later is covered without anyone remembering to.
+void reject_bad_numbers(CLI::App& app);
+
+/// What a command writes, for the extension check of its output path.
+enum class OutputKind {
+  map,      ///< .plmap
+  surface,  ///< .off .obj .stl .ply .msh .curve
+  regions,  ///< .csv or .vtu (`plmap regions`)
+  picture,  ///< .svg or .png (`plmap draw`)
+};
+
+/// A file a command reads, with the name the command line gives it (for the message).
+struct CommandInput {
+  std::string role;  ///< e.g. "MAP", "S2", "--directions"
+  std::filesystem::path path;
+};
+
+/// The extension in lower case, with the dot ("" if none).
+std::string lower_extension(const std::filesystem::path& path);
+
+/// True if both paths name the same file: the same device and inode where both exist (hard
+/// links, symbolic links, `./a.off` and `a.off`), else the same canonical path.
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
+/// Refuses, with a UsageError naming the path, an output file that
+///  - is one of `inputs` (the command would replace what it reads),
+///  - is an existing directory, or
+///  - has an extension that is not one of `kind` (e.g. a map written to .off).
+/// Commands call it before they read anything, so a refused command line costs nothing.
+void check_output_file(const std::filesystem::path& output, OutputKind kind,
+                       const std::vector<CommandInput>& inputs);
+
+/// Refuses an output directory that is one of `inputs`, or one into which the command would
+/// write over an input: `written_files` are the names written directly in it, `written_trees`
+/// the subdirectories written (an input anywhere below one is refused).
+void check_output_directory(const std::filesystem::path& directory,
+                            const std::vector<std::string>& written_files,
+                            const std::vector<std::string>& written_trees,
+                            const std::vector<CommandInput>& inputs);
+
+/// More worker threads than this is a typo, not a wish: each one is a system thread.
+inline constexpr unsigned max_threads = 1024;
+
+/// The `--threads` option: 0 (the default) means all hardware threads (DESIGN §6).
+CLI::Option* add_threads_option(CLI::App& command, unsigned& threads, const std::string& help);
+
+/// The thread count a `--threads` value stands for (0: all hardware threads).
+unsigned resolved_threads(unsigned threads);
 
 /// A subcommand's work, run after the whole command line has been parsed; returns the exit code.
 using Action = std::function<int()>;

@@ -50,6 +50,7 @@ std::shared_ptr<const Surface<d>> shared(Surface<d>&& s) {
 }
 
 int run_identity(const BuildOptions& o) {
+  check_output_file(o.output, OutputKind::map, {{"SURFACE", o.surface}});
   AnySurface any = read_any_surface(o.surface, o.dimension);
   return std::visit(
       [&]<int d>(Surface<d>& s) {
@@ -61,6 +62,7 @@ int run_identity(const BuildOptions& o) {
 }
 
 int run_refine(const BuildOptions& o) {
+  check_output_file(o.output, OutputKind::map, {{"SURFACE", o.surface}});
   AnySurface any = read_any_surface(o.surface, o.dimension);
   return std::visit(
       [&]<int d>(Surface<d>& s) {
@@ -90,6 +92,7 @@ int run_refine(const BuildOptions& o) {
 }
 
 int run_overlay(const BuildOptions& o) {
+  check_output_file(o.output, OutputKind::map, {{"S1", o.surface}, {"S2", o.second_surface}});
   auto s1 = read_any_surface(o.surface, 2);
   auto s2 = read_any_surface(o.second_surface, 2);
   return save_and_report(

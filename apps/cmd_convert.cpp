@@ -31,10 +31,7 @@ int run_convert(const ConvertOptions& o) {
   options.encoding = encodings.at(o.encoding);  // CLI11 checked the name
   options.gmsh_version = o.gmsh_version == "2.2" ? GmshVersion::v2_2 : GmshVersion::v4_1;
   // Fail on an unknown output extension before reading a possibly large input.
-  if (!format_from_extension(o.output))
-    throw Error(o.output + ": unknown output format '" +
-                std::filesystem::path(o.output).extension().string() +
-                "'; use .off, .obj, .stl, .ply, .msh or .curve");
+  check_output_file(o.output, OutputKind::surface, {{"IN", o.input}});
   std::visit(
       [&](const auto& surface) {
         write_surface(o.output, surface, options);

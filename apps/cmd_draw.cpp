@@ -5,6 +5,7 @@
 #include "cli_common.hpp"
 
 #include <plmap/core/errors.hpp>
+#include <plmap/core/io/atomic_file.hpp>
 #include <plmap/core/io/map_file.hpp>
 #include <plmap/core/io/svg_drawing.hpp>
 
@@ -12,12 +13,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cstdlib>
 #include <iostream>
 #include <optional>
-#include <random>
 #include <sstream>
 #include <vector>
 
@@ -47,13 +45,6 @@ struct DrawOptions {
   bool element_labels = false;
   bool no_domain_edges = false;
 };
-
-std::string lower_extension(const std::filesystem::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 /// The full path of `program` on PATH, if it is there and executable.
 std::optional<std::filesystem::path> find_on_path(const std::string& program) {
@@ -97,22 +88,19 @@ void write_png(const std::string& svg, const std::filesystem::path& output, doub
   const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
   if (!fs::is_directory(parent))
     throw Error(output.string() + ": directory " + parent.string() + " does not exist");
-  std::random_device entropy;
-  const std::string stem = "." + output.filename().string() + ".tmp" + std::to_string(entropy() % 1000000);
-  const fs::path svg_file = parent / (stem + ".svg"), png_file = parent / (stem + ".png");
-  struct RemoveTemporaries {
-    std::vector<fs::path> paths;
-    ~RemoveTemporaries() {
-      std::error_code ignored;
-      for (const auto& p : paths) fs::remove(p, ignored);
-    }
-  } cleanup{{svg_file, png_file}};
-  write_svg_file(svg_file, svg);
+  remove_stale_temporaries(output);
+  const TemporaryFile svg_file(output, ".svg");
+  TemporaryFile png_file(output, ".png");
+  write_svg_file(svg_file.path(), svg);
   const int status = run_program(*converter, {"--zoom", std::to_string(zoom), "--format", "png",
-                                              "--output", png_file.string(), svg_file.string()});
-  if (status != 0 || !fs::is_regular_file(png_file))
+                                              "--output", png_file.path().string(),
+                                              svg_file.path().string()});
+  if (status != 0 || !fs::is_regular_file(png_file.path()))
     throw Error(output.string() + ": rsvg-convert failed (exit status " + std::to_string(status) + ")");
-  fs::rename(png_file, output);
+  std::error_code error;
+  fs::rename(png_file.path(), output, error);
+  if (error) throw Error(output.string() + ": cannot replace the file: " + error.message());
+  png_file.release();
 }
 
 template <int d>
@@ -138,10 +126,9 @@ std::string draw(const PlMap<d>& map, const DrawOptions& o) {
 }
 
 int run_draw(const DrawOptions& o) {
+  check_output_file(o.output, OutputKind::picture, {{"MAP", o.file}});
   require_readable_file(o.file);
   const std::string ext = lower_extension(o.output);
-  if (ext != ".svg" && ext != ".png")
-    throw Error(o.output + ": unknown picture format '" + ext + "'; use .svg or .png");
   if (ext == ".png" && !find_on_path(png_converter))
     throw Error(o.output + ": writing PNG needs the program rsvg-convert (Debian package "
                 "librsvg2-bin), which is not on PATH; install it, or write an .svg file");

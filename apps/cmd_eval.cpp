@@ -23,7 +23,7 @@ struct EvalOptions {
   std::size_t points = 100000;
   std::uint64_t seed = 1;
   std::string locator;  // empty: the default of the map's dimension
-  unsigned threads = 1;
+  unsigned threads = 0;
   int repeat = 1;
   bool json = false;
 };
@@ -82,7 +82,7 @@ Json evaluate_random(const PlMap<d>& map, const EvalOptions& o) {
   j["file"] = o.file;
   j["dimension"] = d;
   j["locator"] = locator_name;
-  j["threads"] = o.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : o.threads;
+  j["threads"] = resolved_threads(o.threads);
   j["seed"] = o.seed;
   j["points"] = points.size();
   j["found"] = found;
@@ -112,7 +112,9 @@ void register_eval(CLI::App& app, Action& action) {
       "seed) and report evaluations per second and the fraction of points found in the domain "
       "of the map.");
   cmd->add_option("MAP", o->file, "Map file (.plmap)")->required();
-  cmd->add_option("--random,-n", o->points, "Number of random query points")
+  // The points and their results take about 100 bytes each: more than 10^9 cannot be meant.
+  cmd->add_option("--random,-n", o->points, "Number of random query points (at most 10^9)")
+      ->check(CLI::Range(std::size_t{0}, std::size_t{1'000'000'000}))
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed of the query points and of randomized locators")
       ->capture_default_str();
@@ -126,8 +128,7 @@ void register_eval(CLI::App& app, Action& action) {
   cmd->add_option("--locator", o->locator,
                   "Point-location strategy: " + names(point_locator_names<2>()) +
                       " for triangle surfaces; " + names(point_locator_names<1>()) + " for curves");
-  cmd->add_option("--threads", o->threads, "Threads (0: all hardware threads)")
-      ->capture_default_str();
+  add_threads_option(*cmd, o->threads, "Threads");
   cmd->add_option("--repeat", o->repeat, "Time this many runs and report the fastest")
       ->check(positive_number)
       ->capture_default_str();

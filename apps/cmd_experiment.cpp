@@ -27,6 +27,11 @@ struct ExperimentOptions {
 
 #ifdef PLMAP_HAS_EXPERIMENT_RUNNER
 int run_experiment_command(const ExperimentOptions& o) {
+  // What run_experiment writes into the directory (docs/experiments.md, "Output").
+  check_output_directory(o.output,
+                         {"config.toml", "provenance.json", "runs.json", "results.jsonl",
+                          "results.csv", "summary.md"},
+                         {"inputs", "plots"}, {{"CONFIG", o.config}});
   require_readable_file(o.config);
   const auto config = experiment::parse_experiment_file(o.config);
   experiment::RunOptions options;

@@ -32,6 +32,7 @@ struct GenerateOptions {
 
 template <int d>
 int write_generated(const Surface<d>& surface, const GenerateOptions& o) {
+  check_output_file(o.output, OutputKind::surface, {});
   write_surface(o.output, surface);
   std::cout << "wrote " << o.output << ": " << surface.vertex_count() << " vertices, "
             << surface.element_count() << (d == 1 ? " segments" : " triangles") << '\n';

@@ -21,7 +21,7 @@ struct ProjectCommand {
   std::string s1, s2, output, directions_file, solver = "newton", normal_check = "none";
   double max_distance = std::numeric_limits<double>::infinity();
   bool relative_distance = false, allow_negative = false, json = false;
-  unsigned threads = 1;
+  unsigned threads = 0;
   int dimension = 0;
   std::size_t max_listed = 20;
 };
@@ -116,7 +116,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   j["solver"] = o.solver;
   j["solver_calls"] = r.solver_calls;
   j["solver_failures"] = r.solver_failures;
-  j["threads"] = o.threads;
+  j["threads"] = resolved_threads(o.threads);
   j["seconds"] = r.seconds.total;
   j["seconds_by_phase"] = {{"setup", r.seconds.setup},
                            {"vertex_preimages", r.seconds.vertex_preimages},
@@ -129,6 +129,8 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
 }
 
 int run_project(const ProjectCommand& o) {
+  check_output_file(o.output, OutputKind::map,
+                    {{"S1", o.s1}, {"S2", o.s2}, {"--directions", o.directions_file}});
   AnySurface a = read_any_surface(o.s1, o.dimension);
   AnySurface b = read_any_surface(o.s2, o.dimension == 0 ? static_cast<int>(a.index()) + 1 : o.dimension);
   if (a.index() != b.index())
@@ -155,8 +157,7 @@ void register_project(CLI::App& app, Action& action) {
                   "Text file with one projection direction per S1 vertex (d+1 numbers a line)");
   cmd->add_option("--solver", o->solver, "Solver of the projection equations: newton or ceres")
       ->capture_default_str();
-  cmd->add_option("--threads", o->threads, "Worker threads (0: all cores); the result does not depend on it")
-      ->capture_default_str();
+  add_threads_option(*cmd, o->threads, "Worker threads; the result does not depend on it");
   cmd->add_option("--max-distance", o->max_distance, "Largest projection distance |mu|")
       ->check(positive_number);
   cmd->add_flag("--relative-distance", o->relative_distance,

@@ -8,49 +8,11 @@
 #include <plmap/core/io/regions_csv.hpp>
 #include <plmap/core/io/vtu_export.hpp>
 
-#include <algorithm>
-#include <cctype>
 #include <iostream>
-#include <random>
 
 namespace plmap::cli {
 
 namespace {
-
-std::string lower_extension(const std::filesystem::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
-/// Writes only the regions' VTU file to `output`, atomically: the VTU file set is exported into
-/// a scratch directory next to `output` (same file system), and its regions.vtu renamed over
-/// `output`. The scratch directory is removed in every case.
-template <int d>
-void write_regions_vtu(const PlMap<d>& map, const std::filesystem::path& output) {
-  namespace fs = std::filesystem;
-  const fs::path parent = output.has_parent_path() ? output.parent_path() : fs::path(".");
-  if (!fs::is_directory(parent))
-    throw Error(output.string() + ": directory " + parent.string() + " does not exist");
-  std::random_device entropy;
-  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) about "." + std::string at -O2.
-  std::string scratch_name = ".";
-  scratch_name += output.filename().string();
-  scratch_name += ".tmp";
-  scratch_name += std::to_string(entropy() % 1000000);
-  const fs::path scratch = parent / scratch_name;
-  struct RemoveScratch {
-    fs::path path;
-    ~RemoveScratch() {
-      std::error_code ignored;
-      fs::remove_all(path, ignored);
-    }
-  } cleanup{scratch};
-  fs::create_directory(scratch);
-  export_vtu(map, scratch);
-  fs::rename(scratch / "regions.vtu", output);
-}
 
 struct RegionsOptions {
   std::string file;
@@ -58,22 +20,25 @@ struct RegionsOptions {
 };
 
 int run_regions(const RegionsOptions& o) {
+  check_output_file(o.output, OutputKind::regions, {{"MAP", o.file}});
   require_readable_file(o.file);
   const std::string ext = lower_extension(o.output);
-  if (ext != ".csv" && ext != ".vtu")
-    throw Error(o.output + ": unknown output format '" + ext + "'; use .csv or .vtu");
   const AnyPlMap any = load_map(o.file);
   std::visit(
       [&](const auto& map) {
         if (ext == ".csv")
           write_regions_csv(std::filesystem::path(o.output), map);
         else
-          write_regions_vtu(map, o.output);
+          write_regions_vtu(std::filesystem::path(o.output), map);
         std::cout << "wrote " << map.region_count() << " regions to " << o.output << '\n';
       },
       any);
   return exit_code::success;
 }
+
+/// The files export_vtu writes into its directory (an input of that name would be replaced).
+const std::vector<std::string> export_vtu_file_names = {
+    "domain.vtu", "target.vtu", "graph.vtu", "regions.vtu", "images.vtu", "map.pvd"};
 
 struct ExportOptions {
   std::string file;
@@ -81,6 +46,7 @@ struct ExportOptions {
 };
 
 int run_export(const ExportOptions& o) {
+  check_output_directory(o.directory, export_vtu_file_names, {}, {{"MAP", o.file}});
   require_readable_file(o.file);
   const AnyPlMap any = load_map(o.file);
   const auto written =

@@ -4,7 +4,9 @@
 #include "cli_common.hpp"
 
 #include <plmap/core/errors.hpp>
+#include <plmap/core/io/atomic_file.hpp>
 
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -32,10 +34,50 @@ std::string one_line(std::string message) {
   return message;
 }
 
+std::string command_names(CLI::App& level) {
+  std::string names;
+  for (const CLI::App* sub : level.get_subcommands([](CLI::App*) { return true; }))
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+  return names;
+}
+
+/// When the command line fails to parse, says what is wrong with the command words: which word
+/// is not a command, or that a command needs one, with the valid names. CLI11 only says "A
+/// subcommand is required" in both cases. Empty if the command words are fine.
+std::string command_word_error(CLI::App& app, int argc, char** argv) {
+  CLI::App* level = &app;
+  std::string parent;  // the command words so far, without "plmap"
+  for (int i = 1;; ++i) {
+    if (level->get_subcommands([](CLI::App*) { return true; }).empty()) return {};
+    const std::string of = parent.empty() ? "the commands are " : "the commands of '" + parent + "' are ";
+    if (i < argc && argv[i][0] == '-') {
+      // An option where a command is expected: CLI11 would only say that a command is missing.
+      const std::string option(argv[i], std::strcspn(argv[i], "="));
+      if (level->get_option_no_throw(option) != nullptr) return {};
+      return "plmap: unknown option '" + option + "'" +
+             (parent.empty() ? "" : " for '" + parent + "'") + "; " + of + command_names(*level);
+    }
+    if (i >= argc) {
+      if (level->get_require_subcommand_min() == 0) return {};
+      return "plmap: no command given" + (parent.empty() ? "" : " after '" + parent + "'") + "; " +
+             of + command_names(*level);
+    }
+    const std::string word = argv[i];
+    const auto match = level->get_subcommands([&](CLI::App* sub) { return sub->check_name(word); });
+    if (match.empty())
+      return "plmap: unknown command '" + (parent.empty() ? word : parent + " " + word) + "'; " + of +
+             command_names(*level);
+    level = match.front();
+    parent += (parent.empty() ? "" : " ") + word;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace plmap::cli;
+  // Ctrl-C while a file is written leaves no temporary file behind.
+  plmap::remove_temporaries_on_signals();
   CLI::App app(description, "plmap");
   app.footer(footer);
   app.require_subcommand(1);
@@ -53,13 +95,16 @@ int main(int argc, char** argv) {
   register_draw(app, action);
   register_experiment(app, action);
   register_project(app, action);
+  reject_bad_numbers(app);
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success))
       return app.exit(e);  // --help and friends
-    std::cerr << "plmap: " << one_line(e.what()) << " (run `plmap --help` for usage)\n";
+    std::string message = command_word_error(app, argc, argv);
+    if (message.empty()) message = "plmap: " + one_line(e.what());
+    std::cerr << message << " (run `plmap --help` for usage)\n";
     return exit_code::usage_error;
   }
 
@@ -69,6 +114,9 @@ int main(int argc, char** argv) {
       return exit_code::usage_error;
     }
     return action();
+  } catch (const UsageError& e) {
+    std::cerr << "plmap: " << one_line(e.what()) << '\n';
+    return exit_code::usage_error;
   } catch (const plmap::Error& e) {
     std::cerr << "plmap: " << one_line(e.what()) << '\n';
     return exit_code::input_error;

@@ -304,7 +304,7 @@ def regions_csv_and_vtu():
     expect(piece is not None and piece.get("NumberOfCells") == "8", ElementTree.tostring(root)[:300])
     leftovers = [f for f in os.listdir(WORK) if f.startswith(".")]
     expect(not leftovers, f"scratch files left behind: {leftovers}")
-    expect_clean_error(["regions", m, "-o", "regions.txt"], mention="regions.txt")
+    expect_clean_error(["regions", m, "-o", "regions.txt"], code=64, mention="regions.txt")
 
 
 @case
@@ -337,7 +337,7 @@ def convert_formats():
     run("convert", c, "line.msh")
     j = run_json("info", "line.msh", "--json")
     expect(j["dimension"] == 1 and j["elements"] == 4, f"Gmsh curve: {j}")
-    expect_clean_error(["convert", s, "out.xyz"], mention="out.xyz")
+    expect_clean_error(["convert", s, "out.xyz"], code=64, mention="out.xyz")
     expect_clean_error(["convert", c, "line.off"])  # OFF cannot hold a curve
 
 

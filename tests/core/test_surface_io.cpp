@@ -419,7 +419,7 @@ TEST(SurfaceIo, AFailedWriteLeavesTheOldFileUntouched) {
   EXPECT_NE(slurp(path), before);
   expect_same(fin(), read_triangle_surface(path));
   for (const auto& entry : fs::directory_iterator(scratch_dir()))
-    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+    EXPECT_EQ(entry.path().filename().string().find("tmp"), std::string::npos) << entry.path();
 }
 
 }  // namespace

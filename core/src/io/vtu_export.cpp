@@ -284,6 +284,14 @@ std::vector<std::filesystem::path> export_vtu(const PlMap<d>& map,
   return written;
 }
 
+template <int d>
+void write_regions_vtu(const std::filesystem::path& path, const PlMap<d>& map) {
+  write_vtu(path, region_grid<d>(remote_intersections(map), false));
+}
+
+template void write_regions_vtu(const std::filesystem::path&, const PlMap<1>&);
+template void write_regions_vtu(const std::filesystem::path&, const PlMap<2>&);
+
 template std::vector<std::filesystem::path> export_vtu(const PlMap<1>&,
                                                        const std::filesystem::path&);
 template std::vector<std::filesystem::path> export_vtu(const PlMap<2>&,

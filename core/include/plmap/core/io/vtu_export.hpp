@@ -31,4 +31,9 @@ template <int d>
 std::vector<std::filesystem::path> export_vtu(const PlMap<d>& map,
                                               const std::filesystem::path& directory);
 
+/// Writes only the regions (the regions.vtu of export_vtu) to the file `path`, atomically.
+/// Throws plmap::Error naming `path` if it cannot be written.
+template <int d>
+void write_regions_vtu(const std::filesystem::path& path, const PlMap<d>& map);
+
 }  // namespace plmap

@@ -1,0 +1,270 @@
+# Command-line robustness (issue 12): outputs never replace inputs, numbers are checked before
+# they reach the library, messages name what the user typed, temporaries do not outlive a write.
+# Exec'd into cli_test.py's namespace (case, run, expect, expect_clean_error, WORK, ...).
+
+import re
+import signal
+import socket
+import time
+
+
+def _read(name):
+    with open(os.path.join(WORK, name), "rb") as f:
+        return f.read()
+
+
+def _expect_unchanged(name, before, what):
+    expect(_read(name) == before, f"{what}: {name} was changed")
+
+
+@case
+def output_that_is_an_input_is_refused():
+    s = grid("v.off", cells=2)
+    surface = _read(s)
+    line = expect_clean_error(["build", "identity", "v.off", "-o", "v.off"], code=64, mention="v.off")
+    expect("input" in line, f"should say the output is an input: {line}")
+    _expect_unchanged("v.off", surface, "build identity -o INPUT")
+    grid("b.off", cells=3)
+    target = _read("b.off")
+    # the same file under another spelling, a symbolic link and a hard link
+    os.symlink("v.off", os.path.join(WORK, "link.plmap"))
+    os.link(os.path.join(WORK, "b.off"), os.path.join(WORK, "hard.plmap"))
+    for output in ("./v.off", os.path.join(WORK, "v.off"), "link.plmap", "hard.plmap"):
+        expect_clean_error(["project", "v.off", "b.off", "-o", output], code=64, mention=output)
+    expect_clean_error(["project", "v.off", "b.off", "-o", "b.off"], code=64, mention="S2")
+    _expect_unchanged("b.off", target, "project -o S2")
+    _expect_unchanged("v.off", surface, "project -o S1")
+    expect_clean_error(["build", "overlay", "v.off", "b.off", "-o", "hard.plmap"], code=64)
+    expect_clean_error(["convert", "v.off", "./v.off"], code=64, mention="IN")
+    # a map read by regions, draw and export is not replaced either
+    m = identity_map("v.off", "m.plmap")
+    saved = _read(m)
+    os.link(os.path.join(WORK, m), os.path.join(WORK, "m.csv"))
+    expect_clean_error(["regions", m, "-o", "m.csv"], code=64, mention="MAP")
+    os.link(os.path.join(WORK, m), os.path.join(WORK, "m.svg"))
+    expect_clean_error(["draw", m, "--view3d", "-o", "m.svg"], code=64, mention="MAP")
+    os.makedirs(os.path.join(WORK, "vtk"))
+    shutil.copy(os.path.join(WORK, m), os.path.join(WORK, "vtk", "graph.vtu"))
+    expect_clean_error(["export", "vtk/graph.vtu", "-o", "vtk"], code=64, mention="graph.vtu")
+    _expect_unchanged(m, saved, "regions/draw -o a link to the map")
+    # an experiment's config inside its output directory would be overwritten by the copy
+    os.makedirs(os.path.join(WORK, "results"))
+    write("results/config.toml", "[experiment]\nname = \"x\"\n")
+    expect_clean_error(["experiment", "run", "results/config.toml", "-o", "results"], code=64,
+                       mention="config.toml")
+    # different files with the same content are not the same file
+    shutil.copy(os.path.join(WORK, "v.off"), os.path.join(WORK, "copy.off"))
+    run("build", "identity", "copy.off", "-o", "copy.plmap")
+
+
+@case
+def output_extension_of_another_kind_is_refused():
+    s = grid("v.off", cells=2)
+    m = identity_map(s, "m.plmap")
+    refused = [
+        (["build", "identity", s, "-o", "out.off"], ".off"),
+        (["build", "refine", s, "-o", "out.stl"], ".stl"),
+        (["build", "overlay", s, s, "-o", "out.ply"], ".ply"),
+        (["project", s, s, "-o", "out.obj"], ".obj"),
+        (["project", s, s, "-o", "out"], "without extension"),
+        (["convert", s, "out.plmap"], "map file"),
+        (["generate", "grid", "-o", "out.plmap"], "map file"),
+        (["generate", "polyline", "-o", "out.svg"], ".svg"),
+        (["regions", m, "-o", "out.plmap"], "map file"),
+        (["regions", m, "-o", "out.off"], "surface file"),
+        (["draw", m, "--view3d", "-o", "out.csv"], ".csv"),
+        (["draw", m, "--view3d", "-o", "out.plmap"], "map file"),
+    ]
+    for args, mention in refused:
+        expect_clean_error(args, code=64, mention=mention)
+    os.makedirs(os.path.join(WORK, "dir.plmap"))
+    expect_clean_error(["build", "identity", s, "-o", "dir.plmap"], code=64, mention="directory")
+    stray = sorted(f for f in os.listdir(WORK) if f.startswith("out"))
+    expect(not stray, f"refused commands wrote {stray}")
+    # upper-case extensions are still the right kind
+    run("build", "identity", s, "-o", "UPPER.PLMAP")
+
+
+# Every command line with its required arguments, for the sweep over its numeric options.
+_COMMANDS = {
+    ("info",): ["x.off"],
+    ("check",): ["x.plmap"],
+    ("eval",): ["x.plmap"],
+    ("regions",): ["x.plmap", "-o", "r.csv"],
+    ("export",): ["x.plmap", "-o", "dir"],
+    ("convert",): ["x.off", "y.off"],
+    ("build", "identity"): ["x.off", "-o", "m.plmap"],
+    ("build", "refine"): ["x.off", "-o", "m.plmap"],
+    ("build", "overlay"): ["x.off", "y.off", "-o", "m.plmap"],
+    ("generate", "grid"): ["-o", "g.off"],
+    ("generate", "delaunay"): ["-o", "g.off"],
+    ("generate", "polyline"): ["-o", "g.curve"],
+    ("draw",): ["x.plmap", "-o", "p.svg"],
+    ("experiment", "run"): ["x.toml", "-o", "dir"],
+    ("project",): ["x.off", "y.off", "-o", "m.plmap"],
+}
+
+
+def _numeric_options(command):
+    """(option, type) for every option of `plmap COMMAND --help` taking INT, UINT or FLOAT."""
+    out, _, _ = run(*command, "--help")
+    found = []
+    for match in re.finditer(r"^\s+(?:-\w,)?(--[\w-]+)(?:,-\w)?\s+(INT|UINT|FLOAT)\b", out, re.M):
+        found.append((match.group(1), match.group(2)))
+    return found
+
+
+@case
+def negative_counts_are_refused():
+    # the reported ones first, then every integer option of every command
+    for args, option in ((["eval", "m.plmap", "--random", "-5"], "--random"),
+                         (["eval", "m.plmap", "--seed", "-1"], "--seed"),
+                         (["project", "a.off", "b.off", "-o", "m.plmap", "--max-listed", "-1"], "--max-listed"),
+                         (["check", "m.plmap", "--max-reported", "-1"], "--max-reported"),
+                         (["eval", "m.plmap", "--threads", "-2"], "--threads"),
+                         (["draw", "m.plmap", "--element", "-1", "-o", "p.svg"], "--element")):
+        expect_clean_error(args, code=64, mention=option)
+    swept = 0
+    for command, required in _COMMANDS.items():
+        for option, kind in _numeric_options(command):
+            if kind == "FLOAT":
+                continue
+            args = list(command) + required + [option, "-1"]
+            expect_clean_error(args, code=64, mention=option)
+            swept += 1
+    expect(swept >= 15, f"only {swept} integer options found in the help texts")
+
+
+@case
+def non_finite_numbers_are_refused():
+    s = grid("v.off", cells=2)
+    m = identity_map(s, "m.plmap")
+    expect_clean_error(["draw", m, "--view3d", "--azimuth", "nan", "-o", "nan.svg"], code=64,
+                       mention="--azimuth")
+    expect(not os.path.exists(os.path.join(WORK, "nan.svg")), "an SVG was written for azimuth nan")
+    swept = 0
+    for command, required in _COMMANDS.items():
+        for option, kind in _numeric_options(command):
+            if kind != "FLOAT":
+                continue
+            for value in ("nan", "inf", "-inf", "1e400"):
+                expect_clean_error(list(command) + required + [option, value], code=64, mention=option)
+            swept += 1
+    expect(swept >= 8, f"only {swept} floating-point options found in the help texts")
+    # finite values are still accepted, also where the default is infinite
+    run("check", m, "--max-condition", "1e300")
+
+
+@case
+def unknown_command_is_named():
+    line = expect_clean_error(["frobnicate"], code=64, mention="'frobnicate'")
+    for name in ("info", "build", "project", "draw"):
+        expect(name in line, f"the valid commands should be listed: {line}")
+    line = expect_clean_error(["build", "idenity", "v.off"], code=64, mention="'build idenity'")
+    expect("identity" in line and "overlay" in line, f"build's commands should be listed: {line}")
+    line = expect_clean_error(["generate"], code=64, mention="no command")
+    expect("grid" in line and "polyline" in line, line)
+    line = expect_clean_error([], code=64, mention="no command")
+    expect("eval" in line, line)
+    expect_clean_error(["--frobnicate"], code=64, mention="'--frobnicate'")
+    expect_clean_error(["build", "--json", "identity", "v.off", "-o", "m.plmap"], code=64,
+                       mention="'--json' for 'build'")
+    # an unknown option is still CLI11's message, which names it
+    expect_clean_error(["info", "x.off", "--frobnicate"], code=64, mention="--frobnicate")
+
+
+@case
+def write_failures_name_the_output():
+    s = grid("v.off", cells=2)
+    m = identity_map(s, "m.plmap")
+    write("afile", "not a directory\n")
+    # /proc takes no new files, even for root; afile/ and missing/ are not directories
+    for where in ("/proc", "missing", "afile"):
+        attempts = [(["regions", m, "-o", f"{where}/x.vtu"], f"{where}/x.vtu"),
+                    (["regions", m, "-o", f"{where}/x.csv"], f"{where}/x.csv"),
+                    (["convert", s, f"{where}/x.ply"], f"{where}/x.ply"),
+                    (["build", "identity", s, "-o", f"{where}/x.plmap"], f"{where}/x.plmap"),
+                    (["draw", m, "--view3d", "-o", f"{where}/x.svg"], f"{where}/x.svg"),
+                    (["export", m, "-o", f"{where}/vtk"], f"{where}/vtk")]
+        if where == "missing":
+            attempts.pop()  # export creates the directory
+        for args, output in attempts:
+            line = expect_clean_error(args, code=2, mention=output)
+            expect(".tmp" not in line and "plmap-tmp" not in line,
+                   f"the message names a temporary file: {line}")
+    stray = [f for f in os.listdir(WORK) if f.startswith(".")]
+    expect(not stray, f"temporaries left behind: {stray}")
+
+
+def _dead_pid():
+    """A process id that no process has now."""
+    for pid in range(4_000_000, 3_000_000, -7919):
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return pid
+        except PermissionError:
+            pass
+    raise Failure("no free process id found")
+
+
+@case
+def stale_temporaries_are_removed():
+    s = grid("v.off", cells=2)
+    host = socket.gethostname()
+    stale = f".m.plmap.plmap-tmp-{host}-{_dead_pid()}-0"
+    live = f".m.plmap.plmap-tmp-{host}-{os.getpid()}-0"  # this test is alive: not stale
+    other_host = f".m.plmap.plmap-tmp-elsewhere.example-{_dead_pid()}-0"
+    unrelated = f".n.plmap.plmap-tmp-{host}-{_dead_pid()}-0"
+    for name in (stale, live, other_host, unrelated):
+        write(name, "half a map")
+    run("build", "identity", s, "-o", "m.plmap")
+    left = set(os.listdir(WORK))
+    expect(stale not in left, "the temporary of a dead process was not removed")
+    for name in (live, other_host, unrelated):
+        expect(name in left, f"{name} was removed, but it is not a stale temporary of m.plmap")
+    expect(not [f for f in left if ".m.plmap.plmap-tmp-" in f and f not in (live, other_host)],
+           f"the write left its own temporary: {sorted(left)}")
+
+
+@case
+def interrupted_write_leaves_no_temporary():
+    # A refinement big enough that writing the map takes a while: interrupt it while the
+    # temporary exists, and check that the handler removed it.
+    s = grid("v.off", cells=8)
+    command = [PLMAP, "build", "refine", s, "--levels", "6", "-o", "big.plmap"]
+    for signal_number in (signal.SIGINT, signal.SIGTERM):
+        process = subprocess.Popen(command, cwd=WORK, stdout=subprocess.DEVNULL,
+                                   stderr=subprocess.DEVNULL)
+        caught = False
+        deadline = time.monotonic() + 120
+        while process.poll() is None and time.monotonic() < deadline:
+            if any(".plmap-tmp-" in f for f in os.listdir(WORK)):
+                process.send_signal(signal_number)
+                caught = True
+                break
+            time.sleep(0.001)
+        process.wait(timeout=120)
+        if not caught:
+            raise Failure("the write finished before it could be interrupted; refine more")
+        expect(process.returncode == -signal_number,
+               f"plmap should end by the signal {signal_number}, exit {process.returncode}")
+        left = [f for f in os.listdir(WORK) if f not in ("v.off", "big.plmap")]
+        expect(not left, f"interrupted write left {left}")
+        if os.path.exists(os.path.join(WORK, "big.plmap")):
+            # the signal came after the rename: then the map is complete
+            run("info", "big.plmap", "--no-quality")
+            os.remove(os.path.join(WORK, "big.plmap"))
+
+
+@case
+def threads_default_to_all_cores():
+    s = grid("v.off", cells=2)
+    m = identity_map(s, "m.plmap")
+    j = run_json("eval", m, "--random", 100, "--json")
+    expect(j["threads"] == os.cpu_count(), f"eval: threads {j['threads']}, cores {os.cpu_count()}")
+    j = run_json("project", s, s, "-o", "p.plmap", "--json")
+    expect(j["threads"] == os.cpu_count(), f"project: threads {j['threads']}, cores {os.cpu_count()}")
+    out, _, _ = run("eval", "--help")
+    expect("all hardware threads" in out, f"eval --help should say what 0 threads means: {out}")
+    expect_clean_error(["eval", m, "--threads", "100000"], code=64, mention="--threads")
