@@ -16,10 +16,12 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <thread>
 
 namespace plmap::python {
 
@@ -55,11 +57,18 @@ const KeywordFields<VerifyOptions>& verify_fields() {
 /// is relative to the element) before a query point counts as malformed.
 constexpr double local_slack = 1e-9;
 
+/// The query points as two checked arrays: elements (n,) int64 and local coordinates (n, d).
+struct QueryArrays {
+  py::array_t<std::int64_t> elements;
+  py::array_t<double> local;
+};
+
 template <int d>
-std::vector<SurfacePoint<d>> query_points(const PlMap<d>& map, py::handle elements_in, py::handle local_in) {
-  const auto elements = index_matrix(elements_in, "elements", 0);
+QueryArrays query_arrays(const PlMap<d>& map, py::handle elements_in, py::handle local_in) {
+  QueryArrays q;
+  q.elements = index_matrix(elements_in, "elements", 0);
   // d = 1 also takes local coordinates as a flat (n,) array.
-  const py::array_t<double> local = [&] {
+  q.local = [&] {
     if (d == 1) {
       auto flat = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(local_in);
       if (flat && flat.ndim() == 1)
@@ -67,22 +76,19 @@ std::vector<SurfacePoint<d>> query_points(const PlMap<d>& map, py::handle elemen
     }
     return float_matrix(local_in, "local", d);
   }();
-  if (local.shape(0) != elements.shape(0))
-    throw py::value_error("evaluate: " + std::to_string(elements.shape(0)) + " elements but " +
-                          std::to_string(local.shape(0)) + " rows of local coordinates");
-  const auto e = elements.unchecked<1>();
-  const auto x = local.unchecked<2>();
+  if (q.local.shape(0) != q.elements.shape(0))
+    throw py::value_error("evaluate: " + std::to_string(q.elements.shape(0)) + " elements but " +
+                          std::to_string(q.local.shape(0)) + " rows of local coordinates");
+  const auto e = q.elements.unchecked<1>();
+  const auto x = q.local.unchecked<2>();
   const Index element_count = map.domain().element_count();
-  std::vector<SurfacePoint<d>> points(e.shape(0));
   for (py::ssize_t i = 0; i < e.shape(0); ++i) {
     if (e(i) < 0 || e(i) >= element_count)
       throw py::index_error("evaluate: elements[" + std::to_string(i) + "] = " + std::to_string(e(i)) +
                             " is not an S1 element (S1 has " + std::to_string(element_count) + ")");
-    points[i].element = static_cast<Index>(e(i));
     double sum = 0.0;
     bool inside = true;
     for (int k = 0; k < d; ++k) {
-      points[i].local(k) = x(i, k);
       sum += x(i, k);
       inside = inside && std::isfinite(x(i, k)) && x(i, k) >= -local_slack;
     }
@@ -90,38 +96,60 @@ std::vector<SurfacePoint<d>> query_points(const PlMap<d>& map, py::handle elemen
       throw py::value_error("evaluate: local[" + std::to_string(i) +
                             "] is not a point of the reference element (coordinates >= 0 with sum <= 1)");
   }
-  return points;
+  return q;
 }
+
+/// Points evaluated per thread and call of evaluate_batch: the library's batch works on buffers
+/// of this size, reused, instead of on temporary copies of all points (whose fresh pages cost as
+/// much as the evaluation itself for millions of points).
+constexpr std::size_t points_per_thread_and_batch = std::size_t{1} << 16;
 
 template <int d>
 py::dict evaluate_points(const PlMap<d>& map, py::handle elements, py::handle local,
                          const std::optional<std::string>& locator_name, unsigned threads) {
-  const std::vector<SurfacePoint<d>> points = query_points(map, elements, local);
+  const QueryArrays q = query_arrays(map, elements, local);
   const std::string name(locator_name ? *locator_name : std::string(default_point_locator_name<d>()));
-  std::vector<Evaluation<d>> out(points.size());
-  {
-    py::gil_scoped_release unlocked;
-    with_point_locator<d>(name, [&](auto& locator) {
-      evaluate_batch<d>(map, points, out, locator, threads);
-    });
-  }
-  const auto n = static_cast<py::ssize_t>(points.size());
+  const auto n = q.elements.shape(0);
   py::array_t<bool> in_domain(n);
   py::array_t<Index> region(n), image_element(n);
   py::array_t<double> image_local(std::vector<py::ssize_t>{n, d}), world(std::vector<py::ssize_t>{n, d + 1});
-  auto in = in_domain.mutable_unchecked<1>();
-  auto r = region.mutable_unchecked<1>();
-  auto el = image_element.mutable_unchecked<1>();
-  auto il = image_local.mutable_unchecked<2>();
-  auto w = world.mutable_unchecked<2>();
-  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-  for (py::ssize_t i = 0; i < n; ++i) {
-    const Evaluation<d>& e = out[i];
-    in(i) = e.in_domain;
-    r(i) = e.in_domain ? e.region : invalid_index;
-    el(i) = e.in_domain ? e.image.element : invalid_index;
-    for (int k = 0; k < d; ++k) il(i, k) = e.in_domain ? e.image.local(k) : nan;
-    for (int k = 0; k <= d; ++k) w(i, k) = e.in_domain ? e.world(k) : nan;
+  // Raw pointers into arrays this frame owns, so the loop runs without the GIL.
+  const std::int64_t* e_in = q.elements.data();
+  const double* x_in = q.local.data();
+  bool* in = in_domain.mutable_data();
+  Index* r = region.mutable_data();
+  Index* el = image_element.mutable_data();
+  double* il = image_local.mutable_data();
+  double* w = world.mutable_data();
+  {
+    py::gil_scoped_release unlocked;
+    with_point_locator<d>(name, [&](auto& locator) {
+      constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+      const unsigned workers = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+      const std::size_t points_per_batch = points_per_thread_and_batch * workers;
+      std::vector<SurfacePoint<d>> points;
+      std::vector<Evaluation<d>> out;
+      for (py::ssize_t begin = 0; begin < n;) {
+        const auto count = static_cast<py::ssize_t>(std::min<std::size_t>(points_per_batch, n - begin));
+        points.resize(count);
+        out.resize(count);
+        for (py::ssize_t i = 0; i < count; ++i) {
+          points[i].element = static_cast<Index>(e_in[begin + i]);
+          for (int k = 0; k < d; ++k) points[i].local(k) = x_in[(begin + i) * d + k];
+        }
+        evaluate_batch<d>(map, points, out, locator, threads);
+        for (py::ssize_t i = 0; i < count; ++i) {
+          const Evaluation<d>& ev = out[i];
+          const py::ssize_t j = begin + i;
+          in[j] = ev.in_domain;
+          r[j] = ev.in_domain ? ev.region : invalid_index;
+          el[j] = ev.in_domain ? ev.image.element : invalid_index;
+          for (int k = 0; k < d; ++k) il[j * d + k] = ev.in_domain ? ev.image.local(k) : nan;
+          for (int k = 0; k <= d; ++k) w[j * (d + 1) + k] = ev.in_domain ? ev.world(k) : nan;
+        }
+        begin += count;
+      }
+    });
   }
   py::dict result;
   result["in_domain"] = in_domain;
