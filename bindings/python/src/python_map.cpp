@@ -295,7 +295,7 @@ void bind_map(py::module_& m) {
       }, py::arg("elements"), py::arg("local"), py::kw_only(), py::arg("locator") = py::none(),
          py::arg("threads") = 0u,
          "Xi at the points (elements[i], local[i]) of S1: elements (n,) int, local (n, d) local "
-         "coordinates on the element. Runs on `threads` threads (0: all cores) without the GIL. "
+         "coordinates on the element (d = 1: also (n,)). Runs on `threads` threads (0: all cores) without the GIL. "
          "Returns a dict of arrays: in_domain (n,) bool, region (n,), image_element (n,) (-1 "
          "outside D), image_local (n, d), world (n, d+1) (NaN outside D). `locator` names the "
          "point-location strategy (default: brown-faigle for d = 2, bisection for d = 1).")
