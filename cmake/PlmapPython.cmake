@@ -12,6 +12,12 @@ if(NOT Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
   set(Python3_EXECUTABLE /usr/bin/python3 CACHE FILEPATH
       "The Python interpreter the build uses (CLI tests, the Python module and its tests)")
 endif()
+# FindPython keeps the interpreter an earlier configure found (its internal cache entry) even
+# when Python3_EXECUTABLE names another: forget it, so that the named one is used.
+if(Python3_EXECUTABLE AND DEFINED CACHE{_Python3_EXECUTABLE}
+   AND NOT "${_Python3_EXECUTABLE}" STREQUAL "${Python3_EXECUTABLE}")
+  unset(_Python3_EXECUTABLE CACHE)
+endif()
 
 set(PLMAP_PYTHON_MODULE OFF)
 if(NOT PLMAP_BUILD_PYTHON)
@@ -39,8 +45,8 @@ endif()
 execute_process(COMMAND ${Python3_EXECUTABLE} -c "import numpy"
                 RESULT_VARIABLE _plmap_numpy_missing OUTPUT_QUIET ERROR_QUIET)
 if(_plmap_numpy_missing)
-  message(STATUS "Python module: skipped, ${Python3_EXECUTABLE} cannot import numpy "
-                 "(Debian: python3-numpy)")
+  message(WARNING "Python module: skipped, ${Python3_EXECUTABLE} cannot import numpy "
+                  "(Debian: python3-numpy; or choose another -DPython3_EXECUTABLE)")
   return()
 endif()
 set(PLMAP_PYTHON_MODULE ON)
