@@ -1,6 +1,8 @@
 """plmap.Map: files, the invariant report, evaluation (vectorised, threaded), kappa and info."""
 
+import sys
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -180,3 +182,42 @@ def test_corrupt_map_files_are_parse_errors_naming_the_file(tilted, work_dir):
         plmap.load(work_dir / "cut.plmap")
     with pytest.raises(plmap.ParseError, match=r"missing\.plmap"):
         plmap.load(work_dir / "missing.plmap")
+
+
+def test_evaluation_releases_the_gil(tilted):
+    # While one thread evaluates a large batch, another counts in Python. Were the GIL held through
+    # the C++ evaluation, the counter could only run in the moments around the call (a few switch
+    # intervals, kept short here); with the GIL released it runs during the whole evaluation.
+    s1, _, m = tilted
+    elements, local = random_local_points(np.random.default_rng(9), s1.element_count, 3_000_000, 2)
+
+    def count_while(busy):
+        done = threading.Event()
+        counted = []
+
+        def count():
+            n = 0
+            while not done.is_set():
+                n += 1
+            counted.append(n)
+
+        counter = threading.Thread(target=count)
+        start = time.perf_counter()
+        counter.start()
+        try:
+            busy()
+        finally:
+            done.set()
+            counter.join()
+        return counted[0], time.perf_counter() - start
+
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1e-4)
+    try:
+        alone, alone_seconds = count_while(lambda: time.sleep(0.05))
+        during, seconds = count_while(lambda: m.evaluate(elements, local, threads=1))
+    finally:
+        sys.setswitchinterval(interval)
+    rate = alone / alone_seconds
+    # Measured: about 0.4 of the counter's own rate with the GIL released, 0.03 with it held.
+    assert during > 0.15 * rate * seconds, (during, rate, seconds)
