@@ -214,7 +214,7 @@ def test_evaluation_releases_the_gil(tilted):
     interval = sys.getswitchinterval()
     sys.setswitchinterval(1e-4)
     try:
-        alone, alone_seconds = count_while(lambda: time.sleep(0.05))
+        alone, alone_seconds = count_while(lambda: time.sleep(0.2))
         during, seconds = count_while(lambda: m.evaluate(elements, local, threads=1))
     finally:
         sys.setswitchinterval(interval)
