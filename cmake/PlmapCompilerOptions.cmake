@@ -27,6 +27,12 @@ function(plmap_add_library folder)
   add_library(${target} ${sources})
   add_library(plmap::${folder} ALIAS ${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${folder} OUTPUT_NAME ${target})
+  if(PLMAP_PYTHON_MODULE)
+    # The Python extension is a shared module that links these static libraries: -fPIC. (Code
+    # built as position-independent executable, GCC's default on Debian, accesses libc's data
+    # such as stderr in a way a shared object cannot.)
+    set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  endif()
   target_include_directories(${target} PUBLIC
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
     $<INSTALL_INTERFACE:include>)

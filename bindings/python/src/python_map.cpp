@@ -1,0 +1,329 @@
+#include "python_map.hpp"
+
+#include "keyword_options.hpp"
+#include "numpy_arrays.hpp"
+#include "python_surface.hpp"
+
+#include <plmap/core/evaluation.hpp>
+#include <plmap/core/io/map_file.hpp>
+#include <plmap/core/regions.hpp>
+#include <plmap/strategies/point_locator_registry.hpp>
+#include <plmap/verify/check.hpp>
+#include <plmap/verify/quality.hpp>
+#include <plmap/verify/report_json.hpp>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <thread>
+
+namespace plmap::python {
+
+namespace {
+
+template <class F>
+decltype(auto) visit_map(const PyMap& m, F&& f) {
+  return std::visit([&](const auto& ptr) -> decltype(auto) { return f(*ptr); }, m.map);
+}
+
+py::object json_to_python(const nlohmann::json& j) {
+  return py::module_::import("json").attr("loads")(j.dump());
+}
+
+const KeywordFields<VerifyOptions>& verify_fields() {
+  static const KeywordFields<VerifyOptions> fields = {
+      {"snap_tolerance", keyword_field(&VerifyOptions::snap_tolerance, "a float")},
+      {"local_tolerance", keyword_field(&VerifyOptions::local_tolerance, "a float")},
+      {"world_tolerance", keyword_field(&VerifyOptions::world_tolerance, "a float")},
+      {"measure_tolerance", keyword_field(&VerifyOptions::measure_tolerance, "a float")},
+      {"continuity_samples_per_piece", keyword_field(&VerifyOptions::continuity_samples_per_piece, "an int")},
+      {"expect_parametrization", keyword_field(&VerifyOptions::expect_parametrization, "a bool")},
+      {"max_condition", keyword_field(&VerifyOptions::max_condition, "a float")},
+      {"compute_quality", keyword_field(&VerifyOptions::compute_quality, "a bool")},
+      {"max_reported_per_rule", keyword_field(&VerifyOptions::max_reported_per_rule, "an int")},
+  };
+  return fields;
+}
+
+// ---- evaluate ------------------------------------------------------------------------------
+
+/// Local coordinates may leave the reference element by this much (they are scale-free, so this
+/// is relative to the element) before a query point counts as malformed.
+constexpr double local_slack = 1e-9;
+
+/// The query points as two checked arrays: elements (n,) int64 and local coordinates (n, d).
+struct QueryArrays {
+  py::array_t<std::int64_t> elements;
+  py::array_t<double> local;
+};
+
+template <int d>
+QueryArrays query_arrays(const PlMap<d>& map, py::handle elements_in, py::handle local_in) {
+  QueryArrays q;
+  q.elements = index_matrix(elements_in, "elements", 0);
+  // d = 1 also takes local coordinates as a flat (n,) array.
+  q.local = [&] {
+    if (d == 1) {
+      auto flat = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(local_in);
+      if (flat && flat.ndim() == 1)
+        return py::array_t<double>(flat.reshape(std::vector<py::ssize_t>{flat.shape(0), 1}));
+    }
+    return float_matrix(local_in, "local", d);
+  }();
+  if (q.local.shape(0) != q.elements.shape(0))
+    throw py::value_error("evaluate: " + std::to_string(q.elements.shape(0)) + " elements but " +
+                          std::to_string(q.local.shape(0)) + " rows of local coordinates");
+  const auto e = q.elements.unchecked<1>();
+  const auto x = q.local.unchecked<2>();
+  const Index element_count = map.domain().element_count();
+  for (py::ssize_t i = 0; i < e.shape(0); ++i) {
+    if (e(i) < 0 || e(i) >= element_count)
+      throw py::index_error("evaluate: elements[" + std::to_string(i) + "] = " + std::to_string(e(i)) +
+                            " is not an S1 element (S1 has " + std::to_string(element_count) + ")");
+    double sum = 0.0;
+    bool inside = true;
+    for (int k = 0; k < d; ++k) {
+      sum += x(i, k);
+      inside = inside && std::isfinite(x(i, k)) && x(i, k) >= -local_slack;
+    }
+    if (!inside || sum > 1.0 + local_slack)
+      throw py::value_error("evaluate: local[" + std::to_string(i) +
+                            "] is not a point of the reference element (coordinates >= 0 with sum <= 1)");
+  }
+  return q;
+}
+
+/// Points evaluated per thread and call of evaluate_batch: the library's batch works on buffers
+/// of this size, reused, instead of on temporary copies of all points (whose fresh pages cost as
+/// much as the evaluation itself for millions of points).
+constexpr std::size_t points_per_thread_and_batch = std::size_t{1} << 16;
+
+template <int d>
+py::dict evaluate_points(const PlMap<d>& map, py::handle elements, py::handle local,
+                         const std::optional<std::string>& locator_name, unsigned threads) {
+  const QueryArrays q = query_arrays(map, elements, local);
+  const std::string name(locator_name ? *locator_name : std::string(default_point_locator_name<d>()));
+  const auto n = q.elements.shape(0);
+  py::array_t<bool> in_domain(n);
+  py::array_t<Index> region(n), image_element(n);
+  py::array_t<double> image_local(std::vector<py::ssize_t>{n, d}), world(std::vector<py::ssize_t>{n, d + 1});
+  // Raw pointers into arrays this frame owns, so the loop runs without the GIL.
+  const std::int64_t* e_in = q.elements.data();
+  const double* x_in = q.local.data();
+  bool* in = in_domain.mutable_data();
+  Index* r = region.mutable_data();
+  Index* el = image_element.mutable_data();
+  double* il = image_local.mutable_data();
+  double* w = world.mutable_data();
+  {
+    py::gil_scoped_release unlocked;
+    with_point_locator<d>(name, [&](auto& locator) {
+      constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+      const unsigned workers = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+      const std::size_t points_per_batch = points_per_thread_and_batch * workers;
+      std::vector<SurfacePoint<d>> points;
+      std::vector<Evaluation<d>> out;
+      for (py::ssize_t begin = 0; begin < n;) {
+        const auto count = static_cast<py::ssize_t>(std::min<std::size_t>(points_per_batch, n - begin));
+        points.resize(count);
+        out.resize(count);
+        for (py::ssize_t i = 0; i < count; ++i) {
+          points[i].element = static_cast<Index>(e_in[begin + i]);
+          for (int k = 0; k < d; ++k) points[i].local(k) = x_in[(begin + i) * d + k];
+        }
+        evaluate_batch<d>(map, points, out, locator, threads);
+        for (py::ssize_t i = 0; i < count; ++i) {
+          const Evaluation<d>& ev = out[i];
+          const py::ssize_t j = begin + i;
+          in[j] = ev.in_domain;
+          r[j] = ev.in_domain ? ev.region : invalid_index;
+          el[j] = ev.in_domain ? ev.image.element : invalid_index;
+          for (int k = 0; k < d; ++k) il[j * d + k] = ev.in_domain ? ev.image.local(k) : nan;
+          for (int k = 0; k <= d; ++k) w[j * (d + 1) + k] = ev.in_domain ? ev.world(k) : nan;
+        }
+        begin += count;
+      }
+    });
+  }
+  py::dict result;
+  result["in_domain"] = in_domain;
+  result["region"] = region;
+  result["image_element"] = image_element;
+  result["image_local"] = image_local;
+  result["world"] = world;
+  return result;
+}
+
+// ---- regions, quality, summary --------------------------------------------------------------
+
+template <int d>
+py::dict region_arrays(const PlMap<d>& map) {
+  const auto n = static_cast<py::ssize_t>(map.region_count());
+  py::array_t<Index> domain_element(n), target_element(n);
+  py::array_t<double> domain_local(std::vector<py::ssize_t>{n, d + 1, d});
+  py::array_t<double> target_local(std::vector<py::ssize_t>{n, d + 1, d});
+  py::array_t<double> domain_measure(n), target_measure(n);
+  // Raw pointers, so the loop runs without the GIL (the arrays are owned by this frame).
+  Index* de = domain_element.mutable_data();
+  Index* te = target_element.mutable_data();
+  double* dl = domain_local.mutable_data();
+  double* tl = target_local.mutable_data();
+  double* dm = domain_measure.mutable_data();
+  double* tm = target_measure.mutable_data();
+  {
+    py::gil_scoped_release unlocked;
+    for (Index t = 0; t < map.domain().element_count(); ++t)
+      for (Index region = map.regions_begin(t); region < map.regions_end(t); ++region) {
+        const RemoteIntersection<d> ri = remote_intersection(map, region);
+        de[region] = ri.domain_element;
+        te[region] = ri.target_element;
+        for (int c = 0; c <= d; ++c)
+          for (int k = 0; k < d; ++k) {
+            dl[(region * (d + 1) + c) * d + k] = ri.domain_local[c](k);
+            tl[(region * (d + 1) + c) * d + k] = ri.target_local[c](k);
+          }
+        dm[region] = ri.domain_measure();
+        tm[region] = ri.target_measure();
+      }
+  }
+  py::dict out;
+  out["domain_element"] = domain_element;
+  out["target_element"] = target_element;
+  out["domain_local"] = domain_local;
+  out["target_local"] = target_local;
+  out["domain_measure"] = domain_measure;
+  out["target_measure"] = target_measure;
+  return out;
+}
+
+template <int d>
+py::array_t<double> region_kappa(const PlMap<d>& map) {
+  py::array_t<double> out(static_cast<py::ssize_t>(map.region_count()));
+  double* k = out.mutable_data();
+  py::gil_scoped_release unlocked;
+  for (Index r = 0; r < map.region_count(); ++r) k[r] = region_conditioning(map, r).kappa;
+  return out;
+}
+
+template <int d>
+nlohmann::json surface_facts(const Surface<d>& s) {
+  return {{"vertices", s.vertex_count()}, {"elements", s.element_count()}, {"measure", s.measure()}};
+}
+
+template <int d>
+py::object map_summary(const PlMap<d>& map, bool quality) {
+  nlohmann::json j;
+  {
+    py::gil_scoped_release unlocked;
+    j["dimension"] = d;
+    j["domain"] = surface_facts(map.domain());
+    j["target"] = surface_facts(map.target());
+    j["nodes"] = map.node_count();
+    nlohmann::json by_type;
+    for (int t = 0; t < node_type_count; ++t) by_type[std::string(to_string(static_cast<NodeType>(t)))] = 0;
+    for (NodeType t : map.data().node_type) by_type[std::string(to_string(t))] = by_type[std::string(to_string(t))].get<long long>() + 1;
+    j["nodes_by_type"] = by_type;
+    j["regions"] = map.region_count();
+    const CoveredMeasure covered = covered_measure(map);
+    j["covered_measure"] = covered.domain;
+    j["covered_target_measure"] = covered.target;
+    j["orientation"] = map.data().orientation;
+    j["memory_bytes"] = map.memory_bytes();
+    if (quality) j["quality"] = to_json(compute_quality(map));
+  }
+  return json_to_python(j);
+}
+
+PyMap load_any_map(const std::filesystem::path& path) {
+  decltype(PyMap::map) loaded;
+  {
+    py::gil_scoped_release unlocked;
+    loaded = std::visit([](auto&& map) -> decltype(PyMap::map) {
+      using M = std::decay_t<decltype(map)>;
+      return std::make_shared<const M>(std::move(map));
+    }, load_map(path));
+  }
+  return PyMap{std::move(loaded)};  // with the GIL: PyMap holds a Python object
+}
+
+}  // namespace
+
+void bind_map(py::module_& m) {
+  py::class_<PyMap>(m, "Map",
+                    "A piecewise-linear map Xi: D ⊂ S1 -> S2 (immutable). Made by plmap.project or "
+                    "plmap.load.")
+      .def_property_readonly("dimension", &PyMap::dimension)
+      .def_property_readonly("domain", [](const PyMap& pm) {
+        return visit_map(pm, [](const auto& map) { return PySurface{map.domain_ptr()}; });
+      }, "S1, the surface the map is stored on")
+      .def_property_readonly("target", [](const PyMap& pm) {
+        return visit_map(pm, [](const auto& map) { return PySurface{map.target_ptr()}; });
+      }, "S2")
+      .def_property_readonly("region_count", [](const PyMap& pm) {
+        return visit_map(pm, [](const auto& map) { return map.region_count(); });
+      })
+      .def_property_readonly("node_count", [](const PyMap& pm) {
+        return visit_map(pm, [](const auto& map) { return map.node_count(); });
+      })
+      .def_readonly("report", &PyMap::report,
+                    "What plmap.project reported (counts, edges not inserted and why, seconds), as "
+                    "a dict; None for a loaded map")
+      .def("save", [](const PyMap& pm, const std::filesystem::path& path) {
+        py::gil_scoped_release unlocked;
+        visit_map(pm, [&](const auto& map) { save_map(path, map); });
+      }, py::arg("path"), "Writes the map file (.plmap), replacing `path` atomically.")
+      .def("check", [](const PyMap& pm, const py::kwargs& kwargs) {
+        VerifyOptions options;
+        apply_keyword_options("check", kwargs, verify_fields(), options);
+        const VerificationReport report = visit_map(pm, [&](const auto& map) {
+          py::gil_scoped_release unlocked;
+          return verify(map, options);
+        });
+        return json_to_python(to_json(report));
+      }, "Checks every invariant (DESIGN.md §4) and returns the report as a dict: 'ok', "
+         "'violation_count', 'checks' (per check: rules and the violations named), 'quality'. "
+         "Keyword arguments are the fields of plmap::VerifyOptions (e.g. expect_parametrization=True).")
+      .def("evaluate", [](const PyMap& pm, py::handle elements, py::handle local,
+                          const std::optional<std::string>& locator, unsigned threads) {
+        return visit_map(pm, [&](const auto& map) { return evaluate_points(map, elements, local, locator, threads); });
+      }, py::arg("elements"), py::arg("local"), py::kw_only(), py::arg("locator") = py::none(),
+         py::arg("threads") = 0u,
+         "Xi at the points (elements[i], local[i]) of S1: elements (n,) int, local (n, d) local "
+         "coordinates on the element (d = 1: also (n,)). Runs on `threads` threads (0: all cores) without the GIL. "
+         "Returns a dict of arrays: in_domain (n,) bool, region (n,), image_element (n,) (-1 "
+         "outside D), image_local (n, d), world (n, d+1) (NaN outside D). `locator` names the "
+         "point-location strategy (default: brown-faigle for d = 2, bisection for d = 1).")
+      .def("regions", [](const PyMap& pm) {
+        return visit_map(pm, [](const auto& map) { return region_arrays(map); });
+      }, "The regions (remote intersections T1 ∩ Xi^-1(T2)) as flat arrays, one row per region: "
+         "domain_element, target_element (r,) int32; domain_local, target_local (r, d+1, d), the "
+         "corners in local coordinates of the two elements, in the same order; domain_measure, "
+         "target_measure (r,).")
+      .def("kappa", [](const PyMap& pm) {
+        return visit_map(pm, [](const auto& map) { return region_kappa(map); });
+      }, "The condition number of every region's linear piece, (r,) float64 (inf where a region "
+         "is degenerate).")
+      .def("info", [](const PyMap& pm, bool quality) {
+        return visit_map(pm, [&](const auto& map) { return map_summary(map, quality); });
+      }, py::kw_only(), py::arg("quality") = true,
+         "Counts (surfaces, nodes by type, regions), covered measures, orientation, memory and "
+         "(with quality=True) the distribution of kappa, as a dict.")
+      .def("__repr__", [](const PyMap& pm) {
+        return visit_map(pm, [&](const auto& map) {
+          return "<plmap.Map d=" + std::to_string(pm.dimension()) + ", " +
+                 std::to_string(map.domain().element_count()) + " -> " +
+                 std::to_string(map.target().element_count()) + " elements, " +
+                 std::to_string(map.region_count()) + " regions>";
+        });
+      });
+
+  m.def("load", &load_any_map, py::arg("path"), "Loads a map file (.plmap) of either dimension.");
+}
+
+}  // namespace plmap::python

@@ -1,0 +1,147 @@
+// plmap.project(s1, s2, **options): normal projection (construct/project.hpp) from Python.
+
+#include "keyword_options.hpp"
+#include "numpy_arrays.hpp"
+#include "python_map.hpp"
+#include "python_surface.hpp"
+
+#include <plmap/construct/project.hpp>
+
+#include <nlohmann/json.hpp>
+#include <pybind11/numpy.h>
+
+#include <optional>
+
+namespace plmap::python {
+
+namespace {
+
+TargetNormalCheck normal_check_from_name(const std::string& name) {
+  if (name == "none") return TargetNormalCheck::none;
+  if (name == "facing") return TargetNormalCheck::facing;
+  if (name == "aligned") return TargetNormalCheck::aligned;
+  throw py::value_error("project(): normal_check must be 'none', 'facing' or 'aligned', got '" + name + "'");
+}
+
+/// The keyword arguments of project(): the ProjectionOptions, with the directions kept as the
+/// array they came as until the dimension is known (to check their shape).
+struct ProjectCall {
+  ProjectionOptions options;
+  std::optional<py::array_t<double>> directions;
+};
+
+template <class T>
+KeywordField<ProjectCall> option_field(T ProjectionOptions::*member, std::string expected) {
+  return {std::move(expected), [member](ProjectCall& c, py::handle v) { c.options.*member = py::cast<T>(v); }};
+}
+
+const KeywordFields<ProjectCall>& projection_fields() {
+  using O = ProjectionOptions;
+  static const KeywordFields<ProjectCall> fields = {
+      {"directions", {"an array of shape (S1 vertices, d+1)", [](ProjectCall& c, py::handle v) {
+         c.directions = float_matrix(v, "project(): directions", -1);
+       }}},
+      {"solver", option_field(&O::solver, "a str ('newton' or 'ceres')")},
+      {"solver_tolerance", option_field(&O::solver_tolerance, "a float")},
+      {"max_distance", option_field(&O::max_distance, "a float")},
+      {"max_distance_is_relative", option_field(&O::max_distance_is_relative, "a bool")},
+      {"allow_negative_distance", option_field(&O::allow_negative_distance, "a bool")},
+      {"normal_check", {"a str ('none', 'facing' or 'aligned')", [](ProjectCall& c, py::handle v) {
+         c.options.normal_check = normal_check_from_name(py::cast<std::string>(v));
+       }}},
+      {"threads", option_field(&O::threads, "a non-negative int (0: all cores)")},
+      {"search_seeds", option_field(&O::search_seeds, "an int")},
+      {"snap_tolerance", option_field(&O::snap_tolerance, "a float")},
+      {"orientation", option_field(&O::orientation, "an int (0, 1 or -1)")},
+      {"keep_nearer_sheet", option_field(&O::keep_nearer_sheet, "a bool")},
+  };
+  return fields;
+}
+
+template <int d>
+nlohmann::json report_json(const ProjectionResult<d>& result) {
+  const ProjectionReport<d>& r = result.report;
+  nlohmann::json j;
+  j["domain_measure"] = result.measures.domain;
+  j["target_measure"] = result.measures.target;
+  j["covered_measure"] = result.measures.covered_domain;
+  j["covered_target_measure"] = result.measures.covered_target;
+  j["vertex_preimages"] = r.vertex_preimages;
+  j["vertex_conflicts"] = r.vertex_conflicts;
+  j["ghost_nodes"] = r.ghost_nodes;
+  j["edges_inserted"] = r.edges_inserted;
+  j["edges_partly_inserted"] = r.edges_partly_inserted;
+  j["edges_outside"] = r.edges_outside;
+  j["reversed_faces"] = r.reversed_faces;
+  j["occluded_faces"] = r.occluded_faces;
+  nlohmann::json missing = nlohmann::json::array();
+  for (const EdgeNotInserted<d>& e : r.edges_not_inserted) {
+    std::vector<double> point(e.domain_point.data(), e.domain_point.data() + d + 1);
+    missing.push_back({{"target_edge", e.target_edge},
+                       {"reason", std::string(to_string(e.reason))},
+                       {"domain_element", e.domain_element},
+                       {"domain_point", point},
+                       {"target_parameter", e.target_parameter},
+                       {"detail", e.detail}});
+  }
+  j["edges_not_inserted"] = missing;
+  j["solver_calls"] = r.solver_calls;
+  j["solver_failures"] = r.solver_failures;
+  j["seconds"] = {{"setup", r.seconds.setup},
+                  {"vertex_preimages", r.seconds.vertex_preimages},
+                  {"ghost_nodes", r.seconds.ghost_nodes},
+                  {"edge_walks", r.seconds.edge_walks},
+                  {"insertion", r.seconds.insertion},
+                  {"finalize", r.seconds.finalize},
+                  {"total", r.seconds.total}};
+  return j;
+}
+
+template <int d>
+PyMap project_surfaces(const PySurface& s1, const PySurface& s2, ProjectCall call) {
+  ProjectionOptions& options = call.options;
+  if (call.directions) {
+    const py::array_t<double>& a = *call.directions;
+    if (a.shape(1) != d + 1 || a.shape(0) != s1.get<d>()->vertex_count())
+      throw py::value_error("project(): directions must have shape (" +
+                            std::to_string(s1.get<d>()->vertex_count()) + ", " + std::to_string(d + 1) +
+                            ") (one per S1 vertex), got (" + std::to_string(a.shape(0)) + ", " +
+                            std::to_string(a.shape(1)) + ")");
+    options.directions.assign(a.data(), a.data() + a.size());
+  }
+  std::optional<ProjectionResult<d>> result;
+  {
+    py::gil_scoped_release unlocked;
+    result.emplace(project<d>(s1.get<d>(), s2.get<d>(), options));
+  }
+  PyMap out{std::make_shared<const PlMap<d>>(std::move(result->map))};
+  out.report = py::module_::import("json").attr("loads")(report_json(*result).dump());
+  return out;
+}
+
+PyMap project_any(py::handle s1_in, py::handle s2_in, const py::kwargs& kwargs) {
+  ProjectCall call;
+  call.options.threads = 0;  // all cores, as every plmap command defaults to
+  apply_keyword_options("project", kwargs, projection_fields(), call);
+  const PySurface s1 = surface_argument(s1_in, "project(): s1");
+  const PySurface s2 = surface_argument(s2_in, "project(): s2");
+  if (s1.dimension() != s2.dimension())
+    throw py::value_error("project(): s1 has dimension " + std::to_string(s1.dimension()) +
+                          " but s2 has dimension " + std::to_string(s2.dimension()));
+  if (s1.dimension() == 1) return project_surfaces<1>(s1, s2, std::move(call));
+  return project_surfaces<2>(s1, s2, std::move(call));
+}
+
+}  // namespace
+
+void bind_project(py::module_& m) {
+  m.def("project", &project_any, py::arg("s1"), py::arg("s2"),
+        "Maps S1 to S2 by normal projection (paper section 3.2) and returns the plmap.Map "
+        "D ⊂ S1 -> S2; map.report says what was built and what not. s1, s2: plmap.Surface or file "
+        "paths. Keyword options are the fields of plmap::ProjectionOptions: directions ((n1, d+1) "
+        "array), solver, solver_tolerance, max_distance, max_distance_is_relative, "
+        "allow_negative_distance, normal_check ('none', 'facing', 'aligned'), threads (default 0: "
+        "all cores), search_seeds, snap_tolerance, orientation, keep_nearer_sheet.");
+}
+
+}  // namespace plmap::python
