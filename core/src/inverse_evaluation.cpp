@@ -4,6 +4,7 @@
 #include <plmap/core/parallel_ranges.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -56,6 +57,22 @@ const typename InverseIndex<d>::Entry* find_containing(std::span<const typename 
     w = raw_weights(e, y);
     bool inside = true;
     for (int i = 0; i <= d; ++i) inside &= w[i] >= 0.0;
+    if (inside) return &e;
+  }
+  return nullptr;
+}
+
+/// find_containing over the element's entries, or over its grid cell's if it has a grid.
+template <int d>
+const typename InverseIndex<d>::Entry* find_in_element(const InverseIndex<d>& index, Index element,
+                                                       const LocalPoint<d>& y, std::array<double, d + 1>& w) {
+  const auto entries = index.entries(element);
+  if (!index.has_grid(element)) return find_containing<d>(entries, y, w);
+  for (Index i : index.cell_candidates(element, y)) {
+    const auto& e = entries[static_cast<std::size_t>(i)];
+    w = raw_weights(e, y);
+    bool inside = true;
+    for (int k = 0; k <= d; ++k) inside &= w[k] >= 0.0;
     if (inside) return &e;
   }
   return nullptr;
@@ -140,12 +157,68 @@ InverseIndex<d>::InverseIndex(const PlMap<d>& map, InverseOptions options) : map
         if (e.reversed) std::swap(e.image_corners[1], e.image_corners[2]);
       }
     }
+  build_grids();
 }
 
 template <int d>
   requires SurfaceDimension<d>
 std::size_t InverseIndex<d>::memory_bytes() const {
-  return begin_.capacity() * sizeof(Index) + entry_.capacity() * sizeof(Entry);
+  return (begin_.capacity() + grid_of_.capacity() + cell_begin_.capacity() + cell_entry_.capacity()) * sizeof(Index) +
+         entry_.capacity() * sizeof(Entry) + grids_.capacity() * sizeof(Grid);
+}
+
+namespace {
+
+/// The grid cell (per axis) of a local coordinate, clamped into the grid. Monotone in x, so a
+/// point inside a bounding box falls into a cell the box was registered in.
+inline Index grid_cell(double x, Index side) {
+  const double c = std::floor(x * side);
+  if (!(c >= 0)) return 0;  // also NaN, which then matches no image
+  return c >= side ? side - 1 : static_cast<Index>(c);
+}
+
+}  // namespace
+
+template <int d>
+  requires SurfaceDimension<d>
+std::span<const Index> InverseIndex<d>::cell_candidates(Index target_element, const LocalPoint<d>& local) const {
+  const Grid& g = grids_[grid_of_[target_element]];
+  Index cell = grid_cell(local(0), g.side);
+  if constexpr (d == 2) cell += g.side * grid_cell(local(1), g.side);
+  const Index k = g.first_cell + cell;
+  return {cell_entry_.data() + cell_begin_[k], cell_entry_.data() + cell_begin_[k + 1]};
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void InverseIndex<d>::build_grids() {
+  const Index targets = static_cast<Index>(begin_.size()) - 1;
+  grid_of_.assign(static_cast<std::size_t>(targets), invalid_index);
+  cell_begin_.assign(1, 0);
+  for (Index e = 0; e < targets; ++e) {
+    const auto list = entries(e);
+    const Index count = static_cast<Index>(list.size());
+    if (count <= grid_threshold) continue;
+    // about one image per cell on the reference element (half of a square grid for d = 2)
+    const Index side = d == 1 ? count : std::max<Index>(2, static_cast<Index>(std::ceil(std::sqrt(2.0 * count))));
+    const Index cells = d == 1 ? side : side * side;
+    grid_of_[e] = static_cast<Index>(grids_.size());
+    grids_.push_back({side, static_cast<Index>(cell_begin_.size()) - 1});
+    std::vector<std::vector<Index>> cell_lists(static_cast<std::size_t>(cells));
+    for (Index i = 0; i < count; ++i) {
+      LocalPoint<d> lo = list[i].image_corners[0], hi = lo;
+      for (int k = 1; k <= d; ++k) lo = lo.cwiseMin(list[i].image_corners[k]), hi = hi.cwiseMax(list[i].image_corners[k]);
+      const Index x0 = grid_cell(lo(0), side), x1 = grid_cell(hi(0), side);
+      Index y0 = 0, y1 = 0;
+      if constexpr (d == 2) y0 = grid_cell(lo(1), side), y1 = grid_cell(hi(1), side);
+      for (Index y = y0; y <= y1; ++y)
+        for (Index x = x0; x <= x1; ++x) cell_lists[static_cast<std::size_t>(y * side + x)].push_back(i);
+    }
+    for (const auto& c : cell_lists) {
+      cell_entry_.insert(cell_entry_.end(), c.begin(), c.end());
+      cell_begin_.push_back(static_cast<Index>(cell_entry_.size()));
+    }
+  }
 }
 
 template <int d>
@@ -157,8 +230,7 @@ InverseEvaluation<d> inverse_evaluate(const InverseIndex<d>& index, const Surfac
   using Entry = typename InverseIndex<d>::Entry;
   std::array<double, d + 1> w;
   // The common case: an image in y's own element contains y.
-  if (const Entry* e = find_containing<d>(index.entries(y.element), y.local, w))
-    return preimage_from_weights(index, *e, w);
+  if (const Entry* e = find_in_element(index, y.element, y.local, w)) return preimage_from_weights(index, *e, w);
   // On an edge or vertex of S2: the images in the other incident elements.
   const double tolerance = index.options().tolerance;
   struct Candidate {
@@ -169,8 +241,7 @@ InverseEvaluation<d> inverse_evaluate(const InverseIndex<d>& index, const Surfac
   for (Index other : elements_sharing_boundary_point(s2, y, tolerance)) {
     const auto local = transfer_to_element(s2, y, other, tolerance);
     if (!local) continue;
-    if (const Entry* e = find_containing<d>(index.entries(other), *local, w))
-      return preimage_from_weights(index, *e, w);
+    if (const Entry* e = find_in_element(index, other, *local, w)) return preimage_from_weights(index, *e, w);
     candidates.push_back({other, *local});
   }
   // Rounding gaps between images: the image with the largest margin, if within the tolerance.

@@ -72,6 +72,18 @@ class InverseIndex {
     return {entry_.data() + begin_[target_element], entry_.data() + begin_[target_element + 1]};
   }
 
+  /// Elements with more than this many regions get a grid of cells (below).
+  static constexpr Index grid_threshold = 32;
+
+  /// Whether `target_element` has more than grid_threshold regions and hence a grid of cells.
+  bool has_grid(Index target_element) const { return grid_of_[target_element] != invalid_index; }
+
+  /// For an element with a grid: the entries (positions in entries(target_element)) whose image
+  /// may contain the point with local coordinates `local`: the cell of a uniform grid over the
+  /// reference element that contains the point lists every image whose bounding box meets it.
+  /// Where S2 is much coarser than S1 this keeps a query from scanning all of an element's images.
+  std::span<const Index> cell_candidates(Index target_element, const LocalPoint<d>& local) const;
+
   /// Bytes held by the index's arrays.
   std::size_t memory_bytes() const;
 
@@ -80,6 +92,17 @@ class InverseIndex {
   InverseOptions options_;
   std::vector<Index> begin_;  ///< size |T2| + 1
   std::vector<Entry> entry_;
+  // Grids of the elements with more than grid_threshold regions: grid_of_[e] indexes grids_ or
+  // is invalid; a grid's cells are cell_begin_[first_cell ...], listing positions in entries(e).
+  struct Grid {
+    Index side = 0;        ///< cells per side (d = 1: cells)
+    Index first_cell = 0;  ///< into cell_begin_
+  };
+  void build_grids();
+  std::vector<Index> grid_of_;
+  std::vector<Grid> grids_;
+  std::vector<Index> cell_begin_;
+  std::vector<Index> cell_entry_;
 };
 
 extern template class InverseIndex<1>;

@@ -10,8 +10,8 @@
 /// (the point may lie on the boundary of D there). The inverse chains InverseIndex queries, which
 /// do the same by themselves.
 
-#include <plmap/core/element_transfer.hpp>
 #include <plmap/core/evaluation.hpp>
+#include <plmap/core/evaluation_at_boundaries.hpp>
 #include <plmap/core/inverse_evaluation.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 
@@ -52,46 +52,6 @@ struct ComposedEvaluation {
   SurfacePoint<d> point;                        ///< the result: a point of the last (first) surface
   WorldPoint<d> world = WorldPoint<d>::Zero();  ///< the result in world coordinates
 };
-
-/// Xi at a point of S1 that may lie on the boundary of its element or just outside it (by
-/// rounding): clamped into the element, then, if the element's regions miss it, tried on the
-/// elements sharing its edge or vertex. `tolerance` as in InverseOptions.
-template <int d, class Locator>
-  requires PointLocator<Locator, d>
-Evaluation<d> evaluate_on_any_incident_element(const PlMap<d>& map, SurfacePoint<d> p, Locator& locator,
-                                               double tolerance = InverseOptions{}.tolerance) {
-  Barycentric<d> b = barycentric_from_local<d>(p.local);
-  for (int k = 0; k <= d; ++k) b(k) = b(k) < 0.0 ? 0.0 : b(k);
-  if (!(b.sum() > 0.0)) return {};  // NaN
-  p.local = local_from_barycentric<d>(b / b.sum());
-  Evaluation<d> e = evaluate(map, p, locator);
-  if (e.in_domain) return e;
-  const Surface<d>& s = map.domain();
-  std::vector<Index> others;
-  int nonzero = 0, support = -1, zero = -1;
-  for (int k = 0; k <= d; ++k) {
-    if (b(k) > tolerance)
-      ++nonzero, support = k;
-    else
-      zero = k;
-  }
-  if (nonzero == 1) {
-    const auto star = s.vertex_elements(s.element(p.element)[support]);
-    others.assign(star.begin(), star.end());
-  } else if constexpr (d == 2) {
-    if (nonzero == 2)
-      for (const EdgeIncidence& inc : s.edge_elements(s.element_edge(p.element, (zero + 1) % 3)))
-        others.push_back(inc.element);
-  }
-  for (Index t : others) {
-    if (t == p.element) continue;
-    const auto local = transfer_to_element(s, p, t, tolerance);
-    if (!local) continue;
-    e = evaluate(map, SurfacePoint<d>{t, *local}, locator);
-    if (e.in_domain) return e;
-  }
-  return {};
-}
 
 /// Evaluates a composition with one point locator per map (copies of a prototype, prepared).
 /// Like a locator, an evaluator has mutable state: give every thread its own copy.

@@ -1,0 +1,67 @@
+#pragma once
+/// \file
+/// Forward evaluation at points that lie on element boundaries, as points computed elsewhere do
+/// (the image of another map, the nearest surface point to a world point): such a point may be
+/// given on an element whose regions do not reach it, or lie outside its element by a rounding.
+
+#include <plmap/core/element_transfer.hpp>
+#include <plmap/core/evaluation.hpp>
+
+#include <vector>
+
+namespace plmap {
+
+/// Xi at a point of S1 that may lie on the boundary of its element or just outside it (by
+/// rounding), e.g. the image of another map or the nearest point of S1 to a world point:
+/// 1. clamped into the element (negative barycentric weights set to zero) and evaluated;
+/// 2. if that misses, moved towards the element's centroid by 1e-14 of the element's size (a
+///    point on the element's boundary may be outside it in exact arithmetic after the rounding of
+///    its coordinates; the locators decide exactly) and evaluated again;
+/// 3. if that misses and the point lies on an edge or vertex (weights within `tolerance` of zero),
+///    evaluated on the elements sharing that edge or vertex (D may end at the edge on this side).
+template <int d, class Locator>
+  requires PointLocator<Locator, d>
+Evaluation<d> evaluate_on_any_incident_element(const PlMap<d>& map, SurfacePoint<d> p, Locator& locator,
+                                               double tolerance = 1e-10) {
+  Barycentric<d> b = barycentric_from_local<d>(p.local).cwiseMax(0.0);
+  if (!(b.sum() > 0.0)) return {};  // NaN
+  b /= b.sum();
+  p.local = local_from_barycentric<d>(b);
+  Evaluation<d> e = evaluate(map, p, locator);
+  if (e.in_domain) return e;
+  auto nudged = [](const LocalPoint<d>& x) {
+    constexpr double step = 1e-14;
+    return LocalPoint<d>((1.0 - step) * x + step * LocalPoint<d>::Constant(1.0 / (d + 1)));
+  };
+  e = evaluate(map, SurfacePoint<d>{p.element, nudged(p.local)}, locator);
+  if (e.in_domain) return e;
+  const Surface<d>& s = map.domain();
+  std::vector<Index> others;
+  int nonzero = 0, support = -1, zero = -1;
+  for (int k = 0; k <= d; ++k) {
+    if (b(k) > tolerance)
+      ++nonzero, support = k;
+    else
+      zero = k;
+  }
+  if (nonzero == 1) {
+    const auto star = s.vertex_elements(s.element(p.element)[support]);
+    others.assign(star.begin(), star.end());
+  } else if constexpr (d == 2) {
+    if (nonzero == 2)
+      for (const EdgeIncidence& inc : s.edge_elements(s.element_edge(p.element, (zero + 1) % 3)))
+        others.push_back(inc.element);
+  }
+  for (Index t : others) {
+    if (t == p.element) continue;
+    const auto local = transfer_to_element(s, p, t, tolerance);
+    if (!local) continue;
+    e = evaluate(map, SurfacePoint<d>{t, *local}, locator);
+    if (e.in_domain) return e;
+    e = evaluate(map, SurfacePoint<d>{t, nudged(*local)}, locator);
+    if (e.in_domain) return e;
+  }
+  return {};
+}
+
+}  // namespace plmap
