@@ -118,3 +118,31 @@ RC_GTEST_PROP(ProjectInverse, ConcentricCirclesRoundTrip, (std::uint64_t sample_
   gen::Rng rng(sample_seed);
   check_round_trips(r.map, index, rng, fmt::format("circles {} / {} radius {} phase {}", n1, n2, radius, phase));
 }
+
+TEST(ProjectInverse, PointsOnS2EdgesAboveTheBoundaryOfS1AreFoundFromEitherSide) {
+  // S2's 3 x 3 grid over [-1, 2]^2 has edges right above S1's boundary (the unit square), so D
+  // ends exactly at S2 edges: a point on such an edge, given on the outer (uncovered) S2 element,
+  // must be found through the inner one.
+  const auto s1 = grid(2, 2, 0.0, 1.0, 0.0, 1.0, 0.0);
+  const auto s2 = grid(3, 3, -1.0, 2.0, -1.0, 2.0, 0.1);
+  const auto r = project<2>(s1, s2);
+  ASSERT_TRUE(r.report.edges_not_inserted.empty());
+  const InverseIndex<2> index(r.map);
+  auto in_square = [](const WorldPoint<2>& w, bool closed) {
+    return closed ? w.x() >= 0 && w.x() <= 1 && w.y() >= 0 && w.y() <= 1 : w.x() > 0 && w.x() < 1 && w.y() > 0 && w.y() < 1;
+  };
+  int given_on_outer_elements = 0;
+  for (Index t = 0; t < s2->element_count(); ++t) {
+    const bool outer_element = !in_square(s2->world_position(t, LocalPoint<2>(1.0 / 3, 1.0 / 3)), false);
+    for (int k = 0; k < 3; ++k)
+      for (const LocalPoint<2>& y : {reference_corner<2>(k), LocalPoint<2>(0.5 * (reference_corner<2>(k) + reference_corner<2>((k + 1) % 3)))}) {
+        const WorldPoint<2> w = s2->world_position(t, y);
+        const bool inside = in_square(w, true);
+        const InverseEvaluation<2> inv = inverse_evaluate(index, {t, y});
+        EXPECT_EQ(inv.in_image, inside) << "S2 element " << t << " point (" << w.x() << ", " << w.y() << ")";
+        if (inside && inv.in_image) EXPECT_NEAR((inv.world - WorldPoint<2>(w.x(), w.y(), 0.0)).norm(), 0.0, 1e-12);
+        given_on_outer_elements += inside && outer_element;
+      }
+  }
+  EXPECT_GT(given_on_outer_elements, 8);  // the case this test is about did occur
+}
