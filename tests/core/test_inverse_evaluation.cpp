@@ -136,6 +136,18 @@ RC_GTEST_PROP(InverseEvaluation, FineOntoCoarseOverlaysUseTheCellGrids, (std::ui
   bool any_grid = false;
   for (Index e = 0; e < c.target->element_count(); ++e) any_grid |= index.has_grid(e);
   RC_ASSERT(any_grid);
+  // The grid never hides an image: the region a query lands in is listed in the query's cell
+  // (a miss would only cost time, as the tolerant scan of all images would still find it).
+  generators::Rng rng(seed);
+  for (int k = 0; k < 200; ++k) {
+    const SurfacePoint<2> y{generators::uniform_index(rng, c.target->element_count()), random_local_point<2>(rng)};
+    const InverseEvaluation<2> inv = inverse_evaluate(index, y);
+    if (!inv.in_image || !index.has_grid(y.element)) continue;
+    const auto entries = index.entries(y.element);
+    bool listed = false;
+    for (Index i : index.cell_candidates(y.element, y.local)) listed |= entries[static_cast<std::size_t>(i)].region == inv.region;
+    RC_ASSERT(listed);
+  }
   // Round trips only: plane_overlay_map places some nodes of fine-onto-coarse pairs away from
   // their S2 vertex (e.g. fine grid 12 seed 54 onto grid 1 seed 118: a touching node 1e-3 off),
   // so these maps are valid but not exactly the identity of space.
