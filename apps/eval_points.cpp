@@ -6,7 +6,6 @@
 #include <plmap/core/io/atomic_file.hpp>
 #include <plmap/core/io/map_file.hpp>
 #include <plmap/core/io/numeric_table.hpp>
-#include <plmap/core/parallel_ranges.hpp>
 #include <plmap/strategies/nearest_point/nearest_point.hpp>
 #include <plmap/strategies/point_locator_registry.hpp>
 
@@ -85,18 +84,14 @@ Queries<d> read_queries(const EvalPointsOptions& o, const NumericTable& table, c
     }
     return q;
   }
-  // World points: the nearest point of the surface (CGAL AABB tree), on all threads.
-  const AabbNearestPoint<d> nearest(on);
+  // World points: the nearest point of the surface (CGAL AABB tree).
+  std::vector<WorldPoint<d>> xs(table.rows);
+  for (std::size_t r = 0; r < table.rows; ++r)
+    for (int i = 0; i <= d; ++i) xs[r](i) = table(r, i);
+  std::vector<NearestPoint<d>> nearest(table.rows);
+  nearest_points_batch<d>(AabbNearestPoint<d>(on), xs, nearest, o.threads);
   q.distance.resize(table.rows);
-  parallel_ranges(table.rows, o.threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t r = begin; r < end; ++r) {
-      WorldPoint<d> x;
-      for (int i = 0; i <= d; ++i) x(i) = table(r, i);
-      const NearestPoint<d> n = nearest.nearest(x);
-      q.points[r] = n.point;
-      q.distance[r] = n.distance;
-    }
-  });
+  for (std::size_t r = 0; r < table.rows; ++r) q.points[r] = nearest[r].point, q.distance[r] = nearest[r].distance;
   return q;
 }
 
@@ -179,13 +174,7 @@ int run(const EvalPointsOptions& o, const PlMap<d>& map, const NumericTable& tab
     std::vector<Evaluation<d>> out(n);
     // Points on element boundaries (world points placed on an edge, the user's corners) are
     // found from any incident element, as the inverse does.
-    with_point_locator<d>(locator_name, [&](auto& locator) {
-      prepare_point_locator<d>(locator, map);
-      parallel_ranges(n, o.threads, [&](std::size_t begin, std::size_t end) {
-        auto local_locator = locator;
-        for (std::size_t i = begin; i < end; ++i) out[i] = evaluate_on_any_incident_element(map, q.points[i], local_locator);
-      });
-    });
+    with_point_locator<d>(locator_name, [&](auto& locator) { evaluate_points_batch<d>(map, q.points, out, locator, o.threads); });
     for (std::size_t i = 0; i < n; ++i) found[i] = out[i].in_domain, result[i] = out[i].image, world[i] = out[i].world;
   }
   const NumericTable t = result_table<d>(o.inverse, q, found, result, world);

@@ -1,4 +1,5 @@
 #include <plmap/core/errors.hpp>
+#include <plmap/core/parallel_ranges.hpp>
 #include <plmap/strategies/nearest_point/nearest_point.hpp>
 
 #include <CGAL/AABB_traits.h>
@@ -150,6 +151,22 @@ NearestPoint<d> BruteForceNearestPoint<d>::nearest(const WorldPoint<d>& x) const
   return best;
 }
 
+template <int d>
+void nearest_points_batch(const AabbNearestPoint<d>& index, std::span<const WorldPoint<d>> points,
+                          std::span<NearestPoint<d>> out, unsigned threads) {
+  if (out.size() != points.size()) throw Error("nearest_points_batch: output span size differs from the number of points");
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!points[i].allFinite())
+      throw Error("nearest-point search: point " + std::to_string(i) + " has non-finite coordinates");
+  parallel_ranges(points.size(), threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) out[i] = index.nearest(points[i]);
+  });
+}
+
+template void nearest_points_batch(const AabbNearestPoint<1>&, std::span<const WorldPoint<1>>, std::span<NearestPoint<1>>,
+                                   unsigned);
+template void nearest_points_batch(const AabbNearestPoint<2>&, std::span<const WorldPoint<2>>, std::span<NearestPoint<2>>,
+                                   unsigned);
 template NearestPoint<1> nearest_point_on_element(const Surface<1>&, Index, const WorldPoint<1>&);
 template NearestPoint<2> nearest_point_on_element(const Surface<2>&, Index, const WorldPoint<2>&);
 template class AabbNearestPoint<1>;

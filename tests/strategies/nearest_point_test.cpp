@@ -2,7 +2,10 @@
 // force on random surfaces of every shape (d = 1 and 2), points of the surface are their own
 // nearest points, and bad queries are refused.
 #include <plmap/core/errors.hpp>
+#include <plmap/core/evaluation_at_boundaries.hpp>
 #include <plmap/strategies/nearest_point/nearest_point.hpp>
+#include <plmap/strategies/point_locator_registry.hpp>
+#include <plmap/verify/generators/subdivision_maps.hpp>
 #include <plmap/verify/generators/rc_generators.hpp>
 
 #include <gtest/gtest.h>
@@ -62,4 +65,45 @@ TEST(NearestPoint, PointAboveATriangleProjectsOntoIt) {
   EXPECT_NEAR(q.point.local(0), 1.0, 1e-15);
   EXPECT_NEAR(q.point.local(1), 0.0, 1e-15);
   EXPECT_THROW(tree.nearest({std::nan(""), 0.0, 0.0}), Error);
+}
+
+TEST(NearestPoint, BatchAgreesWithSingleQueriesAndRefusesNonFinitePoints) {
+  const auto s = generators::bumpy_grid(5);
+  const AabbNearestPoint<2> tree(s);
+  generators::Rng rng(4);
+  std::vector<WorldPoint<2>> xs(500);
+  for (auto& x : xs) x = WorldPoint<2>(2 * generators::uniform_unit(rng) - 0.5, 2 * generators::uniform_unit(rng) - 0.5, generators::uniform_unit(rng));
+  std::vector<NearestPoint<2>> out(xs.size());
+  nearest_points_batch<2>(tree, xs, out, 2);
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    EXPECT_EQ(out[i].point, tree.nearest(xs[i]).point);
+    EXPECT_EQ(out[i].distance, tree.nearest(xs[i]).distance);
+  }
+  xs[7](1) = std::nan("");
+  EXPECT_THROW(nearest_points_batch<2>(tree, xs, out, 2), Error);
+}
+
+TEST(EvaluatePointsBatch, PointsJustOutsideTheirElementAreFoundWhereEvaluateMissesThem) {
+  // Points on an element's slanted side, moved outside by one rounding: the exact locators miss
+  // them, evaluate_points_batch finds them (issue 15: world points placed on the surface's edges).
+  const auto sub = generators::subdivision_map(generators::bumpy_grid(3), 2, 0.0, 1);
+  const PlMap<2>& map = *sub.map;
+  std::vector<SurfacePoint<2>> points;
+  for (Index t = 0; t < map.domain().element_count(); ++t) {
+    const double u = 0.7;  // 1 - u is exact (Sterbenz), so u + next(1 - u) exceeds 1 by one ulp
+    points.push_back({t, LocalPoint<2>(u, std::nextafter(1.0 - u, 1.0))});
+  }
+  std::vector<Evaluation<2>> plain(points.size()), robust(points.size());
+  evaluate_batch<2>(map, points, plain, point_location::BrownFaigleWalk{}, 1);
+  evaluate_points_batch<2>(map, points, robust, point_location::BrownFaigleWalk{}, 2);
+  int missed_by_plain = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    missed_by_plain += !plain[i].in_domain;
+    ASSERT_TRUE(robust[i].in_domain) << "point " << i;
+    point_location::BruteForce<2> brute;
+    const Evaluation<2> at_side = evaluate(map, SurfacePoint<2>{points[i].element, LocalPoint<2>(0.7, 1.0 - 0.7)}, brute);
+    ASSERT_TRUE(at_side.in_domain);
+    EXPECT_NEAR((robust[i].world - at_side.world).norm(), 0.0, 1e-12);
+  }
+  EXPECT_GT(missed_by_plain, 0);  // the case this test is about did occur
 }

@@ -6,6 +6,7 @@
 
 #include <plmap/core/element_transfer.hpp>
 #include <plmap/core/evaluation.hpp>
+#include <plmap/core/parallel_ranges.hpp>
 
 #include <vector>
 
@@ -62,6 +63,28 @@ Evaluation<d> evaluate_on_any_incident_element(const PlMap<d>& map, SurfacePoint
     if (e.in_domain) return e;
   }
   return {};
+}
+
+/// Evaluates many points as evaluate_batch does (same checks, locator copies and threads), each
+/// through evaluate_on_any_incident_element: for points that may lie on element boundaries, such
+/// as the user's points or nearest surface points of world points (`plmap eval --points`).
+template <int d, class Locator>
+  requires PointLocator<Locator, d>
+void evaluate_points_batch(const PlMap<d>& map, std::span<const SurfacePoint<d>> points, std::span<Evaluation<d>> out,
+                           const Locator& locator, unsigned threads = 0) {
+  if (out.size() != points.size())
+    throw Error("evaluate_points_batch: output span size differs from the number of points");
+  const Index elements = map.domain().element_count();
+  for (const auto& p : points)
+    if (p.element < 0 || p.element >= elements)
+      throw Error("evaluate_points_batch: query point on element " + std::to_string(p.element) + ", but S1 has " +
+                  std::to_string(elements) + " elements");
+  Locator prepared = locator;
+  prepare_point_locator<d>(prepared, map);
+  parallel_ranges(points.size(), threads, [&](std::size_t begin, std::size_t end) {
+    Locator local_locator = prepared;
+    for (std::size_t i = begin; i < end; ++i) out[i] = evaluate_on_any_incident_element(map, points[i], local_locator);
+  });
 }
 
 }  // namespace plmap

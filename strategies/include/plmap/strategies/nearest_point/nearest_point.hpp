@@ -14,6 +14,7 @@
 #include <plmap/core/surface.hpp>
 
 #include <memory>
+#include <span>
 
 namespace plmap {
 
@@ -62,6 +63,16 @@ class BruteForceNearestPoint {
   std::shared_ptr<const Surface<d>> surface_;
 };
 
+/// nearest(x) for many points on `threads` threads (0: all), in contiguous ranges
+/// (parallel_ranges.hpp). Throws plmap::Error if the sizes differ or a point is not finite.
+template <int d>
+void nearest_points_batch(const AabbNearestPoint<d>& index, std::span<const WorldPoint<d>> points,
+                          std::span<NearestPoint<d>> out, unsigned threads = 0);
+
+extern template void nearest_points_batch(const AabbNearestPoint<1>&, std::span<const WorldPoint<1>>,
+                                          std::span<NearestPoint<1>>, unsigned);
+extern template void nearest_points_batch(const AabbNearestPoint<2>&, std::span<const WorldPoint<2>>,
+                                          std::span<NearestPoint<2>>, unsigned);
 extern template class AabbNearestPoint<1>;
 extern template class AabbNearestPoint<2>;
 extern template class BruteForceNearestPoint<1>;
