@@ -97,33 +97,6 @@ InverseEvaluation<d> preimage_from_weights(const InverseIndex<d>& index, const t
   return out;
 }
 
-/// The S2 elements other than y.element that contain y's edge or vertex when y lies on the
-/// boundary of its element (to within `tolerance`); empty for interior points.
-template <int d>
-std::vector<Index> elements_sharing_boundary_point(const Surface<d>& s2, const SurfacePoint<d>& y, double tolerance) {
-  const Barycentric<d> b = barycentric_from_local<d>(y.local);
-  int nonzero = 0, zero_corner = -1, support_corner = -1;
-  for (int k = 0; k <= d; ++k) {
-    if (b(k) <= tolerance)
-      zero_corner = k;
-    else
-      ++nonzero, support_corner = k;
-  }
-  std::vector<Index> out;
-  if (nonzero == d + 1 || nonzero == 0) return out;
-  std::span<const Index> vertex_star;
-  if (nonzero == 1) {
-    vertex_star = s2.vertex_elements(s2.element(y.element)[support_corner]);
-    out.assign(vertex_star.begin(), vertex_star.end());
-  } else if constexpr (d == 2) {
-    // on the edge opposite the zero corner: local edge (zero_corner + 1) mod 3
-    for (const EdgeIncidence& inc : s2.edge_elements(s2.element_edge(y.element, (zero_corner + 1) % 3)))
-      out.push_back(inc.element);
-  }
-  std::erase(out, y.element);
-  return out;
-}
-
 }  // namespace
 
 template <int d>

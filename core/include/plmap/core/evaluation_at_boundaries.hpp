@@ -37,24 +37,7 @@ Evaluation<d> evaluate_on_any_incident_element(const PlMap<d>& map, SurfacePoint
   e = evaluate(map, SurfacePoint<d>{p.element, nudged(p.local)}, locator);
   if (e.in_domain) return e;
   const Surface<d>& s = map.domain();
-  std::vector<Index> others;
-  int nonzero = 0, support = -1, zero = -1;
-  for (int k = 0; k <= d; ++k) {
-    if (b(k) > tolerance)
-      ++nonzero, support = k;
-    else
-      zero = k;
-  }
-  if (nonzero == 1) {
-    const auto star = s.vertex_elements(s.element(p.element)[support]);
-    others.assign(star.begin(), star.end());
-  } else if constexpr (d == 2) {
-    if (nonzero == 2)
-      for (const EdgeIncidence& inc : s.edge_elements(s.element_edge(p.element, (zero + 1) % 3)))
-        others.push_back(inc.element);
-  }
-  for (Index t : others) {
-    if (t == p.element) continue;
+  for (Index t : elements_sharing_boundary_point(s, p, tolerance)) {
     const auto local = transfer_to_element(s, p, t, tolerance);
     if (!local) continue;
     e = evaluate(map, SurfacePoint<d>{t, *local}, locator);
