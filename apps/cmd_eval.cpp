@@ -1,9 +1,13 @@
-// `plmap eval MAP --random N`: evaluates the map at random points of S1 and reports the
-// throughput and the fraction of points that lie in the domain D of the map.
+// `plmap eval MAP --random N`: evaluates the map (or its inverse, --inverse) at random points of
+// S1 (S2) and reports the throughput and the fraction of points that lie in the domain D of the
+// map (in its image Xi(D)). `plmap eval MAP --points FILE` evaluates at the user's points
+// (eval_points.cpp).
 
 #include "cli_common.hpp"
+#include "eval_points.hpp"
 
 #include <plmap/core/evaluation.hpp>
+#include <plmap/core/inverse_evaluation.hpp>
 #include <plmap/core/io/map_file.hpp>
 #include <plmap/strategies/point_locator_registry.hpp>
 #include <plmap/verify/generators/random_surfaces.hpp>
@@ -26,6 +30,8 @@ struct EvalOptions {
   unsigned threads = 0;
   int repeat = 1;
   bool json = false;
+  bool inverse = false;
+  EvalPointsOptions at_points;  // used when --points is given
 };
 
 /// N points uniformly distributed over S1 by measure: the element by its length/area (inverse
@@ -59,29 +65,48 @@ template <int d>
 Json evaluate_random(const PlMap<d>& map, const EvalOptions& o) {
   const std::string locator_name =
       o.locator.empty() ? std::string(default_point_locator_name<d>()) : o.locator;
-  const std::vector<SurfacePoint<d>> points = random_points(map.domain(), o.points, o.seed);
-  std::vector<Evaluation<d>> out(points.size());
-  PointLocatorOptions locator_options;
-  locator_options.seed = o.seed;
+  const std::vector<SurfacePoint<d>> points =
+      random_points(o.inverse ? map.target() : map.domain(), o.points, o.seed);
+  std::size_t found = 0;
   double best_seconds = std::numeric_limits<double>::infinity();
-  with_point_locator<d>(
-      locator_name,
-      [&](auto& locator) {
-        prepare_point_locator<d>(locator, map);  // tables are set-up, not evaluation time
-        for (int r = 0; r < o.repeat; ++r) {
-          const auto start = std::chrono::steady_clock::now();
-          evaluate_batch<d>(map, points, out, locator, o.threads);
-          const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
-          best_seconds = std::min(best_seconds, elapsed.count());
-        }
-      },
-      locator_options);
-  const auto found = static_cast<std::size_t>(
-      std::count_if(out.begin(), out.end(), [](const Evaluation<d>& e) { return e.in_domain; }));
+  auto timed = [&](auto&& batch) {
+    for (int r = 0; r < o.repeat; ++r) {
+      const auto start = std::chrono::steady_clock::now();
+      batch();
+      const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+      best_seconds = std::min(best_seconds, elapsed.count());
+    }
+  };
+  double index_seconds = 0.0;
+  if (o.inverse) {
+    // The index is set-up, like a locator's tables: timed apart.
+    const auto start = std::chrono::steady_clock::now();
+    const InverseIndex<d> index(map);
+    index_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::vector<InverseEvaluation<d>> out(points.size());
+    timed([&] { inverse_evaluate_batch<d>(index, points, out, o.threads); });
+    for (const auto& e : out) found += e.in_image;
+  } else {
+    std::vector<Evaluation<d>> out(points.size());
+    PointLocatorOptions locator_options;
+    locator_options.seed = o.seed;
+    with_point_locator<d>(
+        locator_name,
+        [&](auto& locator) {
+          prepare_point_locator<d>(locator, map);  // tables are set-up, not evaluation time
+          timed([&] { evaluate_batch<d>(map, points, out, locator, o.threads); });
+        },
+        locator_options);
+    for (const auto& e : out) found += e.in_domain;
+  }
   Json j;
   j["file"] = o.file;
   j["dimension"] = d;
-  j["locator"] = locator_name;
+  j["direction"] = o.inverse ? "inverse" : "forward";
+  if (o.inverse)
+    j["index_seconds"] = index_seconds;
+  else
+    j["locator"] = locator_name;
   j["threads"] = resolved_threads(o.threads);
   j["seed"] = o.seed;
   j["points"] = points.size();
@@ -95,6 +120,15 @@ Json evaluate_random(const PlMap<d>& map, const EvalOptions& o) {
 }
 
 int run_eval(const EvalOptions& o) {
+  if (!o.at_points.points_file.empty()) {
+    EvalPointsOptions p = o.at_points;
+    p.map_file = o.file;
+    p.locator = o.locator;
+    p.inverse = o.inverse;
+    p.threads = o.threads;
+    p.json = o.json;
+    return run_eval_points(p);
+  }
   require_readable_file(o.file);
   const Json j =
       std::visit([&](const auto& map) { return evaluate_random(map, o); }, load_map(o.file));
@@ -110,12 +144,35 @@ void register_eval(CLI::App& app, Action& action) {
       "eval",
       "Evaluate a map at random points of S1 (uniform by length/area, reproducible from the "
       "seed) and report evaluations per second and the fraction of points found in the domain "
-      "of the map.");
+      "of the map; or, with --points, at the points of a file and write the images. --inverse "
+      "evaluates the inverse map at points of S2.");
   cmd->add_option("MAP", o->file, "Map file (.plmap)")->required();
   // The points and their results take about 100 bytes each: more than 10^9 cannot be meant.
-  cmd->add_option("--random,-n", o->points, "Number of random query points (at most 10^9)")
+  auto* random = cmd->add_option("--random,-n", o->points, "Number of random query points (at most 10^9)")
       ->check(CLI::Range(std::size_t{0}, std::size_t{1'000'000'000}))
       ->capture_default_str();
+  auto* points_option = cmd->add_option("--points", o->at_points.points_file,
+                  "Evaluate at the points in this file instead: a text table (CSV or blanks; rows "
+                  "'element,u,v' / 'element,u' or world points 'x,y,z' / 'x,y') or a 2-D .npy array")
+      ->excludes(random);
+  cmd->add_option("--points-kind", o->at_points.points_kind,
+                  "What the --points rows are: local (element and local coordinates) or world (points "
+                  "in space, taken to the nearest point of the surface). Default: from the header "
+                  "line ('element,...' or 'x,...'), else local")
+      ->check(CLI::IsMember({"local", "world"}))
+      ->needs(points_option);
+  cmd->add_option("-o,--output", o->at_points.output,
+                  "With --points: write the results here, format by extension (.csv, .json, .npy, "
+                  ".bin = raw float64); default: CSV on stdout")
+      ->check(CLI::Validator(
+          [](std::string& path) {
+            return is_known_points_output(path) ? std::string()
+                                                : "unknown output format '" + path + "' (use .csv, .json, .npy or .bin)";
+          },
+          "FILE"))
+      ->needs(points_option);
+  cmd->add_flag("--inverse", o->inverse,
+                "Evaluate the inverse map S2 -> S1: the points (random or --points) lie on S2");
   cmd->add_option("--seed", o->seed, "Seed of the query points and of randomized locators")
       ->capture_default_str();
   // The list comes from the registry, so a newly registered strategy shows up here.

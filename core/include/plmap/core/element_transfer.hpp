@@ -6,7 +6,9 @@
 
 #include <plmap/core/surface.hpp>
 
+#include <algorithm>
 #include <optional>
+#include <vector>
 
 namespace plmap {
 
@@ -26,6 +28,35 @@ std::optional<LocalPoint<d>> transfer_to_element(const Surface<d>& surface, cons
   }
   out /= out.sum();
   return local_from_barycentric<d>(out);
+}
+
+/// The elements other than p.element that contain the edge or vertex p lies on, when p lies on
+/// the boundary of its element (barycentric weights within `tolerance` of zero: one zero weight
+/// for an edge of a triangle, all but one for a vertex); empty for interior points. These are the
+/// elements on which p can also be given (transfer_to_element).
+template <int d>
+std::vector<Index> elements_sharing_boundary_point(const Surface<d>& surface, const SurfacePoint<d>& p,
+                                                   double tolerance) {
+  const Barycentric<d> b = barycentric_from_local<d>(p.local);
+  int nonzero = 0, zero_corner = -1, support_corner = -1;
+  for (int k = 0; k <= d; ++k) {
+    if (b(k) <= tolerance)
+      zero_corner = k;
+    else
+      ++nonzero, support_corner = k;
+  }
+  std::vector<Index> out;
+  if (nonzero == d + 1 || nonzero == 0) return out;
+  if (nonzero == 1) {
+    const auto star = surface.vertex_elements(surface.element(p.element)[support_corner]);
+    out.assign(star.begin(), star.end());
+  } else if constexpr (d == 2) {
+    // on the edge opposite the zero corner: local edge (zero_corner + 1) mod 3
+    for (const EdgeIncidence& inc : surface.edge_elements(surface.element_edge(p.element, (zero_corner + 1) % 3)))
+      out.push_back(inc.element);
+  }
+  std::erase(out, p.element);
+  return out;
 }
 
 }  // namespace plmap

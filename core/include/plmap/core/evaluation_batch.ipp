@@ -2,10 +2,7 @@
 // Implementation of evaluate_batch (included from evaluation.hpp).
 
 #include <plmap/core/errors.hpp>
-
-#include <algorithm>
-#include <thread>
-#include <vector>
+#include <plmap/core/parallel_ranges.hpp>
 
 namespace plmap {
 
@@ -20,27 +17,13 @@ void evaluate_batch(const PlMap<d>& map, std::span<const SurfacePoint<d>> points
     if (p.element < 0 || p.element >= elements)
       throw Error("evaluate_batch: query point on element " + std::to_string(p.element) +
                   ", but S1 has " + std::to_string(elements) + " elements");
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t n = points.size();
-  threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(n, 1)));
   // Threads work on copies; preparing one first lets the copies share its table.
   Locator prepared = locator;
   prepare_point_locator<d>(prepared, map);
-  auto work = [&](std::size_t begin, std::size_t end) {
+  parallel_ranges(points.size(), threads, [&](std::size_t begin, std::size_t end) {
     Locator local_locator = prepared;
     for (std::size_t i = begin; i < end; ++i) out[i] = evaluate(map, points[i], local_locator);
-  };
-  if (threads <= 1) {
-    work(0, n);
-    return;
-  }
-  std::vector<std::jthread> pool;
-  pool.reserve(threads);
-  const std::size_t chunk = (n + threads - 1) / threads;
-  for (unsigned k = 0; k < threads; ++k) {
-    const std::size_t begin = std::min(n, k * chunk), end = std::min(n, begin + chunk);
-    pool.emplace_back(work, begin, end);
-  }
+  });
 }
 
 }  // namespace plmap
