@@ -47,7 +47,8 @@ RayNormalCheck ray_normal_check_from(const std::string& name) {
 
 /// The ray check with the rules of the command line and S1's averaged vertex normals (the
 /// projection's default direction field). Passes if the missed area that is not outside D on
-/// purpose and the extra area are each at most ray_tolerance of S1's measure.
+/// purpose and the extra area that the interpolation at S2's boundary does not explain are each
+/// at most ray_tolerance of S1's measure.
 template <int d>
 std::pair<Json, bool> ray_check(const PlMap<d>& map, const CheckOptions& o) {
   RayCheckOptions<d> options;
@@ -61,7 +62,7 @@ std::pair<Json, bool> ray_check(const PlMap<d>& map, const CheckOptions& o) {
   options.max_listed = o.max_reported;
   const RayCheckReport<d> report = check_against_rays(map, options);
   const bool ok = report.fraction(report.missed_defects()) <= o.ray_tolerance &&
-                  report.fraction(report.extra) <= o.ray_tolerance;
+                  report.fraction(report.extra_defects()) <= o.ray_tolerance;
   Json j = to_json(report);
   j["tolerance"] = o.ray_tolerance;
   j["ok"] = ok;
@@ -73,10 +74,12 @@ std::string ray_summary(const Json& j) {
   const auto& e = j["image_error_relative_to_edge"];
   return fmt::format(
       "against rays ({} samples): {}\n  missed {:.3g} of S1 (nearer sheet {:.3g}, farther sheet {:.3g}, not "
-      "covered {:.3g})\n  extra {:.3g} of S1\n  image error / S2 edge length: median {:.3g}, p99 {:.3g}, max {:.3g}\n",
+      "covered {:.3g})\n  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, unexplained {:.3g})\n  image error / S2 edge length: median {:.3g}, p99 {:.3g}, max {:.3g}\n",
       j["samples"].get<std::size_t>(), j["ok"].get<bool>() ? "ok" : "FAILED", j["missed"]["fraction"].get<double>(),
       by["nearer_sheet"]["fraction"].get<double>(), by["farther_sheet"]["fraction"].get<double>(),
-      by["not_covered"]["fraction"].get<double>(), j["extra"]["fraction"].get<double>(), e["median"].get<double>(),
+      by["not_covered"]["fraction"].get<double>(), j["extra"]["fraction"].get<double>(),
+      j["extra"]["by_reason"]["beyond_target_boundary"]["fraction"].get<double>(),
+      j["extra"]["by_reason"]["unexplained"]["fraction"].get<double>(), e["median"].get<double>(),
       e["p99"].get<double>(), e["max"].get<double>());
 }
 
@@ -136,7 +139,7 @@ void register_check(CLI::App& app, Action& action) {
   cmd->add_option("--ray-seed", o->ray_seed, "Seed of the ray sample")->capture_default_str();
   cmd->add_option("--ray-tolerance", o->ray_tolerance,
                   "The ray check fails if the missed area (not counting what a nearer sheet of S1 covers) or "
-                  "the extra area exceeds this fraction of S1")
+                  "the extra area (not counting the interpolation at S2's boundary) exceeds this fraction of S1")
       ->capture_default_str();
   cmd->add_option("--max-distance", o->max_distance, "Ray check: largest projection distance |mu|, as given to project")
       ->check(positive_number);

@@ -30,6 +30,14 @@ std::string_view to_string(MissedReason reason) {
   return "unknown";
 }
 
+std::string_view to_string(ExtraReason reason) {
+  switch (reason) {
+    case ExtraReason::beyond_target_boundary: return "beyond_target_boundary";
+    case ExtraReason::unexplained: return "unexplained";
+  }
+  return "unknown";
+}
+
 namespace {
 
 using Kernel = CGAL::Simple_cartesian<double>;
@@ -227,8 +235,14 @@ class RayChecker {
       errors.push_back((lifted<d>(e.world) - hit->point).norm() / mean_edge_length(s2_, hit->element));
     } else if (region != invalid_index) {
       ++report.extra;
+      const Evaluation<d> e = evaluate_in_region(map_, region, xi);
+      const std::optional<double> sliver = beyond_target_boundary(x, nu, e);
+      const ExtraReason reason = sliver ? ExtraReason::beyond_target_boundary : ExtraReason::unexplained;
+      if (sliver) errors.push_back(*sliver);
+      ++report.extra_by_reason[static_cast<std::size_t>(reason)];
       if (report.extra_examples.size() < o_.max_listed)
-        report.extra_examples.push_back(RaySample<d>{t, x, invalid_index, 0.0, MissedReason::not_covered});
+        report.extra_examples.push_back(
+            RaySample<d>{t, x, e.image.element, 0.0, MissedReason::not_covered, reason});
     } else if (hit) {
       ++report.missed;
       const MissedReason reason = classify_missed(x, *hit);
@@ -238,6 +252,35 @@ class RayChecker {
     } else {
       ++report.neither;
     }
+  }
+
+  /// For a sample in D without a hit: if Xi(x) lies on an S2 element next to S2's boundary and
+  /// the ray meets the element's plane outside it only across boundary facets of S2, the
+  /// distance between that point and Xi(x) relative to the element's mean edge length.
+  std::optional<double> beyond_target_boundary(const WorldPoint<d>& x, const WorldPoint<d>& nu,
+                                               const Evaluation<d>& e) const {
+    const Index tau = e.image.element;
+    const WorldPoint<d> n = s2_.element_normal(tau);
+    const double along = n.dot(nu);
+    if (!(std::abs(along) > 1e-12 * nu.norm() * n.norm())) return std::nullopt;
+    const WorldPoint<d> q = x + (n.dot(s2_.corner(tau, 0) - x) / along) * nu;
+    const LocalPoint<d> y = local_on<d>(s2_, tau, q);
+    Eigen::Matrix<double, d + 1, 1> b;
+    b(0) = 1.0 - y.sum();
+    b.template tail<d>() = y;
+    bool outside = false;
+    for (int k = 0; k <= d; ++k) {
+      if (!(b(k) < 0.0)) continue;
+      outside = true;
+      bool boundary_facet = false;  // the facet opposite corner k has no other element
+      if constexpr (d == 2)
+        boundary_facet = s2_.edge_elements(s2_.element_edge(tau, (k + 1) % 3)).size() == 1;
+      else
+        boundary_facet = s2_.vertex_elements(s2_.element(tau)[1 - k]).size() == 1;
+      if (!boundary_facet) return std::nullopt;
+    }
+    if (!outside) return std::nullopt;
+    return (lifted<d>(q) - lifted<d>(e.world)).norm() / mean_edge_length(s2_, tau);
   }
 
   /// The admissible hit with the smallest mu (|mu| with negative distances), if any.
@@ -346,11 +389,9 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
     nlohmann::json a = nlohmann::json::array();
     for (const RaySample<d>& s : list) {
       nlohmann::json e{{"element", s.element}, {"point", std::vector<double>(s.point.data(), s.point.data() + d + 1)}};
-      if (s.hit_element != invalid_index) {
-        e["hit_element"] = s.hit_element;
-        e["mu"] = s.mu;
-      }
-      if (with_reason) e["reason"] = std::string(to_string(s.reason));
+      if (s.hit_element != invalid_index) e[with_reason ? "hit_element" : "image_element"] = s.hit_element;
+      if (with_reason) e["mu"] = s.mu;
+      e["reason"] = with_reason ? std::string(to_string(s.reason)) : std::string(to_string(s.extra_reason));
       a.push_back(e);
     }
     return a;
@@ -368,7 +409,16 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
                  {"defect_fraction", r.fraction(r.missed_defects())},
                  {"by_reason", by_reason},
                  {"examples", examples(r.missed_examples, true)}};
-  j["extra"] = {{"samples", r.extra}, {"fraction", r.fraction(r.extra)}, {"examples", examples(r.extra_examples, false)}};
+  nlohmann::json extra_by_reason = nlohmann::json::object();
+  for (ExtraReason reason : {ExtraReason::beyond_target_boundary, ExtraReason::unexplained}) {
+    const std::size_t n = r.extra_by_reason[static_cast<std::size_t>(reason)];
+    extra_by_reason[std::string(to_string(reason))] = {{"samples", n}, {"fraction", r.fraction(n)}};
+  }
+  j["extra"] = {{"samples", r.extra},
+                {"fraction", r.fraction(r.extra)},
+                {"defect_fraction", r.fraction(r.extra_defects())},
+                {"by_reason", extra_by_reason},
+                {"examples", examples(r.extra_examples, false)}};
   j["in_domain_with_hit"] = r.in_domain_with_hit;
   j["neither"] = r.neither;
   j["image_error_relative_to_edge"] = {{"median", r.error_median}, {"p99", r.error_p99}, {"max", r.error_max}};

@@ -19,7 +19,7 @@
 /// Each sample is then one of: in D with a hit (the image error |Xi(x) - hit| is measured
 /// relative to the mean edge length of the S2 element hit), in D without a hit (**extra**),
 /// outside D with a hit (**missed**), neither. The missed samples are classified by the
-/// reason they may be outside D (MissedReason). Every count is also given as a fraction of the
+/// reason they may be outside D (MissedReason), the extra ones likewise (ExtraReason). Every count is also given as a fraction of the
 /// samples, which estimates the fraction of S1's measure (standard error about
 /// sqrt(f (1 - f) / N)).
 
@@ -73,6 +73,18 @@ enum class MissedReason {
 };
 std::string_view to_string(MissedReason reason);
 
+/// Why a sample in D has no admissible ray hit.
+enum class ExtraReason {
+  /// Xi(x) lies on an S2 element at S2's boundary, and the ray meets that element's plane just
+  /// across the boundary: D's boundary there is the piecewise-linear preimage of S2's boundary,
+  /// which differs from the true (curved) one by the interpolation error. The distance between
+  /// Xi(x) and that point counts in the image error.
+  beyond_target_boundary,
+  /// Anything else. A defect.
+  unexplained,
+};
+std::string_view to_string(ExtraReason reason);
+
 /// One sample listed in the report.
 template <int d>
 struct RaySample {
@@ -81,6 +93,7 @@ struct RaySample {
   Index hit_element = invalid_index;  ///< S2 element hit (invalid for extra samples)
   double mu = 0.0;                    ///< ray parameter of the hit
   MissedReason reason = MissedReason::not_covered;  ///< for missed samples
+  ExtraReason extra_reason = ExtraReason::unexplained;  ///< for extra samples
 };
 
 template <int d>
@@ -93,14 +106,18 @@ struct RayCheckReport {
   std::size_t neither = 0;
   /// missed samples by MissedReason (index = enum value)
   std::array<std::size_t, 3> missed_by_reason{};
+  /// extra samples by ExtraReason (index = enum value)
+  std::array<std::size_t, 2> extra_by_reason{};
   /// Image error |Xi(x) - hit| / mean edge length of the S2 element hit, over the samples in D
-  /// with a hit (0 if there are none).
+  /// with a hit and the extra samples beyond S2's boundary (0 if there are none).
   double error_median = 0.0, error_p99 = 0.0, error_max = 0.0;
   std::vector<RaySample<d>> missed_examples, extra_examples;
 
   double fraction(std::size_t count) const { return samples ? double(count) / double(samples) : 0.0; }
   /// Missed samples that are not outside D on purpose (all but nearer_sheet).
   std::size_t missed_defects() const { return missed - missed_by_reason[0]; }
+  /// Extra samples not explained by the interpolation at S2's boundary.
+  std::size_t extra_defects() const { return extra_by_reason[1]; }
 };
 
 /// Runs the ray check. Throws plmap::Error if the directions do not fit S1 or max_distance is
