@@ -146,3 +146,40 @@ TEST(RayCheck, DirectionsMustFitS1) {
   o.directions.assign(3, WorldPoint<2>(0, 0, 1));
   EXPECT_THROW(check_against_rays(r.map, o), Error);
 }
+
+TEST(RayCheck, TheAnswerDoesNotDependOnTheScale) {
+  // the damaged map of AreaLeftOutByADistanceLimitIsMissed and a circle pair, at scales 1e-6
+  // and 1e6: the same samples land in the same places (the distance limit and the extrusion of
+  // curves scale with the input)
+  for (const double scale : {1e-6, 1e6}) {
+    auto scaled = [&](const WorldPoint<2>& p) { return WorldPoint<2>(scale * p); };
+    auto flat = grid(13, 13, -0.1, 1.1, -0.1, 1.1, 0.0, true);
+    auto s1 = transformed<2>(*grid(10, 10, 0, 1, 0, 1, 0.0), scaled);
+    auto s2 = transformed<2>(*flat, [&](const WorldPoint<2>& p) {
+      return WorldPoint<2>(scale * WorldPoint<2>(p.x(), p.y(), 0.1 + 0.2 * p.x()));
+    });
+    ProjectionOptions po{.max_distance = 0.2 * scale};
+    po.directions = constant_directions(*s1, WorldPoint<2>(0, 0, 1));
+    const auto r = project<2>(s1, s2, po);
+    const auto report = check_against_rays(r.map, rays_along<2>(*s1, po.directions, 20000));
+    const auto unscaled = [&] {
+      auto u1 = grid(10, 10, 0, 1, 0, 1, 0.0);
+      auto u2 = transformed<2>(*flat, [](const WorldPoint<2>& p) { return WorldPoint<2>(p.x(), p.y(), 0.1 + 0.2 * p.x()); });
+      ProjectionOptions uo{.max_distance = 0.2};
+      uo.directions = constant_directions(*u1, WorldPoint<2>(0, 0, 1));
+      return check_against_rays(project<2>(u1, u2, uo).map, rays_along<2>(*u1, uo.directions, 20000));
+    }();
+    // rounding may move a sample that lies within 1e-16 of a region's side
+    EXPECT_NEAR(double(report.missed), double(unscaled.missed), 2.0) << scale;
+    EXPECT_EQ(report.extra, 0u) << scale;
+    EXPECT_NEAR(double(report.in_domain_with_hit), double(unscaled.in_domain_with_hit), 2.0) << scale;
+    EXPECT_GT(report.missed, 4000u) << scale;
+
+    auto c1 = transformed<1>(*circle(200, 1.0), [&](const WorldPoint<1>& p) { return WorldPoint<1>(scale * p); });
+    auto c2 = transformed<1>(*flipped(*circle(333, 1.05, 0.01)), [&](const WorldPoint<1>& p) { return WorldPoint<1>(scale * p); });
+    const auto rc = project<1>(c1, c2);
+    const auto circles = check_against_rays(rc.map, rays_along<1>(*c1, {}, 5000));
+    EXPECT_EQ(circles.missed + circles.extra, 0u) << scale;
+    EXPECT_EQ(circles.in_domain_with_hit, circles.samples) << scale;
+  }
+}

@@ -73,7 +73,9 @@ struct TargetTriangles {
         element.push_back(t);
       }
     } else {
-      const double h = std::max(1.0, (s2.bounding_box_max() - s2.bounding_box_min()).norm());
+      // the rectangles' height only has to be nonzero; S2's size keeps it relative to the input
+      const double diagonal = (s2.bounding_box_max() - s2.bounding_box_min()).norm();
+      const double h = diagonal > 0.0 ? diagonal : 1.0;
       for (Index t = 0; t < s2.element_count(); ++t) {
         const Eigen::Vector3d a = lifted<1>(s2.corner(t, 0)), b = lifted<1>(s2.corner(t, 1)), z(0, 0, h);
         triangles.emplace_back(cgal_point(a - z), cgal_point(b - z), cgal_point(b + z));
@@ -174,10 +176,11 @@ class RayChecker {
     const double diagonal = (s1_.bounding_box_max() - s1_.bounding_box_min()).norm();
     limit_ = o_.max_distance_is_relative ? o_.max_distance * diagonal : o_.max_distance;
     if (!(limit_ >= 0.0)) throw Error(fmt::format("max_distance {} is not >= 0", o_.max_distance));
-    // a length that every ray of interest stays within: S1 and S2 together, plus the limit
+    // a segment long enough to reach every point of the box around S1 and S2, or the limit
     WorldPoint<d> lo = s1_.bounding_box_min().cwiseMin(s2_.bounding_box_min());
     WorldPoint<d> hi = s1_.bounding_box_max().cwiseMax(s2_.bounding_box_max());
-    reach_ = 2.0 * (hi - lo).norm() + 1.0;
+    const double extent = (hi - lo).norm();
+    reach_ = extent > 0.0 ? 3.0 * extent : 1.0;
     if (std::isfinite(limit_)) reach_ = std::min(reach_, 2.0 * limit_ + 1e-6 * reach_);
     tree_.insert(triangles_.triangles.cbegin(), triangles_.triangles.cend());
     tree_.build();
