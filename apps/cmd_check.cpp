@@ -1,13 +1,22 @@
-// `plmap check MAP`: runs every invariant check of verify/ and exits 0 only if all pass.
+// `plmap check MAP`: runs every invariant check of verify/ and exits 0 only if all pass; with
+// --against-rays N it also compares a projection map with an independent ray cast
+// (verify/ray_check.hpp).
 
 #include "cli_common.hpp"
 
+#include <plmap/construct/direction_field.hpp>
+#include <plmap/core/errors.hpp>
 #include <plmap/core/io/map_file.hpp>
+#include <plmap/verify/ray_check.hpp>
 #include <plmap/verify/check.hpp>
 #include <plmap/verify/report_json.hpp>
 
+#include <fmt/format.h>
+
 #include <iostream>
 #include <limits>
+#include <optional>
+#include <utility>
 
 namespace plmap::cli {
 
@@ -19,7 +28,60 @@ struct CheckOptions {
   bool parametrization = false;
   double max_condition = std::numeric_limits<double>::infinity();
   std::size_t max_reported = 20;
+  // --against-rays: the sample and the projection's acceptance rules (the map file does not
+  // record them; the defaults are `plmap project`'s)
+  std::size_t ray_samples = 0;
+  std::uint64_t ray_seed = 1;
+  double ray_tolerance = 1e-4;
+  double max_distance = std::numeric_limits<double>::infinity();
+  bool relative_distance = false, allow_negative = false;
+  std::string normal_check = "none";
 };
+
+RayNormalCheck ray_normal_check_from(const std::string& name) {
+  if (name == "none") return RayNormalCheck::none;
+  if (name == "facing") return RayNormalCheck::facing;
+  if (name == "aligned") return RayNormalCheck::aligned;
+  throw Error(fmt::format("unknown normal check '{}' (valid: none, facing, aligned)", name));
+}
+
+/// The ray check with the rules of the command line and S1's averaged vertex normals (the
+/// projection's default direction field). Passes if the missed area that is not outside D on
+/// purpose and the extra area that the interpolation at S2's boundary does not explain are each
+/// at most ray_tolerance of S1's measure.
+template <int d>
+std::pair<Json, bool> ray_check(const PlMap<d>& map, const CheckOptions& o) {
+  RayCheckOptions<d> options;
+  options.directions = averaged_vertex_normals(map.domain());
+  options.samples = o.ray_samples;
+  options.seed = o.ray_seed;
+  options.max_distance = o.max_distance;
+  options.max_distance_is_relative = o.relative_distance;
+  options.allow_negative_distance = o.allow_negative;
+  options.normal_check = ray_normal_check_from(o.normal_check);
+  options.max_listed = o.max_reported;
+  const RayCheckReport<d> report = check_against_rays(map, options);
+  const bool ok = report.fraction(report.missed_defects()) <= o.ray_tolerance &&
+                  report.fraction(report.extra_defects()) <= o.ray_tolerance;
+  Json j = to_json(report);
+  j["tolerance"] = o.ray_tolerance;
+  j["ok"] = ok;
+  return {j, ok};
+}
+
+std::string ray_summary(const Json& j) {
+  const auto& by = j["missed"]["by_reason"];
+  const auto& e = j["image_error_relative_to_edge"];
+  return fmt::format(
+      "against rays ({} samples): {}\n  missed {:.3g} of S1 (nearer sheet {:.3g}, farther sheet {:.3g}, not "
+      "covered {:.3g})\n  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, unexplained {:.3g})\n  image error / S2 edge length: median {:.3g}, p99 {:.3g}, max {:.3g}\n",
+      j["samples"].get<std::size_t>(), j["ok"].get<bool>() ? "ok" : "FAILED", j["missed"]["fraction"].get<double>(),
+      by["nearer_sheet"]["fraction"].get<double>(), by["farther_sheet"]["fraction"].get<double>(),
+      by["not_covered"]["fraction"].get<double>(), j["extra"]["fraction"].get<double>(),
+      j["extra"]["by_reason"]["beyond_target_boundary"]["fraction"].get<double>(),
+      j["extra"]["by_reason"]["unexplained"]["fraction"].get<double>(), e["median"].get<double>(),
+      e["p99"].get<double>(), e["max"].get<double>());
+}
 
 int run_check(const CheckOptions& o) {
   require_readable_file(o.file);
@@ -27,18 +89,27 @@ int run_check(const CheckOptions& o) {
   options.expect_parametrization = o.parametrization;
   options.max_condition = o.max_condition;
   options.max_reported_per_rule = o.max_reported;
-  const VerificationReport report =
-      std::visit([&](const auto& map) { return verify(map, options); }, load_map(o.file));
+  if (o.ray_samples > 0) ray_normal_check_from(o.normal_check);  // a bad name fails before the work
+  const AnyPlMap any_map = load_map(o.file);
+  const VerificationReport report = std::visit([&](const auto& map) { return verify(map, options); }, any_map);
+  std::optional<std::pair<Json, bool>> rays;
+  if (o.ray_samples > 0) rays = std::visit([&](const auto& map) { return ray_check(map, o); }, any_map);
+  const bool ok = report.ok() && (!rays || rays->second);
   if (o.json) {
     Json j = to_json(report);
     j["file"] = o.file;
+    if (rays) {
+      j["ok"] = ok;
+      j["against_rays"] = rays->first;
+    }
     print_json(j);
   } else {
     const std::string text = summary(report);
     std::cout << o.file << ": " << (report.ok() ? "valid" : "INVALID") << '\n' << text;
     if (!text.empty() && text.back() != '\n') std::cout << '\n';
+    if (rays) std::cout << ray_summary(rays->first);
   }
-  return report.ok() ? exit_code::success : exit_code::check_failed;
+  return ok ? exit_code::success : exit_code::check_failed;
 }
 
 }  // namespace
@@ -59,6 +130,23 @@ void register_check(CLI::App& app, Action& action) {
       ->check(positive_number);
   cmd->add_option("--max-reported", o->max_reported,
                   "Violations listed per rule (further ones are only counted)")
+      ->capture_default_str();
+  cmd->add_option("--against-rays", o->ray_samples,
+                  "Also cast N rays from points sampled uniformly on S1 along its averaged vertex normals "
+                  "(the projection's default field) against S2 and report the area missed (the ray hits "
+                  "S2, the point is outside D), the extra area (in D, no hit) and the image error")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--ray-seed", o->ray_seed, "Seed of the ray sample")->capture_default_str();
+  cmd->add_option("--ray-tolerance", o->ray_tolerance,
+                  "The ray check fails if the missed area (not counting what a nearer sheet of S1 covers) or "
+                  "the extra area (not counting the interpolation at S2's boundary) exceeds this fraction of S1")
+      ->capture_default_str();
+  cmd->add_option("--max-distance", o->max_distance, "Ray check: largest projection distance |mu|, as given to project")
+      ->check(positive_number);
+  cmd->add_flag("--relative-distance", o->relative_distance,
+                "Ray check: --max-distance is a multiple of S1's bounding-box diagonal");
+  cmd->add_flag("--allow-negative", o->allow_negative, "Ray check: also accept hits behind S1");
+  cmd->add_option("--normal-check", o->normal_check, "Ray check: none, facing or aligned, as given to project")
       ->capture_default_str();
   cmd->callback([o, &action] { action = [o] { return run_check(*o); }; });
 }

@@ -168,14 +168,25 @@ std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageM
   const Index nt = map.domain().element_count();
 
   std::vector<char> crowded(static_cast<std::size_t>(n2), 0);
-  // The images on one S2 element from one sheet of S1 tile part of it without overlapping (the
-  // builder has dropped the edges where a sheet folds). So images can overlap only where they
-  // add up to more than the element (per_target is d! times the measure: 1 for the whole
-  // element), or where they come from parts of S1 that are not connected through elements
-  // mapping onto it: two sheets, each covering only part of the element.
-  for (Index t2 = 0; t2 < n2; ++t2)
-    if (images.per_target[static_cast<std::size_t>(t2)] > 1.0 + tolerances.measure_tolerance)
+  // Where the preimage of an S2 element tau on one sheet of S1 is bounded by the preimages of
+  // tau's own edges, its images tile tau exactly once: they are positively oriented and their
+  // boundary runs once around tau, so the map has degree 1 on all of tau (the builder has
+  // dropped the edges where a sheet folds). Their measures then add up to the whole element
+  // (per_target is d! times the measure: 1 for the whole element). So images can overlap only
+  // - where they add up to more than the element;
+  // - where they add up to less: part of the preimage's boundary is the boundary of D (S1's
+  //   boundary, an edge not inserted), whose image is not tau's boundary, and one connected
+  //   sheet can then reach over itself: a region of ghost nodes on a curved S1 with averaged
+  //   normals overlapping a neighbour's image where no ray crosses another inside an element
+  //   (the rays of elements some way apart cross on a flat S2 element that S1's footprint
+  //   only partly covers);
+  // - where they come from parts of S1 that are not connected through elements mapping onto
+  //   it: two sheets, each covering only part of the element.
+  for (Index t2 = 0; t2 < n2; ++t2) {
+    const double sum = images.per_target[static_cast<std::size_t>(t2)];
+    if (sum > 1.0 + tolerances.measure_tolerance || (sum > 0.0 && sum < 1.0 - tolerances.measure_tolerance))
       crowded[static_cast<std::size_t>(t2)] = 1;
+  }
   mark_disconnected_preimages(map, crowded);
   if (std::find(crowded.begin(), crowded.end(), 1) == crowded.end()) return {};
   // The images on the crowded elements, grouped by element, compared pairwise.

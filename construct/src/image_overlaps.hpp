@@ -7,7 +7,8 @@
 /// covers, and the map would then fail the coverage invariant (images overlap on S2).
 ///
 /// farther_overlapping_regions() finds those faces' regions: per S2 element, if the images of its
-/// regions add up to more than the element, or come from S1 elements that are not connected
+/// regions add up to more or less than the element (less: D's boundary bounds part of the
+/// preimage, and one sheet can reach over itself there), or come from S1 elements that are not connected
 /// (two sheets each covering part of the element), it compares them pairwise, and of two overlapping
 /// regions names the one whose points lie farther from their images. project() then removes
 /// their faces (core/face_removal.hpp): of the two sheets the nearer one stays, as for a vertex
@@ -31,8 +32,8 @@ struct OverlapTolerances {
 /// The regions (sorted, each once) whose images overlap the image of a region whose points lie
 /// nearer to their images (ties: the larger region index is named). `images` are the map's
 /// image_measures (core/regions.hpp), which project() computes anyway for the covered measures:
-/// only S2 elements whose images add up to more than the element, or whose regions lie on
-/// S1 elements that are not edge-connected, are looked at.
+/// only S2 elements whose images add up to more or less than the element, or whose regions lie
+/// on S1 elements that are not edge-connected, are looked at.
 template <int d>
   requires SurfaceDimension<d>
 std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageMeasures& images,

@@ -10,6 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
+
 using namespace plmap;
 using namespace plmap::test;
 
@@ -83,4 +86,38 @@ TEST(ImageOverlaps, TilingImagesNameNothing) {
   ASSERT_GT(r.map.region_count(), 100);
   EXPECT_TRUE(projection::farther_overlapping_regions(r.map, image_measures(r.map)).empty());
   EXPECT_EQ(r.report.occluded_faces, 0);
+}
+
+TEST(ImageOverlaps, OneConnectedSheetReachingOverItselfOnAPartlyCoveredElementIsFound) {
+  // Three S1 triangles around vertex c, edge-connected, spanning 270 degrees; their corners are
+  // ghost nodes whose images on one large S2 triangle turn by 150 degrees per triangle, so the
+  // first and the last image overlap (each is positively oriented, no fold). The images add up
+  // to far less than the S2 triangle and come from one connected sheet: the overlap is found
+  // only by comparing the images on S2 elements that are partly covered (seed 5 of
+  // ProjectProperties.OffsetHeightFieldsWithAveragedNormals has this on a curved S1).
+  auto s1 = std::make_shared<const Surface<2>>(
+      std::vector<WorldPoint<2>>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}},
+      std::vector<ElementCorners<2>>{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}});
+  auto s2 = std::make_shared<const Surface<2>>(std::vector<WorldPoint<2>>{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}},
+                                               std::vector<ElementCorners<2>>{{0, 1, 2}});
+  const LocalPoint<2> c(0.3, 0.3);
+  const auto at = [&](double degrees, double radius) {
+    const double a = degrees * std::numbers::pi / 180.0;
+    return LocalPoint<2>(c + radius * LocalPoint<2>(std::cos(a), std::sin(a)));
+  };
+  MapBuilder<2> b(s1, s2);
+  b.add_ghost_node(0, {0, c});
+  b.add_ghost_node(1, {0, at(0, 0.1)});
+  b.add_ghost_node(2, {0, at(150, 0.1)});
+  b.add_ghost_node(3, {0, at(300, 0.1)});
+  b.add_ghost_node(4, {0, at(450, 0.08)});
+  for (Index e = 0; e < 3; ++e) b.add_edge_outside_domain(e);
+  const PlMap<2> map = std::move(b).finalize();
+  ASSERT_EQ(map.region_count(), 3);
+  ASSERT_NE(verify_violations(map), "");  // the first and the last image overlap
+  const auto farther = projection::farther_overlapping_regions(map, image_measures(map));
+  ASSERT_EQ(farther.size(), 1u);
+  const Index element = map.node_element(map.data().region_corners[farther[0]][0]);
+  EXPECT_TRUE(element == 0 || element == 2) << element;
+  EXPECT_EQ(verify_violations(remove_faces(map, std::span<const Index>(farther))), "");
 }

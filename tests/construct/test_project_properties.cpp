@@ -10,9 +10,11 @@
 // case is small (at most a few hundred triangles), so the whole executable stays fast.
 #include "projection_fixtures.hpp"
 
+#include <plmap/construct/direction_field.hpp>
 #include <plmap/construct/project.hpp>
 #include <plmap/core/regions.hpp>
 #include <plmap/verify/generators/rc_generators.hpp>
+#include <plmap/verify/ray_check.hpp>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -20,6 +22,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <tuple>
+#include <vector>
 
 using namespace plmap;
 using namespace plmap::test;
@@ -57,6 +61,78 @@ void assert_valid(const ProjectionResult<d>& r, const std::string& what) {
 /// The measures agree to a relative 1e-9 (of the larger surface measure).
 void assert_same_measure(double a, double b, double scale, const std::string& what) {
   if (!(std::abs(a - b) <= 1e-9 * scale)) RC_FAIL(what + fmt::format(": {:.17g} != {:.17g}", a, b));
+}
+
+/// Area of the part of S1 (a surface over the xy-plane) that lies over the rectangle
+/// [x0, x1] x [y0, y1] = box: per triangle, its area times the fraction of its xy-footprint inside
+/// the box (the footprint clipped to the box, Sutherland-Hodgman). The covered measure of a
+/// projection along the vertical onto a surface over that box, computed without the projection.
+double area_over_box(const Surface<2>& s1, const std::array<double, 4>& box) {
+  double total = 0.0;
+  for (Index t = 0; t < s1.element_count(); ++t) {
+    std::vector<Eigen::Vector2d> polygon;
+    for (int k = 0; k < 3; ++k) polygon.push_back(s1.corner(t, k).head<2>());
+    // clip against x >= x0, x <= x1, y >= y0, y <= y1: inside(p) = sign * (p(axis) - bound) >= 0
+    for (const auto& [axis, bound, sign] : {std::tuple{0, box[0], 1.0}, std::tuple{0, box[1], -1.0},
+                                            std::tuple{1, box[2], 1.0}, std::tuple{1, box[3], -1.0}}) {
+      std::vector<Eigen::Vector2d> out;
+      for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const Eigen::Vector2d& a = polygon[i];
+        const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
+        const double fa = sign * (a(axis) - bound), fb = sign * (b(axis) - bound);
+        if (fa >= 0) out.push_back(a);
+        if ((fa >= 0) != (fb >= 0)) out.push_back(a + fa / (fa - fb) * (b - a));
+      }
+      polygon = std::move(out);
+      if (polygon.empty()) break;
+    }
+    double clipped = 0.0;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      const Eigen::Vector2d& a = polygon[i];
+      const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
+      clipped += 0.5 * (a.x() * b.y() - a.y() * b.x());
+    }
+    const Eigen::Vector2d e1 = (s1.corner(t, 1) - s1.corner(t, 0)).head<2>(), e2 = (s1.corner(t, 2) - s1.corner(t, 0)).head<2>();
+    const double footprint = 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+    if (footprint > 0.0) total += s1.element_measure(t) * std::abs(clipped) / footprint;
+  }
+  return total;
+}
+
+/// The map's coverage against an independent ray cast (verify/ray_check.hpp) along the same
+/// field and rules: plmap claims no area whose ray misses S2 (but for the interpolation error at
+/// S2's boundary) or lands elsewhere (image error below one S2 edge length), and where it reports
+/// every S2 edge inserted and no face left out, it misses none either.
+void assert_coverage_against_rays(const ProjectionResult<2>& r, const std::vector<WorldPoint<2>>& directions,
+                                  const ProjectionOptions& o, const std::string& what) {
+  RayCheckOptions<2> rays;
+  rays.directions = directions;
+  rays.samples = 2000;
+  rays.allow_negative_distance = o.allow_negative_distance;
+  rays.normal_check = o.normal_check == TargetNormalCheck::facing   ? RayNormalCheck::facing
+                      : o.normal_check == TargetNormalCheck::aligned ? RayNormalCheck::aligned
+                                                                     : RayNormalCheck::none;
+  const auto report = check_against_rays(r.map, rays);
+  if (report.extra_defects() != 0)
+    RC_FAIL(what + fmt::format(": {} of {} ray samples in D miss S2", report.extra_defects(), report.samples));
+  if (!(report.error_max < 1.0)) RC_FAIL(what + fmt::format(": image error {} S2 edge lengths", report.error_max));
+  // complete: every S1 vertex has the image of its ray, every S2 edge is inserted, no face left
+  // out. (A ghost ray that passes a focal point, or misses S2, costs the elements around its
+  // vertex without an entry in edges_not_inserted; the ray check finds that area as missed.)
+  const auto& p = r.report;
+  const bool complete = p.edges_not_inserted.empty() && p.occluded_faces == 0 && p.reversed_faces == 0 &&
+                        p.ghost_nodes + p.vertices_mapped_by_ray == p.domain_vertices;
+  if (complete && report.missed != 0)
+    RC_FAIL(what + fmt::format(": every ray and edge inserted, but {} of {} ray samples outside D hit S2",
+                               report.missed, report.samples));
+  // Not asserted yet: that the rays find no more than plmap covers where it is incomplete. On
+  // these pairs plmap can miss up to all of S1 where half of its rays hit S2 (e.g. S1 delaunay
+  // resolution=2 hole seed=479153123641135 / S2 grid resolution=1 seed=472756763763325 height
+  // field (seed 52607475947924) offset 0.161 shift (-0.3, -0.3)); that is the coverage work of
+  // issue 14, and the classification below shows how often.
+  RC_CLASSIFY(complete, "complete");
+  RC_CLASSIFY(report.missed == 0, "no ray sample missed");
+  RC_CLASSIFY(report.in_domain_with_hit == 0 && report.missed > 0, "D empty, rays hit S2");
 }
 
 }  // namespace
@@ -175,7 +251,14 @@ void check_offset_height_fields(bool averaged_normals) {
   if (!averaged_normals) base.directions = constant_directions(*s1, WorldPoint<2>(0.0, 0.0, 1.0));
   const auto r = project<2>(s1, s2, base);
   assert_valid(r, what);
-  RC_CLASSIFY(r.measures.covered_domain > 0.0, "covers something");
+  if (averaged_normals) {
+    assert_coverage_against_rays(r, averaged_vertex_normals(*s1), base, what);
+  } else {
+    // every vertical line through both footprints meets S2 once: D is the part of S1 over
+    // S2's footprint (S1's hole lies inside S1's footprint and holds no triangle)
+    const double expected = area_over_box(*s1, {dx, dx + 1.0, dy, dy + 1.0});
+    assert_same_measure(r.measures.covered_domain, expected, r.measures.domain, what + " covered on S1");
+  }
 
   // the thread count does not change the map
   ProjectionOptions threaded = base;

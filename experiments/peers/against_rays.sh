@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# The --against-rays baseline of docs/benchmarks.md: makes the real-mesh contact pairs (CGAL's
+# femur, bones and armadillo from libcgal-demo, each against an isotropically remeshed copy moved
+# out along its normals by 0.2-0.3 mean edge lengths and flipped; inputs.cpp, femur_pair) and the
+# synthetic pairs, projects each with `plmap project` (default rules: averaged normals, no
+# distance limit, no normal check) and checks the map with `plmap check --against-rays`.
+#
+# Usage: experiments/peers/against_rays.sh BUILD_DIR OUT_DIR [SAMPLES]
+# Needs libcgal-demo (the meshes are unpacked from its data.tar.gz).
+set -euo pipefail
+build=$1 out=$2 samples=${3:-200000}
+plmap=$build/apps/plmap
+bench=$build/experiments/peers/bench_projection_peers
+mkdir -p "$out/meshes"
+tar -xzf /usr/share/doc/libcgal-demo/data.tar.gz -C "$out/meshes" --strip-components=2 \
+  data/meshes/femur.off data/meshes/bones.off data/meshes/armadillo.off
+
+run_pair() {  # NAME BENCH-ARGS...
+  local name=$1; shift
+  "$bench" --tool plmap "$@" --write-inputs "$out/$name" > "$out/$name.bench.json"
+  local ext=off; [[ -f $out/${name}_s1.curve ]] && ext=curve
+  "$plmap" project "$out/${name}_s1.$ext" "$out/${name}_s2.$ext" -o "$out/$name.plmap" --json > "$out/$name.project.json"
+  "$plmap" check "$out/$name.plmap" --against-rays "$samples" --json > "$out/$name.check.json" || true
+  python3 - "$name" "$out/$name.project.json" "$out/$name.check.json" <<'PY'
+import json, sys
+name, p, c = sys.argv[1], json.load(open(sys.argv[2])), json.load(open(sys.argv[3]))
+r = c["against_rays"]; m = r["missed"]; e = r["image_error_relative_to_edge"]
+by = {k: v["fraction"] for k, v in m["by_reason"].items()}
+print(f"| {name} | {p['covered_measure'] / p['domain_measure']:.4f} | {p['edges_not_inserted']} | "
+      f"{m['fraction']:.2e} | {by['nearer_sheet']:.2e} | {by['farther_sheet']:.2e} | {by['not_covered']:.2e} | "
+      f"{r['extra']['fraction']:.2e} | {e['median']:.1e} | {e['p99']:.1e} | {e['max']:.1e} | {c['violation_count']} |")
+PY
+}
+
+echo "| pair | covered / S1 | edges not inserted | missed | nearer sheet | farther sheet | not covered | extra | error median | p99 | max | violations |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+run_pair femur --case femur --femur "$out/meshes/femur.off"
+run_pair bones --case femur --femur "$out/meshes/bones.off"
+run_pair armadillo --case femur --femur "$out/meshes/armadillo.off"
+run_pair plane-200k --case plane --size 200000
+run_pair sphere-L7 --case sphere --size 7
+run_pair circle-1M --case circle --size 1000000

@@ -1,0 +1,134 @@
+#pragma once
+/// \file
+/// An independent check of a projection map by ray casting (`plmap check MAP --against-rays N`).
+///
+/// N points are sampled on S1, uniformly by measure (a fixed seed makes the sample
+/// reproducible). From each point x, in S1 element T with local coordinates xi, the ray
+/// x + mu nu(xi) is cast against S2, where nu(xi) is the direction field interpolated linearly
+/// over T (not renormalised, as in the projection's equations). The ray cast uses CGAL's AABB
+/// tree over S2's elements, not plmap's projection code. A hit is admissible under the
+/// projection's acceptance rules, given here as RayCheckOptions with the same defaults as
+/// ProjectionOptions:
+/// - distance: mu >= 0 (or |mu| if negative distances are allowed) and |mu| <= the limit;
+/// - normal check: <nu, n2> < 0 (facing) or > 0 (aligned), n2 the normal of the S2 element hit;
+/// - no focal point: J(t) = det[dp/dxi_1 + t dnu/dxi_1, ..., nu] has no root with t strictly
+///   between 0 and mu (the ray has not passed a focal point of the field; beyond one the
+///   projection is folded). The polynomial is evaluated here, not taken from solvers/.
+/// The admissible hit with the smallest mu (|mu|) is the ray's answer.
+///
+/// Each sample is then one of: in D with a hit (the image error |Xi(x) - hit| is measured
+/// relative to the mean edge length of the S2 element hit), in D without a hit (**extra**),
+/// outside D with a hit (**missed**), neither. The missed samples are classified by the
+/// reason they may be outside D (MissedReason), the extra ones likewise (ExtraReason). Every count is also given as a fraction of the
+/// samples, which estimates the fraction of S1's measure (standard error about
+/// sqrt(f (1 - f) / N)).
+
+#include <plmap/core/pl_map.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string_view>
+#include <vector>
+
+namespace plmap {
+
+/// The projection's normal check (ProjectionOptions::normal_check; construct/ is not a
+/// dependency of verify/, so the rule is named again here).
+enum class RayNormalCheck { none, facing, aligned };
+
+/// The acceptance rules of the projection that produced the map, and the sample. The map
+/// file does not record how it was made, so the caller states the rules; the defaults are
+/// ProjectionOptions' defaults.
+template <int d>
+struct RayCheckOptions {
+  /// Direction per S1 vertex (e.g. averaged_vertex_normals of S1, the projection's default).
+  /// Required: one per S1 vertex.
+  std::vector<WorldPoint<d>> directions;
+  std::size_t samples = 100000;
+  std::uint64_t seed = 1;
+  double max_distance = std::numeric_limits<double>::infinity();
+  /// max_distance is a multiple of the diagonal of S1's bounding box.
+  bool max_distance_is_relative = false;
+  bool allow_negative_distance = false;
+  RayNormalCheck normal_check = RayNormalCheck::none;
+  /// Examples of missed and extra samples listed in the report (the rest are counted).
+  std::size_t max_listed = 20;
+};
+
+/// Why a sample whose ray hits S2 lies outside D.
+enum class MissedReason {
+  /// The hit lies in the image of a region whose preimage is nearer to it along the ray's
+  /// measure than x: a nearer sheet of S1 claims that part of S2 (the projection keeps the
+  /// nearer sheet, docs/projection.md step 6). Outside D on purpose.
+  nearer_sheet,
+  /// The hit lies in the image of a region whose preimage is farther than x: the map took a
+  /// farther sheet there. A defect.
+  farther_sheet,
+  /// No region maps onto the hit: the map does not cover that part of S2. A defect.
+  not_covered,
+};
+std::string_view to_string(MissedReason reason);
+
+/// Why a sample in D has no admissible ray hit.
+enum class ExtraReason {
+  /// Xi(x) lies on an S2 element at S2's boundary, and the ray meets that element's plane just
+  /// across the boundary: D's boundary there is the piecewise-linear preimage of S2's boundary,
+  /// which differs from the true (curved) one by the interpolation error. The distance between
+  /// Xi(x) and that point counts in the image error.
+  beyond_target_boundary,
+  /// Anything else. A defect.
+  unexplained,
+};
+std::string_view to_string(ExtraReason reason);
+
+/// One sample listed in the report.
+template <int d>
+struct RaySample {
+  Index element = invalid_index;  ///< S1 element of the sample
+  WorldPoint<d> point = WorldPoint<d>::Zero();
+  Index hit_element = invalid_index;  ///< S2 element hit (invalid for extra samples)
+  double mu = 0.0;                    ///< ray parameter of the hit
+  MissedReason reason = MissedReason::not_covered;  ///< for missed samples
+  ExtraReason extra_reason = ExtraReason::unexplained;  ///< for extra samples
+};
+
+template <int d>
+struct RayCheckReport {
+  std::size_t samples = 0;
+  double domain_measure = 0.0;
+  std::size_t in_domain_with_hit = 0;
+  std::size_t extra = 0;   ///< in D, but no admissible hit
+  std::size_t missed = 0;  ///< admissible hit, but outside D
+  std::size_t neither = 0;
+  /// missed samples by MissedReason (index = enum value)
+  std::array<std::size_t, 3> missed_by_reason{};
+  /// extra samples by ExtraReason (index = enum value)
+  std::array<std::size_t, 2> extra_by_reason{};
+  /// Image error |Xi(x) - hit| / mean edge length of the S2 element hit, over the samples in D
+  /// with a hit and the extra samples beyond S2's boundary (0 if there are none).
+  double error_median = 0.0, error_p99 = 0.0, error_max = 0.0;
+  std::vector<RaySample<d>> missed_examples, extra_examples;
+
+  double fraction(std::size_t count) const { return samples ? double(count) / double(samples) : 0.0; }
+  /// Missed samples that are not outside D on purpose (all but nearer_sheet).
+  std::size_t missed_defects() const { return missed - missed_by_reason[0]; }
+  /// Extra samples not explained by the interpolation at S2's boundary.
+  std::size_t extra_defects() const { return extra_by_reason[1]; }
+};
+
+/// Runs the ray check. Throws plmap::Error if the directions do not fit S1 or max_distance is
+/// negative.
+template <int d>
+RayCheckReport<d> check_against_rays(const PlMap<d>& map, const RayCheckOptions<d>& options);
+
+/// {"samples", "domain_measure", "missed": {"samples", "fraction", "by_reason": {reason:
+/// {"samples", "fraction"}}, "defect_fraction", "examples": [...]}, "extra": {...},
+/// "in_domain_with_hit", "neither", "image_error_relative_to_edge": {"median", "p99", "max"}}
+template <int d>
+nlohmann::json to_json(const RayCheckReport<d>& report);
+
+}  // namespace plmap

@@ -1,0 +1,436 @@
+// The ray check of ray_check.hpp: samples on S1, rays along the interpolated direction field,
+// CGAL's AABB tree for the hits on S2, and a comparison with the map's regions.
+
+#include <plmap/verify/ray_check.hpp>
+
+#include <plmap/core/errors.hpp>
+#include <plmap/core/evaluation.hpp>
+
+#include <Eigen/Dense>
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <random>
+
+namespace plmap {
+
+std::string_view to_string(MissedReason reason) {
+  switch (reason) {
+    case MissedReason::nearer_sheet: return "nearer_sheet";
+    case MissedReason::farther_sheet: return "farther_sheet";
+    case MissedReason::not_covered: return "not_covered";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(ExtraReason reason) {
+  switch (reason) {
+    case ExtraReason::beyond_target_boundary: return "beyond_target_boundary";
+    case ExtraReason::unexplained: return "unexplained";
+  }
+  return "unknown";
+}
+
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Point3 = Kernel::Point_3;
+using Triangle3 = Kernel::Triangle_3;
+using TriangleIterator = std::vector<Triangle3>::const_iterator;
+using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+
+template <int d>
+Eigen::Vector3d lifted(const WorldPoint<d>& p) {
+  if constexpr (d == 2)
+    return p;
+  else
+    return Eigen::Vector3d(p.x(), p.y(), 0.0);
+}
+
+Point3 cgal_point(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+Eigen::Vector3d eigen_point(const Point3& p) { return {p.x(), p.y(), p.z()}; }
+
+/// S2's elements as CGAL triangles, and for each triangle its S2 element. Curves (d = 1) are
+/// extruded: each segment becomes the rectangle segment x [-h, h] along z (two triangles), so
+/// that a ray in the plane z = 0 meets the rectangle exactly where it meets the segment.
+template <int d>
+struct TargetTriangles {
+  std::vector<Triangle3> triangles;
+  std::vector<Index> element;
+
+  explicit TargetTriangles(const Surface<d>& s2) {
+    if constexpr (d == 2) {
+      for (Index t = 0; t < s2.element_count(); ++t) {
+        triangles.emplace_back(cgal_point(s2.corner(t, 0)), cgal_point(s2.corner(t, 1)), cgal_point(s2.corner(t, 2)));
+        element.push_back(t);
+      }
+    } else {
+      // the rectangles' height only has to be nonzero; S2's size keeps it relative to the input
+      const double diagonal = (s2.bounding_box_max() - s2.bounding_box_min()).norm();
+      const double h = diagonal > 0.0 ? diagonal : 1.0;
+      for (Index t = 0; t < s2.element_count(); ++t) {
+        const Eigen::Vector3d a = lifted<1>(s2.corner(t, 0)), b = lifted<1>(s2.corner(t, 1)), z(0, 0, h);
+        triangles.emplace_back(cgal_point(a - z), cgal_point(b - z), cgal_point(b + z));
+        triangles.emplace_back(cgal_point(a - z), cgal_point(b + z), cgal_point(a + z));
+        element.push_back(t);
+        element.push_back(t);
+      }
+    }
+  }
+};
+
+/// Barycentric coordinates of x with respect to the simplex with the given corners (local
+/// coordinates of dimension d).
+template <int d>
+Eigen::Matrix<double, d + 1, 1> barycentric_in(const std::array<LocalPoint<d>, d + 1>& c, const LocalPoint<d>& x) {
+  Eigen::Matrix<double, d, d> m;
+  for (int i = 0; i < d; ++i) m.col(i) = c[i + 1] - c[0];
+  const LocalPoint<d> y = m.fullPivLu().solve(x - c[0]);
+  Eigen::Matrix<double, d + 1, 1> b;
+  b(0) = 1.0 - y.sum();
+  b.template tail<d>() = y;
+  return b;
+}
+
+/// Local coordinates of a world point (on or next to the element) on S2 element t: the least
+/// squares solution of c0 + sum_i y_i (c_{i+1} - c0) = p.
+template <int d>
+LocalPoint<d> local_on(const Surface<d>& s, Index t, const WorldPoint<d>& p) {
+  Eigen::Matrix<double, d + 1, d> m;
+  for (int i = 0; i < d; ++i) m.col(i) = s.corner(t, i + 1) - s.corner(t, 0);
+  return (m.transpose() * m).ldlt().solve(m.transpose() * (p - s.corner(t, 0)));
+}
+
+template <int d>
+double mean_edge_length(const Surface<d>& s, Index t) {
+  if constexpr (d == 1)
+    return (s.corner(t, 1) - s.corner(t, 0)).norm();
+  else
+    return ((s.corner(t, 1) - s.corner(t, 0)).norm() + (s.corner(t, 2) - s.corner(t, 1)).norm() +
+            (s.corner(t, 0) - s.corner(t, 2)).norm()) / 3.0;
+}
+
+/// True if the ray p(xi) + t nu(xi) of the element passes a focal point for t strictly between
+/// 0 and mu: J(t) = det[dp/dxi_i + t dnu/dxi_i ..., nu(xi)] changes sign or touches zero there.
+/// Values within 1e-9 of J's scale on the interval count as zero, so a hit exactly at a focal
+/// point is not rejected.
+template <int d>
+bool passes_focal_point(const std::array<WorldPoint<d>, d + 1>& corners, const std::array<WorldPoint<d>, d + 1>& nus,
+                        const WorldPoint<d>& nu, double mu) {
+  std::array<double, 3> a{0.0, 0.0, 0.0};  // J(t) = a0 + a1 t + a2 t^2
+  if constexpr (d == 1) {
+    const Eigen::Vector2d e = corners[1] - corners[0], f = nus[1] - nus[0];
+    a[0] = e.x() * nu.y() - e.y() * nu.x();
+    a[1] = f.x() * nu.y() - f.y() * nu.x();
+  } else {
+    const Eigen::Vector3d e1 = corners[1] - corners[0], e2 = corners[2] - corners[0];
+    const Eigen::Vector3d f1 = nus[1] - nus[0], f2 = nus[2] - nus[0];
+    // the determinant is linear in each column: expand (e1 + t f1, e2 + t f2, nu) in t
+    a[0] = e1.cross(e2).dot(nu);
+    a[1] = (f1.cross(e2) + e1.cross(f2)).dot(nu);
+    a[2] = f1.cross(f2).dot(nu);
+  }
+  if (mu == 0.0) return false;
+  const double m = std::abs(mu);
+  const double scale = std::max({std::abs(a[0]), std::abs(a[1]) * m, std::abs(a[2]) * m * m});
+  if (!(scale > 0.0)) return false;
+  const double zero = 1e-9 * scale;
+  const auto J = [&](double t) { return a[0] + t * (a[1] + t * a[2]); };
+  const auto sign = [&](double v) { return v > zero ? 1 : (v < -zero ? -1 : 0); };
+  const int s0 = sign(J(0.0)), s1 = sign(J(mu));
+  if (s0 != 0 && s1 != 0 && s0 != s1) return true;
+  if (a[2] != 0.0) {
+    const double vertex = -a[1] / (2.0 * a[2]);
+    const double lo = std::min(0.0, mu), hi = std::max(0.0, mu);
+    if (vertex > lo && vertex < hi) {
+      const int sv = sign(J(vertex));
+      const int reference = s0 != 0 ? s0 : s1;
+      if (sv == 0 || (reference != 0 && sv != reference)) return true;
+    }
+  }
+  return false;
+}
+
+struct Hit {
+  Index element = invalid_index;
+  double mu = 0.0;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+};
+
+template <int d>
+class RayChecker {
+ public:
+  RayChecker(const PlMap<d>& map, const RayCheckOptions<d>& o)
+      : map_(map), s1_(map.domain()), s2_(map.target()), o_(o), triangles_(s2_) {
+    if (o_.directions.size() != static_cast<std::size_t>(s1_.vertex_count()))
+      throw Error(fmt::format("the ray check needs one direction per S1 vertex: {} given, S1 has {} vertices",
+                              o_.directions.size(), s1_.vertex_count()));
+    const double diagonal = (s1_.bounding_box_max() - s1_.bounding_box_min()).norm();
+    limit_ = o_.max_distance_is_relative ? o_.max_distance * diagonal : o_.max_distance;
+    if (!(limit_ >= 0.0)) throw Error(fmt::format("max_distance {} is not >= 0", o_.max_distance));
+    // a segment long enough to reach every point of the box around S1 and S2, or the limit
+    WorldPoint<d> lo = s1_.bounding_box_min().cwiseMin(s2_.bounding_box_min());
+    WorldPoint<d> hi = s1_.bounding_box_max().cwiseMax(s2_.bounding_box_max());
+    const double extent = (hi - lo).norm();
+    reach_ = extent > 0.0 ? 3.0 * extent : 1.0;
+    if (std::isfinite(limit_)) reach_ = std::min(reach_, 2.0 * limit_ + 1e-6 * reach_);
+    tree_.insert(triangles_.triangles.cbegin(), triangles_.triangles.cend());
+    tree_.build();
+    regions_of_target_.resize(s2_.element_count());
+    for (Index r = 0; r < map_.region_count(); ++r) regions_of_target_[map_.data().region_target[r]].push_back(r);
+  }
+
+  RayCheckReport<d> run() {
+    RayCheckReport<d> report;
+    report.samples = o_.samples;
+    report.domain_measure = s1_.measure();
+    if (s1_.element_count() == 0 || o_.samples == 0) return report;
+    std::vector<double> cumulative(s1_.element_count());
+    double sum = 0.0;
+    for (Index t = 0; t < s1_.element_count(); ++t) cumulative[t] = sum += s1_.element_measure(t);
+    std::mt19937_64 rng(o_.seed);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    std::vector<double> errors;
+    for (std::size_t i = 0; i < o_.samples; ++i) {
+      const double u = uniform(rng) * sum;
+      const Index t = std::min<Index>(
+          static_cast<Index>(std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin()),
+          s1_.element_count() - 1);
+      LocalPoint<d> xi;
+      if constexpr (d == 1) {
+        xi(0) = uniform(rng);
+      } else {
+        const double r1 = std::sqrt(uniform(rng)), r2 = uniform(rng);
+        xi = LocalPoint<2>(r1 * (1.0 - r2), r1 * r2);
+      }
+      sample(t, xi, report, errors);
+    }
+    if (!errors.empty()) {
+      std::sort(errors.begin(), errors.end());
+      const auto at = [&](double q) {
+        return errors[std::min(errors.size() - 1, static_cast<std::size_t>(q * static_cast<double>(errors.size())))];
+      };
+      report.error_median = at(0.5);
+      report.error_p99 = at(0.99);
+      report.error_max = errors.back();
+    }
+    return report;
+  }
+
+ private:
+  void sample(Index t, const LocalPoint<d>& xi, RayCheckReport<d>& report, std::vector<double>& errors) {
+    const WorldPoint<d> x = s1_.world_position(t, xi);
+    WorldPoint<d> nu = o_.directions[s1_.element(t)[0]];
+    for (int i = 0; i < d; ++i) nu += xi(i) * (o_.directions[s1_.element(t)[i + 1]] - o_.directions[s1_.element(t)[0]]);
+    const std::optional<Hit> hit = cast(t, x, nu);
+    const Index region = region_containing(t, xi);
+    if (region != invalid_index && hit) {
+      ++report.in_domain_with_hit;
+      const Evaluation<d> e = evaluate_in_region(map_, region, xi);
+      errors.push_back((lifted<d>(e.world) - hit->point).norm() / mean_edge_length(s2_, hit->element));
+    } else if (region != invalid_index) {
+      ++report.extra;
+      const Evaluation<d> e = evaluate_in_region(map_, region, xi);
+      const std::optional<double> sliver = beyond_target_boundary(x, nu, e);
+      const ExtraReason reason = sliver ? ExtraReason::beyond_target_boundary : ExtraReason::unexplained;
+      if (sliver) errors.push_back(*sliver);
+      ++report.extra_by_reason[static_cast<std::size_t>(reason)];
+      if (report.extra_examples.size() < o_.max_listed)
+        report.extra_examples.push_back(
+            RaySample<d>{t, x, e.image.element, 0.0, MissedReason::not_covered, reason});
+    } else if (hit) {
+      ++report.missed;
+      const MissedReason reason = classify_missed(x, *hit);
+      ++report.missed_by_reason[static_cast<std::size_t>(reason)];
+      if (report.missed_examples.size() < o_.max_listed)
+        report.missed_examples.push_back(RaySample<d>{t, x, hit->element, hit->mu, reason});
+    } else {
+      ++report.neither;
+    }
+  }
+
+  /// For a sample in D without a hit: if Xi(x) lies on an S2 element next to S2's boundary and
+  /// the ray meets the element's plane outside it only across boundary facets of S2, the
+  /// distance between that point and Xi(x) relative to the element's mean edge length.
+  std::optional<double> beyond_target_boundary(const WorldPoint<d>& x, const WorldPoint<d>& nu,
+                                               const Evaluation<d>& e) const {
+    const Index tau = e.image.element;
+    const WorldPoint<d> n = s2_.element_normal(tau);
+    const double along = n.dot(nu);
+    if (!(std::abs(along) > 1e-12 * nu.norm() * n.norm())) return std::nullopt;
+    const WorldPoint<d> q = x + (n.dot(s2_.corner(tau, 0) - x) / along) * nu;
+    const LocalPoint<d> y = local_on<d>(s2_, tau, q);
+    Eigen::Matrix<double, d + 1, 1> b;
+    b(0) = 1.0 - y.sum();
+    b.template tail<d>() = y;
+    bool outside = false;
+    for (int k = 0; k <= d; ++k) {
+      if (!(b(k) < 0.0)) continue;
+      outside = true;
+      bool boundary_facet = false;  // the facet opposite corner k has no other element
+      if constexpr (d == 2)
+        boundary_facet = s2_.edge_elements(s2_.element_edge(tau, (k + 1) % 3)).size() == 1;
+      else
+        boundary_facet = s2_.vertex_elements(s2_.element(tau)[1 - k]).size() == 1;
+      if (!boundary_facet) return std::nullopt;
+    }
+    if (!outside) return std::nullopt;
+    return (lifted<d>(q) - lifted<d>(e.world)).norm() / mean_edge_length(s2_, tau);
+  }
+
+  /// The admissible hit with the smallest mu (|mu| with negative distances), if any.
+  std::optional<Hit> cast(Index t, const WorldPoint<d>& x, const WorldPoint<d>& nu) const {
+    const double nn = nu.squaredNorm();
+    if (!(nn > 0.0)) return std::nullopt;
+    const Eigen::Vector3d origin = lifted<d>(x), direction = lifted<d>(nu);
+    const Eigen::Vector3d unit = direction / std::sqrt(nn);
+    std::optional<Hit> best;
+    const auto consider = [&](const Eigen::Vector3d& p, Index tau) {
+      const double mu = (p - origin).dot(direction) / nn;
+      if (!admissible(t, nu, mu, tau)) return;
+      if (best && rank(mu) >= rank(best->mu)) return;
+      best = Hit{tau, mu, p};
+    };
+    const auto cast_segment = [&](const Eigen::Vector3d& to) {
+      using Query = Kernel::Segment_3;
+      const Query segment(cgal_point(origin), cgal_point(to));
+      std::vector<Tree::Intersection_and_primitive_id<Query>::Type> hits;
+      tree_.all_intersections(segment, std::back_inserter(hits));
+      for (const auto& [where, id] : hits) {
+        const Index tau = triangles_.element[static_cast<std::size_t>(id - triangles_.triangles.cbegin())];
+        if (const Point3* p = boost::get<Point3>(&where)) consider(eigen_point(*p), tau);
+        // a segment: the ray runs inside the element's plane (grazing); its nearer end counts
+        else if (const auto* s = boost::get<Kernel::Segment_3>(&where)) {
+          const Eigen::Vector3d a = eigen_point(s->source()), b = eigen_point(s->target());
+          consider((a - origin).norm() < (b - origin).norm() ? a : b, tau);
+        }
+      }
+    };
+    cast_segment(origin + reach_ * unit);
+    if (o_.allow_negative_distance) cast_segment(origin - reach_ * unit);
+    return best;
+  }
+
+  double rank(double mu) const { return o_.allow_negative_distance ? std::abs(mu) : mu; }
+
+  bool admissible(Index t, const WorldPoint<d>& nu, double mu, Index tau) const {
+    const double slack = 1e-9 * mean_edge_length(s2_, tau);
+    if (!o_.allow_negative_distance && mu < -slack) return false;
+    if (!(std::abs(mu) <= limit_ + slack)) return false;
+    if (o_.normal_check != RayNormalCheck::none) {
+      const double c = nu.dot(s2_.element_normal(tau));
+      if (o_.normal_check == RayNormalCheck::facing ? !(c < 0.0) : !(c > 0.0)) return false;
+    }
+    std::array<WorldPoint<d>, d + 1> corners, nus;
+    for (int k = 0; k <= d; ++k) {
+      corners[k] = s1_.corner(t, k);
+      nus[k] = o_.directions[s1_.element(t)[k]];
+    }
+    return !passes_focal_point<d>(corners, nus, nu, mu);
+  }
+
+  /// The region of element t that contains the local point, or invalid_index (outside D).
+  Index region_containing(Index t, const LocalPoint<d>& xi) const {
+    const auto& m = map_.data();
+    for (Index r = map_.regions_begin(t); r < map_.regions_end(t); ++r) {
+      std::array<LocalPoint<d>, d + 1> c;
+      for (int k = 0; k <= d; ++k) c[k] = m.node_position[m.region_corners[r][k]];
+      if (barycentric_in<d>(c, xi).minCoeff() >= -1e-12) return r;
+    }
+    return invalid_index;
+  }
+
+  MissedReason classify_missed(const WorldPoint<d>& x, const Hit& hit) const {
+    const auto& m = map_.data();
+    WorldPoint<d> q;
+    if constexpr (d == 2)
+      q = hit.point;
+    else
+      q = hit.point.template head<2>();
+    const LocalPoint<d> on_target = local_on<d>(s2_, hit.element, q);
+    for (Index r : regions_of_target_[hit.element]) {
+      std::array<LocalPoint<d>, d + 1> image;
+      for (int k = 0; k <= d; ++k) image[k] = apply<d>(m.region_map[r], m.node_position[m.region_corners[r][k]]);
+      const auto b = barycentric_in<d>(image, on_target);
+      if (!(b.minCoeff() >= -1e-9)) continue;
+      LocalPoint<d> preimage = LocalPoint<d>::Zero();
+      for (int k = 0; k <= d; ++k) preimage += b(k) * m.node_position[m.region_corners[r][k]];
+      const WorldPoint<d> y = s1_.world_position(map_.node_element(m.region_corners[r][0]), preimage);
+      return (q - y).norm() <= (q - x).norm() ? MissedReason::nearer_sheet : MissedReason::farther_sheet;
+    }
+    return MissedReason::not_covered;
+  }
+
+  const PlMap<d>& map_;
+  const Surface<d>& s1_;
+  const Surface<d>& s2_;
+  const RayCheckOptions<d>& o_;
+  TargetTriangles<d> triangles_;
+  Tree tree_;
+  double limit_ = 0.0, reach_ = 0.0;
+  std::vector<std::vector<Index>> regions_of_target_;
+};
+
+}  // namespace
+
+template <int d>
+RayCheckReport<d> check_against_rays(const PlMap<d>& map, const RayCheckOptions<d>& options) {
+  return RayChecker<d>(map, options).run();
+}
+
+template <int d>
+nlohmann::json to_json(const RayCheckReport<d>& r) {
+  const auto examples = [](const std::vector<RaySample<d>>& list, bool with_reason) {
+    nlohmann::json a = nlohmann::json::array();
+    for (const RaySample<d>& s : list) {
+      nlohmann::json e{{"element", s.element}, {"point", std::vector<double>(s.point.data(), s.point.data() + d + 1)}};
+      if (s.hit_element != invalid_index) e[with_reason ? "hit_element" : "image_element"] = s.hit_element;
+      if (with_reason) e["mu"] = s.mu;
+      e["reason"] = with_reason ? std::string(to_string(s.reason)) : std::string(to_string(s.extra_reason));
+      a.push_back(e);
+    }
+    return a;
+  };
+  nlohmann::json by_reason = nlohmann::json::object();
+  for (MissedReason reason : {MissedReason::nearer_sheet, MissedReason::farther_sheet, MissedReason::not_covered}) {
+    const std::size_t n = r.missed_by_reason[static_cast<std::size_t>(reason)];
+    by_reason[std::string(to_string(reason))] = {{"samples", n}, {"fraction", r.fraction(n)}};
+  }
+  nlohmann::json j;
+  j["samples"] = r.samples;
+  j["domain_measure"] = r.domain_measure;
+  j["missed"] = {{"samples", r.missed},
+                 {"fraction", r.fraction(r.missed)},
+                 {"defect_fraction", r.fraction(r.missed_defects())},
+                 {"by_reason", by_reason},
+                 {"examples", examples(r.missed_examples, true)}};
+  nlohmann::json extra_by_reason = nlohmann::json::object();
+  for (ExtraReason reason : {ExtraReason::beyond_target_boundary, ExtraReason::unexplained}) {
+    const std::size_t n = r.extra_by_reason[static_cast<std::size_t>(reason)];
+    extra_by_reason[std::string(to_string(reason))] = {{"samples", n}, {"fraction", r.fraction(n)}};
+  }
+  j["extra"] = {{"samples", r.extra},
+                {"fraction", r.fraction(r.extra)},
+                {"defect_fraction", r.fraction(r.extra_defects())},
+                {"by_reason", extra_by_reason},
+                {"examples", examples(r.extra_examples, false)}};
+  j["in_domain_with_hit"] = r.in_domain_with_hit;
+  j["neither"] = r.neither;
+  j["image_error_relative_to_edge"] = {{"median", r.error_median}, {"p99", r.error_p99}, {"max", r.error_max}};
+  return j;
+}
+
+template RayCheckReport<1> check_against_rays<1>(const PlMap<1>&, const RayCheckOptions<1>&);
+template RayCheckReport<2> check_against_rays<2>(const PlMap<2>&, const RayCheckOptions<2>&);
+template nlohmann::json to_json<1>(const RayCheckReport<1>&);
+template nlohmann::json to_json<2>(const RayCheckReport<2>&);
+
+}  // namespace plmap
