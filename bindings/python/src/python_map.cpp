@@ -5,6 +5,7 @@
 #include "python_surface.hpp"
 
 #include <plmap/core/evaluation.hpp>
+#include <plmap/core/inverse_evaluation.hpp>
 #include <plmap/core/io/map_file.hpp>
 #include <plmap/core/regions.hpp>
 #include <plmap/strategies/point_locator_registry.hpp>
@@ -63,8 +64,11 @@ struct QueryArrays {
   py::array_t<double> local;
 };
 
+/// Checks the query points against `surface` (S1 for evaluate, S2 for inverse); `what` names the
+/// call and the surface in messages.
 template <int d>
-QueryArrays query_arrays(const PlMap<d>& map, py::handle elements_in, py::handle local_in) {
+QueryArrays query_arrays(const Surface<d>& surface, const char* what, const char* surface_name,
+                         py::handle elements_in, py::handle local_in) {
   QueryArrays q;
   q.elements = index_matrix(elements_in, "elements", 0);
   // d = 1 also takes local coordinates as a flat (n,) array.
@@ -77,15 +81,16 @@ QueryArrays query_arrays(const PlMap<d>& map, py::handle elements_in, py::handle
     return float_matrix(local_in, "local", d);
   }();
   if (q.local.shape(0) != q.elements.shape(0))
-    throw py::value_error("evaluate: " + std::to_string(q.elements.shape(0)) + " elements but " +
+    throw py::value_error(std::string(what) + ": " + std::to_string(q.elements.shape(0)) + " elements but " +
                           std::to_string(q.local.shape(0)) + " rows of local coordinates");
   const auto e = q.elements.unchecked<1>();
   const auto x = q.local.unchecked<2>();
-  const Index element_count = map.domain().element_count();
+  const Index element_count = surface.element_count();
   for (py::ssize_t i = 0; i < e.shape(0); ++i) {
     if (e(i) < 0 || e(i) >= element_count)
-      throw py::index_error("evaluate: elements[" + std::to_string(i) + "] = " + std::to_string(e(i)) +
-                            " is not an S1 element (S1 has " + std::to_string(element_count) + ")");
+      throw py::index_error(std::string(what) + ": elements[" + std::to_string(i) + "] = " + std::to_string(e(i)) +
+                            " is not an " + surface_name + " element (" + surface_name + " has " +
+                            std::to_string(element_count) + ")");
     double sum = 0.0;
     bool inside = true;
     for (int k = 0; k < d; ++k) {
@@ -93,7 +98,7 @@ QueryArrays query_arrays(const PlMap<d>& map, py::handle elements_in, py::handle
       inside = inside && std::isfinite(x(i, k)) && x(i, k) >= -local_slack;
     }
     if (!inside || sum > 1.0 + local_slack)
-      throw py::value_error("evaluate: local[" + std::to_string(i) +
+      throw py::value_error(std::string(what) + ": local[" + std::to_string(i) +
                             "] is not a point of the reference element (coordinates >= 0 with sum <= 1)");
   }
   return q;
@@ -107,7 +112,7 @@ constexpr std::size_t points_per_thread_and_batch = std::size_t{1} << 16;
 template <int d>
 py::dict evaluate_points(const PlMap<d>& map, py::handle elements, py::handle local,
                          const std::optional<std::string>& locator_name, unsigned threads) {
-  const QueryArrays q = query_arrays(map, elements, local);
+  const QueryArrays q = query_arrays(map.domain(), "evaluate", "S1", elements, local);
   const std::string name(locator_name ? *locator_name : std::string(default_point_locator_name<d>()));
   const auto n = q.elements.shape(0);
   py::array_t<bool> in_domain(n);
@@ -156,6 +161,75 @@ py::dict evaluate_points(const PlMap<d>& map, py::handle elements, py::handle lo
   result["region"] = region;
   result["image_element"] = image_element;
   result["image_local"] = image_local;
+  result["world"] = world;
+  return result;
+}
+
+// ---- inverse -------------------------------------------------------------------------------
+
+template <int d>
+const InverseIndex<d>& inverse_index_of(PyMap& pm, const PlMap<d>& map) {
+  using Held = std::shared_ptr<const InverseIndex<d>>;
+  if (!std::holds_alternative<Held>(pm.inverse_index)) {
+    Held built;
+    {
+      py::gil_scoped_release unlocked;
+      built = std::make_shared<const InverseIndex<d>>(map);
+    }
+    pm.inverse_index = std::move(built);  // with the GIL: another Python thread may call too
+  }
+  return *std::get<Held>(pm.inverse_index);
+}
+
+template <int d>
+py::dict inverse_points(PyMap& pm, const PlMap<d>& map, py::handle elements, py::handle local,
+                        unsigned threads) {
+  const QueryArrays q = query_arrays(map.target(), "inverse", "S2", elements, local);
+  const InverseIndex<d>& index = inverse_index_of(pm, map);
+  const auto n = q.elements.shape(0);
+  py::array_t<bool> in_image(n);
+  py::array_t<Index> region(n), preimage_element(n);
+  py::array_t<double> preimage_local(std::vector<py::ssize_t>{n, d}), world(std::vector<py::ssize_t>{n, d + 1});
+  const std::int64_t* e_in = q.elements.data();
+  const double* x_in = q.local.data();
+  bool* in = in_image.mutable_data();
+  Index* r = region.mutable_data();
+  Index* el = preimage_element.mutable_data();
+  double* pl = preimage_local.mutable_data();
+  double* w = world.mutable_data();
+  {
+    py::gil_scoped_release unlocked;
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    const unsigned workers = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t points_per_batch = points_per_thread_and_batch * workers;
+    std::vector<SurfacePoint<d>> points;
+    std::vector<InverseEvaluation<d>> out;
+    for (py::ssize_t begin = 0; begin < n;) {
+      const auto count = static_cast<py::ssize_t>(std::min<std::size_t>(points_per_batch, n - begin));
+      points.resize(count);
+      out.resize(count);
+      for (py::ssize_t i = 0; i < count; ++i) {
+        points[i].element = static_cast<Index>(e_in[begin + i]);
+        for (int k = 0; k < d; ++k) points[i].local(k) = x_in[(begin + i) * d + k];
+      }
+      inverse_evaluate_batch<d>(index, points, out, threads);
+      for (py::ssize_t i = 0; i < count; ++i) {
+        const InverseEvaluation<d>& ev = out[i];
+        const py::ssize_t j = begin + i;
+        in[j] = ev.in_image;
+        r[j] = ev.in_image ? ev.region : invalid_index;
+        el[j] = ev.in_image ? ev.preimage.element : invalid_index;
+        for (int k = 0; k < d; ++k) pl[j * d + k] = ev.in_image ? ev.preimage.local(k) : nan;
+        for (int k = 0; k <= d; ++k) w[j * (d + 1) + k] = ev.in_image ? ev.world(k) : nan;
+      }
+      begin += count;
+    }
+  }
+  py::dict result;
+  result["in_image"] = in_image;
+  result["region"] = region;
+  result["preimage_element"] = preimage_element;
+  result["preimage_local"] = preimage_local;
   result["world"] = world;
   return result;
 }
@@ -249,7 +323,9 @@ PyMap load_any_map(const std::filesystem::path& path) {
       return std::make_shared<const M>(std::move(map));
     }, load_map(path));
   }
-  return PyMap{std::move(loaded)};  // with the GIL: PyMap holds a Python object
+  PyMap out;  // with the GIL: PyMap holds a Python object
+  out.map = std::move(loaded);
+  return out;
 }
 
 }  // namespace
@@ -299,6 +375,14 @@ void bind_map(py::module_& m) {
          "Returns a dict of arrays: in_domain (n,) bool, region (n,), image_element (n,) (-1 "
          "outside D), image_local (n, d), world (n, d+1) (NaN outside D). `locator` names the "
          "point-location strategy (default: brown-faigle for d = 2, bisection for d = 1).")
+      .def("inverse", [](PyMap& pm, py::handle elements, py::handle local, unsigned threads) {
+        return visit_map(pm, [&](const auto& map) { return inverse_points(pm, map, elements, local, threads); });
+      }, py::arg("elements"), py::arg("local"), py::kw_only(), py::arg("threads") = 0u,
+         "Xi^-1 at the points (elements[i], local[i]) of S2: elements (n,) int, local (n, d) local "
+         "coordinates on the S2 element (d = 1: also (n,)). The S2 -> regions index is built on the "
+         "first call and kept. Runs on `threads` threads (0: all cores) without the GIL. Returns a "
+         "dict of arrays: in_image (n,) bool, region (n,), preimage_element (n,) (-1 outside Xi(D)), "
+         "preimage_local (n, d), world (n, d+1) on S1 (NaN outside Xi(D)).")
       .def("regions", [](const PyMap& pm) {
         return visit_map(pm, [](const auto& map) { return region_arrays(map); });
       }, "The regions (remote intersections T1 ∩ Xi^-1(T2)) as flat arrays, one row per region: "

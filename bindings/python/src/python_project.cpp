@@ -114,7 +114,8 @@ PyMap project_surfaces(const PySurface& s1, const PySurface& s2, ProjectCall cal
     py::gil_scoped_release unlocked;
     result.emplace(project<d>(s1.get<d>(), s2.get<d>(), options));
   }
-  PyMap out{std::make_shared<const PlMap<d>>(std::move(result->map))};
+  PyMap out;
+  out.map = std::make_shared<const PlMap<d>>(std::move(result->map));
   out.report = py::module_::import("json").attr("loads")(report_json(*result).dump());
   return out;
 }
