@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
   register_draw(app, action);
   register_experiment(app, action);
   register_project(app, action);
+  register_simplify(app, action);
 
   try {
     app.parse(argc, argv);
