@@ -133,7 +133,7 @@ void register_simplify(CLI::App& app, Action& action) {
   cmd->add_option("--flattening", o->flattening, "Star flattening: polar-map or plane-projection")
       ->capture_default_str();
   cmd->add_option("--hole-triangulation", o->hole_triangulation,
-                  "Re-triangulation: constrained-delaunay or best-aspect-ear")
+                  "Re-triangulation: constrained-delaunay or min-max-aspect")
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "Threads of the final closure (0: all cores)")->capture_default_str();
   cmd->add_flag("--progress", o->progress, "Show progress on stderr even when it is not a terminal");

@@ -101,13 +101,23 @@ class Simplifier {
       a.refusal = to_string(RemovalRefusal::flattening_not_simple);
       return a;
     }
-    const DiagonalAllowed allowed = [&](int i, int j) { return !map_.has_edge(ring[i], ring[j]); };
-    const auto triangles = triangulate_(*flat, allowed);
-    if (!triangles) {
-      a.refusal = to_string(RemovalRefusal::no_triangulation);
-      return a;
+    // Diagonals through a node of the star (common in regular meshes, whose stars are
+    // symmetric) are avoided by triangulating again without them.
+    std::vector<std::array<int, 2>> avoided;
+    const DiagonalAllowed allowed = [&](int i, int j) {
+      const std::array<int, 2> key{std::min(i, j), std::max(i, j)};
+      return std::find(avoided.begin(), avoided.end(), key) == avoided.end() && !map_.has_edge(ring[i], ring[j]);
+    };
+    for (std::size_t tries = 0; tries < ring.size(); ++tries) {
+      const auto triangles = triangulate_(*flat, allowed);
+      if (!triangles) {
+        a.refusal = to_string(RemovalRefusal::no_triangulation);
+        return a;
+      }
+      a.plan = map_.plan_vertex_removal(v, *flat, *triangles);
+      if (a.plan.refusal != RemovalRefusal::node_on_new_edge || a.plan.blocking_diagonal[0] < 0) break;
+      avoided.push_back(a.plan.blocking_diagonal);
     }
-    a.plan = map_.plan_vertex_removal(v, *flat, *triangles);
     if (!a.plan.accepted()) {
       a.refusal = to_string(a.plan.refusal);
       return a;

@@ -72,6 +72,8 @@ Index EditableMap::live_vertex_count() const { return impl_->live_vertices; }
 Index EditableMap::live_triangle_count() const { return impl_->live_triangles; }
 bool EditableMap::is_live_vertex(Index v) const { return impl_->vertex_live[v] != 0; }
 std::span<const Index> EditableMap::vertex_triangles(Index v) const { return impl_->vertex_triangles[v]; }
+Index EditableMap::triangle_slot_count() const { return static_cast<Index>(impl_->triangles.size()); }
+bool EditableMap::is_live_triangle(Index t) const { return impl_->triangle_live[t] != 0; }
 const std::array<Index, 3>& EditableMap::triangle(Index t) const { return impl_->triangles[t]; }
 bool EditableMap::has_edge(Index a, Index b) const { return impl_->has_edge(a, b); }
 const Eigen::Vector3d& EditableMap::position(Index v) const { return impl_->target->vertex(v); }

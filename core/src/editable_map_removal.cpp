@@ -173,7 +173,16 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2
   for (const auto& [w, p] : moved) {
     Eigen::Vector3d b;
     const auto [n, min_coordinate] = locate(p, &b);
-    if (n < 0 || !(min_coordinate > clearance)) return refuse(RemovalRefusal::node_on_new_edge);
+    if (n < 0 || !(min_coordinate > clearance)) {
+      if (n >= 0) {  // name the new edge it is on, if that is a diagonal, so the caller can avoid it
+        int side = 0;
+        for (int m = 1; m < 3; ++m)
+          if (b(m) < b(side)) side = m;
+        const int i = triangulation[n][(side + 1) % 3], j = triangulation[n][(side + 2) % 3];
+        if (!ring_adjacent(i, j)) plan.blocking_diagonal = {std::min(i, j), std::max(i, j)};
+      }
+      return refuse(RemovalRefusal::node_on_new_edge);
+    }
     plan.relocations.push_back({w, n, b});
     record_node(world_on_new(n, b), t2.vertex(w));
   }

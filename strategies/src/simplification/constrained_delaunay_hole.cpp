@@ -1,6 +1,6 @@
 #include <plmap/strategies/simplification/constrained_delaunay_hole.hpp>
 
-#include <plmap/strategies/simplification/best_aspect_ear_clipping.hpp>
+#include <plmap/strategies/simplification/min_max_aspect_triangulation.hpp>
 
 #include <plmap/core/predicates.hpp>
 
@@ -19,7 +19,7 @@ int corner_of(const std::array<int, 3>& t, int x) {
 
 std::optional<HoleTriangles> ConstrainedDelaunayHole::triangulate(std::span<const Eigen::Vector2d> polygon,
                                                                   const DiagonalAllowed& allowed) const {
-  auto triangles = BestAspectEarClipping{}.triangulate(polygon, allowed);
+  auto triangles = MinMaxAspectTriangulation{}.triangulate(polygon, allowed);
   if (!triangles) return std::nullopt;
   HoleTriangles& t = *triangles;
   const int n = static_cast<int>(polygon.size());

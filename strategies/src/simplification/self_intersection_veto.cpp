@@ -63,14 +63,13 @@ OracleVerdict SelfIntersectionVeto::evaluate(const RemovalCandidate& candidate) 
   const VertexRemovalPlan& plan = candidate.plan;
   if (!index_) {
     index_ = std::make_unique<Index>();
-    // Every live triangle is reachable from a live vertex's star.
-    std::vector<plmap::Index> live;
-    for (plmap::Index v = 0; v < map.target().vertex_count(); ++v)
-      if (map.is_live_vertex(v))
-        for (plmap::Index t : map.vertex_triangles(v))
-          if (map.triangle(t)[0] == v) live.push_back(t);
-    for (plmap::Index t : live) index_->add(map, t);
-    for (plmap::Index t : live) index_->tree.addPoints(t, t);
+    // nanoflann's dynamic index takes points in the order of their ids, so every triangle slot
+    // is added and the dead ones removed again.
+    const plmap::Index slots = map.triangle_slot_count();
+    for (plmap::Index t = 0; t < slots; ++t) index_->add(map, t);
+    if (slots > 0) index_->tree.addPoints(0, slots - 1);
+    for (plmap::Index t = 0; t < slots; ++t)
+      if (!map.is_live_triangle(t)) index_->tree.removePoint(t);
   }
   std::vector<std::pair<std::size_t, double>> hits;
   for (const auto& t : plan.new_triangles) {
@@ -82,6 +81,7 @@ OracleVerdict SelfIntersectionVeto::evaluate(const RemovalCandidate& candidate) 
     const Kernel::Triangle_3 fresh = cgal_triangle(map, t);
     for (const auto& [other, distance] : hits) {
       const auto o = static_cast<plmap::Index>(other);
+      if (!map.is_live_triangle(o)) continue;
       if (std::find(plan.old_triangles.begin(), plan.old_triangles.end(), o) != plan.old_triangles.end()) continue;
       const auto& oc = map.triangle(o);
       bool shares = false;

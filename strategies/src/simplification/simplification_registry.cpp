@@ -1,6 +1,6 @@
 #include <plmap/strategies/simplification/simplification_registry.hpp>
 
-#include <plmap/strategies/simplification/best_aspect_ear_clipping.hpp>
+#include <plmap/strategies/simplification/min_max_aspect_triangulation.hpp>
 #include <plmap/strategies/simplification/constrained_delaunay_hole.hpp>
 #include <plmap/strategies/simplification/plane_projection_flattening.hpp>
 #include <plmap/strategies/simplification/polar_map_flattening.hpp>
@@ -15,7 +15,7 @@ namespace plmap {
 
 namespace {
 constexpr std::array<std::string_view, 2> flattenings = {"polar-map", "plane-projection"};
-constexpr std::array<std::string_view, 2> triangulations = {"constrained-delaunay", "best-aspect-ear"};
+constexpr std::array<std::string_view, 2> triangulations = {"constrained-delaunay", "min-max-aspect"};
 
 template <class Model>
 AnyStarFlattening wrap_flattening() {
@@ -38,7 +38,7 @@ AnyStarFlattening make_star_flattening(std::string_view name) {
 
 AnyHoleTriangulation make_hole_triangulation(std::string_view name) {
   if (name == "constrained-delaunay") return wrap_triangulation<ConstrainedDelaunayHole>();
-  if (name == "best-aspect-ear") return wrap_triangulation<BestAspectEarClipping>();
+  if (name == "min-max-aspect") return wrap_triangulation<MinMaxAspectTriangulation>();
   throw Error(fmt::format("unknown hole triangulation '{}' (valid: {})", name, fmt::join(triangulations, ", ")));
 }
 

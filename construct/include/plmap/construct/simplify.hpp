@@ -48,7 +48,7 @@ struct SimplifyOptions {
   double feature_angle_degrees = 60.0;
   /// Flattening of the star: "polar-map" (paper) or "plane-projection".
   std::string flattening = "polar-map";
-  /// Re-triangulation of the hole: "constrained-delaunay" (paper) or "best-aspect-ear".
+  /// Re-triangulation of the hole: "constrained-delaunay" (paper) or "min-max-aspect".
   std::string hole_triangulation = "constrained-delaunay";
   /// The error oracles; empty: hausdorff:1, aspect-ratio:0.05, normal-deviation:0.5.
   WeightedOracles oracles;

@@ -109,6 +109,10 @@ struct VertexRemovalPlan {
   std::vector<PolylineEdit> polyline_edits;
   Index triangle_count_at_planning = 0;
 
+  /// For node_on_new_edge: the diagonal (ring indices) the node would lie on, if it is one; a
+  /// caller may re-triangulate without it.
+  std::array<int, 2> blocking_diagonal{-1, -1};
+
   bool accepted() const { return refusal == RemovalRefusal::none; }
 };
 
@@ -128,6 +132,10 @@ class EditableMap {
   bool is_live_vertex(Index v) const;
   /// Live S1 triangles around S1 vertex v.
   std::span<const Index> vertex_triangles(Index v) const;
+  /// S1 triangle ids run from 0 to triangle_slot_count() - 1; removed ones stay dead, new ones
+  /// are appended.
+  Index triangle_slot_count() const;
+  bool is_live_triangle(Index t) const;
   const std::array<Index, 3>& triangle(Index t) const;
   /// True if S1 vertices a and b are joined by an edge of a live triangle.
   bool has_edge(Index a, Index b) const;

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// The constrained Delaunay triangulation of the hole polygon (the paper's choice): an ear
-/// clipping followed by Lawson flips with the exact in-circle predicate until every diagonal
+/// The constrained Delaunay triangulation of the hole polygon (the paper's choice): a first
+/// triangulation (MinMaxAspectTriangulation) followed by Lawson flips with the exact in-circle predicate until every diagonal
 /// is locally Delaunay. Inside a simple polygon, with the polygon's sides as constraints, that
 /// fixed point is the constrained Delaunay triangulation. Diagonals the caller forbids are never
 /// flipped in.

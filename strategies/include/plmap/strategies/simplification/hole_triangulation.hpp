@@ -6,7 +6,7 @@
 /// are already S1 edges). A model returns n − 2 counter-clockwise triangles of ring indices, or
 /// nothing if it finds no admissible triangulation.
 ///
-/// Models: ConstrainedDelaunayHole (paper, default), BestAspectEarClipping.
+/// Models: ConstrainedDelaunayHole (paper, default), MinMaxAspectTriangulation.
 
 #include <Eigen/Core>
 

@@ -22,7 +22,7 @@ using AnyHoleTriangulation =
 AnyStarFlattening make_star_flattening(std::string_view name);
 std::span<const std::string_view> star_flattening_names();
 
-/// "constrained-delaunay" (default), "best-aspect-ear". Throws plmap::Error otherwise.
+/// "constrained-delaunay" (default), "min-max-aspect". Throws plmap::Error otherwise.
 AnyHoleTriangulation make_hole_triangulation(std::string_view name);
 std::span<const std::string_view> hole_triangulation_names();
 
