@@ -86,6 +86,19 @@ TEST(SimplifyBadInput, DegenerateTrianglesAreRejectedWhenTheSurfaceIsMade) {
   EXPECT_THROW(Surface<2>(v, t), InvalidSurfaceError);
 }
 
+TEST(Simplify, ReportsProgressWithFallingElementCounts) {
+  SimplifyOptions options;
+  options.target_elements = 100;
+  options.progress_every = 10;
+  std::vector<SimplifyProgress> seen;
+  options.progress = [&](const SimplifyProgress& p) { seen.push_back(p); };
+  const SimplifyResult result = simplify(bumpy_sphere(2, 3), options);
+  ASSERT_GE(seen.size(), 2u);
+  for (std::size_t i = 1; i < seen.size(); ++i) EXPECT_LE(seen[i].elements, seen[i - 1].elements);
+  EXPECT_EQ(seen.back().elements, result.report.elements_after);
+  EXPECT_EQ(seen.back().removed_vertices, result.report.removed_vertices);
+}
+
 TEST(Simplify, ErrorBoundAloneStopsWhenNoStepStaysBelowIt) {
   auto fine = bumpy_sphere(3, 4);
   SimplifyOptions options;
