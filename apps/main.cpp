@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
   register_experiment(app, action);
   register_project(app, action);
   register_simplify(app, action);
+  register_refine(app, action);
 
   try {
     app.parse(argc, argv);

@@ -71,3 +71,23 @@ def simplify_bad_input_leaves_no_output():
                        mention="missing.off")
     for name in outputs:
         expect(not os.path.exists(os.path.join(WORK, name)), f"{name} was written")
+
+
+@case
+def refine_through_a_simplified_map():
+    fine = hill(points=120, seed=15)
+    s = run_json("simplify", fine, "-o", "p.plmap", "--target-elements", 60, "--json")
+    j = run_json("refine", "p.plmap", "--levels", 2, "-o", "refined.off", "--json")
+    expect_keys(j, ["levels", "vertices", "elements", "distance_max", "distance_mean",
+                    "distance_max_relative", "aspect_ratio_refined", "aspect_ratio_coarse", "seconds"],
+                "refine --json")
+    expect(j["elements"] == 16 * s["elements_after"], (j, s))
+    info = run_json("info", "refined.off", "--json")
+    expect(info["elements"] == j["elements"], (info, j))
+    coarse = run_json("refine", "p.plmap", "--levels", 0, "-o", "level0.off", "--json")
+    expect(j["distance_max"] <= coarse["distance_max"], (j, coarse))
+    expect_clean_error(["refine", "p.plmap", "--levels", 9, "-o", "never.off"], code=64)
+    run("build", "identity", polyline(), "-o", "curve.plmap")
+    expect_clean_error(["refine", "curve.plmap", "-o", "never.off"], mention="curves")
+    expect_clean_error(["refine", "missing.plmap", "-o", "never.off"], mention="missing.plmap")
+    expect(not os.path.exists(os.path.join(WORK, "never.off")), "never.off was written")
