@@ -98,13 +98,12 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2
   if (static_cast<int>(triangulation.size()) != k - 2) return refuse(RemovalRefusal::no_triangulation);
   auto ring_adjacent = [k](int i, int j) { return (i + 1) % k == j || (j + 1) % k == i; };
   Eigen::Vector3d star_normal = Eigen::Vector3d::Zero();
-  double star_scale = 0.0;
+  const double area_scale = (s.target->bounding_box_max() - s.target->bounding_box_min()).squaredNorm();
   const Eigen::Vector3d& pv = position(v);
   for (int i = 0; i < k; ++i) {
     const Eigen::Vector3d& a = position(ring[i]);
     const Eigen::Vector3d& b = position(ring[(i + 1) % k]);
     star_normal += (a - pv).cross(b - pv);
-    star_scale = std::max({star_scale, (a - pv).squaredNorm(), (b - a).squaredNorm()});
   }
   for (const auto& tri : triangulation) {
     for (int m = 0; m < 3; ++m) {
@@ -117,7 +116,7 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2
     const std::array<Index, 3> corners{ring[tri[0]], ring[tri[1]], ring[tri[2]]};
     const Eigen::Vector3d normal =
         (position(corners[1]) - position(corners[0])).cross(position(corners[2]) - position(corners[0]));
-    if (normal.norm() <= s.options.min_relative_area * star_scale) return refuse(RemovalRefusal::degenerate_triangle);
+    if (0.5 * normal.norm() <= s.options.min_relative_area * area_scale) return refuse(RemovalRefusal::degenerate_triangle);
     if (normal.dot(star_normal) <= 0.0) return refuse(RemovalRefusal::fold_over);
     plan.new_triangles.push_back(corners);
   }

@@ -65,8 +65,9 @@ struct EditOptions {
   /// S1 edge or vertex makes the step refused: far above the builder's snap tolerance, so the
   /// builder never snaps what the editing kept apart.
   double edge_clearance = 1e-9;
-  /// A new triangle whose area is below this times the squared longest edge of the star is
-  /// degenerate.
+  /// A new triangle whose area is below this times the squared bounding-box diagonal of S2 is
+  /// degenerate. Above Surface's own degeneracy threshold (1e-14 times the squared longest
+  /// edge), so the final S1 is always a valid Surface.
   double min_relative_area = 1e-12;
 };
 
