@@ -58,6 +58,14 @@ int run_simplify(const SimplifyCommand& o) {
   (void)make_star_flattening(o.flattening);
   (void)make_hole_triangulation(o.hole_triangulation);
 
+  // Both outputs are written after the run; a missing directory is found before it, so that a
+  // failed write cannot leave one file without the other.
+  for (const std::string& out : {o.output, o.coarse}) {
+    if (out.empty()) continue;
+    const std::filesystem::path parent = std::filesystem::path(out).parent_path();
+    if (!parent.empty() && !std::filesystem::is_directory(parent))
+      throw Error(fmt::format("{}: cannot write here, the directory {} does not exist", out, parent.string()));
+  }
   AnySurface any = read_any_surface(o.fine, 2);
   auto fine = std::make_shared<const Surface<2>>(std::move(std::get<1>(any)));
 

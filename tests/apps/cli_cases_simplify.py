@@ -69,6 +69,8 @@ def simplify_bad_input_leaves_no_output():
     expect_clean_error(["simplify", polyline(), "-o", outputs[0], "--target-elements", 1])
     expect_clean_error(["simplify", "missing.off", "-o", outputs[0], "--target-elements", 1],
                        mention="missing.off")
+    expect_clean_error(["simplify", fine, "-o", outputs[0], "--coarse", "no/such/dir/c.off",
+                        "--target-elements", 10], mention="no/such/dir")
     for name in outputs:
         expect(not os.path.exists(os.path.join(WORK, name)), f"{name} was written")
 
