@@ -165,6 +165,8 @@ void register_generate(CLI::App& app, Action& action);
 void register_experiment(CLI::App& app, Action& action);  // cmd_experiment.cpp
 void register_draw(CLI::App& app, Action& action);        // cmd_draw.cpp
 void register_project(CLI::App& app, Action& action);     // cmd_project.cpp
+void register_simplify(CLI::App& app, Action& action);    // cmd_simplify.cpp
+void register_refine(CLI::App& app, Action& action);      // cmd_refine.cpp
 
 /// The dimension option shared by the commands that read surfaces.
 /// 0 means: derive the dimension from the file.

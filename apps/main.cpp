@@ -95,7 +95,9 @@ int main(int argc, char** argv) {
   register_draw(app, action);
   register_experiment(app, action);
   register_project(app, action);
-  reject_bad_numbers(app);
+  register_simplify(app, action);
+  register_refine(app, action);
+  reject_bad_numbers(app);  // after every command is registered: it sweeps all their options
 
   try {
     app.parse(argc, argv);

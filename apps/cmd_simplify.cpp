@@ -1,0 +1,157 @@
+// `plmap simplify FINE -o MAP`: builds a coarse surface S1 and the parametrization of FINE over
+// it by point-removal simplification (paper section 3.3.1), and prints what it did.
+
+#include "cli_common.hpp"
+
+#include <plmap/construct/simplify.hpp>
+#include <plmap/strategies/simplification/simplification_registry.hpp>
+#include <plmap/core/errors.hpp>
+#include <plmap/core/io/map_file.hpp>
+#include <plmap/core/io/surface_writer.hpp>
+#include <plmap/verify/quality.hpp>
+
+#include <fmt/format.h>
+
+#include <unistd.h>
+
+#include <iostream>
+
+namespace plmap::cli {
+
+namespace {
+
+struct SimplifyCommand {
+  std::string fine, output, coarse;
+  Index target_elements = 0, target_vertices = 0;
+  double max_error = std::numeric_limits<double>::infinity();
+  std::vector<std::string> oracles;
+  double feature_angle = 60.0;
+  std::string flattening = "polar-map", hole_triangulation = "constrained-delaunay";
+  unsigned threads = 0;
+  bool json = false, progress = false, no_progress = false;
+};
+
+Json quality_json(const QualityReport& q) {
+  Json j;
+  j["kappa_max"] = q.kappa_max;
+  j["kappa_mean"] = q.kappa_mean;
+  Json quantiles = Json::object();
+  for (std::size_t i = 0; i < q.quantiles.size(); ++i) quantiles[fmt::format("{}", q.quantile_levels[i])] = q.quantiles[i];
+  j["kappa_quantiles"] = quantiles;
+  j["degenerate_regions"] = q.degenerate_count;
+  j["stretch_min"] = q.stretch_min;
+  j["stretch_max"] = q.stretch_max;
+  return j;
+}
+
+int run_simplify(const SimplifyCommand& o) {
+  SimplifyOptions options;
+  options.target_elements = o.target_elements;
+  options.target_vertices = o.target_vertices;
+  options.max_error = o.max_error;
+  options.feature_angle_degrees = o.feature_angle;
+  options.flattening = o.flattening;
+  options.hole_triangulation = o.hole_triangulation;
+  options.builder.threads = o.threads;
+  for (const std::string& spec : o.oracles) options.oracles.add_spec(spec);
+  // Strategy names are checked before the (possibly long) run.
+  (void)make_star_flattening(o.flattening);
+  (void)make_hole_triangulation(o.hole_triangulation);
+
+  // Both outputs are written after the run; a missing directory is found before it, so that a
+  // failed write cannot leave one file without the other.
+  for (const std::string& out : {o.output, o.coarse}) {
+    if (out.empty()) continue;
+    const std::filesystem::path parent = std::filesystem::path(out).parent_path();
+    if (!parent.empty() && !std::filesystem::is_directory(parent))
+      throw Error(fmt::format("{}: cannot write here, the directory {} does not exist", out, parent.string()));
+  }
+  AnySurface any = read_any_surface(o.fine, 2);
+  auto fine = std::make_shared<const Surface<2>>(std::move(std::get<1>(any)));
+
+  const bool show_progress = o.progress || (!o.no_progress && isatty(STDERR_FILENO));
+  if (show_progress)
+    options.progress = [](const SimplifyProgress& p) {
+      std::cerr << fmt::format("\rsimplify: {} vertices removed, {} triangles", p.removed_vertices, p.elements)
+                << (p.target_elements > 0 ? fmt::format(" (target {})", p.target_elements) : std::string()) << std::flush;
+    };
+  const SimplifyResult result = simplify(fine, std::move(options));
+  if (show_progress) std::cerr << '\n';
+
+  if (!o.coarse.empty()) write_surface(o.coarse, result.map.domain());
+  save_map(o.output, result.map);
+
+  const SimplifyReport& r = result.report;
+  Json j;
+  j["map"] = o.output;
+  if (!o.coarse.empty()) j["coarse"] = o.coarse;
+  j["elements_before"] = r.elements_before;
+  j["elements_after"] = r.elements_after;
+  j["vertices_before"] = r.vertices_before;
+  j["vertices_after"] = r.vertices_after;
+  j["removed_vertices"] = r.removed_vertices;
+  j["target_reached"] = r.target_reached;
+  j["hausdorff_error"] = r.hausdorff_error;
+  j["hausdorff_error_relative"] = r.hausdorff_error_relative;
+  j["quality"] = quality_json(compute_quality(result.map));
+  j["regions"] = result.map.region_count();
+  j["feature_edges"] = r.feature_edges;
+  j["feature_vertices"] = r.feature_vertices;
+  j["skipped_vertices"] = r.skipped_vertices;
+  Json skipped = Json::object();
+  for (const auto& [why, count] : r.skipped_by_reason) skipped[why] = count;
+  j["skipped_by_reason"] = skipped;
+  j["oracles"] = r.oracles;
+  j["flattening"] = r.flattening;
+  j["hole_triangulation"] = r.hole_triangulation;
+  j["feature_angle"] = o.feature_angle;
+  j["seconds"] = r.seconds_total;
+  j["seconds_by_phase"] = {{"simplify", r.seconds_simplify}, {"finalize", r.seconds_finalize}};
+  print_result(j, o.json);
+  return exit_code::success;
+}
+
+}  // namespace
+
+void register_simplify(CLI::App& app, Action& action) {
+  auto o = std::make_shared<SimplifyCommand>();
+  CLI::App* cmd = app.add_subcommand(
+      "simplify",
+      "Simplify a fine triangle surface into a coarse one S1 and build the parametrization of the "
+      "fine surface over S1 (paper 3.3.1): vertices are removed one at a time, cheapest first by "
+      "the error oracles; feature lines (boundary, non-manifold, sharp edges) are kept.");
+  cmd->add_option("FINE", o->fine, "The fine triangle surface S2")->required();
+  cmd->add_option("-o,--output", o->output, "Map file to write (.plmap, S1 -> S2), replaced atomically")->required();
+  cmd->add_option("--coarse", o->coarse, "Also write the coarse surface S1 to this file (any surface format)");
+  cmd->add_option("--target-elements", o->target_elements, "Stop at this many triangles")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--target-vertices", o->target_vertices, "Stop at this many vertices")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-error", o->max_error,
+                  "Refuse steps whose modified Hausdorff distance exceeds this (surface units)")
+      ->check(positive_number);
+  cmd->add_option("--oracle", o->oracles,
+                  "Error oracle NAME[:WEIGHT], repeatable: hausdorff, aspect-ratio, long-edge, "
+                  "normal-deviation, self-intersection (default hausdorff:1 aspect-ratio:0.05 "
+                  "normal-deviation:0.5)");
+  cmd->add_option("--feature-angle", o->feature_angle,
+                  "Dihedral angle in degrees above which an edge is a feature (180: none)")
+      ->check(CLI::Range(0.0, 180.0))
+      ->capture_default_str();
+  cmd->add_option("--flattening", o->flattening, "Star flattening: polar-map or plane-projection")
+      ->capture_default_str();
+  cmd->add_option("--hole-triangulation", o->hole_triangulation,
+                  "Re-triangulation: constrained-delaunay or min-max-aspect")
+      ->capture_default_str();
+  cmd->add_option("--threads", o->threads, "Threads of the final closure (0: all cores)")->capture_default_str();
+  cmd->add_flag("--progress", o->progress, "Show progress on stderr even when it is not a terminal");
+  cmd->add_flag("--no-progress", o->no_progress, "No progress on stderr");
+  cmd->add_flag("--json", o->json, "Print the summary as JSON");
+  cmd->callback([o, &action] {
+    if (o->target_elements == 0 && o->target_vertices == 0 && !std::isfinite(o->max_error))
+      throw CLI::ValidationError("simplify", "give --target-elements, --target-vertices or --max-error");
+    action = [o] { return run_simplify(*o); };
+  });
+}
+
+}  // namespace plmap::cli

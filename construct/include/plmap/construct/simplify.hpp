@@ -1,0 +1,96 @@
+#pragma once
+/// \file
+/// Parametrization by surface simplification (paper 3.3.1): from a fine surface S2, build a
+/// coarse S1 and the map Ξ: S1 → S2, a parametrization (every S2 vertex has exactly one
+/// preimage, the regions' images tile S2).
+///
+/// Start with S1 = S2 and Ξ = identity; remove S1 vertices one at a time, cheapest first by the
+/// error oracles; each step flattens the star (strategy), re-triangulates the hole (strategy),
+/// merges and cuts the star's graphs (EditableMap) and is refused if Ξ would become invalid.
+/// After every step Ξ is valid. Feature vertices (on a boundary, non-manifold or sharp edge)
+/// are kept, so the feature lines of S2 stay edges of S1.
+///
+///   SimplifyOptions options;
+///   options.target_elements = 500;
+///   options.oracles.add("hausdorff", 1.0).add("aspect-ratio", 0.05);
+///   SimplifyResult result = simplify(fine, options);   // result.map: PlMap<2>, S1 → S2
+
+#include <plmap/core/editable_map.hpp>
+#include <plmap/core/map_builder.hpp>
+#include <plmap/core/pl_map.hpp>
+#include <plmap/strategies/simplification/weighted_oracles.hpp>
+
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+
+namespace plmap {
+
+struct SimplifyProgress {
+  Index removed_vertices = 0;
+  Index elements = 0;         ///< live S1 triangles now
+  Index target_elements = 0;  ///< the goal (0 if none)
+};
+
+struct SimplifyOptions {
+  /// Stop once S1 has at most this many triangles (0: no element target).
+  Index target_elements = 0;
+  /// Stop once S1 has at most this many vertices (0: no vertex target).
+  Index target_vertices = 0;
+  /// Refuse every step whose modified Hausdorff distance (largest distance between a node of
+  /// the star on S1 and its image on S2) exceeds this, in the surface's units (infinity: no
+  /// bound). With no target, simplification runs until no step is admissible.
+  double max_error = std::numeric_limits<double>::infinity();
+  /// Edges whose dihedral angle (between the two triangle normals) exceeds this, in degrees,
+  /// are feature edges, like boundary and non-manifold edges. 180 turns sharp features off.
+  double feature_angle_degrees = 60.0;
+  /// Flattening of the star: "polar-map" (paper) or "plane-projection".
+  std::string flattening = "polar-map";
+  /// Re-triangulation of the hole: "constrained-delaunay" (paper) or "min-max-aspect".
+  std::string hole_triangulation = "constrained-delaunay";
+  /// The error oracles; empty: hausdorff:1, aspect-ratio:0.05, normal-deviation:0.5.
+  WeightedOracles oracles;
+  EditOptions edit;
+  BuilderOptions builder;
+  /// Called every `progress_every` steps and at the end; never required.
+  std::function<void(const SimplifyProgress&)> progress;
+  Index progress_every = 100;
+};
+
+struct SimplifyReport {
+  Index elements_before = 0, elements_after = 0;
+  Index vertices_before = 0, vertices_after = 0;
+  Index removed_vertices = 0;
+  Index feature_edges = 0;
+  Index feature_vertices = 0;  ///< kept because they lie on a feature line
+  /// Largest distance between a node of the final map on S1 and its image on S2 (the modified
+  /// Hausdorff distance of the whole map), and that divided by S2's bounding-box diagonal.
+  double hausdorff_error = 0.0;
+  double hausdorff_error_relative = 0.0;
+  /// Live, non-feature vertices that could not be removed when the run stopped, by the reason
+  /// of the last attempt (a RemovalRefusal name, "oracle_veto" or "max_error").
+  std::map<std::string, Index> skipped_by_reason;
+  Index skipped_vertices = 0;
+  /// True if the element or vertex target was reached.
+  bool target_reached = false;
+  std::string oracles, flattening, hole_triangulation;
+  double seconds_total = 0.0, seconds_simplify = 0.0, seconds_finalize = 0.0;
+};
+
+struct SimplifyResult {
+  PlMap<2> map;
+  SimplifyReport report;
+};
+
+/// Simplifies `fine` and returns S1 (map.domain()) with the parametrization. Throws plmap::Error
+/// for options that cannot be met: a target not below the mesh's size, neither target nor error
+/// bound, an unknown strategy name.
+SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions options = {});
+
+/// The feature edges of a surface by the rules above (boundary, non-manifold, inconsistently
+/// oriented neighbours, dihedral angle above the threshold), as a flag per edge.
+std::vector<char> feature_edges(const Surface<2>& surface, double feature_angle_degrees);
+
+}  // namespace plmap

@@ -1,0 +1,254 @@
+// simplify(): the driver of paper 3.3.1. Phases: feature classification, the priority queue of
+// removal candidates (ranked by the error oracles, lazily re-ranked after each step), the steps
+// themselves (EditableMap plans and applies them), and the hand-over to MapBuilder.
+
+#include <plmap/construct/simplify.hpp>
+
+#include <plmap/core/errors.hpp>
+#include <plmap/strategies/simplification/simplification_registry.hpp>
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <queue>
+
+namespace plmap {
+
+std::vector<char> feature_edges(const Surface<2>& surface, double feature_angle_degrees) {
+  const double cos_limit = std::cos(feature_angle_degrees * std::numbers::pi / 180.0);
+  std::vector<char> feature(surface.edge_count(), 0);
+  for (Index e = 0; e < surface.edge_count(); ++e) {
+    const auto incident = surface.edge_elements(e);
+    if (incident.size() != 2) {
+      feature[e] = 1;
+      continue;
+    }
+    // Two triangles that run through the edge in the same direction are oriented inconsistently:
+    // the polar map cannot flatten across them, so the edge is a feature.
+    if (surface.local_edge_is_forward(incident[0].element, incident[0].local_edge) ==
+        surface.local_edge_is_forward(incident[1].element, incident[1].local_edge)) {
+      feature[e] = 1;
+      continue;
+    }
+    const double cosine = surface.element_normal(incident[0].element).dot(surface.element_normal(incident[1].element));
+    if (feature_angle_degrees < 180.0 && cosine < cos_limit) feature[e] = 1;
+  }
+  return feature;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+/// One removal attempt: the plan and the oracles' verdict, or why it cannot be done.
+struct Attempt {
+  VertexRemovalPlan plan;
+  OracleVerdict verdict;
+  std::string refusal;  // empty if admissible
+};
+
+class Simplifier {
+ public:
+  Simplifier(std::shared_ptr<const Surface<2>> fine, SimplifyOptions& options)
+      : options_(options),
+        map_(fine, options.edit),
+        flatten_(make_star_flattening(options.flattening)),
+        triangulate_(make_hole_triangulation(options.hole_triangulation)) {
+    const Surface<2>& s = *fine;
+    double total = 0.0;
+    for (Index e = 0; e < s.edge_count(); ++e) {
+      const auto ab = s.edge_vertices(e);
+      total += (s.vertex(ab[0]) - s.vertex(ab[1])).norm();
+    }
+    length_scale_ = s.edge_count() > 0 ? total / s.edge_count() : 1.0;
+    const std::vector<char> feature = feature_edges(s, options.feature_angle_degrees);
+    feature_vertex_.assign(s.vertex_count(), 0);
+    for (Index e = 0; e < s.edge_count(); ++e)
+      if (feature[e]) {
+        ++feature_edge_count_;
+        for (Index v : s.edge_vertices(e)) feature_vertex_[v] = 1;
+      }
+    stamp_.assign(s.vertex_count(), 0);
+    last_refusal_.assign(s.vertex_count(), {});
+  }
+
+  Index feature_edge_count() const { return feature_edge_count_; }
+  Index feature_vertex_count() const {
+    Index n = 0;
+    for (char f : feature_vertex_) n += f;
+    return n;
+  }
+  const std::vector<std::string>& last_refusal() const { return last_refusal_; }
+  bool is_feature(Index v) const { return feature_vertex_[v] != 0; }
+  EditableMap& map() { return map_; }
+
+  Attempt attempt(Index v) const {
+    Attempt a;
+    a.plan.vertex = v;
+    const std::vector<Index> ring = map_.closed_ring(v);
+    if (ring.size() < 3) {
+      a.refusal = to_string(RemovalRefusal::not_a_disk_star);
+      return a;
+    }
+    std::vector<Eigen::Vector3d> ring_positions;
+    ring_positions.reserve(ring.size());
+    for (Index w : ring) ring_positions.push_back(map_.position(w));
+    const auto flat = flatten_(map_.position(v), ring_positions);
+    if (!flat) {
+      a.refusal = to_string(RemovalRefusal::flattening_not_simple);
+      return a;
+    }
+    // Diagonals through a node of the star (common in regular meshes, whose stars are
+    // symmetric) are avoided by triangulating again without them.
+    std::vector<std::array<int, 2>> avoided;
+    const DiagonalAllowed allowed = [&](int i, int j) {
+      const std::array<int, 2> key{std::min(i, j), std::max(i, j)};
+      return std::find(avoided.begin(), avoided.end(), key) == avoided.end() && !map_.has_edge(ring[i], ring[j]);
+    };
+    for (std::size_t tries = 0; tries < ring.size(); ++tries) {
+      const auto triangles = triangulate_(*flat, allowed);
+      if (!triangles) {
+        a.refusal = to_string(RemovalRefusal::no_triangulation);
+        return a;
+      }
+      a.plan = map_.plan_vertex_removal(v, *flat, *triangles);
+      if (a.plan.refusal != RemovalRefusal::node_on_new_edge || a.plan.blocking_diagonal[0] < 0) break;
+      avoided.push_back(a.plan.blocking_diagonal);
+    }
+    if (!a.plan.accepted()) {
+      a.refusal = to_string(a.plan.refusal);
+      return a;
+    }
+    if (a.plan.max_node_distance > options_.max_error) {
+      a.refusal = "max_error";
+      return a;
+    }
+    a.verdict = options_.oracles.evaluate({map_, a.plan, length_scale_});
+    if (a.verdict.veto) a.refusal = "oracle_veto";
+    return a;
+  }
+
+  /// Ranks v (if removable) and queues it; an older queue entry of v becomes stale.
+  void rank(Index v) {
+    ++stamp_[v];
+    if (!map_.is_live_vertex(v) || is_feature(v)) return;
+    const Attempt a = attempt(v);
+    last_refusal_[v] = a.refusal;
+    if (a.refusal.empty()) queue_.push({a.verdict.cost, v, stamp_[v]});
+  }
+
+  void run(SimplifyReport& report) {
+    const Index vertex_count = map_.target().vertex_count();
+    for (Index v = 0; v < vertex_count; ++v) rank(v);
+    auto target_reached = [&] {
+      return (options_.target_elements > 0 && map_.live_triangle_count() <= options_.target_elements) ||
+             (options_.target_vertices > 0 && map_.live_vertex_count() <= options_.target_vertices);
+    };
+    while (!queue_.empty() && !target_reached()) {
+      const Entry top = queue_.top();
+      queue_.pop();
+      if (top.stamp != stamp_[top.vertex] || !map_.is_live_vertex(top.vertex)) continue;
+      // The star may have changed around it (a new edge between two ring vertices), so the step
+      // is planned again on the current state before it is carried out.
+      Attempt a = attempt(top.vertex);
+      last_refusal_[top.vertex] = a.refusal;
+      if (!a.refusal.empty()) {
+        ++stamp_[top.vertex];
+        continue;
+      }
+      if (a.verdict.cost > top.cost + 1e-12 * (1.0 + std::abs(top.cost))) {
+        // Its cost went up since it was ranked: queue it again at the right place.
+        ++stamp_[top.vertex];
+        queue_.push({a.verdict.cost, top.vertex, stamp_[top.vertex]});
+        continue;
+      }
+      map_.apply(a.plan);
+      options_.oracles.on_applied(map_, a.plan);
+      ++report.removed_vertices;
+      for (Index w : a.plan.ring) rank(w);
+      if (options_.progress && options_.progress_every > 0 && report.removed_vertices % options_.progress_every == 0)
+        options_.progress({report.removed_vertices, map_.live_triangle_count(), options_.target_elements});
+    }
+    report.target_reached = target_reached();
+  }
+
+ private:
+  struct Entry {
+    double cost;
+    Index vertex;
+    std::uint32_t stamp;
+    bool operator>(const Entry& o) const { return cost > o.cost || (cost == o.cost && vertex > o.vertex); }
+  };
+  SimplifyOptions& options_;
+  EditableMap map_;
+  AnyStarFlattening flatten_;
+  AnyHoleTriangulation triangulate_;
+  double length_scale_ = 1.0;
+  std::vector<char> feature_vertex_;
+  Index feature_edge_count_ = 0;
+  std::vector<std::uint32_t> stamp_;
+  std::vector<std::string> last_refusal_;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
+};
+
+}  // namespace
+
+SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions options) {
+  const auto start = Clock::now();
+  if (!fine) throw Error("simplify: no surface given");
+  const Surface<2>& s = *fine;
+  if (options.target_elements < 0 || options.target_vertices < 0)
+    throw Error("simplify: the element and vertex targets must not be negative");
+  if (options.target_elements > 0 && options.target_elements >= s.element_count())
+    throw Error(fmt::format("simplify: the target of {} elements is not below the surface's {} triangles",
+                            options.target_elements, s.element_count()));
+  if (options.target_vertices > 0 && options.target_vertices >= s.vertex_count())
+    throw Error(fmt::format("simplify: the target of {} vertices is not below the surface's {} vertices",
+                            options.target_vertices, s.vertex_count()));
+  if (options.target_elements == 0 && options.target_vertices == 0 && !std::isfinite(options.max_error))
+    throw Error("simplify: give a target element or vertex count, or an error bound");
+  if (!(options.max_error > 0.0)) throw Error(fmt::format("simplify: the error bound must be positive, not {}", options.max_error));
+  if (!(options.feature_angle_degrees >= 0.0 && options.feature_angle_degrees <= 180.0))
+    throw Error(fmt::format("simplify: the feature angle must be between 0 and 180 degrees, not {}", options.feature_angle_degrees));
+  if (options.oracles.empty()) options.oracles.add("hausdorff", 1.0).add("aspect-ratio", 0.05).add("normal-deviation", 0.5);
+
+  SimplifyReport report;
+  report.elements_before = s.element_count();
+  report.vertices_before = s.vertex_count();
+  report.oracles = options.oracles.description();
+  report.flattening = options.flattening;
+  report.hole_triangulation = options.hole_triangulation;
+
+  Simplifier simplifier(fine, options);
+  report.feature_edges = simplifier.feature_edge_count();
+  report.feature_vertices = simplifier.feature_vertex_count();
+  simplifier.run(report);
+  report.seconds_simplify = seconds_since(start);
+  if (options.progress)
+    options.progress({report.removed_vertices, simplifier.map().live_triangle_count(), options.target_elements});
+
+  for (Index v = 0; v < s.vertex_count(); ++v) {
+    if (!simplifier.map().is_live_vertex(v) || simplifier.is_feature(v)) continue;
+    const std::string& why = simplifier.last_refusal()[v];
+    if (why.empty()) continue;  // still removable: the target stopped the run
+    ++report.skipped_by_reason[why];
+    ++report.skipped_vertices;
+  }
+
+  const auto finalize_start = Clock::now();
+  PlMap<2> map = simplifier.map().to_map(options.builder);
+  report.seconds_finalize = seconds_since(finalize_start);
+  report.elements_after = map.domain().element_count();
+  report.vertices_after = map.domain().vertex_count();
+  for (Index n = 0; n < map.node_count(); ++n)
+    report.hausdorff_error = std::max(report.hausdorff_error, (map.node_domain_world(n) - map.node_target_world(n)).norm());
+  const double diagonal = (s.bounding_box_max() - s.bounding_box_min()).norm();
+  report.hausdorff_error_relative = diagonal > 0.0 ? report.hausdorff_error / diagonal : 0.0;
+  report.seconds_total = seconds_since(start);
+  return {std::move(map), std::move(report)};
+}
+
+}  // namespace plmap

@@ -1,0 +1,169 @@
+#pragma once
+/// \file
+/// EditableMap: the editing form of a parametrization Ξ: S1 → S2 (d = 2), the unit that
+/// simplification changes step by step (paper section 3.3.1). Building (MapBuilder), editing
+/// (this class) and querying (PlMap) are separate units; to_map() hands the edited state to the
+/// builder, which closes every element and produces the compact PlMap.
+///
+/// What is stored. S1 starts as S2 itself (Ξ = identity) and loses vertices; its vertices keep
+/// their S2 numbers, and every remaining S1 vertex is the preimage of the S2 vertex with the
+/// same number. Every other S2 vertex has its preimage strictly inside one S1 triangle
+/// (barycentric coordinates). Every S2 edge has its preimage as a polyline on S1: from the
+/// preimage of its smaller-index vertex to the larger, through crossings of S1 edges, with the
+/// S1 triangle each segment lies in and the position of each point on the S2 edge. Segments
+/// are straight in their triangle, so these polylines are exactly the graphs of the paper's
+/// data structure, with crossings as intersection nodes.
+///
+/// One editing step removes an S1 vertex (plan_vertex_removal / apply): the caller gives the
+/// flattening of its star (a star-shaped polygon, one position per ring vertex) and the new
+/// triangulation of that polygon; the plan merges the star's graphs in the plane, moves every
+/// vertex preimage of the star into the new triangles, cuts every S2 edge polyline along the new
+/// triangles (new crossings; the old crossings on the removed edges disappear, so the polyline
+/// is straightened inside each new triangle) and checks that the result is still a valid map.
+/// A step that would make Ξ invalid is refused with a reason, and nothing changes.
+///
+/// Deliberate simplification (see docs/algorithms/simplification.md): vertex preimages never lie
+/// on an S1 edge except at S1 vertices (a step that would put one within
+/// `EditOptions::edge_clearance` of a new edge is refused), so no touching nodes arise.
+
+#include <plmap/core/map_builder.hpp>
+#include <plmap/core/pl_map.hpp>
+#include <plmap/core/surface.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace plmap {
+
+/// Why a vertex removal was refused (one reason per refused plan).
+enum class RemovalRefusal {
+  none,
+  not_a_disk_star,        ///< the star is not one closed fan of consistently oriented triangles
+  flattening_not_simple,  ///< the flattened star is not a simple star-shaped polygon
+  no_triangulation,       ///< the re-triangulation strategy found no admissible triangulation
+  existing_edge,          ///< a new edge or triangle already exists elsewhere in S1
+  degenerate_triangle,    ///< a new triangle has (almost) no area in space
+  fold_over,              ///< a new triangle faces away from the star it replaces
+  node_on_new_edge,       ///< a vertex preimage would lie on (or too close to) a new edge
+  edge_along_new_edge,    ///< an S2 edge's preimage would run along, or touch, a new edge
+  crossing_edges,         ///< straightened S2 edge preimages would cross inside a new triangle
+};
+
+const char* to_string(RemovalRefusal reason);
+
+/// Tolerances of the editing steps, relative to the element (barycentric / edge parameters) or
+/// to the star's size.
+struct EditOptions {
+  /// A vertex preimage or a crossing closer than this (barycentric, or edge parameter) to a new
+  /// S1 edge or vertex makes the step refused: far above the builder's snap tolerance, so the
+  /// builder never snaps what the editing kept apart.
+  double edge_clearance = 1e-9;
+  /// A new triangle whose area is below this times the squared bounding-box diagonal of S2 is
+  /// degenerate. Above Surface's own degeneracy threshold (1e-14 times the squared longest
+  /// edge), so the final S1 is always a valid Surface.
+  double min_relative_area = 1e-12;
+};
+
+/// One planned removal of an S1 vertex: the new triangles and where every node of the star goes.
+/// Produced by EditableMap::plan_vertex_removal and consumed by EditableMap::apply (or thrown
+/// away: planning changes nothing).
+struct VertexRemovalPlan {
+  Index vertex = invalid_index;
+  RemovalRefusal refusal = RemovalRefusal::none;
+  /// The ring of the star, counter-clockwise, and the star's triangles (S1 triangle ids).
+  std::vector<Index> ring;
+  std::vector<Index> old_triangles;
+  /// New triangles as S1 vertex triples, oriented like the star.
+  std::vector<std::array<Index, 3>> new_triangles;
+
+  /// Geometry the error oracles look at: for every node whose preimage moved or was created
+  /// (relocated vertex preimages, new crossings), its position on the new S1 triangles and its
+  /// image on S2, both in space.
+  std::vector<Eigen::Vector3d> node_domain_positions;
+  std::vector<Eigen::Vector3d> node_target_positions;
+  /// Largest distance between a node's position and its image (the modified Hausdorff distance
+  /// of the step, paper 3.3.1).
+  double max_node_distance = 0.0;
+
+  // ---- what apply() writes (internal to EditableMap) ----
+  struct Relocation {
+    Index target_vertex;
+    int new_triangle;  ///< index into new_triangles
+    Eigen::Vector3d barycentric;
+  };
+  struct PolylineEdit {
+    Index target_edge;
+    std::vector<Index> point_vertex;      ///< per point: S2 vertex or invalid (crossing)
+    std::vector<std::array<Index, 2>> point_edge;  ///< per crossing: S1 edge (smaller first)
+    std::vector<double> point_edge_parameter;
+    std::vector<double> point_target_parameter;
+    std::vector<Index> segment_triangle;  ///< S1 triangle, or -(k + 1) for new triangle k
+  };
+  std::vector<Relocation> relocations;
+  std::vector<PolylineEdit> polyline_edits;
+  Index triangle_count_at_planning = 0;
+
+  /// For node_on_new_edge: the diagonal (ring indices) the node would lie on, if it is one; a
+  /// caller may re-triangulate without it.
+  std::array<int, 2> blocking_diagonal{-1, -1};
+
+  bool accepted() const { return refusal == RemovalRefusal::none; }
+};
+
+class EditableMap {
+ public:
+  /// The identity map of `target` onto itself: S1 = S2.
+  explicit EditableMap(std::shared_ptr<const Surface<2>> target, EditOptions options = {});
+  ~EditableMap();
+  EditableMap(EditableMap&&) noexcept;
+  EditableMap& operator=(EditableMap&&) noexcept;
+
+  const Surface<2>& target() const;
+  const EditOptions& options() const;
+
+  Index live_vertex_count() const;
+  Index live_triangle_count() const;
+  bool is_live_vertex(Index v) const;
+  /// Live S1 triangles around S1 vertex v.
+  std::span<const Index> vertex_triangles(Index v) const;
+  /// S1 triangle ids run from 0 to triangle_slot_count() - 1; removed ones stay dead, new ones
+  /// are appended.
+  Index triangle_slot_count() const;
+  bool is_live_triangle(Index t) const;
+  const std::array<Index, 3>& triangle(Index t) const;
+  /// True if S1 vertices a and b are joined by an edge of a live triangle.
+  bool has_edge(Index a, Index b) const;
+  /// Position of S1 vertex v (the position of S2 vertex v).
+  const Eigen::Vector3d& position(Index v) const;
+
+  /// The ring of v's star, counter-clockwise, if the star is one closed fan of consistently
+  /// oriented triangles (an interior manifold vertex); empty otherwise.
+  std::vector<Index> closed_ring(Index v) const;
+
+  /// Plans the removal of S1 vertex v given the flattened ring (one planar position per ring
+  /// vertex, counter-clockwise around v at the origin; ring order as closed_ring(v)) and the
+  /// triangulation of that polygon (triples of ring indices). Never changes the map.
+  VertexRemovalPlan plan_vertex_removal(Index v, std::span<const Eigen::Vector2d> flattened_ring,
+                                        std::span<const std::array<int, 3>> triangulation) const;
+  /// Carries out an accepted plan made on the current state.
+  void apply(const VertexRemovalPlan& plan);
+
+  /// The S1 surface of the current state (live vertices renumbered in increasing order, live
+  /// triangles) and, for each of its vertices, the S2 vertex it is.
+  Surface<2> domain_surface(std::vector<Index>* domain_to_target_vertex = nullptr) const;
+  /// The compact map Ξ: S1 → S2 of the current state, through MapBuilder (closure, finalize).
+  PlMap<2> to_map(BuilderOptions options = {}) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace plmap

@@ -1,0 +1,234 @@
+// EditableMap: the identity start, the queries, apply() of a planned vertex removal, and the
+// hand-over of the edited state to MapBuilder (which closes the elements and finalizes).
+// Planning a removal lives in editable_map_removal.cpp.
+
+#include "editable_map_state.hpp"
+
+#include <plmap/core/errors.hpp>
+
+#include <fmt/format.h>
+
+namespace plmap {
+
+const char* to_string(RemovalRefusal reason) {
+  switch (reason) {
+    case RemovalRefusal::none: return "none";
+    case RemovalRefusal::not_a_disk_star: return "not_a_disk_star";
+    case RemovalRefusal::flattening_not_simple: return "flattening_not_simple";
+    case RemovalRefusal::no_triangulation: return "no_triangulation";
+    case RemovalRefusal::existing_edge: return "existing_edge";
+    case RemovalRefusal::degenerate_triangle: return "degenerate_triangle";
+    case RemovalRefusal::fold_over: return "fold_over";
+    case RemovalRefusal::node_on_new_edge: return "node_on_new_edge";
+    case RemovalRefusal::edge_along_new_edge: return "edge_along_new_edge";
+    case RemovalRefusal::crossing_edges: return "crossing_edges";
+  }
+  return "unknown";
+}
+
+EditableMap::EditableMap(std::shared_ptr<const Surface<2>> target, EditOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  if (!target) throw Error("EditableMap: no target surface given");
+  Impl& s = *impl_;
+  s.target = std::move(target);
+  s.options = options;
+  const Surface<2>& t2 = *s.target;
+  const Index nv = t2.vertex_count(), nt = t2.element_count(), ne = t2.edge_count();
+  s.triangles = t2.elements();
+  s.triangle_live.assign(nt, 1);
+  s.vertex_live.assign(nv, 1);
+  s.vertex_triangles.resize(nv);
+  for (Index v = 0; v < nv; ++v) {
+    auto span = t2.vertex_elements(v);
+    s.vertex_triangles[v].assign(span.begin(), span.end());
+  }
+  s.live_vertices = nv;
+  s.live_triangles = nt;
+  s.preimage_triangle.assign(nv, invalid_index);
+  s.preimage_barycentric.assign(nv, Eigen::Vector3d::Zero());
+  s.triangle_vertices.resize(nt);
+  s.triangle_edges.resize(nt);
+  s.polylines.resize(ne);
+  for (Index e = 0; e < ne; ++e) {
+    const auto ab = t2.edge_vertices(e);
+    EdgePolyline& p = s.polylines[e];
+    p.vertex = {ab[0], ab[1]};
+    p.edge = {{invalid_index, invalid_index}, {invalid_index, invalid_index}};
+    p.edge_parameter = {0.0, 0.0};
+    p.target_parameter = {0.0, 1.0};
+    const Index t = t2.edge_elements(e).front().element;
+    p.segment_triangle = {t};
+    s.triangle_edges[t].push_back(e);
+  }
+}
+
+EditableMap::~EditableMap() = default;
+EditableMap::EditableMap(EditableMap&&) noexcept = default;
+EditableMap& EditableMap::operator=(EditableMap&&) noexcept = default;
+
+const Surface<2>& EditableMap::target() const { return *impl_->target; }
+const EditOptions& EditableMap::options() const { return impl_->options; }
+Index EditableMap::live_vertex_count() const { return impl_->live_vertices; }
+Index EditableMap::live_triangle_count() const { return impl_->live_triangles; }
+bool EditableMap::is_live_vertex(Index v) const { return impl_->vertex_live[v] != 0; }
+std::span<const Index> EditableMap::vertex_triangles(Index v) const { return impl_->vertex_triangles[v]; }
+Index EditableMap::triangle_slot_count() const { return static_cast<Index>(impl_->triangles.size()); }
+bool EditableMap::is_live_triangle(Index t) const { return impl_->triangle_live[t] != 0; }
+const std::array<Index, 3>& EditableMap::triangle(Index t) const { return impl_->triangles[t]; }
+bool EditableMap::has_edge(Index a, Index b) const { return impl_->has_edge(a, b); }
+const Eigen::Vector3d& EditableMap::position(Index v) const { return impl_->target->vertex(v); }
+
+std::vector<Index> EditableMap::closed_ring(Index v) const {
+  const Impl& s = *impl_;
+  const auto& star = s.vertex_triangles[v];
+  if (star.size() < 3) return {};
+  // Each star triangle (v, a, b), counter-clockwise, contributes the ring edge a -> b; the ring
+  // is a closed fan when these edges form one cycle through all of them.
+  std::vector<std::array<Index, 2>> next;
+  next.reserve(star.size());
+  for (Index t : star) {
+    const auto& c = s.triangles[t];
+    const int k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
+    const Index a = c[(k + 1) % 3], b = c[(k + 2) % 3];
+    for (const auto& n : next)
+      if (n[0] == a || n[1] == b) return {};
+    next.push_back({a, b});
+  }
+  std::vector<Index> ring;
+  ring.reserve(star.size());
+  Index current = next.front()[0];
+  for (std::size_t step = 0; step < next.size(); ++step) {
+    ring.push_back(current);
+    Index following = invalid_index;
+    for (const auto& n : next)
+      if (n[0] == current) following = n[1];
+    if (following == invalid_index) return {};
+    current = following;
+  }
+  if (current != ring.front()) return {};
+  return ring;
+}
+
+void EditableMap::apply(const VertexRemovalPlan& plan) {
+  Impl& s = *impl_;
+  if (!plan.accepted()) throw Error(fmt::format("EditableMap::apply: the removal of vertex {} was refused ({})",
+                                                plan.vertex, to_string(plan.refusal)));
+  if (plan.triangle_count_at_planning != static_cast<Index>(s.triangles.size()) || !s.vertex_live[plan.vertex])
+    throw Error(fmt::format("EditableMap::apply: the plan for vertex {} was made on another state", plan.vertex));
+
+  for (Index t : plan.old_triangles) {
+    s.triangle_live[t] = 0;
+    for (Index c : s.triangles[t]) {
+      auto& list = s.vertex_triangles[c];
+      list.erase(std::remove(list.begin(), list.end(), t), list.end());
+    }
+    s.triangle_vertices[t].clear();
+    s.triangle_vertices[t].shrink_to_fit();
+    s.triangle_edges[t].clear();
+    s.triangle_edges[t].shrink_to_fit();
+  }
+  s.vertex_live[plan.vertex] = 0;
+  s.vertex_triangles[plan.vertex].clear();
+  --s.live_vertices;
+
+  const Index base = static_cast<Index>(s.triangles.size());
+  for (const auto& c : plan.new_triangles) {
+    const Index t = static_cast<Index>(s.triangles.size());
+    s.triangles.push_back(c);
+    s.triangle_live.push_back(1);
+    s.triangle_vertices.emplace_back();
+    s.triangle_edges.emplace_back();
+    for (Index v : c) s.vertex_triangles[v].push_back(t);
+  }
+  s.live_triangles += static_cast<Index>(plan.new_triangles.size()) - static_cast<Index>(plan.old_triangles.size());
+
+  for (const auto& r : plan.relocations) {
+    const Index t = base + r.new_triangle;
+    s.preimage_triangle[r.target_vertex] = t;
+    s.preimage_barycentric[r.target_vertex] = r.barycentric;
+    s.triangle_vertices[t].push_back(r.target_vertex);
+  }
+  for (const auto& edit : plan.polyline_edits) {
+    EdgePolyline& p = s.polylines[edit.target_edge];
+    p.vertex = edit.point_vertex;
+    p.edge = edit.point_edge;
+    p.edge_parameter = edit.point_edge_parameter;
+    p.target_parameter = edit.point_target_parameter;
+    p.segment_triangle.resize(edit.segment_triangle.size());
+    for (std::size_t i = 0; i < edit.segment_triangle.size(); ++i) {
+      const Index t = edit.segment_triangle[i];
+      if (t >= 0) {
+        p.segment_triangle[i] = t;
+      } else {
+        p.segment_triangle[i] = base + (-t - 1);
+        s.triangle_edges[p.segment_triangle[i]].push_back(edit.target_edge);
+      }
+    }
+  }
+}
+
+Surface<2> EditableMap::domain_surface(std::vector<Index>* domain_to_target_vertex) const {
+  const Impl& s = *impl_;
+  std::vector<Index> renumber(s.vertex_live.size(), invalid_index);
+  std::vector<WorldPoint<2>> vertices;
+  std::vector<Index> back;
+  for (std::size_t v = 0; v < s.vertex_live.size(); ++v)
+    if (s.vertex_live[v]) {
+      renumber[v] = static_cast<Index>(vertices.size());
+      vertices.push_back(s.target->vertex(static_cast<Index>(v)));
+      back.push_back(static_cast<Index>(v));
+    }
+  std::vector<ElementCorners<2>> elements;
+  elements.reserve(s.live_triangles);
+  for (std::size_t t = 0; t < s.triangles.size(); ++t)
+    if (s.triangle_live[t]) {
+      const auto& c = s.triangles[t];
+      elements.push_back({renumber[c[0]], renumber[c[1]], renumber[c[2]]});
+    }
+  if (domain_to_target_vertex) *domain_to_target_vertex = std::move(back);
+  return Surface<2>(std::move(vertices), std::move(elements));
+}
+
+PlMap<2> EditableMap::to_map(BuilderOptions options) const {
+  const Impl& s = *impl_;
+  std::vector<Index> domain_to_target;
+  auto domain = std::make_shared<const Surface<2>>(domain_surface(&domain_to_target));
+  std::vector<Index> vertex_number(s.vertex_live.size(), invalid_index);
+  for (std::size_t i = 0; i < domain_to_target.size(); ++i) vertex_number[domain_to_target[i]] = static_cast<Index>(i);
+  std::vector<Index> triangle_number(s.triangles.size(), invalid_index);
+  Index next = 0;
+  for (std::size_t t = 0; t < s.triangles.size(); ++t)
+    if (s.triangle_live[t]) triangle_number[t] = next++;
+
+  if (options.orientation == 0) options.orientation = 1;  // S1 starts as S2 with its orientation
+  MapBuilder<2> builder(domain, s.target, options);
+  const Surface<2>& t2 = *s.target;
+  for (Index w = 0; w < t2.vertex_count(); ++w) {
+    if (s.vertex_live[w]) {
+      builder.add_vertex_preimage_at_vertex(w, vertex_number[w]);
+    } else {
+      const Eigen::Vector3d& b = s.preimage_barycentric[w];
+      builder.add_vertex_preimage(w, {triangle_number[s.preimage_triangle[w]], LocalPoint<2>(b(1), b(2))});
+    }
+  }
+  std::vector<EdgeCrossing> crossings;
+  for (Index e = 0; e < t2.edge_count(); ++e) {
+    const EdgePolyline& p = s.polylines[e];
+    crossings.clear();
+    for (std::size_t i = 1; i + 1 < p.vertex.size(); ++i) {
+      const Index a = vertex_number[p.edge[i][0]], b = vertex_number[p.edge[i][1]];
+      const Index edge = domain->find_edge(a, b);
+      if (edge == invalid_index)
+        throw InvalidMapError(fmt::format("EditableMap: S2 edge {} crosses S1 vertices {} and {}, which share no edge", e,
+                                          p.edge[i][0], p.edge[i][1]));
+      crossings.push_back({edge, p.edge_parameter[i], p.target_parameter[i]});
+    }
+    if (crossings.empty())
+      builder.add_edge(e);
+    else
+      builder.add_edge(e, crossings);
+  }
+  return std::move(builder).finalize();
+}
+
+}  // namespace plmap

@@ -1,0 +1,39 @@
+#include <plmap/strategies/simplification/polar_map_flattening.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <numbers>
+
+namespace plmap {
+
+std::optional<std::vector<Eigen::Vector2d>> PolarMapFlattening::flatten(const Eigen::Vector3d& center,
+                                                                        std::span<const Eigen::Vector3d> ring) const {
+  const std::size_t k = ring.size();
+  if (k < 3) return std::nullopt;
+  std::vector<double> radius(k), angle(k);
+  double total = 0.0;
+  for (std::size_t i = 0; i < k; ++i) {
+    const Eigen::Vector3d a = ring[i] - center, b = ring[(i + 1) % k] - center;
+    radius[i] = a.norm();
+    // atan2 of |a x b| and a . b: accurate for small and obtuse angles alike.
+    angle[i] = std::atan2(a.cross(b).norm(), a.dot(b));
+    if (!(radius[i] > 0.0) || !(angle[i] > 0.0)) return std::nullopt;
+    total += angle[i];
+  }
+  const double scale = 2.0 * std::numbers::pi / total;
+  // Radii are measured relative to the longest spoke before the power, so that the result does
+  // not depend on the surface's units.
+  double longest = 0.0;
+  for (double r : radius) longest = std::max(longest, r);
+  std::vector<Eigen::Vector2d> out(k);
+  double phi = 0.0;
+  for (std::size_t i = 0; i < k; ++i) {
+    const double r = std::pow(radius[i] / longest, scale);
+    out[i] = {r * std::cos(phi), r * std::sin(phi)};
+    phi += scale * angle[i];
+  }
+  return out;
+}
+
+}  // namespace plmap

@@ -1,0 +1,95 @@
+# Command-line cases of `plmap simplify` (exec'd into cli_test.py's namespace).
+
+
+def hill(name="hill.off", points=150, seed=11):
+    run("generate", "delaunay", "--points", points, "--lift", "--seed", seed, "-o", name)
+    return name
+
+
+@case
+def simplify_to_target_and_check():
+    fine = hill()
+    before = run_json("info", fine, "--json")
+    j = run_json("simplify", fine, "-o", "coarse.plmap", "--coarse", "coarse.off",
+                 "--target-elements", 100, "--oracle", "hausdorff:1", "--oracle", "aspect-ratio:0.1",
+                 "--json")
+    expect_keys(j, ["elements_before", "elements_after", "vertices_before", "vertices_after",
+                    "hausdorff_error", "hausdorff_error_relative", "quality", "feature_edges",
+                    "skipped_by_reason", "oracles", "seconds", "seconds_by_phase"], "simplify --json")
+    expect(j["elements_before"] == before["elements"], (j, before))
+    expect(j["elements_after"] < j["elements_before"], j)
+    expect(j["oracles"] == "hausdorff:1,aspect-ratio:0.1", j)
+    expect(j["quality"]["kappa_max"] >= 1.0, j)
+    coarse = run_json("info", "coarse.off", "--json")
+    expect(coarse["elements"] == j["elements_after"], (coarse, j))
+    # the map is a parametrization: every check passes, and S2 is covered completely
+    run("check", "--parametrization", "coarse.plmap")
+
+
+@case
+def simplify_by_error_bound():
+    fine = hill(points=120, seed=12)
+    j = run_json("simplify", fine, "-o", "bounded.plmap", "--max-error", 0.002, "--json")
+    expect(j["hausdorff_error"] <= 0.002 * (1 + 1e-9), j)
+    expect(j["elements_after"] < j["elements_before"], j)
+    run("check", "--parametrization", "bounded.plmap")
+
+
+@case
+def simplify_strategies_and_features():
+    fine = hill(points=100, seed=13)
+    j = run_json("simplify", fine, "-o", "s.plmap", "--target-elements", 80, "--flattening",
+                 "plane-projection", "--hole-triangulation", "min-max-aspect", "--feature-angle", 30,
+                 "--oracle", "long-edge", "--oracle", "self-intersection", "--json")
+    expect(j["flattening"] == "plane-projection" and j["hole_triangulation"] == "min-max-aspect", j)
+    expect(j["feature_edges"] > 0, j)  # at least the boundary of the square
+    run("check", "--parametrization", "s.plmap")
+
+
+@case
+def simplify_bad_input_leaves_no_output():
+    fine = hill(points=60, seed=14)
+    info = run_json("info", fine, "--json")
+    outputs = ["never.plmap", "never.off"]
+    expect_clean_error(["simplify", fine, "-o", outputs[0], "--coarse", outputs[1], "--target-elements",
+                        info["elements"] + 5], mention="not below")
+    expect_clean_error(["simplify", fine, "-o", outputs[0], "--coarse", outputs[1], "--target-elements", 10,
+                        "--oracle", "hausdorf"], mention="hausdorf")
+    expect_clean_error(["simplify", fine, "-o", outputs[0], "--target-elements", 10, "--oracle",
+                        "hausdorff:heavy"], mention="heavy")
+    expect_clean_error(["simplify", fine, "-o", outputs[0], "--target-elements", 10, "--flattening",
+                        "magic"], mention="magic")
+    expect_clean_error(["simplify", fine, "-o", outputs[0]], code=64, mention="--target-elements")
+    write("flat.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n3 0 1 2\n3 0 1 3\n")
+    expect_clean_error(["simplify", "flat.off", "-o", outputs[0], "--target-elements", 1])
+    # a mesh that has nothing to remove: the target cannot be met, but the map is still valid
+    write("quad.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")
+    j = run_json("simplify", "quad.off", "-o", "quad.plmap", "--target-elements", 1, "--json")
+    expect(not j["target_reached"] and j["elements_after"] == 2, j)
+    expect_clean_error(["simplify", polyline(), "-o", outputs[0], "--target-elements", 1])
+    expect_clean_error(["simplify", "missing.off", "-o", outputs[0], "--target-elements", 1],
+                       mention="missing.off")
+    expect_clean_error(["simplify", fine, "-o", outputs[0], "--coarse", "no/such/dir/c.off",
+                        "--target-elements", 10], mention="no/such/dir")
+    for name in outputs:
+        expect(not os.path.exists(os.path.join(WORK, name)), f"{name} was written")
+
+
+@case
+def refine_through_a_simplified_map():
+    fine = hill(points=120, seed=15)
+    s = run_json("simplify", fine, "-o", "p.plmap", "--target-elements", 60, "--json")
+    j = run_json("refine", "p.plmap", "--levels", 2, "-o", "refined.off", "--json")
+    expect_keys(j, ["levels", "vertices", "elements", "distance_max", "distance_mean",
+                    "distance_max_relative", "aspect_ratio_refined", "aspect_ratio_coarse", "seconds"],
+                "refine --json")
+    expect(j["elements"] == 16 * s["elements_after"], (j, s))
+    info = run_json("info", "refined.off", "--json")
+    expect(info["elements"] == j["elements"], (info, j))
+    coarse = run_json("refine", "p.plmap", "--levels", 0, "-o", "level0.off", "--json")
+    expect(j["distance_max"] <= coarse["distance_max"], (j, coarse))
+    expect_clean_error(["refine", "p.plmap", "--levels", 9, "-o", "never.off"], code=64)
+    run("build", "identity", polyline(), "-o", "curve.plmap")
+    expect_clean_error(["refine", "curve.plmap", "-o", "never.off"], mention="curves")
+    expect_clean_error(["refine", "missing.plmap", "-o", "never.off"], mention="missing.plmap")
+    expect(not os.path.exists(os.path.join(WORK, "never.off")), "never.off was written")

@@ -1,0 +1,175 @@
+// simplify(): the map after simplification is a valid parametrization of the fine surface.
+
+#include "simplify_test_support.hpp"
+
+#include <plmap/construct/simplify.hpp>
+#include <plmap/core/errors.hpp>
+#include <plmap/verify/check.hpp>
+#include <plmap/verify/generators/closed_surfaces.hpp>
+#include <plmap/verify/generators/random_surfaces.hpp>
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <tuple>
+
+namespace plmap {
+namespace {
+
+std::shared_ptr<const Surface<2>> bumpy_sphere(int subdivisions, std::uint64_t seed) {
+  generators::Rng rng(seed);
+  return std::make_shared<const Surface<2>>(generators::icosphere({subdivisions, 0.05}, rng));
+}
+
+VerifyOptions parametrization_checks() {
+  VerifyOptions v;
+  v.expect_parametrization = true;
+  return v;
+}
+
+TEST(Simplify, SphereDownToATargetIsAValidParametrization) {
+  auto fine = bumpy_sphere(3, 1);
+  SimplifyOptions options;
+  options.target_elements = 200;
+  const SimplifyResult result = simplify(fine, options);
+  EXPECT_TRUE(result.report.target_reached);
+  EXPECT_LE(result.map.domain().element_count(), 200);
+  const VerificationReport report = verify(result.map, parametrization_checks());
+  EXPECT_TRUE(report.ok()) << summary(report);
+}
+
+}  // namespace
+}  // namespace plmap
+
+namespace plmap {
+namespace {
+
+std::shared_ptr<const Surface<2>> small_sphere() { return bumpy_sphere(1, 2); }
+
+TEST(SimplifyBadInput, TargetNotBelowTheMeshSizeIsAClearError) {
+  SimplifyOptions options;
+  options.target_elements = small_sphere()->element_count();
+  try {
+    (void)simplify(small_sphere(), options);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not below the surface's 80 triangles"), std::string::npos) << e.what();
+  }
+  options.target_elements = 0;
+  options.target_vertices = 1000;
+  EXPECT_THROW((void)simplify(small_sphere(), options), Error);
+}
+
+TEST(SimplifyBadInput, NoTargetAndNoErrorBoundIsAnError) {
+  EXPECT_THROW((void)simplify(small_sphere(), SimplifyOptions{}), Error);
+}
+
+TEST(SimplifyBadInput, UnknownStrategyNamesAreErrorsNamingThem) {
+  SimplifyOptions options;
+  options.target_elements = 40;
+  options.flattening = "conformal-magic";
+  try {
+    (void)simplify(small_sphere(), options);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("conformal-magic"), std::string::npos);
+  }
+  WeightedOracles oracles;
+  EXPECT_THROW(oracles.add("hausdorf"), Error);
+  EXPECT_THROW(oracles.add_spec("hausdorff:heavy"), Error);
+  EXPECT_THROW(oracles.add_spec("hausdorff:-1"), Error);
+}
+
+TEST(SimplifyBadInput, DegenerateTrianglesAreRejectedWhenTheSurfaceIsMade) {
+  std::vector<WorldPoint<2>> v = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}};
+  std::vector<ElementCorners<2>> t = {{0, 1, 2}, {0, 1, 3}};
+  EXPECT_THROW(Surface<2>(v, t), InvalidSurfaceError);
+}
+
+TEST(Simplify, ReportsProgressWithFallingElementCounts) {
+  SimplifyOptions options;
+  options.target_elements = 100;
+  options.progress_every = 10;
+  std::vector<SimplifyProgress> seen;
+  options.progress = [&](const SimplifyProgress& p) { seen.push_back(p); };
+  const SimplifyResult result = simplify(bumpy_sphere(2, 3), options);
+  ASSERT_GE(seen.size(), 2u);
+  for (std::size_t i = 1; i < seen.size(); ++i) EXPECT_LE(seen[i].elements, seen[i - 1].elements);
+  EXPECT_EQ(seen.back().elements, result.report.elements_after);
+  EXPECT_EQ(seen.back().removed_vertices, result.report.removed_vertices);
+}
+
+TEST(Simplify, ErrorBoundAloneStopsWhenNoStepStaysBelowIt) {
+  auto fine = bumpy_sphere(3, 4);
+  SimplifyOptions options;
+  options.max_error = 0.01;
+  const SimplifyResult result = simplify(fine, options);
+  EXPECT_GT(result.report.removed_vertices, 0);
+  EXPECT_LE(result.report.hausdorff_error, 0.01 * (1 + 1e-9));
+  EXPECT_GT(result.report.skipped_by_reason.count("max_error"), 0u);
+  VerifyOptions v;
+  v.expect_parametrization = true;
+  EXPECT_TRUE(verify(result.map, v).ok());
+}
+
+TEST(Simplify, ScalingTheSurfaceGivesTheSameCombinatorics) {
+  auto fine = bumpy_sphere(2, 5);
+  std::vector<WorldPoint<2>> scaled = fine->vertices();
+  for (auto& p : scaled) p *= 1e-6;
+  auto small = std::make_shared<const Surface<2>>(scaled, fine->elements());
+  SimplifyOptions options;
+  options.target_elements = 60;
+  const SimplifyResult a = simplify(fine, options);
+  const SimplifyResult b = simplify(small, options);
+  EXPECT_EQ(a.map.domain().elements(), b.map.domain().elements());
+  EXPECT_EQ(a.map.region_count(), b.map.region_count());
+}
+
+TEST(Simplify, FeatureLinesOfACubeSurviveAndCornersStay) {
+  // A cube with each face split into a 4 x 4 grid: the 12 sharp edges are feature lines.
+  std::vector<WorldPoint<2>> v;
+  std::vector<ElementCorners<2>> t;
+  const int n = 4;
+  std::map<std::tuple<int, int, int>, Index> id;
+  auto vertex = [&](int x, int y, int z) {
+    const auto key = std::tuple{x, y, z};
+    if (auto it = id.find(key); it != id.end()) return it->second;
+    v.emplace_back(double(x) / n, double(y) / n, double(z) / n);
+    return id[key] = static_cast<Index>(v.size() - 1);
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side)
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          auto p = [&](int a, int b) {
+            std::array<int, 3> c{};
+            c[axis] = side * n;
+            c[(axis + 1) % 3] = a;
+            c[(axis + 2) % 3] = b;
+            return vertex(c[0], c[1], c[2]);
+          };
+          const Index a = p(i, j), b = p(i + 1, j), c = p(i + 1, j + 1), d = p(i, j + 1);
+          if (side == 1) {
+            t.push_back({a, b, c});
+            t.push_back({a, c, d});
+          } else {
+            t.push_back({a, c, b});
+            t.push_back({a, d, c});
+          }
+        }
+  auto cube = std::make_shared<const Surface<2>>(v, t);
+  SimplifyOptions options;
+  options.target_elements = 12;
+  const SimplifyResult result = simplify(cube, options);
+  EXPECT_EQ(result.report.feature_edges, 12 * n);
+  EXPECT_TRUE(simplify_test::lost_feature_edges(result.map, options.feature_angle_degrees).empty());
+  std::string skipped;
+  for (const auto& [why, count] : result.report.skipped_by_reason) skipped += " " + why + ":" + std::to_string(count);
+  EXPECT_GT(result.report.removed_vertices, 0) << skipped;
+  VerifyOptions vo;
+  vo.expect_parametrization = true;
+  EXPECT_TRUE(verify(result.map, vo).ok()) << summary(verify(result.map, vo));
+}
+
+}  // namespace
+}  // namespace plmap
