@@ -13,6 +13,7 @@
 
 #include "element_index.hpp"
 #include "image_overlaps.hpp"
+#include "unit_scale.hpp"
 
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/construct/project.hpp>
@@ -1523,10 +1524,14 @@ ProjectionResult<d> project(std::shared_ptr<const Surface<d>> s1, std::shared_pt
                             const ProjectionOptions& options) {
   if (!s1 || !s2) throw Error("project: both surfaces are required");
   const SolverKind kind = solver_kind_from_string(options.solver);
-  return with_solver(kind, options.solver_tolerance, [&](const auto& solver) {
-    Projector<d, std::decay_t<decltype(solver)>> projector(s1, s2, options, solver);
+  // computed on unit-size copies, so that no product of lengths overflows or underflows
+  const auto unit = projection::unit_scaled<d>(s1, s2);
+  const ProjectionOptions unit_options = projection::options_for_unit_scale(options, unit.exponent);
+  auto result = with_solver(kind, options.solver_tolerance, [&](const auto& solver) {
+    Projector<d, std::decay_t<decltype(solver)>> projector(unit.s1, unit.s2, unit_options, solver);
     return projector.run();
   });
+  return projection::in_user_units<d>(std::move(result), s1, s2, unit.exponent);
 }
 
 template ProjectionResult<1> project<1>(std::shared_ptr<const Surface<1>>, std::shared_ptr<const Surface<1>>,
