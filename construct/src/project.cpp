@@ -206,6 +206,8 @@ class Projector {
       SearchOffset offset;  // target minus preimage of the previous vertex found
       NearestElements<d> nearest(*index1_);
       for (Index q = begin; q < end; ++q) {
+        // an isolated S2 vertex (no element) is not part of S2: it needs no preimage
+        if (s2_.vertex_elements(q).empty()) continue;
         preimage[q] = find_vertex_preimage(q, offset, nearest);
         offset.valid = preimage[q].has_value();
         if (offset.valid)
@@ -814,7 +816,7 @@ class Projector {
                                            std::vector<std::optional<SurfacePoint<d>>>& preimage) {
     std::vector<Index> missing;
     for (Index q = 0; q < s2_.vertex_count(); ++q)
-      if (!preimage[q]) missing.push_back(q);
+      if (!preimage[q] && !s2_.vertex_elements(q).empty()) missing.push_back(q);
     if (missing.empty()) return 0;
     // the hits as a point cloud, and the S1 vertex of each
     projection::PointCloud<d + 1> cloud;
@@ -891,7 +893,8 @@ class Projector {
                                           NearestElements<d>* nearest) {
     const WorldPoint<d>& origin = s1_.vertex(v);
     const WorldPoint<d>& direction = nu_[v];
-    if (direction.squaredNorm() == 0.0) return std::nullopt;
+    // an isolated S1 vertex (no element) is not part of S1: no ghost node, whatever its direction
+    if (direction.squaredNorm() == 0.0 || s1_.vertex_elements(v).empty()) return std::nullopt;
     std::array<std::uint32_t, 32> seeds;
     const int count = nearest_seeds(*index2_, nearest, seed_point, seeds_, seeds);
     std::optional<SurfacePoint<d>> best;

@@ -215,6 +215,14 @@ struct MapBuilder<d>::Impl {
       throw BuilderError(fmt::format("S1 vertex {} does not exist (S1 has {} vertices)", v,
                                      s1->vertex_count()));
   }
+  /// A node at an S1 vertex lives on the vertex's elements; an isolated vertex has none.
+  void check_s1_vertex_with_elements(Index v) const {
+    check_s1_vertex(v);
+    if (s1->vertex_elements(v).empty())
+      throw BuilderError(fmt::format("S1 vertex {} is isolated (no S1 element uses it): it is not part of S1, "
+                                     "so no node can lie on it",
+                                     v));
+  }
   void check_s2_vertex(Index v) const {
     if (v < 0 || v >= s2->vertex_count())
       throw BuilderError(fmt::format("S2 vertex {} does not exist (S2 has {} vertices)", v,
@@ -294,7 +302,10 @@ struct MapBuilder<d>::Impl {
     s.vertex[0] = v;
     s.weight[0] = 1.0;
     const auto star = s2->vertex_elements(v);
-    if (star.empty()) throw BuilderError(fmt::format("S2 vertex {} belongs to no element", v));
+    if (star.empty())
+      throw BuilderError(fmt::format("S2 vertex {} is isolated (no S2 element uses it): it is not part of S2, "
+                                     "so it has no preimage",
+                                     v));
     s.element = star.front();
     return s;
   }
@@ -346,7 +357,7 @@ struct MapBuilder<d>::Impl {
   }
 
   Index add_ghost_node(Index domain_vertex, const Support<d>& image) {
-    check_s1_vertex(domain_vertex);
+    check_s1_vertex_with_elements(domain_vertex);
     if (image.count == 1) {
       // The image is an S2 vertex: this is a corner node, not a ghost.
       const Index tv = image.vertex[0];
@@ -605,7 +616,7 @@ template <int d>
   requires SurfaceDimension<d>
 typename MapBuilder<d>::NodeHandle MapBuilder<d>::add_vertex_preimage_at_vertex(Index target_vertex,
                                                                               Index domain_vertex) {
-  impl_->check_s1_vertex(domain_vertex);
+  impl_->check_s1_vertex_with_elements(domain_vertex);
   Place<d> p;
   p.kind = PlaceKind::vertex;
   p.index = domain_vertex;
