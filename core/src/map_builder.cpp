@@ -1518,6 +1518,15 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         }
         if (comp.target != invalid_index) {
           comp.sign = best_area > 0 ? 1 : -1;
+          // Every triangle of the face must map with the face's orientation. Where the images
+          // do not follow one affine map (a discontinuous projection direction field), three
+          // nodes of a face can map onto one S2 edge, or a triangle can fold back, although the
+          // face as a whole keeps its orientation: such a face is left out of D like a reversed
+          // one (FinalizeReport::reversed_faces), instead of giving a region that verify rejects.
+          for (int q = face_begin[c]; q < face_begin[c + 1] && comp.sign != 0; ++q) {
+            const auto& image = et.corner_images[face_order[q]];
+            if (orient2d(image[0], image[1], image[2]) != comp.sign) comp.sign = 0;
+          }
           w.votes += comp.sign * static_cast<long long>(face_begin[c + 1] - face_begin[c]);
         }
       }
