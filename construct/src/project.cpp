@@ -336,8 +336,8 @@ class Projector {
       f.reason = EdgeFailureReason::overlap;
       f.domain_element = dropped.dropped_edge_element[i];
       f.domain_point = s1_.world_position(f.domain_element, LocalPoint<d>::Constant(1.0 / (d + 1)));
-      f.detail = "its preimage crosses another edge's preimage or runs through a node on this S1 "
-                 "element: the projection is not injective there";
+      f.detail = "its preimage crosses another edge's preimage, runs through a node, or meets this S1 "
+                 "element twice: the projection is not injective or not continuous there";
       report.edges_not_inserted.push_back(std::move(f));
     }
 

@@ -1523,9 +1523,16 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           // nodes of a face can map onto one S2 edge, or a triangle can fold back, although the
           // face as a whole keeps its orientation: such a face is left out of D like a reversed
           // one (FinalizeReport::reversed_faces), instead of giving a region that verify rejects.
+          // The corners are judged both as given and as the region's affine map reproduces them
+          // (what verify sees): a nearly flat image may become exactly flat through the map.
           for (int q = face_begin[c]; q < face_begin[c + 1] && comp.sign != 0; ++q) {
+            const auto& tr = closure.triangles[face_order[q]];
             const auto& image = et.corner_images[face_order[q]];
-            if (orient2d(image[0], image[1], image[2]) != comp.sign) comp.sign = 0;
+            const std::array<LocalPoint<2>, 3> from{et.positions[tr[0]], et.positions[tr[1]], et.positions[tr[2]]};
+            const AffineMap<2> map = affine_through<2>(from, image);
+            if (orient2d(image[0], image[1], image[2]) != comp.sign ||
+                orient2d(apply<2>(map, from[0]), apply<2>(map, from[1]), apply<2>(map, from[2])) != comp.sign)
+              comp.sign = 0;
           }
           w.votes += comp.sign * static_cast<long long>(face_begin[c + 1] - face_begin[c]);
         }
@@ -1798,6 +1805,55 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       }
       return w.votes >= 0 ? 1 : -1;
     };
+    // Minimal embedding (DESIGN §4.3): the preimage of an S2 edge meets an S1 element in at most
+    // one connected piece. Where a projection is discontinuous a preimage can enter an element
+    // twice; with drop_conflicting_edges such an edge is dropped, like one that crosses another.
+    if (drop) {
+      bool any = false;
+      std::vector<std::pair<Index, std::array<Index, 2>>> pieces;  // (S2 edge, end nodes)
+      std::vector<Index> reached;
+      for (Index t = 0; t < n1; ++t) {
+        pieces.clear();
+        for (Index s : element_segments[t]) pieces.push_back({im.segments[s].target_edge, {im.segments[s].a, im.segments[s].b}});
+        for (int k = 0; k < 3; ++k)
+          for (Index s : edge_segments[s1.element_edge(t, k)])
+            pieces.push_back({im.segments[s].target_edge, {im.segments[s].a, im.segments[s].b}});
+        if (pieces.size() < 2) continue;
+        std::sort(pieces.begin(), pieces.end());
+        for (std::size_t i = 0, j = 0; i < pieces.size(); i = j) {
+          for (j = i + 1; j < pieces.size() && pieces[j].first == pieces[i].first;) ++j;
+          if (j - i < 2 || dropped[pieces[i].first]) continue;
+          // grow one piece from the first segment; the edge is split if a segment stays out
+          reached.assign(pieces[i].second.begin(), pieces[i].second.end());
+          std::vector<char> in(j - i, 0);
+          in[0] = 1;
+          for (bool grew = true; grew;) {
+            grew = false;
+            for (std::size_t q = i + 1; q < j; ++q) {
+              if (in[q - i]) continue;
+              const auto& [a, b] = pieces[q].second;
+              if (std::find(reached.begin(), reached.end(), a) == reached.end() &&
+                  std::find(reached.begin(), reached.end(), b) == reached.end())
+                continue;
+              in[q - i] = 1;
+              reached.push_back(a);
+              reached.push_back(b);
+              grew = true;
+            }
+          }
+          if (std::find(in.begin(), in.end(), 0) == in.end()) continue;
+          const Index e = pieces[i].first;
+          dropped[e] = 1;
+          im.edge_inserted[e] = 0;
+          any = true;
+          if (report) {
+            report->dropped_edges.push_back(e);
+            report->dropped_edge_element.push_back(t);
+          }
+        }
+      }
+      if (any) bucket();
+    }
     const int guess = im.options.orientation != 0 ? im.options.orientation : sampled_orientation();
     for (int round = 0;; ++round) {
       const auto failed = close_and_assemble(guess);
