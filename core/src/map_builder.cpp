@@ -151,6 +151,9 @@ struct ElementTriangulation {
   // Per closure triangle of a face with a target: its corners' images on the target element
   // (computed when the target is chosen, used again for the region's affine map).
   std::vector<std::array<LocalPoint<2>, 3>> corner_images;
+  // Per closure triangle of a face with a target: the affine map through those images (computed
+  // when the face's triangles are judged, used again as the region's map).
+  std::vector<AffineMap<2>> corner_maps;
   std::vector<int> edge_slots;                // along local edges 0, 1, 2, corners included
   std::array<int, 4> edge_slots_begin{};
   int corner_count = 0;                       // slots at corners of the element
@@ -1425,6 +1428,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       // nodes map into, and the sign of its image there.
       et.components.assign(ncomp, {});
       et.corner_images.resize(nf);
+      et.corner_maps.resize(nf);
       auto& face_begin = w.face_begin;  // triangles grouped by face (counting sort)
       auto& face_order = w.face_order;
       face_begin.assign(ncomp + 1, 0);
@@ -1529,7 +1533,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
             const auto& tr = closure.triangles[face_order[q]];
             const auto& image = et.corner_images[face_order[q]];
             const std::array<LocalPoint<2>, 3> from{et.positions[tr[0]], et.positions[tr[1]], et.positions[tr[2]]};
-            const AffineMap<2> map = affine_through<2>(from, image);
+            const AffineMap<2>& map = et.corner_maps[face_order[q]] = affine_through<2>(from, image);
             if (orient2d(image[0], image[1], image[2]) != comp.sign ||
                 orient2d(apply<2>(map, from[0]), apply<2>(map, from[1]), apply<2>(map, from[2])) != comp.sign)
               comp.sign = 0;
@@ -1686,7 +1690,6 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         if (sc.triangle_region[f] == invalid_index) continue;
         const auto& tr = closure.triangles[f];
         const Index target = et.components[closure.face[f]].target;
-        std::array<LocalPoint<2>, 3> from;
         auto& corners = part.region_corners[sc.regions];
         auto& neighbors = part.region_neighbors[sc.regions];
         for (int i = 0; i < 3; ++i) {
@@ -1694,10 +1697,9 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           corners[i] = base + s;
           const int g = closure.neighbors[f][i];
           neighbors[i] = g >= 0 ? sc.triangle_region[g] : invalid_index;
-          from[i] = et.positions[s];
         }
         part.region_target[sc.regions] = target;
-        part.region_map[sc.regions] = affine_through<2>(from, et.corner_images[f]);
+        part.region_map[sc.regions] = et.corner_maps[f];  // judged with the face (a region's face has sign != 0)
         ++sc.regions;
       }
       part.region_begin[sc.elements + 1] = static_cast<Index>(sc.regions);
