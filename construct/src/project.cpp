@@ -13,6 +13,7 @@
 
 #include "element_index.hpp"
 #include "image_overlaps.hpp"
+#include "unit_scale.hpp"
 
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/construct/project.hpp>
@@ -205,6 +206,8 @@ class Projector {
       SearchOffset offset;  // target minus preimage of the previous vertex found
       NearestElements<d> nearest(*index1_);
       for (Index q = begin; q < end; ++q) {
+        // an isolated S2 vertex (no element) is not part of S2: it needs no preimage
+        if (s2_.vertex_elements(q).empty()) continue;
         preimage[q] = find_vertex_preimage(q, offset, nearest);
         offset.valid = preimage[q].has_value();
         if (offset.valid)
@@ -333,8 +336,8 @@ class Projector {
       f.reason = EdgeFailureReason::overlap;
       f.domain_element = dropped.dropped_edge_element[i];
       f.domain_point = s1_.world_position(f.domain_element, LocalPoint<d>::Constant(1.0 / (d + 1)));
-      f.detail = "its preimage crosses another edge's preimage or runs through a node on this S1 "
-                 "element: the projection is not injective there";
+      f.detail = "its preimage crosses another edge's preimage, runs through a node, or meets this S1 "
+                 "element twice: the projection is not injective or not continuous there";
       report.edges_not_inserted.push_back(std::move(f));
     }
 
@@ -813,7 +816,7 @@ class Projector {
                                            std::vector<std::optional<SurfacePoint<d>>>& preimage) {
     std::vector<Index> missing;
     for (Index q = 0; q < s2_.vertex_count(); ++q)
-      if (!preimage[q]) missing.push_back(q);
+      if (!preimage[q] && !s2_.vertex_elements(q).empty()) missing.push_back(q);
     if (missing.empty()) return 0;
     // the hits as a point cloud, and the S1 vertex of each
     projection::PointCloud<d + 1> cloud;
@@ -890,7 +893,8 @@ class Projector {
                                           NearestElements<d>* nearest) {
     const WorldPoint<d>& origin = s1_.vertex(v);
     const WorldPoint<d>& direction = nu_[v];
-    if (direction.squaredNorm() == 0.0) return std::nullopt;
+    // an isolated S1 vertex (no element) is not part of S1: no ghost node, whatever its direction
+    if (direction.squaredNorm() == 0.0 || s1_.vertex_elements(v).empty()) return std::nullopt;
     std::array<std::uint32_t, 32> seeds;
     const int count = nearest_seeds(*index2_, nearest, seed_point, seeds_, seeds);
     std::optional<SurfacePoint<d>> best;
@@ -1523,10 +1527,14 @@ ProjectionResult<d> project(std::shared_ptr<const Surface<d>> s1, std::shared_pt
                             const ProjectionOptions& options) {
   if (!s1 || !s2) throw Error("project: both surfaces are required");
   const SolverKind kind = solver_kind_from_string(options.solver);
-  return with_solver(kind, options.solver_tolerance, [&](const auto& solver) {
-    Projector<d, std::decay_t<decltype(solver)>> projector(s1, s2, options, solver);
+  // computed on unit-size copies, so that no product of lengths overflows or underflows
+  const auto unit = projection::unit_scaled<d>(s1, s2);
+  const ProjectionOptions unit_options = projection::options_for_unit_scale(options, unit.exponent);
+  auto result = with_solver(kind, options.solver_tolerance, [&](const auto& solver) {
+    Projector<d, std::decay_t<decltype(solver)>> projector(unit.s1, unit.s2, unit_options, solver);
     return projector.run();
   });
+  return projection::in_user_units<d>(std::move(result), s1, s2, unit.exponent);
 }
 
 template ProjectionResult<1> project<1>(std::shared_ptr<const Surface<1>>, std::shared_ptr<const Surface<1>>,

@@ -151,6 +151,9 @@ struct ElementTriangulation {
   // Per closure triangle of a face with a target: its corners' images on the target element
   // (computed when the target is chosen, used again for the region's affine map).
   std::vector<std::array<LocalPoint<2>, 3>> corner_images;
+  // Per closure triangle of a face with a target: the affine map through those images (computed
+  // when the face's triangles are judged, used again as the region's map).
+  std::vector<AffineMap<2>> corner_maps;
   std::vector<int> edge_slots;                // along local edges 0, 1, 2, corners included
   std::array<int, 4> edge_slots_begin{};
   int corner_count = 0;                       // slots at corners of the element
@@ -214,6 +217,14 @@ struct MapBuilder<d>::Impl {
     if (v < 0 || v >= s1->vertex_count())
       throw BuilderError(fmt::format("S1 vertex {} does not exist (S1 has {} vertices)", v,
                                      s1->vertex_count()));
+  }
+  /// A node at an S1 vertex lives on the vertex's elements; an isolated vertex has none.
+  void check_s1_vertex_with_elements(Index v) const {
+    check_s1_vertex(v);
+    if (s1->vertex_elements(v).empty())
+      throw BuilderError(fmt::format("S1 vertex {} is isolated (no S1 element uses it): it is not part of S1, "
+                                     "so no node can lie on it",
+                                     v));
   }
   void check_s2_vertex(Index v) const {
     if (v < 0 || v >= s2->vertex_count())
@@ -294,7 +305,10 @@ struct MapBuilder<d>::Impl {
     s.vertex[0] = v;
     s.weight[0] = 1.0;
     const auto star = s2->vertex_elements(v);
-    if (star.empty()) throw BuilderError(fmt::format("S2 vertex {} belongs to no element", v));
+    if (star.empty())
+      throw BuilderError(fmt::format("S2 vertex {} is isolated (no S2 element uses it): it is not part of S2, "
+                                     "so it has no preimage",
+                                     v));
     s.element = star.front();
     return s;
   }
@@ -346,7 +360,7 @@ struct MapBuilder<d>::Impl {
   }
 
   Index add_ghost_node(Index domain_vertex, const Support<d>& image) {
-    check_s1_vertex(domain_vertex);
+    check_s1_vertex_with_elements(domain_vertex);
     if (image.count == 1) {
       // The image is an S2 vertex: this is a corner node, not a ghost.
       const Index tv = image.vertex[0];
@@ -605,7 +619,7 @@ template <int d>
   requires SurfaceDimension<d>
 typename MapBuilder<d>::NodeHandle MapBuilder<d>::add_vertex_preimage_at_vertex(Index target_vertex,
                                                                               Index domain_vertex) {
-  impl_->check_s1_vertex(domain_vertex);
+  impl_->check_s1_vertex_with_elements(domain_vertex);
   Place<d> p;
   p.kind = PlaceKind::vertex;
   p.index = domain_vertex;
@@ -1414,6 +1428,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       // nodes map into, and the sign of its image there.
       et.components.assign(ncomp, {});
       et.corner_images.resize(nf);
+      et.corner_maps.resize(nf);
       auto& face_begin = w.face_begin;  // triangles grouped by face (counting sort)
       auto& face_order = w.face_order;
       face_begin.assign(ncomp + 1, 0);
@@ -1507,6 +1522,22 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         }
         if (comp.target != invalid_index) {
           comp.sign = best_area > 0 ? 1 : -1;
+          // Every triangle of the face must map with the face's orientation. Where the images
+          // do not follow one affine map (a discontinuous projection direction field), three
+          // nodes of a face can map onto one S2 edge, or a triangle can fold back, although the
+          // face as a whole keeps its orientation: such a face is left out of D like a reversed
+          // one (FinalizeReport::reversed_faces), instead of giving a region that verify rejects.
+          // The corners are judged both as given and as the region's affine map reproduces them
+          // (what verify sees): a nearly flat image may become exactly flat through the map.
+          for (int q = face_begin[c]; q < face_begin[c + 1] && comp.sign != 0; ++q) {
+            const auto& tr = closure.triangles[face_order[q]];
+            const auto& image = et.corner_images[face_order[q]];
+            const std::array<LocalPoint<2>, 3> from{et.positions[tr[0]], et.positions[tr[1]], et.positions[tr[2]]};
+            const AffineMap<2>& map = et.corner_maps[face_order[q]] = affine_through<2>(from, image);
+            if (orient2d(image[0], image[1], image[2]) != comp.sign ||
+                orient2d(apply<2>(map, from[0]), apply<2>(map, from[1]), apply<2>(map, from[2])) != comp.sign)
+              comp.sign = 0;
+          }
           w.votes += comp.sign * static_cast<long long>(face_begin[c + 1] - face_begin[c]);
         }
       }
@@ -1659,7 +1690,6 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
         if (sc.triangle_region[f] == invalid_index) continue;
         const auto& tr = closure.triangles[f];
         const Index target = et.components[closure.face[f]].target;
-        std::array<LocalPoint<2>, 3> from;
         auto& corners = part.region_corners[sc.regions];
         auto& neighbors = part.region_neighbors[sc.regions];
         for (int i = 0; i < 3; ++i) {
@@ -1667,10 +1697,9 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
           corners[i] = base + s;
           const int g = closure.neighbors[f][i];
           neighbors[i] = g >= 0 ? sc.triangle_region[g] : invalid_index;
-          from[i] = et.positions[s];
         }
         part.region_target[sc.regions] = target;
-        part.region_map[sc.regions] = affine_through<2>(from, et.corner_images[f]);
+        part.region_map[sc.regions] = et.corner_maps[f];  // judged with the face (a region's face has sign != 0)
         ++sc.regions;
       }
       part.region_begin[sc.elements + 1] = static_cast<Index>(sc.regions);
@@ -1778,6 +1807,55 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
       }
       return w.votes >= 0 ? 1 : -1;
     };
+    // Minimal embedding (DESIGN §4.3): the preimage of an S2 edge meets an S1 element in at most
+    // one connected piece. Where a projection is discontinuous a preimage can enter an element
+    // twice; with drop_conflicting_edges such an edge is dropped, like one that crosses another.
+    if (drop) {
+      bool any = false;
+      std::vector<std::pair<Index, std::array<Index, 2>>> pieces;  // (S2 edge, end nodes)
+      std::vector<Index> reached;
+      for (Index t = 0; t < n1; ++t) {
+        pieces.clear();
+        for (Index s : element_segments[t]) pieces.push_back({im.segments[s].target_edge, {im.segments[s].a, im.segments[s].b}});
+        for (int k = 0; k < 3; ++k)
+          for (Index s : edge_segments[s1.element_edge(t, k)])
+            pieces.push_back({im.segments[s].target_edge, {im.segments[s].a, im.segments[s].b}});
+        if (pieces.size() < 2) continue;
+        std::sort(pieces.begin(), pieces.end());
+        for (std::size_t i = 0, j = 0; i < pieces.size(); i = j) {
+          for (j = i + 1; j < pieces.size() && pieces[j].first == pieces[i].first;) ++j;
+          if (j - i < 2 || dropped[pieces[i].first]) continue;
+          // grow one piece from the first segment; the edge is split if a segment stays out
+          reached.assign(pieces[i].second.begin(), pieces[i].second.end());
+          std::vector<char> in(j - i, 0);
+          in[0] = 1;
+          for (bool grew = true; grew;) {
+            grew = false;
+            for (std::size_t q = i + 1; q < j; ++q) {
+              if (in[q - i]) continue;
+              const auto& [a, b] = pieces[q].second;
+              if (std::find(reached.begin(), reached.end(), a) == reached.end() &&
+                  std::find(reached.begin(), reached.end(), b) == reached.end())
+                continue;
+              in[q - i] = 1;
+              reached.push_back(a);
+              reached.push_back(b);
+              grew = true;
+            }
+          }
+          if (std::find(in.begin(), in.end(), 0) == in.end()) continue;
+          const Index e = pieces[i].first;
+          dropped[e] = 1;
+          im.edge_inserted[e] = 0;
+          any = true;
+          if (report) {
+            report->dropped_edges.push_back(e);
+            report->dropped_edge_element.push_back(t);
+          }
+        }
+      }
+      if (any) bucket();
+    }
     const int guess = im.options.orientation != 0 ? im.options.orientation : sampled_orientation();
     for (int round = 0;; ++round) {
       const auto failed = close_and_assemble(guess);

@@ -1,5 +1,6 @@
 #include <plmap/core/element_transfer.hpp>
 #include <plmap/core/regions.hpp>
+#include <plmap/core/scaled_geometry.hpp>
 
 #include <Eigen/Geometry>
 
@@ -9,14 +10,6 @@
 namespace plmap {
 
 namespace {
-
-template <int d>
-double simplex_measure(const std::array<WorldPoint<d>, d + 1>& c) {
-  if constexpr (d == 1)
-    return (c[1] - c[0]).norm();
-  else
-    return 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm();
-}
 
 /// remote_intersection() for a region whose S1 element is already known.
 template <int d>

@@ -1,4 +1,5 @@
 #include <plmap/core/errors.hpp>
+#include <plmap/core/scaled_geometry.hpp>
 #include <plmap/core/surface.hpp>
 
 #include <fmt/format.h>
@@ -6,24 +7,19 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace plmap {
 
 namespace {
 
+constexpr const char* supported_scale_note =
+    "plmap supports edge lengths from about 1e-150 to 1e150 (rescale the coordinates)";
+
 // An element whose measure is below this fraction of (longest surface edge)^d is degenerate.
 // Relative, so that scaling the surface never changes the verdict.
 constexpr double degenerate_measure_fraction = 1e-14;
-
-template <int d>
-double measure_of(const std::array<WorldPoint<d>, d + 1>& c) {
-  if constexpr (d == 1) {
-    return (c[1] - c[0]).norm();
-  } else {
-    return 0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm();
-  }
-}
 
 }  // namespace
 
@@ -90,17 +86,37 @@ void Surface<d>::build_adjacency() {
   max_edge_length_ = 0.0;
   for (const auto& e : elements_)
     for (int k = 0; k <= d; ++k)
-      for (int j = k + 1; j <= d; ++j)
-        max_edge_length_ = std::max(max_edge_length_, (vertices_[e[k]] - vertices_[e[j]]).norm());
+      for (int j = k + 1; j <= d; ++j) {
+        const WorldPoint<d> edge = vertices_[e[k]] - vertices_[e[j]];
+        if (!edge.allFinite())
+          throw InvalidSurfaceError(fmt::format(
+              "vertices {} and {} are too far apart for double arithmetic: {}", e[k], e[j], supported_scale_note));
+        max_edge_length_ = std::max(max_edge_length_, scaled_length<d>(edge));
+      }
 
-  const double min_measure = degenerate_measure_fraction * std::pow(max_edge_length_, d);
+  // Degeneracy is judged on measure / (longest surface edge)^d, formed from the scaled measure so
+  // that it is the same number at every scale. Then the measure itself must be a normal double:
+  // otherwise areas (info, coverage, kappa, the projection's measures) would be infinite or zero.
+  measure_ = 0.0;
   for (Index t = 0; t < nt; ++t) {
-    const double m = element_measure(t);
-    if (!(m > min_measure))
+    std::array<WorldPoint<d>, d + 1> c;
+    for (int k = 0; k <= d; ++k) c[k] = corner(t, k);
+    const auto [scaled, unit] = scaled_simplex_measure<d>(c);
+    const double relative = scaled * std::pow(unit / max_edge_length_, d);
+    if (!(relative > degenerate_measure_fraction))
       throw InvalidSurfaceError(fmt::format(
-          "element {} is degenerate: its {} is {:g} (surface scale {:g})", t,
-          d == 1 ? "length" : "area", m, max_edge_length_));
+          "element {} is degenerate: its {} is {:g} times (longest edge of the surface)^{}", t,
+          d == 1 ? "length" : "area", relative, d));
+    const double m = d == 1 ? scaled * unit : scaled * unit * unit;
+    if (!std::isfinite(m) || m < std::numeric_limits<double>::min())
+      throw InvalidSurfaceError(fmt::format(
+          "element {}: its {} ({:g} x {:g}^{}) is outside the range of doubles: {}", t,
+          d == 1 ? "length" : "area", scaled, unit, d, supported_scale_note));
+    measure_ += m;
   }
+  if (!std::isfinite(measure_))
+    throw InvalidSurfaceError(fmt::format("the total {} of the surface overflows a double: {}",
+                                          d == 1 ? "length" : "area", supported_scale_note));
 
   if constexpr (d == 1) {
     // duplicate segments (either orientation)
@@ -187,25 +203,21 @@ template <int d>
 double Surface<d>::element_measure(Index t) const {
   std::array<WorldPoint<d>, d + 1> c;
   for (int k = 0; k <= d; ++k) c[k] = corner(t, k);
-  return measure_of<d>(c);
-}
-
-template <int d>
-  requires SurfaceDimension<d>
-double Surface<d>::measure() const {
-  double m = 0.0;
-  for (Index t = 0; t < element_count(); ++t) m += element_measure(t);
-  return m;
+  return simplex_measure<d>(c);
 }
 
 template <int d>
   requires SurfaceDimension<d>
 WorldPoint<d> Surface<d>::element_normal(Index t) const {
   if constexpr (d == 1) {
-    const WorldPoint<1> s = corner(t, 1) - corner(t, 0);
-    return WorldPoint<1>(s.y(), -s.x()).normalized();
+    const WorldPoint<1> u = corner(t, 1) - corner(t, 0);
+    const double s = power_of_two_scale<1>({u});
+    return WorldPoint<1>(u.y() / s, -u.x() / s).normalized();
   } else {
-    return (corner(t, 1) - corner(t, 0)).cross(corner(t, 2) - corner(t, 0)).normalized();
+    // the cross product of the scaled edges, whose squares stay in range at every scale
+    const WorldPoint<2> u = corner(t, 1) - corner(t, 0), v = corner(t, 2) - corner(t, 0);
+    const double s = power_of_two_scale<2>({u, v});
+    return (u / s).cross(v / s).normalized();
   }
 }
 
@@ -228,6 +240,21 @@ template <int d>
   requires SurfaceDimension<d>
 bool Surface<d>::is_boundary_vertex(Index v) const {
   return boundary_vertex_[v];
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+Surface<d> Surface<d>::scaled_by_power_of_two(int exponent) const {
+  Surface<d> out(*this);
+  for (auto& p : out.vertices_)
+    for (int i = 0; i <= d; ++i) p(i) = std::ldexp(p(i), exponent);
+  for (int i = 0; i <= d; ++i) {
+    out.box_min_(i) = std::ldexp(box_min_(i), exponent);
+    out.box_max_(i) = std::ldexp(box_max_(i), exponent);
+  }
+  out.max_edge_length_ = std::ldexp(max_edge_length_, exponent);
+  out.measure_ = std::ldexp(measure_, d * exponent);
+  return out;
 }
 
 template class Surface<1>;

@@ -2,6 +2,7 @@
 // frames of the region's world triangle on S1 and its image on S2.
 
 #include <plmap/core/regions.hpp>
+#include <plmap/core/scaled_geometry.hpp>
 #include <plmap/verify/quality.hpp>
 
 #include <Eigen/Geometry>
@@ -15,10 +16,9 @@ namespace plmap {
 
 namespace {
 
-/// The edge vectors of a world triangle in an orthonormal frame of its plane: an upper
-/// triangular 2x2 matrix [[|u|, v.e1], [0, v.e2]] with u = p1 - p0, v = p2 - p0.
-Eigen::Matrix2d frame_coordinates(const std::array<WorldPoint<2>, 3>& p) {
-  const Eigen::Vector3d u = p[1] - p[0], v = p[2] - p[0];
+/// The edge vectors u, v of a triangle in an orthonormal frame of its plane: an upper
+/// triangular 2x2 matrix [[|u|, v.e1], [0, v.e2]].
+Eigen::Matrix2d frame_coordinates_of(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
   const double lu = u.norm();
   Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
   if (lu == 0.0) return m;
@@ -27,6 +27,14 @@ Eigen::Matrix2d frame_coordinates(const std::array<WorldPoint<2>, 3>& p) {
   m(0, 1) = v.dot(e1);
   m(1, 1) = (v - m(0, 1) * e1).norm();  // the frame's second axis points towards p2
   return m;
+}
+
+/// frame_coordinates_of(p1 - p0, p2 - p0), computed on the edge vectors divided by a power of
+/// two near their size (exact), so that the squares inside the norms stay in range at every
+/// scale of the surfaces.
+Eigen::Matrix2d frame_coordinates(const std::array<WorldPoint<2>, 3>& p) {
+  const double scale = power_of_two_scale<2>({p[1] - p[0], p[2] - p[0]});
+  return scale * frame_coordinates_of((p[1] - p[0]) / scale, (p[2] - p[0]) / scale);
 }
 
 /// Singular values of a 2x2 matrix in closed form (no iteration).

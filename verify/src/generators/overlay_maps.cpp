@@ -33,7 +33,7 @@ LocalPoint<2> local_on_edge(int k, double u) {
 
 void require_planar_ccw(const Surface<2>& s, const char* which) {
   for (Index v = 0; v < s.vertex_count(); ++v)
-    if (s.vertex(v).z() != 0.0)
+    if (s.vertex(v).z() != 0.0 && !s.vertex_elements(v).empty())  // isolated vertices do not count
       throw Error(fmt::format("plane overlay: {} vertex {} is not in the plane z = 0", which, v));
   for (Index t = 0; t < s.element_count(); ++t)
     if (orient2d(xy(s.corner(t, 0)), xy(s.corner(t, 1)), xy(s.corner(t, 2))) <= 0)
@@ -106,6 +106,10 @@ MapCase<2> plane_overlay_map(std::shared_ptr<const Surface<2>> s1, std::shared_p
   // S2 vertices on S1.
   std::vector<Index> s1_vertex_as_s2_vertex(s1->vertex_count(), invalid_index);
   for (Index v = 0; v < s2->vertex_count(); ++v) {
+    if (s2->vertex_elements(v).empty()) {  // isolated: not part of S2, needs no preimage
+      c.target_vertex_preimage.push_back(no_preimage<2>());
+      continue;
+    }
     const DomainLocation<2> loc = locate_in_plane(*s1, xy(s2->vertex(v)), "S1", snap);
     add_vertex_preimage(builder, v, loc);
     c.target_vertex_preimage.push_back(loc.point);
@@ -128,6 +132,7 @@ MapCase<2> plane_overlay_map(std::shared_ptr<const Surface<2>> s1, std::shared_p
     };
     // Exactly on the edge (this also covers S2 edges running along S1 edges).
     for (Index a = 0; a < s1->vertex_count(); ++a) {
+      if (s1->vertex_elements(a).empty()) continue;  // isolated: not part of S1, nothing to pass
       const Eigen::Vector2d pa = xy(s1->vertex(a));
       if (pa == pu || pa == pv || orient2d(pu, pv, pa) != 0) continue;
       if ((pa - pu).dot(dir) > 0.0 && (pa - pv).dot(-dir) > 0.0) pass_vertex(a);
@@ -175,7 +180,7 @@ MapCase<2> plane_overlay_map(std::shared_ptr<const Surface<2>> s1, std::shared_p
   // inserting that edge creates the ghost node automatically (paper 3.1), a path worth
   // exercising; the rest are entered with their image on S2.
   for (Index w = 0; w < s1->vertex_count(); ++w) {
-    if (s1_vertex_as_s2_vertex[w] != invalid_index || passed[w]) continue;
+    if (s1_vertex_as_s2_vertex[w] != invalid_index || passed[w] || s1->vertex_elements(w).empty()) continue;
     builder.add_ghost_node(w, locate_in_plane(*s2, xy(s1->vertex(w)), "S2", snap).point);
   }
   for (Index e = 0; e < s2->edge_count(); ++e) {
@@ -290,6 +295,10 @@ MapCase<1> polyline_overlay_map(const PolylineSubdivisions& sub, std::string des
   c.target_vertex_preimage.resize(s2->vertex_count());
   // Base vertices are vertices of both.
   for (Index v = 0; v < base.vertex_count(); ++v) {
+    if (base.vertex_elements(v).empty()) {  // isolated: not part of either subdivision
+      c.target_vertex_preimage[v] = no_preimage<1>();
+      continue;
+    }
     builder.add_vertex_preimage_at_vertex(v, v);
     c.target_vertex_preimage[v] = point_at_vertex(*s1, v);
   }

@@ -15,6 +15,7 @@ template <int d>
 void add_vertex_preimage(MapBuilder<d>& builder, Index target_vertex, const DomainLocation<d>& where) {
   using Kind = typename DomainLocation<d>::Kind;
   switch (where.kind) {
+    case Kind::isolated: return;  // an isolated S2 vertex needs no preimage
     case Kind::vertex: builder.add_vertex_preimage_at_vertex(target_vertex, where.index); return;
     case Kind::edge:
       if constexpr (d == 2) {
@@ -38,6 +39,10 @@ MapCase<d> identity_map(std::shared_ptr<const Surface<d>> surface, std::string d
   MapCase<d> c;
   c.description = std::move(description);
   for (Index v = 0; v < surface->vertex_count(); ++v) {
+    if (surface->vertex_elements(v).empty()) {  // isolated: not part of the surface
+      c.target_vertex_preimage.push_back(no_preimage<d>());
+      continue;
+    }
     builder.add_vertex_preimage_at_vertex(v, v);
     const Index t = surface->vertex_elements(v).front();
     c.target_vertex_preimage.push_back({t, reference_corner<d>(surface->local_corner(t, v))});
@@ -93,8 +98,13 @@ Refinement<2> refine_triangles(const Surface<2>& s1, const RefinementOptions& op
     DomainLocation<2> loc;
     loc.kind = DomainLocation<2>::Kind::vertex;
     loc.index = v;
-    const Index t = s1.vertex_elements(v).front();
-    loc.point = {t, reference_corner<2>(s1.local_corner(t, v))};
+    if (s1.vertex_elements(v).empty()) {  // isolated: stays an isolated vertex of the refinement
+      loc.kind = DomainLocation<2>::Kind::isolated;
+      loc.point = no_preimage<2>();
+    } else {
+      const Index t = s1.vertex_elements(v).front();
+      loc.point = {t, reference_corner<2>(s1.local_corner(t, v))};
+    }
     out.vertex_location.push_back(loc);
   }
 
@@ -173,8 +183,13 @@ Refinement<1> refine_segments(const Surface<1>& s1, const RefinementOptions& opt
     DomainLocation<1> loc;
     loc.kind = DomainLocation<1>::Kind::vertex;
     loc.index = v;
-    const Index t = s1.vertex_elements(v).front();
-    loc.point = {t, reference_corner<1>(s1.local_corner(t, v))};
+    if (s1.vertex_elements(v).empty()) {  // isolated: stays an isolated vertex of the refinement
+      loc.kind = DomainLocation<1>::Kind::isolated;
+      loc.point = no_preimage<1>();
+    } else {
+      const Index t = s1.vertex_elements(v).front();
+      loc.point = {t, reference_corner<1>(s1.local_corner(t, v))};
+    }
     out.vertex_location.push_back(loc);
   }
   std::vector<ElementCorners<1>> elements;

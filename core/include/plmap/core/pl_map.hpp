@@ -99,6 +99,9 @@ class PlMap {
   const std::shared_ptr<const Surface<d>>& domain_ptr() const { return domain_; }
   const std::shared_ptr<const Surface<d>>& target_ptr() const { return target_; }
   const MapData<d>& data() const { return data_; }
+  /// Gives up the arrays (this map is left empty), e.g. to attach them to similar copies of the
+  /// surfaces: the arrays hold only local and barycentric coordinates, which a similarity keeps.
+  MapData<d> release_data() && { return std::move(data_); }
 
   Index node_count() const { return static_cast<Index>(data_.node_type.size()); }
   Index region_count() const { return static_cast<Index>(data_.region_target.size()); }

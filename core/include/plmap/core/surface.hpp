@@ -22,7 +22,14 @@ struct EdgeIncidence {
 ///
 /// Construction validates the input and throws InvalidSurfaceError naming the offending element
 /// or vertex: non-finite coordinates, indices out of range, repeated corners, elements of zero
-/// measure (relative to the surface's size) and duplicate elements are rejected. Non-manifold
+/// measure (relative to the surface's size) and duplicate elements are rejected, and so are
+/// surfaces whose element measures are not normal doubles (edge lengths beyond about 1e-150 to
+/// 1e150): measures and normals are computed from scaled edge vectors, so every scale inside that
+/// range gives the same verdicts and the same relative results.
+///
+/// A vertex that no element uses (an isolated vertex, common in OFF and PLY files) is kept, so
+/// that vertex numbers stay those of the file, but it is not part of the surface: it has no
+/// elements, no normal, needs no preimage or image, and the constructions and checks skip it. Non-manifold
 /// configurations (an edge with three or more triangles, vertices joining several fans) and
 /// boundaries are fine.
 ///
@@ -61,12 +68,16 @@ class Surface {
   }
   /// Length (d = 1) or area (d = 2) of element t.
   double element_measure(Index t) const;
-  /// Sum of all element measures.
-  double measure() const;
+  /// Sum of all element measures (computed once, at construction).
+  double measure() const { return measure_; }
   /// Unit normal of element t (for d = 1 the segment direction rotated clockwise).
   WorldPoint<d> element_normal(Index t) const;
   /// Length of the longest edge of the surface; the scale for relative tolerances.
   double max_edge_length() const { return max_edge_length_; }
+  /// The same surface with every coordinate multiplied by 2^exponent: exact (no rounding unless
+  /// coordinates become subnormal), adjacency copied. The constructions work on such a copy of
+  /// unit size, so that their arithmetic is the same at every scale of the input.
+  Surface scaled_by_power_of_two(int exponent) const;
   /// Axis-aligned bounding box.
   WorldPoint<d> bounding_box_min() const { return box_min_; }
   WorldPoint<d> bounding_box_max() const { return box_max_; }
@@ -136,6 +147,7 @@ class Surface {
   std::vector<bool> boundary_vertex_;
 
   double max_edge_length_ = 0.0;
+  double measure_ = 0.0;
   WorldPoint<d> box_min_ = WorldPoint<d>::Zero();
   WorldPoint<d> box_max_ = WorldPoint<d>::Zero();
 };

@@ -33,18 +33,26 @@ struct MapCase {
   std::shared_ptr<const Surface<d>> domain;  ///< S1
   std::shared_ptr<const Surface<d>> target;  ///< S2
   std::shared_ptr<const PlMap<d>> map;
-  /// For every S2 vertex, its preimage on S1 as handed to the builder (element + local coords).
+  /// For every S2 vertex, its preimage on S1 as handed to the builder (element + local coords);
+  /// no_preimage() for an isolated S2 vertex (one no element uses: not part of the surface).
   std::vector<SurfacePoint<d>> target_vertex_preimage;
 };
+
+/// The entry of MapCase::target_vertex_preimage for an isolated S2 vertex: element invalid_index.
+template <int d>
+SurfacePoint<d> no_preimage() {
+  return {invalid_index, LocalPoint<d>::Zero()};
+}
 
 /// Where a point of S1 lies, combinatorially, and as a point on one of its elements.
 template <int d>
 struct DomainLocation {
-  enum class Kind { vertex, edge, element };
+  /// isolated: an S1 vertex that no element uses, so no point of S1 (it gets no preimage).
+  enum class Kind { vertex, edge, element, isolated };
   Kind kind = Kind::element;
   Index index = invalid_index;  ///< S1 vertex / S1 edge (d = 2) / S1 element, by kind
   double edge_parameter = 0.0;  ///< on the edge, from its smaller-index vertex (kind == edge)
-  SurfacePoint<d> point;        ///< always set
+  SurfacePoint<d> point;        ///< always set (no_preimage() for kind isolated)
 };
 
 /// Enters the preimage of S2 vertex `target_vertex` with the builder call that fits `where`.
