@@ -72,6 +72,19 @@ TEST(MapValidation, RegionBeginShiftedIntoAnotherElement) {
   EXPECT_THAT(what, HasSubstr("belongs to another element"));
 }
 
+// Found by the map_edits fuzz target with the validation switched off (its input is checked in
+// as tests/fuzz/corpus/map_edits/regression-overlay-region-begin-shifted): region_begin[k]
+// lowered by one hands element k-1's last region to element k, and the walks of element k
+// answered with a region of element k-1.
+TEST(MapValidation, RegionBeginShiftedDown) {
+  const PlMap<2> base = builder_square_flip();
+  const std::string what = load_error(corrupted_file<2>(base, [](MapData<2>& m) {
+    m.region_begin[1] -= 1;
+    m.start_region[1] = m.region_begin[1] + 1;  // stays inside element 1's new range
+  }));
+  EXPECT_THAT(what, HasSubstr("S1 element"));
+}
+
 TEST(MapValidation, NodeBeginShiftedIntoAnotherElement) {
   const PlMap<2> base = builder_square_flip();
   const std::string what = load_error(corrupted_file<2>(
