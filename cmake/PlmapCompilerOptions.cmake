@@ -11,6 +11,31 @@ if(PLMAP_WERROR)
       -Wno-error=maybe-uninitialized -Wno-error=restrict)
   endif()
 endif()
+if(PLMAP_BUILD_FUZZERS)
+  # libFuzzer needs clang; the check links a tiny fuzz target, so a clang without the fuzzer
+  # runtime (Debian: libclang-rt-dev) is reported here rather than at the first link.
+  include(CheckCXXSourceCompiles)
+  set(CMAKE_REQUIRED_FLAGS -fsanitize=fuzzer)
+  set(CMAKE_REQUIRED_LINK_OPTIONS -fsanitize=fuzzer)
+  check_cxx_source_compiles([[
+    #include <cstddef>
+    #include <cstdint>
+    extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t*, std::size_t) { return 0; }
+  ]] PLMAP_COMPILER_HAS_LIBFUZZER)
+  unset(CMAKE_REQUIRED_FLAGS)
+  unset(CMAKE_REQUIRED_LINK_OPTIONS)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang" OR NOT PLMAP_COMPILER_HAS_LIBFUZZER)
+    message(FATAL_ERROR "PLMAP_BUILD_FUZZERS needs clang with libFuzzer (-fsanitize=fuzzer); on "
+                        "Debian install clang and libclang-rt-dev and configure with "
+                        "-DCMAKE_CXX_COMPILER=clang++ (scripts/fuzz does both)")
+  endif()
+  # Every library gets coverage instrumentation for the fuzzer and both sanitizers; only the
+  # fuzz targets link libFuzzer's main (tests/fuzz/CMakeLists.txt).
+  target_compile_options(plmap_compile_options INTERFACE
+    -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer
+    -fno-sanitize-recover=undefined)
+  target_link_options(plmap_compile_options INTERFACE -fsanitize=address,undefined)
+endif()
 if(PLMAP_SANITIZE)
   target_compile_options(plmap_compile_options INTERFACE
     -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)

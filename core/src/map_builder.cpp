@@ -632,21 +632,27 @@ typename MapBuilder<d>::NodeHandle MapBuilder<d>::add_vertex_preimage_on_edge(In
                                                                             Index domain_edge, double t)
   requires(d == 2)
 {
-  if (domain_edge < 0 || domain_edge >= impl_->s1->edge_count())
-    throw BuilderError(fmt::format("S1 edge {} does not exist", domain_edge));
-  if (!(t >= -impl_->tol() && t <= 1.0 + impl_->tol()))
-    throw BuilderError(fmt::format("parameter {} on S1 edge {} is outside [0, 1]", t, domain_edge));
-  Place<d> p;
-  const auto ev = impl_->s1->edge_vertices(domain_edge);
-  if (const EdgeSnap snap = snap_edge_parameter(t, impl_->tol()); snap != EdgeSnap::inside) {
-    p.kind = PlaceKind::vertex;
-    p.index = ev[snap == EdgeSnap::first_vertex ? 0 : 1];
-  } else {
-    p.kind = PlaceKind::edge;
-    p.index = domain_edge;
-    p.coords(0) = t;
+  // Clang 14 compiles members whose constraints fail when `template class MapBuilder<1>;`
+  // instantiates the class (fixed in clang 15); the `if constexpr` keeps such bodies
+  // compiling there (scripts/fuzz builds with Debian's clang). Same below.
+  if constexpr (d == 2) {
+    if (domain_edge < 0 || domain_edge >= impl_->s1->edge_count())
+      throw BuilderError(fmt::format("S1 edge {} does not exist", domain_edge));
+    if (!(t >= -impl_->tol() && t <= 1.0 + impl_->tol()))
+      throw BuilderError(fmt::format("parameter {} on S1 edge {} is outside [0, 1]", t, domain_edge));
+    Place<d> p;
+    const auto ev = impl_->s1->edge_vertices(domain_edge);
+    if (const EdgeSnap snap = snap_edge_parameter(t, impl_->tol()); snap != EdgeSnap::inside) {
+      p.kind = PlaceKind::vertex;
+      p.index = ev[snap == EdgeSnap::first_vertex ? 0 : 1];
+    } else {
+      p.kind = PlaceKind::edge;
+      p.index = domain_edge;
+      p.coords(0) = t;
+    }
+    return impl_->add_vertex_preimage(target_vertex, p);
   }
-  return impl_->add_vertex_preimage(target_vertex, p);
+  __builtin_unreachable();  // d == 1 never calls it (the constraint)
 }
 
 template <int d>
@@ -661,7 +667,9 @@ template <int d>
 void MapBuilder<d>::add_edge(Index target_edge)
   requires(d == 2)
 {
-  add_edge(target_edge, std::span<const EdgeCrossing>{});
+  if constexpr (d == 2) {
+    add_edge(target_edge, std::span<const EdgeCrossing>{});
+  }
 }
 
 namespace {
@@ -717,7 +725,9 @@ template <int d>
 void MapBuilder<d>::add_edge(Index target_edge, std::span<const EdgeCrossing> crossings)
   requires(d == 2)
 {
-  add_edge_piece(target_edge, crossings, true, true);
+  if constexpr (d == 2) {
+    add_edge_piece(target_edge, crossings, true, true);
+  }
 }
 
 template <int d>
@@ -726,11 +736,13 @@ void MapBuilder<d>::add_edge_piece(Index target_edge, std::span<const EdgeCrossi
                                    bool starts_at_first_vertex, bool ends_at_second_vertex)
   requires(d == 2)
 {
-  auto& im = *impl_;
-  im.check_s2_edge(target_edge);
-  const auto ev = im.s2->edge_vertices(target_edge);
-  im.insert_edge_preimage(target_edge, ev[0], ev[1], crossing_places<d>(im, target_edge, crossings),
-                          starts_at_first_vertex, ends_at_second_vertex);
+  if constexpr (d == 2) {
+    auto& im = *impl_;
+    im.check_s2_edge(target_edge);
+    const auto ev = im.s2->edge_vertices(target_edge);
+    im.insert_edge_preimage(target_edge, ev[0], ev[1], crossing_places<d>(im, target_edge, crossings),
+                            starts_at_first_vertex, ends_at_second_vertex);
+  }
 }
 
 template <int d>
@@ -738,7 +750,9 @@ template <int d>
 void MapBuilder<d>::add_edge(Index target_element, std::span<const VertexCrossing> crossings)
   requires(d == 1)
 {
-  add_edge_piece(target_element, crossings, true, true);
+  if constexpr (d == 1) {
+    add_edge_piece(target_element, crossings, true, true);
+  }
 }
 
 template <int d>
@@ -747,11 +761,13 @@ void MapBuilder<d>::add_edge_piece(Index target_element, std::span<const VertexC
                                    bool starts_at_first_vertex, bool ends_at_second_vertex)
   requires(d == 1)
 {
-  auto& im = *impl_;
-  im.check_s2_element(target_element);
-  const auto& c = im.s2->element(target_element);
-  im.insert_edge_preimage(target_element, c[0], c[1], crossing_places<d>(im, crossings),
-                          starts_at_first_vertex, ends_at_second_vertex);
+  if constexpr (d == 1) {
+    auto& im = *impl_;
+    im.check_s2_element(target_element);
+    const auto& c = im.s2->element(target_element);
+    im.insert_edge_preimage(target_element, c[0], c[1], crossing_places<d>(im, crossings),
+                            starts_at_first_vertex, ends_at_second_vertex);
+  }
 }
 
 template <int d>

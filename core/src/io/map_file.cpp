@@ -2,6 +2,8 @@
 
 #include "plmap/core/errors.hpp"
 #include "plmap/core/io/atomic_file.hpp"
+#include "plmap/core/io/surface_format.hpp"
+#include "plmap/core/map_validation.hpp"
 
 #include <fmt/format.h>
 
@@ -266,6 +268,7 @@ class MapFileReader {
   }
 
   const std::string& file() const { return file_; }
+  std::string_view content() const { return content_; }
 
  private:
   std::string_view next_line() {
@@ -294,7 +297,24 @@ struct Header {
   int orientation = 0;
 };
 
+/// A surface file given where a map is expected is common enough to deserve its own message
+/// (the field-count error it would otherwise get says nothing useful). The content decides; the
+/// extension only when the content is not recognised (binary STL has no magic word).
+void reject_surface_file(std::string_view content, const std::string& file) {
+  if (content.starts_with(map_file_magic)) return;
+  std::optional<SurfaceFormat> format = format_from_content(content.substr(0, 4096));
+  const bool by_extension = !format;
+  if (!format) format = format_from_extension(file);
+  if (format) {
+    throw ParseError(file, "",
+                     fmt::format("this is a surface file ({}{}), not a map (.plmap); build a map "
+                                 "from surfaces first",
+                                 format_name(*format), by_extension ? " by its extension" : ""));
+  }
+}
+
 Header read_header(MapFileReader& r) {
+  reject_surface_file(r.content(), r.file());
   r.enter_section("header");
   Fields f = r.next_record(2);
   if (f.token[0] != map_file_magic) {
@@ -422,8 +442,12 @@ PlMap<d> read_map_body(MapFileReader& r, int orientation) {
   m.start_region = read_index_array(r, "start_region");
   r.expect_end();
 
+  // A file is untrusted input: beyond the constructor's index ranges, everything the queries
+  // rely on is validated, so that a map that loads is safe for every command.
   try {
-    return PlMap<d>(std::move(domain), std::move(target), std::move(m));
+    PlMap<d> map(std::move(domain), std::move(target), std::move(m));
+    validate_map_structure(map);
+    return map;
   } catch (const InvalidMapError& e) {
     throw InvalidMapError(fmt::format("{}: {}", r.file(), e.what()));
   }

@@ -120,7 +120,9 @@ MapCase<2> plane_overlay_map(std::shared_ptr<const Surface<2>> s1, std::shared_p
   std::vector<std::vector<EdgeCrossing>> crossings(s2->edge_count());
   std::vector<bool> passed(s1->vertex_count(), false);
   for (Index e = 0; e < s2->edge_count(); ++e) {
-    const auto [u, v] = s2->edge_vertices(e);  // u < v: crossings are listed from u
+    // u < v: crossings are listed from u. Not a structured binding: the lambda below captures
+    // u and v, which clang 14 (scripts/fuzz) does not allow for bindings.
+    const Index u = s2->edge_vertices(e)[0], v = s2->edge_vertices(e)[1];
     const Eigen::Vector2d pu = xy(s2->vertex(u)), pv = xy(s2->vertex(v));
     const Eigen::Vector2d dir = pv - pu;
     std::vector<std::pair<Index, double>> vertex_passes;  // S1 vertex, parameter on e

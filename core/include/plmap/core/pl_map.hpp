@@ -90,7 +90,8 @@ class PlMap {
   static constexpr int dimension = d;
 
   /// Takes ownership of the arrays; throws InvalidMapError if their sizes do not fit the
-  /// surfaces (a cheap structural check; verify/ does the full one).
+  /// surfaces or an index is out of range (a cheap structural check). Loading a file also runs
+  /// validate_map_structure (map_validation.hpp); verify/ does the full check.
   PlMap(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
         MapData<d> data);
 

@@ -9,9 +9,11 @@
 ///
 /// Loading never trusts the file: every count is bounded by the bytes left in the file before
 /// anything is allocated, every syntax error is a ParseError naming the file, line and section,
-/// and the surfaces and the map then pass the constructors' checks (InvalidSurfaceError,
-/// InvalidMapError, with the file name prepended). Structural invariants beyond index ranges are
-/// for verify/ to check.
+/// and the surfaces and the map then pass the constructors' checks and validate_map_structure
+/// (InvalidSurfaceError, InvalidMapError, with the file name prepended): a map that loads is safe
+/// for every query, listing, drawing and check. The invariants of DESIGN.md §4 beyond that
+/// (orientation, tiling, continuity, ...) are for verify/ to check. A surface file given as a
+/// map is a ParseError that says so.
 
 #include <plmap/core/pl_map.hpp>
 

@@ -1,0 +1,123 @@
+#include <plmap/core/errors.hpp>
+#include <plmap/core/map_validation.hpp>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <string>
+
+namespace plmap {
+
+namespace {
+
+/// The defect of one element; the message starts with the element so that the command line
+/// names it whatever the defect is.
+[[noreturn]] void fail(Index element, const std::string& what) {
+  throw InvalidMapError(fmt::format("map arrays are inconsistent at S1 element {}: {}", element, what));
+}
+
+/// Whether `location` is where a node of `type` can sit on a d-simplex: a corner (0..d) for
+/// corner and ghost nodes, a local edge (0..2, d = 2 only) for touching and intersection nodes,
+/// -1 for interior nodes.
+template <int d>
+bool location_fits(NodeType type, int location) {
+  if (is_at_corner(type)) return location >= 0 && location <= d;
+  if (is_on_edge(type)) return d == 2 && location >= 0 && location <= 2;
+  return type == NodeType::interior && location == -1;
+}
+
+/// The S2 entity a node of `type` stands for must exist: an S2 vertex for vertex preimages, an
+/// S2 edge for intersection nodes, none (invalid_index) for ghost nodes.
+template <int d>
+bool target_fits(NodeType type, Index target, const Surface<d>& s2) {
+  if (is_target_vertex_preimage(type)) return target >= 0 && target < s2.vertex_count();
+  if (type == NodeType::intersection) return target >= 0 && target < s2.edge_count();
+  return type == NodeType::ghost && target == invalid_index;
+}
+
+/// Whether local coordinates lie on the reference element up to a generous margin. Nodes and
+/// their images lie on their elements up to rounding (verify/ checks that exactly); the bound
+/// keeps every derived quantity (world positions, grid cells of the locators, pictures) finite
+/// and in range, whatever a file holds. Local coordinates are scale-free, so the margin is too.
+template <int d>
+bool near_reference_element(const LocalPoint<d>& x) {
+  constexpr double margin = 0.25;
+  return barycentric_from_local<d>(x).minCoeff() >= -margin;
+}
+
+template <int d>
+void validate_nodes(const PlMap<d>& map, Index t) {
+  const MapData<d>& m = map.data();
+  const Index first = map.nodes_begin(t), end = map.nodes_end(t);
+  auto own = [&](Index q) { return q >= first && q < end; };
+  for (Index n = first; n < end; ++n) {
+    const NodeType type = m.node_type[n];
+    if (static_cast<int>(type) >= node_type_count)
+      fail(t, fmt::format("node {} has an unknown type {}", n, static_cast<int>(type)));
+    if (!location_fits<d>(type, m.node_location[n]))
+      fail(t, fmt::format("node {} ({}) has location {}", n, to_string(type), m.node_location[n]));
+    if (!target_fits<d>(type, m.node_target[n], map.target()))
+      fail(t, fmt::format("node {} ({}) stands for S2 {} {}, which does not exist", n,
+                          to_string(type), type == NodeType::intersection ? "edge" : "vertex",
+                          m.node_target[n]));
+    if (!m.node_position[n].allFinite() || !m.node_image[n].local.allFinite())
+      fail(t, fmt::format("node {} has a non-finite position or image", n));
+    if (!near_reference_element<d>(m.node_position[n]))
+      fail(t, fmt::format("node {} lies outside its element (local coordinates {})", n,
+                          fmt::join(m.node_position[n].data(), m.node_position[n].data() + d, ", ")));
+    if (!near_reference_element<d>(m.node_image[n].local))
+      fail(t, fmt::format("the image of node {} lies outside its S2 element {} (local coordinates {})",
+                          n, m.node_image[n].element,
+                          fmt::join(m.node_image[n].local.data(), m.node_image[n].local.data() + d, ", ")));
+    for (const Index q : map.neighbors(n))
+      if (!own(q) || q == n)
+        fail(t, fmt::format("node {} lists neighbour {}, which is not another node of element {}",
+                            n, q, t));
+  }
+  if constexpr (d == 2) {
+    for (int k = 0; k < 3; ++k)
+      for (const Index q : map.edge_nodes(t, k))
+        if (!own(q))
+          fail(t, fmt::format("the node list of local edge {} holds node {} of another element", k, q));
+  }
+}
+
+template <int d>
+void validate_regions(const PlMap<d>& map, Index t) {
+  const MapData<d>& m = map.data();
+  const Index first_node = map.nodes_begin(t), end_node = map.nodes_end(t);
+  const Index first = map.regions_begin(t), end = map.regions_end(t);
+  for (Index r = first; r < end; ++r) {
+    for (const Index c : m.region_corners[r])
+      if (c < first_node || c >= end_node)
+        fail(t, fmt::format("region {} has corner node {}, which belongs to another element", r, c));
+    if (!m.region_map[r].allFinite()) fail(t, fmt::format("region {} has a non-finite affine map", r));
+    for (const Index q : m.region_neighbors[r]) {
+      if (q == invalid_index) continue;
+      if (q < first || q >= end || q == r)
+        fail(t, fmt::format("region {} lists neighbour region {}, which is not another region of "
+                            "element {}",
+                            r, q, t));
+      // Walks step across sides in both directions: the neighbour must list r in return.
+      const auto& back = m.region_neighbors[q];
+      if (std::find(back.begin(), back.end(), r) == back.end())
+        fail(t, fmt::format("region {} lists neighbour region {}, which does not list it back", r, q));
+    }
+  }
+}
+
+}  // namespace
+
+template <int d>
+void validate_map_structure(const PlMap<d>& map) {
+  for (Index t = 0; t < map.domain().element_count(); ++t) {
+    validate_nodes(map, t);
+    validate_regions(map, t);
+  }
+}
+
+template void validate_map_structure<1>(const PlMap<1>&);
+template void validate_map_structure<2>(const PlMap<2>&);
+
+}  // namespace plmap
