@@ -717,8 +717,42 @@ class Projector {
   std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const WorldPoint<d>& seed_point, int seed_count,
                                                       bool& solver_failed, NearestElements<d>* nearest) {
     std::array<std::uint32_t, 32> seeds;
-    const int count = nearest_seeds(*index1_, nearest, seed_point, seed_count, seeds);
+    int count = nearest_seeds(*index1_, nearest, seed_point, seed_count, seeds);
+    count = add_long_elements_through(seed_point, seeds, count);
     return walk_to_preimage(q, seeds, count, solver_failed);
+  }
+
+  /// The nearest centroids miss an element that passes right by x when its centroid lies
+  /// farther than theirs (a long element among short ones: the steep sides of a zigzag curve),
+  /// and the walks from the seeds stop at the first element that holds a solution, which may rank
+  /// worse than the one on the missed element (an S2 vertex on S1 then takes a preimage off
+  /// itself). Such elements are added as seeds, nearest centroid first, up to 32: those whose
+  /// bounding box lies nearer to x than the nearest seed's centroid. Every element within that
+  /// distance of x has its centroid within it plus the largest centroid-to-corner distance, and
+  /// on meshes of even element size the elements around x are seeds already, so this adds none.
+  int add_long_elements_through(const WorldPoint<d>& x, std::array<std::uint32_t, 32>& seeds, int count) const {
+    if (count == 0 || count >= 32) return count;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < count; ++i) nearest = std::min(nearest, index1_->squared_distance(x, seeds[i]));
+    nearest = std::sqrt(nearest);
+    std::vector<std::pair<double, Index>> added;
+    for (Index t : index1_->within(x, nearest + index1_->radius)) {
+      if (std::find(seeds.begin(), seeds.begin() + count, static_cast<std::uint32_t>(t)) != seeds.begin() + count)
+        continue;
+      WorldPoint<d> low = s1_.corner(t, 0), high = low;
+      for (int k = 1; k <= d; ++k) {
+        low = low.cwiseMin(s1_.corner(t, k));
+        high = high.cwiseMax(s1_.corner(t, k));
+      }
+      const double box_distance = (x.cwiseMax(low).cwiseMin(high) - x).norm();
+      if (box_distance < nearest) added.emplace_back(index1_->squared_distance(x, static_cast<std::uint32_t>(t)), t);
+    }
+    std::sort(added.begin(), added.end());
+    for (const auto& [unused, t] : added) {
+      if (count == 32) break;
+      seeds[count++] = static_cast<std::uint32_t>(t);
+    }
+    return count;
   }
 
   /// Eq. (3) for S2 vertex q on walks across S1 from the first `count` of `seeds`: the solution
