@@ -1278,6 +1278,11 @@ class Projector {
     const auto& pa = target_place_[tv[0]];
     const auto& pb = target_place_[tv[1]];
     bool reached_second = false, first_walk_failed = false;
+    // The entry whose walk reached the second vertex, if that was no walk from the first vertex:
+    // the boundary-entry search also finds points where the edge only touches S1's boundary
+    // from inside (it comes over S1 and meets a boundary vertex, then runs along the boundary),
+    // and the stretch before such a point would be lost (see the backward walk below).
+    std::optional<double> second_reached_from_entry;
     // Pieces are disjoint intervals of the edge parameter; an entry inside an interval already
     // walked is where that walk left S1 (or a re-detection of it), not a new piece.
     double covered_until = -1.0;
@@ -1326,22 +1331,37 @@ class Projector {
       }
       const bool reached = w.end == WalkEnd::reached;
       reached_second |= reached;
+      if (reached) second_reached_from_entry = entry.eta;
       add_piece(begin, false, reached);
     }
     // The second vertex has a preimage that no walk reached: the edge enters S1 across its boundary
     // at a point the boundary-entry search cannot see (that search needs an image of one end of
     // the S1 boundary edge; both may lie outside S2 or over a hole of S2). Walking backwards from
     // the second vertex finds the entry as the point where the reversed walk leaves S1.
-    if (pb && !reached_second && !first_walk_failed) {
+    // It also runs when the second vertex was reached only from an entry: if it leaves S1
+    // before that entry, the entry was a touch of the boundary from inside, and its piece is
+    // replaced by the longer one (whose crossings follow it in the buffer).
+    if (pb && (!reached_second || second_reached_from_entry) && !first_walk_failed) {
       const std::size_t begin = crossings.size();
       const WalkResult<d> w = walk(e, *pb, 0.0, std::nullopt, true, buffer);
       if (w.end == WalkEnd::left_boundary && w.crossing_count > 0) {
         // measured from the first vertex again, in the edge's direction
-        std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(begin), crossings.end());
-        for (std::size_t i = begin; i < crossings.size(); ++i)
-          crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
-        add_piece(begin, false, true);
-        reached_second = true;
+        if (second_reached_from_entry && !(1.0 - w.eta < *second_reached_from_entry - 1e-9)) {
+          crossings.resize(begin);  // no farther back than the entry: the entry's piece stands
+        } else {
+          std::size_t piece_begin = begin;
+          if (second_reached_from_entry) {  // the entry's piece is the last one: replace it
+            piece_begin = buffer.pieces.back().begin;
+            crossings.erase(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin),
+                            crossings.begin() + static_cast<std::ptrdiff_t>(begin));
+            buffer.pieces.pop_back();
+          }
+          std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin), crossings.end());
+          for (std::size_t i = piece_begin; i < crossings.size(); ++i)
+            crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
+          add_piece(piece_begin, false, true);
+          reached_second = true;
+        }
       } else {
         crossings.resize(begin);
         if (w.end == WalkEnd::failed && w.reason != EdgeFailureReason::endpoint_without_preimage)
