@@ -729,12 +729,19 @@ class Projector {
   /// itself). Such elements are added as seeds, nearest centroid first, up to 32: those whose
   /// bounding box lies nearer to x than the nearest seed's centroid. Every element within that
   /// distance of x has its centroid within it plus the largest centroid-to-corner distance, and
-  /// on meshes of even element size the elements around x are seeds already, so this adds none.
+  /// on meshes of even element size those are seeds already, so this adds none and costs no query.
   int add_long_elements_through(const WorldPoint<d>& x, std::array<std::uint32_t, 32>& seeds, int count) const {
     if (count == 0 || count >= 32) return count;
-    double nearest = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < count; ++i) nearest = std::min(nearest, index1_->squared_distance(x, seeds[i]));
+    double nearest = std::numeric_limits<double>::infinity(), farthest = 0.0;
+    for (int i = 0; i < count; ++i) {
+      const double squared = index1_->squared_distance(x, seeds[i]);
+      nearest = std::min(nearest, squared);
+      farthest = std::max(farthest, squared);
+    }
     nearest = std::sqrt(nearest);
+    // The seeds are the nearest centroids: if they reach beyond that bound, or are all there are,
+    // every candidate is a seed already (the usual case, at the cost of no tree query).
+    if (count >= index1_->size() || std::sqrt(farthest) > nearest + index1_->radius) return count;
     std::vector<std::pair<double, Index>> added;
     for (Index t : index1_->within(x, nearest + index1_->radius)) {
       if (std::find(seeds.begin(), seeds.begin() + count, static_cast<std::uint32_t>(t)) != seeds.begin() + count)
