@@ -1371,7 +1371,9 @@ class Projector {
         }
       } else {
         crossings.resize(begin);
-        if (w.end == WalkEnd::failed && w.reason != EdgeFailureReason::endpoint_without_preimage)
+        // after an entry's piece, a failure may lie where that piece's walk passed: not reported
+        if (w.end == WalkEnd::failed && !second_reached_from_entry &&
+            w.reason != EdgeFailureReason::endpoint_without_preimage)
           buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
       }
     }
