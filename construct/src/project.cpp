@@ -720,8 +720,49 @@ class Projector {
   std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const WorldPoint<d>& seed_point, int seed_count,
                                                       bool& solver_failed, NearestElements<d>* nearest) {
     std::array<std::uint32_t, 32> seeds;
-    const int count = nearest_seeds(*index1_, nearest, seed_point, seed_count, seeds);
+    int count = nearest_seeds(*index1_, nearest, seed_point, seed_count, seeds);
+    count = add_long_elements_through(seed_point, seeds, count);
     return walk_to_preimage(q, seeds, count, solver_failed);
+  }
+
+  /// The nearest centroids miss an element that passes right by x when its centroid lies
+  /// farther than theirs (a long element among short ones: the steep sides of a zigzag curve),
+  /// and the walks from the seeds stop at the first element that holds a solution, which may rank
+  /// worse than the one on the missed element (an S2 vertex on S1 then takes a preimage off
+  /// itself). Such elements are added as seeds, nearest centroid first, up to 32: those whose
+  /// bounding box lies nearer to x than the nearest seed's centroid. Every element within that
+  /// distance of x has its centroid within it plus the largest centroid-to-corner distance, and
+  /// on meshes of even element size those are seeds already, so this adds none and costs no query.
+  int add_long_elements_through(const WorldPoint<d>& x, std::array<std::uint32_t, 32>& seeds, int count) const {
+    if (count == 0 || count >= 32) return count;
+    double nearest = std::numeric_limits<double>::infinity(), farthest = 0.0;
+    for (int i = 0; i < count; ++i) {
+      const double squared = index1_->squared_distance(x, seeds[i]);
+      nearest = std::min(nearest, squared);
+      farthest = std::max(farthest, squared);
+    }
+    nearest = std::sqrt(nearest);
+    // The seeds are the nearest centroids: if they reach beyond that bound, or are all there are,
+    // every candidate is a seed already (the usual case, at the cost of no tree query).
+    if (count >= index1_->size() || std::sqrt(farthest) > nearest + index1_->radius) return count;
+    std::vector<std::pair<double, Index>> added;
+    for (Index t : index1_->within(x, nearest + index1_->radius)) {
+      if (std::find(seeds.begin(), seeds.begin() + count, static_cast<std::uint32_t>(t)) != seeds.begin() + count)
+        continue;
+      WorldPoint<d> low = s1_.corner(t, 0), high = low;
+      for (int k = 1; k <= d; ++k) {
+        low = low.cwiseMin(s1_.corner(t, k));
+        high = high.cwiseMax(s1_.corner(t, k));
+      }
+      const double box_distance = (x.cwiseMax(low).cwiseMin(high) - x).norm();
+      if (box_distance < nearest) added.emplace_back(index1_->squared_distance(x, static_cast<std::uint32_t>(t)), t);
+    }
+    std::sort(added.begin(), added.end());
+    for (const auto& [unused, t] : added) {
+      if (count == 32) break;
+      seeds[count++] = static_cast<std::uint32_t>(t);
+    }
+    return count;
   }
 
   /// Eq. (3) for S2 vertex q on walks across S1 from the first `count` of `seeds`: the solution
@@ -1248,6 +1289,11 @@ class Projector {
     const auto& pa = target_place_[tv[0]];
     const auto& pb = target_place_[tv[1]];
     bool reached_second = false, first_walk_failed = false;
+    // The entry whose walk reached the second vertex, if that was no walk from the first vertex:
+    // the boundary-entry search also finds points where the edge only touches S1's boundary
+    // from inside (it comes over S1 and meets a boundary vertex, then runs along the boundary),
+    // and the stretch before such a point would be lost (see the backward walk below).
+    std::optional<double> second_reached_from_entry;
     // Pieces are disjoint intervals of the edge parameter; an entry inside an interval already
     // walked is where that walk left S1 (or a re-detection of it), not a new piece.
     double covered_until = -1.0;
@@ -1296,25 +1342,42 @@ class Projector {
       }
       const bool reached = w.end == WalkEnd::reached;
       reached_second |= reached;
+      if (reached) second_reached_from_entry = entry.eta;
       add_piece(begin, false, reached);
     }
     // The second vertex has a preimage that no walk reached: the edge enters S1 across its boundary
     // at a point the boundary-entry search cannot see (that search needs an image of one end of
     // the S1 boundary edge; both may lie outside S2 or over a hole of S2). Walking backwards from
     // the second vertex finds the entry as the point where the reversed walk leaves S1.
-    if (pb && !reached_second && !first_walk_failed) {
+    // It also runs when the second vertex was reached only from an entry: if it leaves S1
+    // before that entry, the entry was a touch of the boundary from inside, and its piece is
+    // replaced by the longer one (whose crossings follow it in the buffer).
+    if (pb && (!reached_second || second_reached_from_entry) && !first_walk_failed) {
       const std::size_t begin = crossings.size();
       const WalkResult<d> w = walk(e, *pb, 0.0, std::nullopt, true, buffer);
       if (w.end == WalkEnd::left_boundary && w.crossing_count > 0) {
         // measured from the first vertex again, in the edge's direction
-        std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(begin), crossings.end());
-        for (std::size_t i = begin; i < crossings.size(); ++i)
-          crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
-        add_piece(begin, false, true);
-        reached_second = true;
+        if (second_reached_from_entry && !(1.0 - w.eta < *second_reached_from_entry - 1e-9)) {
+          crossings.resize(begin);  // no farther back than the entry: the entry's piece stands
+        } else {
+          std::size_t piece_begin = begin;
+          if (second_reached_from_entry) {  // the entry's piece is the last one: replace it
+            piece_begin = buffer.pieces.back().begin;
+            crossings.erase(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin),
+                            crossings.begin() + static_cast<std::ptrdiff_t>(begin));
+            buffer.pieces.pop_back();
+          }
+          std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin), crossings.end());
+          for (std::size_t i = piece_begin; i < crossings.size(); ++i)
+            crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
+          add_piece(piece_begin, false, true);
+          reached_second = true;
+        }
       } else {
         crossings.resize(begin);
-        if (w.end == WalkEnd::failed && w.reason != EdgeFailureReason::endpoint_without_preimage)
+        // after an entry's piece, a failure may lie where that piece's walk passed: not reported
+        if (w.end == WalkEnd::failed && !second_reached_from_entry &&
+            w.reason != EdgeFailureReason::endpoint_without_preimage)
           buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
       }
     }
