@@ -26,6 +26,7 @@ Json quality_json(const AspectRatioSummary& q) {
 }
 
 int run_refine(const RefineCommand& o) {
+  check_output_file(o.output, OutputKind::surface, {{"MAP", o.map}});
   require_readable_file(o.map);
   AnyPlMap any = load_map(o.map);
   if (!std::holds_alternative<PlMap<2>>(any))

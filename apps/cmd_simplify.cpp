@@ -58,6 +58,12 @@ int run_simplify(const SimplifyCommand& o) {
   (void)make_star_flattening(o.flattening);
   (void)make_hole_triangulation(o.hole_triangulation);
 
+  check_output_file(o.output, OutputKind::map, {{"FINE", o.fine}});
+  if (!o.coarse.empty()) {
+    check_output_file(o.coarse, OutputKind::surface, {{"FINE", o.fine}});
+    if (same_file(o.coarse, o.output))
+      throw UsageError(fmt::format("{}: --coarse and -o name the same file", o.coarse));
+  }
   // Both outputs are written after the run; a missing directory is found before it, so that a
   // failed write cannot leave one file without the other.
   for (const std::string& out : {o.output, o.coarse}) {

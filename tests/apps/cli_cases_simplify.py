@@ -93,3 +93,19 @@ def refine_through_a_simplified_map():
     expect_clean_error(["refine", "curve.plmap", "-o", "never.off"], mention="curves")
     expect_clean_error(["refine", "missing.plmap", "-o", "never.off"], mention="missing.plmap")
     expect(not os.path.exists(os.path.join(WORK, "never.off")), "never.off was written")
+
+
+@case
+def simplify_and_refine_refuse_outputs_that_are_inputs():
+    fine = hill(points=60, seed=14)
+    before = open(os.path.join(WORK, fine), "rb").read()
+    expect_clean_error(["simplify", fine, "-o", "m.plmap", "--coarse", fine, "--target-elements", 40],
+                       code=64, mention=fine)
+    expect_clean_error(["simplify", fine, "-o", "m.off", "--target-elements", 40], code=64, mention="m.off")
+    expect_clean_error(["simplify", fine, "-o", "m.plmap", "--coarse", "m.plmap", "--target-elements", 40],
+                       code=64, mention="m.plmap")
+    expect(open(os.path.join(WORK, fine), "rb").read() == before, "simplify replaced its input")
+    run("simplify", fine, "-o", "m.plmap", "--target-elements", 40)
+    expect_clean_error(["refine", "m.plmap", "--levels", 1, "-o", "m.plmap"], code=64, mention="m.plmap")
+    expect_clean_error(["refine", "m.plmap", "--levels", 1, "-o", "r.plmap"], code=64, mention="r.plmap")
+    run("refine", "m.plmap", "--levels", 1, "-o", "r.off")
