@@ -1,8 +1,7 @@
 // Normal projection with discontinuous direction fields (issue 12, defect 5): every S1 vertex
 // gets its own random direction, unrelated to its neighbours'. The projection is then neither
 // continuous nor injective in many places; it must still never return a map that verify
-// rejects (but for the known image_overlap limitation below): what cannot be mapped is left out
-// of D and reported. Before, about one field in seven
+// rejects: what cannot be mapped is left out of D and reported. Before, about one field in seven
 // gave a region whose image collapsed onto an S2 edge (fold_over), because the closure cut a
 // face whose image has the face's orientation into triangles of which one had no image area.
 //
@@ -66,20 +65,12 @@ RC_GTEST_PROP(ProjectRandomDirections, DiscontinuousFieldsNeverGiveAnInvalidMap,
   o.directions = random_directions(s1->vertex_count(), tilt, any_direction, rng);
   o.allow_negative_distance = negative;
   const auto r = project<2>(s1, s2, o);
-  // Every invariant holds except, rarely, image_overlap: two regions of one S1 element whose
-  // images overlap on an S2 element they do not fill, which the projection's overlap step
-  // (docs/projection.md, step 6) does not look for. Known limitation, about 1 case in 600.
+  // Every invariant holds, image_overlap included: two regions of one element whose images
+  // overlap on a partly covered S2 element are found by step 6 (docs/projection.md).
   const VerificationReport report = verify(r.map);
   std::string violations;
-  bool overlap_only = false;
   for (const auto& check : report.checks)
-    for (const auto& v : check.violations) {
-      if (v.rule == "image_overlap") {
-        overlap_only = true;
-        continue;
-      }
+    for (const auto& v : check.violations)
       violations += check.name + "/" + v.rule + " element " + std::to_string(v.element) + ": " + v.message + "\n";
-    }
-  if (overlap_only) RC_TAG("image overlap within a sheet (known limitation)");
   if (!violations.empty()) RC_FAIL(what + "\n" + violations);
 }
