@@ -145,7 +145,10 @@ TEST(Smooth, RefusesBadOptions) {
   EXPECT_THROW((void)smooth(*c.map, options), Error);
 }
 
-TEST(Smooth, KappaFallsOnASimplifiedSphere) {
+// The simplified sphere starts nearly isometric (κ max 2.2, mean 1.24): mean-value weights still
+// lower both; Floater's weights raise κ max (to 16) and uniform weights much more (to 400), so
+// for them only validity is asserted (their numbers are in docs/algorithms/smoothing.md).
+TEST(Smooth, MeanValueWeightsLowerKappaOnASimplifiedSphere) {
   generators::Rng rng(20261202);
   auto fine = std::make_shared<const Surface<2>>(generators::icosphere({3, 0.1}, rng));  // 1280 triangles
   SimplifyOptions so;
@@ -161,11 +164,14 @@ TEST(Smooth, KappaFallsOnASimplifiedSphere) {
     VerifyOptions v;
     v.expect_parametrization = true;
     EXPECT_TRUE(verify(result.map, v).ok());
+    EXPECT_GT(result.report.sweeps.at(0).nodes_moved, 0);
     const QualityReport after = compute_quality(result.map);
-    EXPECT_LT(after.kappa_max, before.kappa_max);
-    EXPECT_LT(after.kappa_mean, before.kappa_mean);
     std::cout << weights << ": kappa max " << before.kappa_max << " -> " << after.kappa_max << ", mean "
               << before.kappa_mean << " -> " << after.kappa_mean << "\n";
+    if (weights == "mean-value") {
+      EXPECT_LT(after.kappa_max, before.kappa_max);
+      EXPECT_LT(after.kappa_mean, before.kappa_mean);
+    }
   }
 }
 
