@@ -12,6 +12,12 @@
 #include <new>
 #include <string>
 
+namespace plmap::cli {
+// Declared here rather than in cli_common.hpp, which every command includes: a new command then
+// does not recompile all the others (cmd_smooth.cpp).
+void register_smooth(CLI::App& app, Action& action);
+}  // namespace plmap::cli
+
 namespace {
 
 constexpr const char* description =
@@ -96,6 +102,7 @@ int main(int argc, char** argv) {
   register_experiment(app, action);
   register_project(app, action);
   register_simplify(app, action);
+  register_smooth(app, action);
   register_refine(app, action);
   reject_bad_numbers(app);  // after every command is registered: it sweeps all their options
 

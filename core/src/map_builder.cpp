@@ -9,6 +9,7 @@
 
 #include "element_closure.hpp"
 
+#include <plmap/core/affine_through.hpp>
 #include <plmap/core/element_transfer.hpp>
 #include <plmap/core/errors.hpp>
 #include <plmap/core/map_builder.hpp>
@@ -845,26 +846,6 @@ LocalPoint<d> support_local(const Surface<d>& s2, const Support<d>& s, Index t) 
     y(k - 1) = s.weight[i];
   }
   return y;
-}
-
-/// The affine map taking the corners `from` to `to`. Closure triangles can be slivers, whose
-/// maps are ill-conditioned; working relative to corner 0 in extended precision keeps the map's
-/// values at the corners within rounding of the given images even then.
-template <int d>
-AffineMap<d> affine_through(const std::array<LocalPoint<d>, d + 1>& from,
-                            const std::array<LocalPoint<d>, d + 1>& to) {
-  using Real = long double;
-  Eigen::Matrix<Real, d, d> f, t;
-  for (int k = 1; k <= d; ++k) {
-    f.col(k - 1) = (from[k].template cast<Real>() - from[0].template cast<Real>());
-    t.col(k - 1) = (to[k].template cast<Real>() - to[0].template cast<Real>());
-  }
-  const Eigen::Matrix<Real, d, d> linear = t * f.inverse();
-  const Eigen::Matrix<Real, d, 1> offset = to[0].template cast<Real>() - linear * from[0].template cast<Real>();
-  AffineMap<d> map;
-  map.template leftCols<d>() = linear.template cast<double>();
-  map.col(d) = offset.template cast<double>();
-  return map;
 }
 
 /// Joins the parts assembled per block of elements (each numbered from 0) into one map: arrays
