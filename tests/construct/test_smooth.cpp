@@ -129,9 +129,11 @@ TEST(Smooth, GeometricWeightsKeepAnIsometricMap) {
     SmoothOptions options;
     options.weights = weights;
     const SmoothResult result = smooth(*c.map, options);
-    for (Index n = 0; n < result.map.node_count(); ++n)
-      if (result.map.data().node_type[n] == NodeType::interior)
+    for (Index n = 0; n < result.map.node_count(); ++n) {
+      if (result.map.data().node_type[n] == NodeType::interior) {
         EXPECT_LT((result.map.data().node_position[n] - LocalPoint<2>(0.7, 0.1)).norm(), 1e-14) << weights;
+      }
+    }
   }
 }
 
