@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <span>
 #include <thread>
 
 namespace plmap::python {
@@ -109,60 +110,96 @@ QueryArrays query_arrays(const Surface<d>& surface, const char* what, const char
 /// much as the evaluation itself for millions of points).
 constexpr std::size_t points_per_thread_and_batch = std::size_t{1} << 16;
 
+/// Whether a forward or inverse evaluation found its point, and the point on the other surface.
+template <int d>
+bool found(const Evaluation<d>& e) { return e.in_domain; }
+template <int d>
+const SurfacePoint<d>& answer_point(const Evaluation<d>& e) { return e.image; }
+template <int d>
+bool found(const InverseEvaluation<d>& e) { return e.in_image; }
+template <int d>
+const SurfacePoint<d>& answer_point(const InverseEvaluation<d>& e) { return e.preimage; }
+
+/// The answers of evaluate and inverse as numpy arrays, one row per query point: found, region,
+/// the point on the other surface (element, local coordinates) and its world position; -1 and
+/// NaN where the point was not found.
+template <int d>
+struct AnswerArrays {
+  py::array_t<bool> found;
+  py::array_t<Index> region, element;
+  py::array_t<double> local, world;
+
+  explicit AnswerArrays(py::ssize_t n)
+      : found(n), region(n), element(n), local(std::vector<py::ssize_t>{n, d}),
+        world(std::vector<py::ssize_t>{n, d + 1}) {}
+
+  py::dict to_dict(const char* found_key, const char* element_key, const char* local_key) const {
+    py::dict result;
+    result[found_key] = found;
+    result["region"] = region;
+    result[element_key] = element;
+    result[local_key] = local;
+    result["world"] = world;
+    return result;
+  }
+};
+
+/// Answers the queries `q` in batches of reused buffers: `solve(points, out)` evaluates one batch
+/// (on its threads). Call without the GIL: it touches only raw pointers into arrays the caller's
+/// frame owns.
+template <int d, class Result, class Solve>
+void answer_in_batches(const QueryArrays& q, unsigned threads, AnswerArrays<d>& a, Solve&& solve) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  const py::ssize_t n = q.elements.shape(0);
+  const std::int64_t* e_in = q.elements.data();
+  const double* x_in = q.local.data();
+  bool* in = a.found.mutable_data();
+  Index* r = a.region.mutable_data();
+  Index* el = a.element.mutable_data();
+  double* lo = a.local.mutable_data();
+  double* w = a.world.mutable_data();
+  const unsigned workers = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t points_per_batch = points_per_thread_and_batch * workers;
+  std::vector<SurfacePoint<d>> points;
+  std::vector<Result> out;
+  for (py::ssize_t begin = 0; begin < n;) {
+    const auto count = static_cast<py::ssize_t>(std::min<std::size_t>(points_per_batch, n - begin));
+    points.resize(count);
+    out.resize(count);
+    for (py::ssize_t i = 0; i < count; ++i) {
+      points[i].element = static_cast<Index>(e_in[begin + i]);
+      for (int k = 0; k < d; ++k) points[i].local(k) = x_in[(begin + i) * d + k];
+    }
+    solve(std::span<const SurfacePoint<d>>(points), std::span<Result>(out));
+    for (py::ssize_t i = 0; i < count; ++i) {
+      const Result& ev = out[i];
+      const bool ok = found(ev);
+      const py::ssize_t j = begin + i;
+      in[j] = ok;
+      r[j] = ok ? ev.region : invalid_index;
+      el[j] = ok ? answer_point(ev).element : invalid_index;
+      for (int k = 0; k < d; ++k) lo[j * d + k] = ok ? answer_point(ev).local(k) : nan;
+      for (int k = 0; k <= d; ++k) w[j * (d + 1) + k] = ok ? ev.world(k) : nan;
+    }
+    begin += count;
+  }
+}
+
 template <int d>
 py::dict evaluate_points(const PlMap<d>& map, py::handle elements, py::handle local,
                          const std::optional<std::string>& locator_name, unsigned threads) {
   const QueryArrays q = query_arrays(map.domain(), "evaluate", "S1", elements, local);
   const std::string name(locator_name ? *locator_name : std::string(default_point_locator_name<d>()));
-  const auto n = q.elements.shape(0);
-  py::array_t<bool> in_domain(n);
-  py::array_t<Index> region(n), image_element(n);
-  py::array_t<double> image_local(std::vector<py::ssize_t>{n, d}), world(std::vector<py::ssize_t>{n, d + 1});
-  // Raw pointers into arrays this frame owns, so the loop runs without the GIL.
-  const std::int64_t* e_in = q.elements.data();
-  const double* x_in = q.local.data();
-  bool* in = in_domain.mutable_data();
-  Index* r = region.mutable_data();
-  Index* el = image_element.mutable_data();
-  double* il = image_local.mutable_data();
-  double* w = world.mutable_data();
+  AnswerArrays<d> answers(q.elements.shape(0));
   {
     py::gil_scoped_release unlocked;
     with_point_locator<d>(name, [&](auto& locator) {
-      constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-      const unsigned workers = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-      const std::size_t points_per_batch = points_per_thread_and_batch * workers;
-      std::vector<SurfacePoint<d>> points;
-      std::vector<Evaluation<d>> out;
-      for (py::ssize_t begin = 0; begin < n;) {
-        const auto count = static_cast<py::ssize_t>(std::min<std::size_t>(points_per_batch, n - begin));
-        points.resize(count);
-        out.resize(count);
-        for (py::ssize_t i = 0; i < count; ++i) {
-          points[i].element = static_cast<Index>(e_in[begin + i]);
-          for (int k = 0; k < d; ++k) points[i].local(k) = x_in[(begin + i) * d + k];
-        }
+      answer_in_batches<d, Evaluation<d>>(q, threads, answers, [&](auto points, auto out) {
         evaluate_batch<d>(map, points, out, locator, threads);
-        for (py::ssize_t i = 0; i < count; ++i) {
-          const Evaluation<d>& ev = out[i];
-          const py::ssize_t j = begin + i;
-          in[j] = ev.in_domain;
-          r[j] = ev.in_domain ? ev.region : invalid_index;
-          el[j] = ev.in_domain ? ev.image.element : invalid_index;
-          for (int k = 0; k < d; ++k) il[j * d + k] = ev.in_domain ? ev.image.local(k) : nan;
-          for (int k = 0; k <= d; ++k) w[j * (d + 1) + k] = ev.in_domain ? ev.world(k) : nan;
-        }
-        begin += count;
-      }
+      });
     });
   }
-  py::dict result;
-  result["in_domain"] = in_domain;
-  result["region"] = region;
-  result["image_element"] = image_element;
-  result["image_local"] = image_local;
-  result["world"] = world;
-  return result;
+  return answers.to_dict("in_domain", "image_element", "image_local");
 }
 
 // ---- inverse -------------------------------------------------------------------------------
@@ -186,52 +223,14 @@ py::dict inverse_points(PyMap& pm, const PlMap<d>& map, py::handle elements, py:
                         unsigned threads) {
   const QueryArrays q = query_arrays(map.target(), "inverse", "S2", elements, local);
   const InverseIndex<d>& index = inverse_index_of(pm, map);
-  const auto n = q.elements.shape(0);
-  py::array_t<bool> in_image(n);
-  py::array_t<Index> region(n), preimage_element(n);
-  py::array_t<double> preimage_local(std::vector<py::ssize_t>{n, d}), world(std::vector<py::ssize_t>{n, d + 1});
-  const std::int64_t* e_in = q.elements.data();
-  const double* x_in = q.local.data();
-  bool* in = in_image.mutable_data();
-  Index* r = region.mutable_data();
-  Index* el = preimage_element.mutable_data();
-  double* pl = preimage_local.mutable_data();
-  double* w = world.mutable_data();
+  AnswerArrays<d> answers(q.elements.shape(0));
   {
     py::gil_scoped_release unlocked;
-    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-    const unsigned workers = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-    const std::size_t points_per_batch = points_per_thread_and_batch * workers;
-    std::vector<SurfacePoint<d>> points;
-    std::vector<InverseEvaluation<d>> out;
-    for (py::ssize_t begin = 0; begin < n;) {
-      const auto count = static_cast<py::ssize_t>(std::min<std::size_t>(points_per_batch, n - begin));
-      points.resize(count);
-      out.resize(count);
-      for (py::ssize_t i = 0; i < count; ++i) {
-        points[i].element = static_cast<Index>(e_in[begin + i]);
-        for (int k = 0; k < d; ++k) points[i].local(k) = x_in[(begin + i) * d + k];
-      }
+    answer_in_batches<d, InverseEvaluation<d>>(q, threads, answers, [&](auto points, auto out) {
       inverse_evaluate_batch<d>(index, points, out, threads);
-      for (py::ssize_t i = 0; i < count; ++i) {
-        const InverseEvaluation<d>& ev = out[i];
-        const py::ssize_t j = begin + i;
-        in[j] = ev.in_image;
-        r[j] = ev.in_image ? ev.region : invalid_index;
-        el[j] = ev.in_image ? ev.preimage.element : invalid_index;
-        for (int k = 0; k < d; ++k) pl[j * d + k] = ev.in_image ? ev.preimage.local(k) : nan;
-        for (int k = 0; k <= d; ++k) w[j * (d + 1) + k] = ev.in_image ? ev.world(k) : nan;
-      }
-      begin += count;
-    }
+    });
   }
-  py::dict result;
-  result["in_image"] = in_image;
-  result["region"] = region;
-  result["preimage_element"] = preimage_element;
-  result["preimage_local"] = preimage_local;
-  result["world"] = world;
-  return result;
+  return answers.to_dict("in_image", "preimage_element", "preimage_local");
 }
 
 // ---- regions, quality, summary --------------------------------------------------------------
