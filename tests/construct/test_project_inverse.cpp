@@ -140,7 +140,9 @@ TEST(ProjectInverse, PointsOnS2EdgesAboveTheBoundaryOfS1AreFoundFromEitherSide) 
         const bool inside = in_square(w, true);
         const InverseEvaluation<2> inv = inverse_evaluate(index, {t, y});
         EXPECT_EQ(inv.in_image, inside) << "S2 element " << t << " point (" << w.x() << ", " << w.y() << ")";
-        if (inside && inv.in_image) EXPECT_NEAR((inv.world - WorldPoint<2>(w.x(), w.y(), 0.0)).norm(), 0.0, 1e-12);
+        if (inside && inv.in_image) {
+          EXPECT_NEAR((inv.world - WorldPoint<2>(w.x(), w.y(), 0.0)).norm(), 0.0, 1e-12);
+        }
         given_on_outer_elements += inside && outer_element;
       }
   }

@@ -82,7 +82,9 @@ TEST(CiSmoke, MetricsFollowFromTheInputsAndTheSubdivision) {
     const std::string key = rows[i]["config"]["input.name"].get<std::string>() + " k " +
                             std::to_string(rows[i]["config"]["build.k"].get<long>());
     const auto [it, first] = checksum_by_input_and_k.emplace(key, rows[i]["metrics"]["evaluate.checksum"]);
-    if (!first) EXPECT_EQ(rows[i]["metrics"]["evaluate.checksum"], it->second) << where << ", " << key;
+    if (!first) {
+      EXPECT_EQ(rows[i]["metrics"]["evaluate.checksum"], it->second) << where << ", " << key;
+    }
     EXPECT_TRUE(rows[i]["notes"].empty()) << where << ": " << rows[i]["notes"];
     // Timings: repeated, median within the spread.
     for (const auto& [name, t] : rows[i]["timings"].items()) {
