@@ -49,9 +49,12 @@ def output_that_is_an_input_is_refused():
     _expect_unchanged(m, saved, "regions/draw -o a link to the map")
     # an experiment's config inside its output directory would be overwritten by the copy
     os.makedirs(os.path.join(WORK, "results"))
+    # (a build without the experiment runner, such as the sanitizer build, refuses every run)
     write("results/config.toml", "[experiment]\nname = \"x\"\n")
-    expect_clean_error(["experiment", "run", "results/config.toml", "-o", "results"], code=64,
-                       mention="config.toml")
+    _, err, _ = run("experiment", "run", "results/config.toml", "-o", "results", expect_code=64)
+    if "no experiment runner" not in err:
+        expect_clean_error(["experiment", "run", "results/config.toml", "-o", "results"], code=64,
+                           mention="config.toml")
     # different files with the same content are not the same file
     shutil.copy(os.path.join(WORK, "v.off"), os.path.join(WORK, "copy.off"))
     run("build", "identity", "copy.off", "-o", "copy.plmap")
