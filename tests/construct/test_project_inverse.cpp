@@ -5,7 +5,7 @@
 // reversing or preserving). With vertical normals Xi is the vertical translation, so a point of
 // S2 has a preimage iff it lies above S1, and the preimage is right below it. d = 1: concentric
 // circles (round trips only).
-#include "core/deepest_region_locator.hpp"
+#include <plmap/verify/deepest_region_locator.hpp>
 #include "projection_fixtures.hpp"
 
 #include <plmap/construct/project.hpp>

@@ -7,7 +7,7 @@
 // - Xi(Xi^{-1}(y)) = y and Xi^{-1}(Xi(x)) = x to rounding;
 // and on maps with holes in D (subdivision maps with dropped sub-elements) S2 points of the kept
 // part are found, and the batch version agrees with single queries for any thread count.
-#include "deepest_region_locator.hpp"
+#include <plmap/verify/deepest_region_locator.hpp>
 
 #include <plmap/core/evaluation.hpp>
 #include <plmap/core/inverse_evaluation.hpp>
@@ -86,7 +86,7 @@ void check_inverse(const MapCase<d>& c, std::uint64_t sample_seed, bool identity
   }
 
   // Xi^{-1}(Xi(x)) = x for random points and region corners of S1.
-  test::DeepestRegion<d> locator;
+  DeepestRegion<d> locator;
   std::vector<SurfacePoint<d>> xs;
   for (int k = 0; k < 30; ++k) xs.push_back({generators::uniform_index(rng, s1.element_count()), random_local_point<d>(rng)});
   for (Index n = 0; n < map.node_count(); n += 3) xs.push_back({map.node_element(n), map.data().node_position[n]});

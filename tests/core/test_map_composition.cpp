@@ -3,7 +3,7 @@
 // target) maps every point to itself, composing with the identity map on either side changes
 // nothing, and the inverse of the composition undoes it. Chains whose surfaces do not fit are
 // refused.
-#include "deepest_region_locator.hpp"
+#include <plmap/verify/deepest_region_locator.hpp>
 
 #include <plmap/core/map_composition.hpp>
 #include <plmap/verify/generators/rc_generators.hpp>
@@ -39,11 +39,11 @@ void check_composition(const generators::MapCase<d>& first, std::uint64_t seed) 
   const MapComposition<d> chain({first.map, second.map});
   const MapComposition<d> with_identity_after({first.map, identity_after.map});
   const MapComposition<d> with_identity_before({identity_before.map, first.map});
-  const test::DeepestRegion<d> prototype;
-  CompositionEvaluator<d, test::DeepestRegion<d>> eval_chain(chain, prototype), eval_after(with_identity_after, prototype),
+  const DeepestRegion<d> prototype;
+  CompositionEvaluator<d, DeepestRegion<d>> eval_chain(chain, prototype), eval_after(with_identity_after, prototype),
       eval_before(with_identity_before, prototype);
   const InverseComposition<d> inverse_chain(chain);
-  test::DeepestRegion<d> locator;
+  DeepestRegion<d> locator;
 
   const Surface<d>& s1 = *first.domain;
   const double tolerance = 1e-9 * std::max({s1.max_edge_length(), first.target->max_edge_length()});
@@ -103,8 +103,8 @@ TEST(MapComposition, BatchAgreesWithTheEvaluatorAndReportsWhereAChainStops) {
   generators::Rng rng(3);
   for (int k = 0; k < 200; ++k) points.push_back({generators::uniform_index(rng, a.domain->element_count()), random_local_point<2>(rng)});
   std::vector<ComposedEvaluation<2>> out(points.size());
-  evaluate_composition_batch<2>(chain, points, out, test::DeepestRegion<2>{}, 2);
-  CompositionEvaluator<2, test::DeepestRegion<2>> single(chain, {});
+  evaluate_composition_batch<2>(chain, points, out, DeepestRegion<2>{}, 2);
+  CompositionEvaluator<2, DeepestRegion<2>> single(chain, {});
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto s = single(points[i]);
     EXPECT_EQ(s.defined, out[i].defined);
@@ -116,5 +116,5 @@ TEST(MapComposition, BatchAgreesWithTheEvaluatorAndReportsWhereAChainStops) {
   }
   std::vector<SurfacePoint<2>> bad{{a.domain->element_count(), LocalPoint<2>(0.1, 0.1)}};
   std::vector<ComposedEvaluation<2>> bad_out(1);
-  EXPECT_THROW(evaluate_composition_batch<2>(chain, bad, bad_out, test::DeepestRegion<2>{}), Error);
+  EXPECT_THROW(evaluate_composition_batch<2>(chain, bad, bad_out, DeepestRegion<2>{}), Error);
 }

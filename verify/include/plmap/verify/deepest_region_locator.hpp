@@ -1,11 +1,13 @@
 #pragma once
-// A forward point locator for tests, written independently of strategies/: the region of the
-// element in which the point is deepest (largest smallest barycentric weight), or none if the
-// point is outside every region by more than 1e-9 in barycentric weight.
+/// \file
+/// A reference point locator for checks and tests, written independently of strategies/: the
+/// region of the element in which the point is deepest (largest smallest barycentric weight), or
+/// none if the point is outside every region by more than 1e-9 in barycentric weight. O(regions
+/// of the element) per query: for checking other locators and evaluations, not for speed.
 
 #include <plmap/core/evaluation.hpp>
 
-namespace plmap::test {
+namespace plmap {
 
 /// Forward point location written independently of strategies/: the region of the element in
 /// which the point is deepest (largest smallest barycentric weight).
@@ -39,4 +41,4 @@ struct DeepestRegion {
 
 static_assert(PointLocator<DeepestRegion<2>, 2>);
 
-}  // namespace plmap::test
+}  // namespace plmap
