@@ -32,24 +32,13 @@ gen::PlanarRecipe small_planar_recipe(bool hole_allowed) {
   return r;
 }
 
-template <int d>
-LocalPoint<d> random_local_point(gen::Rng& rng) {
-  if constexpr (d == 1) {
-    return LocalPoint<1>(gen::uniform_unit(rng));
-  } else {
-    double x = gen::uniform_unit(rng), y = gen::uniform_unit(rng);
-    if (x + y > 1.0) x = 1.0 - x, y = 1.0 - y;
-    return {x, y};
-  }
-}
-
 /// The round trips on any map, at random points of both surfaces and at the map's nodes.
 template <int d>
 void check_round_trips(const PlMap<d>& map, const InverseIndex<d>& index, gen::Rng& rng, const std::string& what) {
   const double tolerance = 1e-9 * std::max(map.domain().max_edge_length(), map.target().max_edge_length());
   DeepestRegion<d> locator;
   std::vector<SurfacePoint<d>> xs;
-  for (int k = 0; k < 40; ++k) xs.push_back({gen::uniform_index(rng, map.domain().element_count()), random_local_point<d>(rng)});
+  for (int k = 0; k < 40; ++k) xs.push_back({gen::uniform_index(rng, map.domain().element_count()), generators::uniform_local_point<d>(rng)});
   for (Index n = 0; n < map.node_count(); n += 3) xs.push_back({map.node_element(n), map.data().node_position[n]});
   for (const auto& x : xs) {
     const Evaluation<d> e = evaluate(map, x, locator);
@@ -59,7 +48,7 @@ void check_round_trips(const PlMap<d>& map, const InverseIndex<d>& index, gen::R
     RC_ASSERT((inv.world - map.domain().world_position(x.element, x.local)).norm() <= tolerance);
   }
   for (int k = 0; k < 40; ++k) {
-    const SurfacePoint<d> y{gen::uniform_index(rng, map.target().element_count()), random_local_point<d>(rng)};
+    const SurfacePoint<d> y{gen::uniform_index(rng, map.target().element_count()), generators::uniform_local_point<d>(rng)};
     const InverseEvaluation<d> inv = inverse_evaluate(index, y);
     if (!inv.in_image) continue;
     const Evaluation<d> back = evaluate_in_region(map, inv.region, inv.preimage.local);
@@ -97,7 +86,7 @@ RC_GTEST_PROP(ProjectInverse, PlanarPairsRoundTripAndReportPointsOutsideTheImage
     return in_square && !in_hole;
   };
   for (int k = 0; k < 60; ++k) {
-    const SurfacePoint<2> y{gen::uniform_index(rng, s2->element_count()), random_local_point<2>(rng)};
+    const SurfacePoint<2> y{gen::uniform_index(rng, s2->element_count()), generators::uniform_local_point<2>(rng)};
     const WorldPoint<2> yw = s2->world_position(y.element, y.local);
     const InverseEvaluation<2> inv = inverse_evaluate(index, y);
     if (above_s1(yw.x(), yw.y(), 1e-6)) {

@@ -33,17 +33,6 @@ std::string show(const auto& c) {
   return os.str();
 }
 
-template <int d>
-LocalPoint<d> random_local_point(generators::Rng& rng) {
-  if constexpr (d == 1) {
-    return LocalPoint<1>(generators::uniform_unit(rng));
-  } else {
-    double x = generators::uniform_unit(rng), y = generators::uniform_unit(rng);
-    if (x + y > 1.0) x = 1.0 - x, y = 1.0 - y;
-    return {x, y};
-  }
-}
-
 /// Points of S2 on element boundaries, each given on every element that contains it: the
 /// vertices (as corners) and, for d = 2, the edge midpoints.
 template <int d>
@@ -71,7 +60,7 @@ void check_inverse(const MapCase<d>& c, std::uint64_t sample_seed, bool identity
   // Random points of S2 and points on its edges and vertices.
   generators::Rng rng(sample_seed);
   std::vector<SurfacePoint<d>> ys = boundary_points(s2);
-  for (int k = 0; k < 30; ++k) ys.push_back({generators::uniform_index(rng, s2.element_count()), random_local_point<d>(rng)});
+  for (int k = 0; k < 30; ++k) ys.push_back({generators::uniform_index(rng, s2.element_count()), generators::uniform_local_point<d>(rng)});
   for (const auto& y : ys) {
     const InverseEvaluation<d> inv = inverse_evaluate(index, y);
     const WorldPoint<d> y_world = s2.world_position(y.element, y.local);
@@ -88,7 +77,7 @@ void check_inverse(const MapCase<d>& c, std::uint64_t sample_seed, bool identity
   // Xi^{-1}(Xi(x)) = x for random points and region corners of S1.
   DeepestRegion<d> locator;
   std::vector<SurfacePoint<d>> xs;
-  for (int k = 0; k < 30; ++k) xs.push_back({generators::uniform_index(rng, s1.element_count()), random_local_point<d>(rng)});
+  for (int k = 0; k < 30; ++k) xs.push_back({generators::uniform_index(rng, s1.element_count()), generators::uniform_local_point<d>(rng)});
   for (Index n = 0; n < map.node_count(); n += 3) xs.push_back({map.node_element(n), map.data().node_position[n]});
   for (const auto& x : xs) {
     const Evaluation<d> e = evaluate(map, x, locator);
@@ -140,7 +129,7 @@ RC_GTEST_PROP(InverseEvaluation, FineOntoCoarseOverlaysUseTheCellGrids, (std::ui
   // (a miss would only cost time, as the tolerant scan of all images would still find it).
   generators::Rng rng(seed);
   for (int k = 0; k < 200; ++k) {
-    const SurfacePoint<2> y{generators::uniform_index(rng, c.target->element_count()), random_local_point<2>(rng)};
+    const SurfacePoint<2> y{generators::uniform_index(rng, c.target->element_count()), generators::uniform_local_point<2>(rng)};
     const InverseEvaluation<2> inv = inverse_evaluate(index, y);
     if (!inv.in_image || !index.has_grid(y.element)) continue;
     const auto entries = index.entries(y.element);
@@ -159,7 +148,7 @@ TEST(InverseEvaluation, BatchAgreesWithSingleQueriesForAnyThreadCount) {
   const InverseIndex<2> index(*sub.map);
   generators::Rng rng(11);
   std::vector<SurfacePoint<2>> ys(5000);
-  for (auto& y : ys) y = {generators::uniform_index(rng, sub.target->element_count()), random_local_point<2>(rng)};
+  for (auto& y : ys) y = {generators::uniform_index(rng, sub.target->element_count()), generators::uniform_local_point<2>(rng)};
   std::vector<InverseEvaluation<2>> one(ys.size()), two(ys.size());
   inverse_evaluate_batch<2>(index, ys, one, 1);
   inverse_evaluate_batch<2>(index, ys, two, 3);

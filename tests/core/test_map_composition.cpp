@@ -17,17 +17,6 @@ using namespace plmap;
 namespace {
 
 template <int d>
-LocalPoint<d> random_local_point(generators::Rng& rng) {
-  if constexpr (d == 1) {
-    return LocalPoint<1>(generators::uniform_unit(rng));
-  } else {
-    double x = generators::uniform_unit(rng), y = generators::uniform_unit(rng);
-    if (x + y > 1.0) x = 1.0 - x, y = 1.0 - y;
-    return {x, y};
-  }
-}
-
-template <int d>
 void check_composition(const generators::MapCase<d>& first, std::uint64_t seed) {
   generators::Rng rng(seed);
   // Xi_2: a random refinement of Xi_1's target (its surface object, so the chain fits).
@@ -48,7 +37,7 @@ void check_composition(const generators::MapCase<d>& first, std::uint64_t seed) 
   const Surface<d>& s1 = *first.domain;
   const double tolerance = 1e-9 * std::max({s1.max_edge_length(), first.target->max_edge_length()});
   std::vector<SurfacePoint<d>> xs;
-  for (int k = 0; k < 30; ++k) xs.push_back({generators::uniform_index(rng, s1.element_count()), random_local_point<d>(rng)});
+  for (int k = 0; k < 30; ++k) xs.push_back({generators::uniform_index(rng, s1.element_count()), generators::uniform_local_point<d>(rng)});
   for (Index n = 0; n < first.map->node_count(); n += 2) xs.push_back({first.map->node_element(n), first.map->data().node_position[n]});
   for (const auto& x : xs) {
     const WorldPoint<d> x_world = s1.world_position(x.element, x.local);
@@ -101,7 +90,7 @@ TEST(MapComposition, BatchAgreesWithTheEvaluatorAndReportsWhereAChainStops) {
   const MapComposition<2> chain({a.map, id.map});
   std::vector<SurfacePoint<2>> points = a.holes;
   generators::Rng rng(3);
-  for (int k = 0; k < 200; ++k) points.push_back({generators::uniform_index(rng, a.domain->element_count()), random_local_point<2>(rng)});
+  for (int k = 0; k < 200; ++k) points.push_back({generators::uniform_index(rng, a.domain->element_count()), generators::uniform_local_point<2>(rng)});
   std::vector<ComposedEvaluation<2>> out(points.size());
   evaluate_composition_batch<2>(chain, points, out, DeepestRegion<2>{}, 2);
   CompositionEvaluator<2, DeepestRegion<2>> single(chain, {});

@@ -33,20 +33,6 @@ std::string show(const auto& c) {
   return os.str();
 }
 
-template <int d>
-LocalPoint<d> random_local_point(generators::Rng& rng) {
-  if constexpr (d == 1) {
-    return LocalPoint<1>(generators::uniform_unit(rng));
-  } else {
-    double x = generators::uniform_unit(rng), y = generators::uniform_unit(rng);
-    if (x + y > 1.0) {
-      x = 1.0 - x;
-      y = 1.0 - y;
-    }
-    return {x, y};
-  }
-}
-
 /// Everything that holds for every generated map (Xi = identity of space, parametrization).
 template <int d>
 void check_generated_map(const MapCase<d>& c, std::uint64_t sample_seed, VerifyOptions options = {}) {
@@ -82,7 +68,7 @@ void check_generated_map(const MapCase<d>& c, std::uint64_t sample_seed, VerifyO
   // 4. Xi is the identity of space: random points of S1 evaluate to themselves.
   generators::Rng rng(sample_seed);
   for (int k = 0; k < 20; ++k) {
-    const SurfacePoint<d> p{generators::uniform_index(rng, s1.element_count()), random_local_point<d>(rng)};
+    const SurfacePoint<d> p{generators::uniform_index(rng, s1.element_count()), generators::uniform_local_point<d>(rng)};
     const Evaluation<d> e = evaluate(map, p, locator);
     RC_ASSERT(e.in_domain);
     const double error = (e.world - s1.world_position(p.element, p.local)).norm();

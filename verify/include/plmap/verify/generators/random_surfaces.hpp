@@ -30,6 +30,23 @@ double uniform_real(Rng& rng, double lo, double hi);
 /// Uniform integer in [0, n), n > 0.
 int uniform_index(Rng& rng, int n);
 
+/// A uniformly distributed point of the reference element: [0, 1) for d = 1; for d = 2 a point
+/// of the unit square folded onto the triangle along its diagonal (x drawn before y).
+template <int d>
+LocalPoint<d> uniform_local_point(Rng& rng) {
+  if constexpr (d == 1) {
+    return LocalPoint<1>(uniform_unit(rng));
+  } else {
+    double x = uniform_unit(rng);
+    double y = uniform_unit(rng);
+    if (x + y > 1.0) {
+      x = 1.0 - x;
+      y = 1.0 - y;
+    }
+    return {x, y};
+  }
+}
+
 /// The hole of the planar domains: [0.25, 0.5] x [0.5, 0.75], aligned with every grid whose cell
 /// count is a multiple of 4, so two such triangulations cover exactly the same domain.
 struct HoleBox {
