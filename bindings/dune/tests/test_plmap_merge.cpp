@@ -379,6 +379,8 @@ double largest_off_ray(const MergerBase<dimworld>& merger, const Patch<dimworld>
         EXPECT_GE(xi0[j], -1e-12) << "intersection " << i << " corner " << k << " outside its grid-0 parent";
         EXPECT_GE(xi1[j], -1e-12) << "intersection " << i << " corner " << k << " outside its grid-1 parent";
       }
+      EXPECT_LE(std::accumulate(xi0.begin(), xi0.end(), 0.0), 1 + 1e-12) << "intersection " << i << " corner " << k;
+      EXPECT_LE(std::accumulate(xi1.begin(), xi1.end(), 0.0), 1 + 1e-12) << "intersection " << i << " corner " << k;
       const auto x = p0.world(e0, xi0), y = p1.world(e1, xi1);
       Dune::FieldVector<double, dimworld> direction = normals[p0.corners[e0 * dimworld]];
       direction *= 1.0 - std::accumulate(xi0.begin(), xi0.end(), 0.0);
