@@ -4,10 +4,13 @@
 // second grid shifted sideways and lifted by a gap, or both grids bent into a curved interface.
 //
 // Both mergers get the same extracted boundary patches (Codim1Extractor) through the Merger base
-// class, as GridGlue calls them. Asserted: the intersection measure and the mortar mass matrix
-// agree with ContactMerge's within rounding (where the two must agree exactly, see below); every
-// intersection's corners, mapped through their parents on both sides, are one point and its image
-// along the projection direction; and GridGlue itself runs with the plmap merger swapped in.
+// class, as GridGlue calls them. Asserted: where ContactMerge's result is complete (the shifted
+// flat interfaces) the intersection measure on both sides and the mortar mass matrix agree with
+// ContactMerge's to rounding; on the curved interfaces, where ContactMerge leaves a little of
+// every element out, plmap covers at least as much on every element and agrees with
+// ContactMerge's corners to second order in h; every intersection's corners, mapped through
+// their parents on both sides, are one point and its image along the projection direction; and
+// GridGlue itself runs with the plmap merger swapped in.
 
 #include <plmap/dune/plmap_merge.hh>
 
