@@ -117,6 +117,7 @@ struct Patch {
   std::vector<unsigned> corners;
   std::vector<Dune::GeometryType> types;
 
+  Patch() = default;
   template <class E>
   explicit Patch(const E& extractor) {
     extractor.getCoords(coords);
@@ -540,6 +541,22 @@ TEST(PlmapMerge2d, NonSimplexElementIsRejectedByName) {
   }
   EXPECT_EQ(merger.nSimplices(), 0u);
   EXPECT_THROW(merger.projection(), plmap::Error);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(PlmapMerge3d, EmptyPatchGivesNoIntersections) {
+  // A predicate that selects no face (e.g. on a process that holds none of the interface) gives
+  // an empty patch: no intersections, not an error.
+  Coupling<3> coupling(Scenario<3>{.n0 = 2, .n1 = 2, .shift = {}, .amplitude = 0.0, .overlap = 0.0});
+  const Patch<3> p1(*coupling.patch1);
+  plmap::dune::PlmapMerge<3> merger;
+  build<3>(merger, Patch<3>{}, p1);
+  EXPECT_EQ(merger.nSimplices(), 0u);
+  build<3>(merger, p1, Patch<3>{});
+  EXPECT_EQ(merger.nSimplices(), 0u);
 }
 
 }  // namespace
