@@ -8,10 +8,14 @@
 /// positive, so Tutte's/Floater's theorem gives an embedding; the result is still checked with
 /// the exact orientation predicate, and an element whose solve would fold keeps its old nodes.
 ///
-/// Node images do not change; node positions and region maps do, everything else is kept.
-/// d = 2 only. Smoothing over the quadrilaterals of two elements (the paper's enlarged domains)
-/// is not done yet: with fixed element boundaries the per-element solve is a fixed point, so a
-/// second sweep reproduces the first.
+/// The element pass changes node positions and region maps only. Then (SmoothOptions::
+/// quadrilaterals) every S1 edge with two triangles is smoothed over their quadrilateral
+/// (construct/src/quad_smoothing.hpp): the S2 vertex preimages of both triangles are re-placed
+/// together and may cross the shared edge, whose crossings with S2 edges are recomputed; the map
+/// is rebuilt through MapBuilder after the pass. Quadrilaterals need a map in which every S2
+/// vertex and edge has a complete preimage and no S1 vertex is a ghost (a parametrization such
+/// as a simplification-built map); for other maps only the element pass runs
+/// (SmoothReport::quadrilaterals_not_applicable says why). d = 2 only.
 ///
 ///   SmoothOptions options;                 // floater weights, one sweep
 ///   SmoothResult r = smooth(map, options); // r.map: the smoothed PlMap<2>
@@ -25,9 +29,15 @@
 namespace plmap {
 
 struct SmoothOptions {
-  /// Passes over all elements (default 1; see the file comment: more sweeps change nothing until
-  /// quadrilateral smoothing exists).
+  /// Passes over all elements and edges (default 1). The element pass alone is a fixed point
+  /// after one sweep; the quadrilaterals couple neighbouring elements, so more sweeps keep
+  /// improving the map (paper: fewer than ten are enough).
   int sweeps = 1;
+  /// Run the element pass in each sweep (default true); false leaves only the quadrilaterals.
+  bool elements = true;
+  /// After the element pass of each sweep, smooth over the quadrilateral of every interior S1
+  /// edge (default true).
+  bool quadrilaterals = true;
   /// Smoothing weights: "floater" (default, the paper's shape-preserving weights), "mean-value",
   /// "uniform".
   std::string weights = "floater";
@@ -41,6 +51,19 @@ struct SmoothSweepReport {
   Index nodes_moved = 0;        ///< free nodes whose position changed
   /// Largest node displacement, in the element's local coordinates (the reference triangle).
   double max_displacement = 0.0;
+
+  // ---- the quadrilateral pass ----
+  Index quadrilaterals_smoothed = 0;  ///< quadrilateral steps kept
+  Index quad_nodes_moved = 0;         ///< vertex preimages moved by them (counted per step)
+  Index nodes_crossed = 0;            ///< of these, those that changed S1 element
+  /// Largest move in one step, relative to the length of the quadrilateral's shared edge.
+  double quad_max_displacement = 0.0;
+  /// Steps refused (the quadrilateral left as it was), by reason: "non-convex quadrilateral",
+  /// "fold-over", "node leaves the quadrilateral", "crossing next to a vertex", ...
+  std::map<std::string, Index> quadrilaterals_skipped_by_reason;
+  /// True if the rebuilt map was refused (MapBuilder found a crossing or a reversed face, which
+  /// the step's checks should have prevented): the sweep then keeps the element pass only.
+  bool quadrilateral_pass_rejected = false;
 };
 
 struct SmoothReport {
@@ -55,6 +78,9 @@ struct SmoothReport {
   std::map<std::string, Index> skipped_by_reason;
   std::vector<Index> skipped_elements;  ///< of the last sweep
   std::string weights;
+  /// Why the quadrilateral pass did not run (the map is not a parametrization in the needed
+  /// sense), or empty.
+  std::string quadrilaterals_not_applicable;
   double seconds = 0.0;
 };
 
