@@ -206,6 +206,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
   SmoothReport report;
   report.weights = options.weights;
   PlMap<2> current(map.domain_ptr(), map.target_ptr(), map.data());
+  if (options.measure_kappa) report.kappa_before = options.measure_kappa(current);
   const Index elements = map.domain().element_count();
   for (int s = 1; s <= options.sweeps; ++s) {
     SmoothSweepReport sweep;
@@ -223,6 +224,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
     }
     current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next));
     if (options.quadrilaterals) smooth_quadrilaterals(current, weights, report, sweep);
+    if (options.measure_kappa) sweep.kappa = options.measure_kappa(current);
     report.sweeps.push_back(sweep);
     if (options.after_sweep) options.after_sweep(s, current);
   }

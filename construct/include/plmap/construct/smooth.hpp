@@ -24,9 +24,23 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 
 namespace plmap {
+
+/// The distribution of κ_Ξ over a map's regions (DESIGN.md §4.7). construct/ does not compute it
+/// (κ lives in verify/, on which construct/ does not depend): SmoothOptions::measure_kappa does.
+struct KappaSummary {
+  double max = 1.0;
+  double mean = 1.0;
+  std::vector<double> quantile_levels;  ///< e.g. 0.5, 0.9, 0.99
+  std::vector<double> quantiles;        ///< κ at those levels
+  /// Histogram of log10 κ: bin i counts regions with log10 κ in [i w, (i + 1) w).
+  double histogram_bin_width = 0.25;
+  std::vector<std::size_t> histogram;
+  Index degenerate_regions = 0;  ///< zero measure on either side (κ infinite), not counted above
+};
 
 struct SmoothOptions {
   /// Passes over all elements and edges (default 1). The element pass alone is a fixed point
@@ -41,6 +55,9 @@ struct SmoothOptions {
   /// Smoothing weights: "floater" (default, the paper's shape-preserving weights), "mean-value",
   /// "uniform".
   std::string weights = "floater";
+  /// If given, κ_Ξ is measured before the first sweep and after each one, into the report
+  /// (e.g. from verify's compute_quality, as `plmap smooth` does).
+  std::function<KappaSummary(const PlMap<2>&)> measure_kappa;
   /// Called after each sweep with its number (1-based) and the map so far; e.g. the CLI computes
   /// κ with verify/ there, which construct/ does not depend on. Optional.
   std::function<void(int sweep, const PlMap<2>&)> after_sweep;
@@ -51,6 +68,8 @@ struct SmoothSweepReport {
   Index nodes_moved = 0;        ///< free nodes whose position changed
   /// Largest node displacement, in the element's local coordinates (the reference triangle).
   double max_displacement = 0.0;
+  /// κ_Ξ after this sweep (when SmoothOptions::measure_kappa is given).
+  std::optional<KappaSummary> kappa;
 
   // ---- the quadrilateral pass ----
   Index quadrilaterals_smoothed = 0;  ///< quadrilateral steps kept
@@ -68,6 +87,8 @@ struct SmoothSweepReport {
 
 struct SmoothReport {
   std::vector<SmoothSweepReport> sweeps;
+  /// κ_Ξ of the input (when SmoothOptions::measure_kappa is given).
+  std::optional<KappaSummary> kappa_before;
   Index free_nodes = 0;  ///< interior nodes (the unknowns), counted once
   /// Nodes whose weights model refused their star (degenerate: a zero spoke or angle); they were
   /// given uniform weights, which never fail.
