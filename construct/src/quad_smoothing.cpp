@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace plmap::smoothing {
@@ -24,6 +25,10 @@ using Vec2 = Eigen::Vector2d;
 /// makes the step refused. Far above MapBuilder's snap tolerance (1e-10), so the builder never
 /// snaps what the step kept apart; relative to the element, hence scale free.
 constexpr double clearance = 1e-8;
+
+/// Spoke triangles this well conditioned (κ, dimensionless) may get worse in a step: near an
+/// isometry the guard below would only stop the weights from trading one good piece for another.
+constexpr double free_condition = 3.0;
 
 /// The quadrilateral laid into the plane: A at the origin, B on the positive x axis, C1 above,
 /// C2 below; and the affine maps between each triangle's local coordinates and the plane.
@@ -81,6 +86,25 @@ struct Piece {
   std::array<Vec2, 2> fixed{Vec2::Zero(), Vec2::Zero()};       ///< per fixed end: plane position
   std::array<double, 2> target_parameter{0.0, 0.0};
 };
+
+/// Condition number of the affine map from the plane triangle p to the space triangle w
+/// (infinite if either is degenerate).
+double condition(const std::array<Vec2, 3>& p, const std::array<Eigen::Vector3d, 3>& w) {
+  Eigen::Matrix2d dp;
+  dp.col(0) = p[1] - p[0];
+  dp.col(1) = p[2] - p[0];
+  const double det = dp.determinant();
+  if (!(std::abs(det) > 0.0)) return std::numeric_limits<double>::infinity();
+  Eigen::Matrix<double, 3, 2> dw;
+  dw.col(0) = w[1] - w[0];
+  dw.col(1) = w[2] - w[0];
+  const Eigen::Matrix<double, 3, 2> a = dw * dp.inverse();
+  const Eigen::Matrix2d g = a.transpose() * a;
+  const double mean = 0.5 * g.trace(), gap = std::sqrt(std::max(0.0, mean * mean - g.determinant()));
+  const double smallest = mean - gap;
+  if (!(smallest > 0.0)) return std::numeric_limits<double>::infinity();
+  return std::sqrt((mean + gap) / smallest);
+}
 
 double ccw_angle(const Vec2& from, const Vec2& to) {
   double a = std::atan2(from.x() * to.y() - from.y() * to.x(), from.dot(to));
@@ -218,6 +242,7 @@ QuadOutcome QuadSmoother::smooth(Index e) {
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
   std::vector<std::vector<std::pair<int, int>>> ordered_ring(unknown_vertex.size());
+  std::vector<std::vector<Eigen::Vector3d>> ring_world(unknown_vertex.size());
   for (int i = 0; i < unknowns; ++i) {
     const Index v = unknown_vertex[i];
     // S2's cyclic order of v's neighbours: next(x) = y for each S2 triangle (v, x, y)
@@ -258,7 +283,11 @@ QuadOutcome QuadSmoother::smooth(Index e) {
       else
         rhs.row(i) += (*w)[j] * pieces[p].fixed[end].transpose();
     }
-    if (g_.orientation < 0) std::reverse(ordered_ring[i].begin(), ordered_ring[i].end());
+    ring_world[i] = std::move(ring);
+    if (g_.orientation < 0) {
+      std::reverse(ordered_ring[i].begin(), ordered_ring[i].end());
+      std::reverse(ring_world[i].begin(), ring_world[i].end());
+    }
   }
   Eigen::SparseMatrix<double> matrix(unknowns, unknowns);
   matrix.setFromTriplets(triplets.begin(), triplets.end());
@@ -299,6 +328,30 @@ QuadOutcome QuadSmoother::smooth(Index e) {
     }
     if (std::abs(turn - 2.0 * std::numbers::pi) > 1e-6) return refuse("fold-over");
   }
+  // The worst spoke triangle (v, neighbour j, neighbour j + 1) against its image: a step that
+  // would make it worse is refused, so that sweeps do not trade the quadrilateral's worst piece
+  // for a better average (without this, κ max creeps up again after a few sweeps).
+  const auto worst_spoke = [&](const std::vector<Vec2>& at) {
+    double worst = 1.0;
+    for (int i = 0; i < unknowns; ++i) {
+      const auto& ring = ordered_ring[i];
+      const auto end_at = [&](std::pair<int, int> pe) {
+        const Piece& p = pieces[pe.first];
+        return p.unknown[pe.second] >= 0 ? at[p.unknown[pe.second]] : p.fixed[pe.second];
+      };
+      for (std::size_t j = 0; j < ring.size(); ++j) {
+        const std::size_t k = (j + 1) % ring.size();
+        worst = std::max(worst, condition({at[i], end_at(ring[j]), end_at(ring[k])},
+                                          {s2_.vertex(unknown_vertex[i]), ring_world[i][j], ring_world[i][k]}));
+      }
+    }
+    return worst;
+  };
+  std::vector<Vec2> old_position(unknown_vertex.size());
+  for (int i = 0; i < unknowns; ++i) old_position[i] = *u.place(s1_, g_.vertex[unknown_vertex[i]]);
+  if (worst_spoke(position) > std::max(worst_spoke(old_position), free_condition))
+    return refuse("would raise the worst condition number");
+
   // new crossings with e
   std::vector<std::optional<EdgeCrossing>> cut(pieces.size());
   const bool a_is_smaller = u.a < u.b;
@@ -317,8 +370,7 @@ QuadOutcome QuadSmoother::smooth(Index e) {
   // ---- apply ----
   for (int i = 0; i < unknowns; ++i) {
     DomainPlace& old = g_.vertex[unknown_vertex[i]];
-    const Vec2 before = *u.place(s1_, old);
-    const double shift = (position[i] - before).norm() / u.length;
+    const double shift = (position[i] - old_position[i]).norm() / u.length;
     if (shift > 0.0) ++out.nodes_moved;
     if (old.kind != DomainPlace::Kind::element || old.where != new_place[i].where) ++out.nodes_crossed;
     out.max_displacement = std::max(out.max_displacement, shift);

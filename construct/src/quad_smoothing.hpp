@@ -10,7 +10,10 @@
 //     segments, in S2's cyclic order) with weights from its star on S2; Eigen's SparseLU;
 //  4. check, with exact predicates in the plane: Q is convex, every unknown is strictly inside
 //     Q and off e (by a relative clearance), no two segments meet except at a common end, and
-//     the segments around every unknown keep S2's cyclic order and wind once (no fold-over);
+//     the segments around every unknown keep S2's cyclic order and wind once (no fold-over),
+//     and the worst condition number of the spoke triangles (unknown, two consecutive
+//     neighbours) against their images does not grow (so that sweeps converge instead of
+//     trading the worst piece for a better average);
 //  5. cut: each segment that crosses e gets a new crossing there (its image interpolated along
 //     the S2 edge, linearly along the segment: the map stays linear on it), each unknown goes to
 //     the triangle on its side of e. A refused step changes nothing.
