@@ -163,7 +163,7 @@ RC_GTEST_PROP(QuadSmoothingProperties, SweepsKeepSimplifiedSpheresValid, ()) {
 
 // Paper Fig. 10: a sphere simplified hard (5,120 -> 152 triangles; κ max 19, mean 1.66) gets a
 // better map. Floater's and mean-value weights lower κ max and mean; uniform weights (Tutte)
-// ignore the geometry and raise both (to about 240 / 3.0), so for them only validity is
+// ignore the geometry and raise both (to about 170 / 3.05), so for them only validity is
 // asserted (numbers in docs/algorithms/smoothing.md).
 TEST(QuadSmoothing, KappaFallsOnAHardSimplifiedSphere) {
   const SimplifyResult s = simplified_sphere(4, 0.1, 20261202, 3);
