@@ -165,6 +165,29 @@ RC_GTEST_PROP(QuadSmoothingProperties, SweepsKeepSimplifiedSpheresValid, ()) {
 // better map. Floater's and mean-value weights lower κ max and mean; uniform weights (Tutte)
 // ignore the geometry and raise both (to about 170 / 3.05), so for them only validity is
 // asserted (numbers in docs/algorithms/smoothing.md).
+// Simplified surfaces with boundary or non-manifold edges (feature lines kept by simplify):
+// quadrilaterals next to the boundary or a non-manifold edge must be refused or handled, never
+// break the map.
+RC_GTEST_PROP(QuadSmoothingProperties, SweepsKeepSimplifiedOpenAndNonManifoldSurfacesValid, ()) {
+  const generators::TriangleSurfaceRecipe recipe = *generators::triangle_surface_recipes();
+  RC_LOG() << generators::describe(recipe) << "\n";
+  auto fine = std::make_shared<const Surface<2>>(generators::make_triangle_surface(recipe));
+  SimplifyOptions so;
+  so.target_elements = std::max<Index>(1, fine->element_count() * *rc::gen::inRange(10, 90) / 100);
+  so.feature_angle_degrees = *rc::gen::element(60.0, 180.0);
+  const SimplifyResult s = simplify(fine, so);
+  SmoothOptions options;
+  options.weights = *rc::gen::elementOf(weight_models);
+  options.sweeps = *rc::gen::inRange(1, 3);
+  const SmoothResult r = smooth(s.map, options);
+  for (const auto& sweep : r.report.sweeps) RC_ASSERT(!sweep.quadrilateral_pass_rejected);
+  RC_ASSERT(verified_parametrization(r.map));
+  RC_ASSERT(simplify_test::vertices_without_one_preimage(r.map).empty());
+  const double area = fine->measure();
+  RC_ASSERT(std::abs(simplify_test::image_area(r.map) - area) <= 1e-8 * area);
+  RC_CLASSIFY(r.report.sweeps.front().nodes_crossed > 0, "nodes crossed edges");
+}
+
 TEST(QuadSmoothing, KappaFallsOnAHardSimplifiedSphere) {
   const SimplifyResult s = simplified_sphere(4, 0.1, 20261202, 3);
   const QualityReport before = compute_quality(s.map);
