@@ -20,6 +20,7 @@
 #include <rapidcheck/gtest.h>
 
 #include <iostream>
+#include <random>
 
 namespace plmap {
 namespace {
@@ -119,6 +120,55 @@ RC_GTEST_PROP(QuadSmoothingProperties, OneStepStaysInItsQuadrilateral, ()) {
     for (std::size_t v = 0; v < before.vertex.size(); ++v) RC_ASSERT(same_place(before.vertex[v], graph->vertex[v]));
     return;
   }
+  FinalizeReport built;
+  const PlMap<2> after = graph->to_map(s.map.domain_ptr(), s.map.target_ptr(), &built);
+  RC_ASSERT(built.reversed_faces == 0);
+  RC_ASSERT(verified_parametrization(after));
+  RC_ASSERT(simplify_test::vertices_without_one_preimage(after).empty());
+}
+
+// The checks of a step, exercised: weights that break the convex-combination rule (some negative,
+// drawn at random) put preimages outside the quadrilateral, turn segments over and make them
+// cross. Whatever the step does, nothing may leave the quadrilateral and the rebuilt map must be
+// a valid parametrization: the step must refuse what the geometric checks find.
+RC_GTEST_PROP(QuadSmoothingProperties, StepsWithBrokenWeightsAreRefusedNotApplied, ()) {
+  const auto seed = *rc::gen::arbitrary<std::uint32_t>();
+  const SimplifyResult s = simplified_sphere(*rc::gen::inRange(1, 3), *rc::gen::inRange(0, 25) / 100.0, seed,
+                                             *rc::gen::inRange(10, 60));
+  auto graph = PreimageGraph::from_map(s.map, nullptr);
+  RC_ASSERT(graph.has_value());
+  const double spread = *rc::gen::element(0.5, 2.0, 10.0);
+  auto rng = std::make_shared<generators::Rng>(seed ^ 0x5eedu);
+  const AnySmoothingWeights broken = [rng, spread](const Eigen::Vector3d&, std::span<const Eigen::Vector3d> ring) {
+    std::uniform_real_distribution<double> draw(-spread, 1.0);
+    std::vector<double> w(ring.size());
+    double sum = 0.0;
+    for (double& x : w) sum += (x = draw(*rng));
+    if (!(std::abs(sum) > 1e-3)) return std::optional<std::vector<double>>{};
+    for (double& x : w) x /= sum;
+    return std::optional<std::vector<double>>(std::move(w));
+  };
+  const Surface<2>& s1 = s.map.domain();
+  QuadSmoother smoother(*graph, s1, s.map.target(), broken);
+  Index kept = 0;
+  for (Index e = 0; e < s1.edge_count(); ++e) {
+    if (!smoother.has_quadrilateral(e)) continue;
+    const std::vector<DomainPlace> places = graph->vertex;
+    const auto outcome = smoother.smooth(e);
+    kept += outcome.skipped == nullptr ? 1 : 0;
+    const auto inc = s1.edge_elements(e);
+    const auto in_quad = [&](const DomainPlace& p) {
+      return (p.kind == DomainPlace::Kind::element && (p.where == inc[0].element || p.where == inc[1].element)) ||
+             (p.kind == DomainPlace::Kind::edge && p.where == e);
+    };
+    for (std::size_t v = 0; v < places.size(); ++v) {
+      if (!same_place(places[v], graph->vertex[v])) {
+        RC_ASSERT(in_quad(places[v]));
+        RC_ASSERT(in_quad(graph->vertex[v]));
+      }
+    }
+  }
+  RC_CLASSIFY(kept > 0, "some steps kept");
   FinalizeReport built;
   const PlMap<2> after = graph->to_map(s.map.domain_ptr(), s.map.target_ptr(), &built);
   RC_ASSERT(built.reversed_faces == 0);
