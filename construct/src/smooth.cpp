@@ -12,12 +12,14 @@
 #include <plmap/strategies/smoothing/smoothing_weights_registry.hpp>
 #include <plmap/strategies/smoothing/uniform_weights.hpp>
 
+#include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace plmap {
 
@@ -159,6 +161,18 @@ void apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>
   }
 }
 
+/// Total area of the region images on S2: smoothing re-places preimages, so it must not change.
+double image_area(const PlMap<2>& map) {
+  const MapData<2>& m = map.data();
+  double total = 0.0;
+  for (Index r = 0; r < map.region_count(); ++r) {
+    const auto& c = m.region_corners[r];
+    const Eigen::Vector3d a = map.node_target_world(c[0]);
+    total += 0.5 * (map.node_target_world(c[1]) - a).cross(map.node_target_world(c[2]) - a).norm();
+  }
+  return total;
+}
+
 /// The quadrilateral pass of one sweep: every S1 edge with two triangles, in index order, each
 /// step seeing the previous ones; then the map is rebuilt from the edited graph.
 void smooth_quadrilaterals(PlMap<2>& current, const AnySmoothingWeights& weights, SmoothReport& report,
@@ -185,8 +199,11 @@ void smooth_quadrilaterals(PlMap<2>& current, const AnySmoothingWeights& weights
   try {
     FinalizeReport built;
     PlMap<2> rebuilt = graph->to_map(current.domain_ptr(), current.target_ptr(), &built);
-    if (built.reversed_faces == 0 && built.dropped_edges.empty() &&
-        rebuilt.region_count() > 0) {
+    // The same coverage of S2, up to rounding: guards against a map the graph form cannot hold
+    // (e.g. an S2 edge whose preimage leaves D between two vertex preimages).
+    const double area = image_area(current);
+    if (built.reversed_faces == 0 && built.dropped_edges.empty() && rebuilt.region_count() > 0 &&
+        std::abs(image_area(rebuilt) - area) <= 1e-9 * area) {
       current = std::move(rebuilt);
       return;
     }
