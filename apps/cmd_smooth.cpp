@@ -84,6 +84,7 @@ int run_smooth(const SmoothCommand& o) {
     sj["quad_nodes_moved"] = s.quad_nodes_moved;
     sj["nodes_crossed"] = s.nodes_crossed;
     sj["quad_max_displacement"] = s.quad_max_displacement;
+    sj["quad_uniform_fallbacks"] = s.quad_uniform_fallbacks;
     Json qs = Json::object();
     for (const auto& [why, count] : s.quadrilaterals_skipped_by_reason) qs[why] = count;
     sj["quadrilaterals_skipped_by_reason"] = qs;

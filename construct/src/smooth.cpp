@@ -196,6 +196,7 @@ void smooth_quadrilaterals(PlMap<2>& current, const AnySmoothingWeights& weights
     sweep.nodes_crossed += o.nodes_crossed;
     sweep.quad_max_displacement = std::max(sweep.quad_max_displacement, o.max_displacement);
   }
+  sweep.quad_uniform_fallbacks = smoother.uniform_fallbacks();
   try {
     FinalizeReport built;
     PlMap<2> rebuilt = graph->to_map(current.domain_ptr(), current.target_ptr(), &built);

@@ -77,6 +77,8 @@ struct SmoothSweepReport {
   Index nodes_crossed = 0;            ///< of these, those that changed S1 element
   /// Largest move in one step, relative to the length of the quadrilateral's shared edge.
   double quad_max_displacement = 0.0;
+  /// Steps' unknowns whose weights model refused their star and got uniform weights instead.
+  Index quad_uniform_fallbacks = 0;
   /// Steps refused (the quadrilateral left as it was), by reason: "non-convex quadrilateral",
   /// "fold-over", "node leaves the quadrilateral", "crossing next to a vertex", ...
   std::map<std::string, Index> quadrilaterals_skipped_by_reason;
