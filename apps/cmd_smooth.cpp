@@ -13,6 +13,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace plmap::cli {
 
@@ -23,17 +24,28 @@ struct SmoothCommand {
   int sweeps = 1;
   std::string weights = "floater";
   bool json = false;
+  bool no_quadrilaterals = false;
 };
 
-/// κ max, mean and the 99th percentile (verify's quality report; construct/ cannot compute it).
-Json kappa_json(const PlMap<2>& map) {
+/// κ_Ξ's distribution through verify's quality report (construct/ cannot compute it).
+KappaSummary measure_kappa(const PlMap<2>& map) {
   const QualityReport q = compute_quality(map);
+  return {q.kappa_max, q.kappa_mean, q.quantile_levels, q.quantiles, q.histogram_bin_width, q.histogram, q.degenerate_count};
+}
+
+/// κ max, mean, the 99th percentile (kept flat for scripts), every quantile and the histogram.
+Json kappa_json(const KappaSummary& k) {
   Json j;
-  j["kappa_max"] = q.kappa_max;
-  j["kappa_mean"] = q.kappa_mean;
-  const auto it = std::find(q.quantile_levels.begin(), q.quantile_levels.end(), 0.99);
-  if (it != q.quantile_levels.end()) j["kappa_p99"] = q.quantiles[static_cast<std::size_t>(it - q.quantile_levels.begin())];
-  j["degenerate_regions"] = q.degenerate_count;
+  j["kappa_max"] = k.max;
+  j["kappa_mean"] = k.mean;
+  Json quantiles = Json::object();
+  for (std::size_t i = 0; i < k.quantile_levels.size() && i < k.quantiles.size(); ++i) {
+    quantiles[fmt::format("p{}", static_cast<int>(std::lround(k.quantile_levels[i] * 100.0)))] = k.quantiles[i];
+    if (k.quantile_levels[i] == 0.99) j["kappa_p99"] = k.quantiles[i];
+  }
+  j["kappa_quantiles"] = quantiles;
+  j["log10_kappa_histogram"] = {{"bin_width", k.histogram_bin_width}, {"counts", k.histogram}};
+  j["degenerate_regions"] = k.degenerate_regions;
   return j;
 }
 
@@ -52,23 +64,37 @@ int run_smooth(const SmoothCommand& o) {
   Json j;
   j["map"] = o.output;
   j["weights"] = o.weights;
-  j["before"] = kappa_json(map);
-  Json sweeps = Json::array();
   SmoothOptions options;
   options.sweeps = o.sweeps;
   options.weights = o.weights;
-  options.after_sweep = [&sweeps](int, const PlMap<2>& m) { sweeps.push_back(kappa_json(m)); };
+  options.quadrilaterals = !o.no_quadrilaterals;
+  options.measure_kappa = measure_kappa;
   const SmoothResult result = smooth(map, options);
   save_map(o.output, result.map);
 
   const SmoothReport& r = result.report;
-  j["after"] = sweeps.back();
-  for (std::size_t s = 0; s < r.sweeps.size(); ++s) {
-    sweeps[s]["nodes_moved"] = r.sweeps[s].nodes_moved;
-    sweeps[s]["elements_smoothed"] = r.sweeps[s].elements_smoothed;
-    sweeps[s]["max_displacement"] = r.sweeps[s].max_displacement;
+  j["before"] = kappa_json(*r.kappa_before);
+  Json sweeps = Json::array();
+  for (const SmoothSweepReport& s : r.sweeps) {
+    Json sj = kappa_json(*s.kappa);
+    sj["nodes_moved"] = s.nodes_moved;
+    sj["elements_smoothed"] = s.elements_smoothed;
+    sj["max_displacement"] = s.max_displacement;
+    sj["quadrilaterals_smoothed"] = s.quadrilaterals_smoothed;
+    sj["quad_nodes_moved"] = s.quad_nodes_moved;
+    sj["nodes_crossed"] = s.nodes_crossed;
+    sj["quad_max_displacement"] = s.quad_max_displacement;
+    sj["quad_uniform_fallbacks"] = s.quad_uniform_fallbacks;
+    Json qs = Json::object();
+    for (const auto& [why, count] : s.quadrilaterals_skipped_by_reason) qs[why] = count;
+    sj["quadrilaterals_skipped_by_reason"] = qs;
+    sj["quadrilateral_pass_rejected"] = s.quadrilateral_pass_rejected;
+    sweeps.push_back(sj);
   }
+  j["after"] = sweeps.back();
   j["sweeps"] = sweeps;
+  j["quadrilaterals"] = options.quadrilaterals;
+  if (!r.quadrilaterals_not_applicable.empty()) j["quadrilaterals_not_applicable"] = r.quadrilaterals_not_applicable;
   j["free_nodes"] = r.free_nodes;
   j["uniform_fallback_nodes"] = r.uniform_fallback_nodes;
   Json skipped = Json::object();
@@ -85,15 +111,18 @@ void register_smooth(CLI::App& app, Action& action) {
   auto o = std::make_shared<SmoothCommand>();
   CLI::App* cmd = app.add_subcommand(
       "smooth",
-      "Smooth a map (paper 3.3.2): inside every S1 element, re-place the preimages of S2's "
-      "vertices by a convex-combination parametrization with the element's boundary fixed, so "
-      "that the map gets closer to an isometry. Prints kappa (max, mean, p99) before and after.");
+      "Smooth a map (paper 3.3.2): inside every S1 element, then over the quadrilateral of every "
+      "pair of S1 triangles sharing an edge (preimages may cross it), re-place the preimages of "
+      "S2's vertices by a convex-combination parametrization, so that the map gets closer to an "
+      "isometry. Prints kappa (max, mean, quantiles, histogram) before and after each sweep.");
   cmd->add_option("MAP", o->map, "The map file to smooth (.plmap, d = 2)")->required();
   cmd->add_option("-o,--output", o->output, "Map file to write (.plmap), replaced atomically")->required();
-  cmd->add_option("--sweeps", o->sweeps, "Passes over all elements (per-element smoothing reaches its fixed point in one)")
+  cmd->add_option("--sweeps", o->sweeps, "Passes over all elements and edges (the paper: fewer than ten suffice)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--weights", o->weights, "Smoothing weights: floater, mean-value or uniform")->capture_default_str();
+  cmd->add_flag("--no-quadrilaterals", o->no_quadrilaterals,
+                "Smooth inside each element only (the preimages never cross an S1 edge)");
   cmd->add_flag("--json", o->json, "Print the summary as JSON");
   cmd->callback([o, &action] { action = [o] { return run_smooth(*o); }; });
 }

@@ -2,6 +2,9 @@
 
 #include <plmap/construct/smooth.hpp>
 
+#include "preimage_graph.hpp"
+#include "quad_smoothing.hpp"
+
 #include <plmap/core/affine_through.hpp>
 #include <plmap/core/element_transfer.hpp>
 #include <plmap/core/errors.hpp>
@@ -9,12 +12,14 @@
 #include <plmap/strategies/smoothing/smoothing_weights_registry.hpp>
 #include <plmap/strategies/smoothing/uniform_weights.hpp>
 
+#include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace plmap {
 
@@ -156,6 +161,59 @@ void apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>
   }
 }
 
+/// Total area of the region images on S2: smoothing re-places preimages, so it must not change.
+double image_area(const PlMap<2>& map) {
+  const MapData<2>& m = map.data();
+  double total = 0.0;
+  for (Index r = 0; r < map.region_count(); ++r) {
+    const auto& c = m.region_corners[r];
+    const Eigen::Vector3d a = map.node_target_world(c[0]);
+    total += 0.5 * (map.node_target_world(c[1]) - a).cross(map.node_target_world(c[2]) - a).norm();
+  }
+  return total;
+}
+
+/// The quadrilateral pass of one sweep: every S1 edge with two triangles, in index order, each
+/// step seeing the previous ones; then the map is rebuilt from the edited graph.
+void smooth_quadrilaterals(PlMap<2>& current, const AnySmoothingWeights& weights, SmoothReport& report,
+                           SmoothSweepReport& sweep) {
+  std::string why;
+  std::optional<smoothing::PreimageGraph> graph = smoothing::PreimageGraph::from_map(current, &why);
+  if (!graph) {
+    report.quadrilaterals_not_applicable = why;
+    return;
+  }
+  smoothing::QuadSmoother smoother(*graph, current.domain(), current.target(), weights);
+  for (Index e = 0; e < current.domain().edge_count(); ++e) {
+    if (!smoother.has_quadrilateral(e)) continue;
+    const smoothing::QuadOutcome o = smoother.smooth(e);
+    if (o.skipped != nullptr) {
+      ++sweep.quadrilaterals_skipped_by_reason[o.skipped];
+      continue;
+    }
+    ++sweep.quadrilaterals_smoothed;
+    sweep.quad_nodes_moved += o.nodes_moved;
+    sweep.nodes_crossed += o.nodes_crossed;
+    sweep.quad_max_displacement = std::max(sweep.quad_max_displacement, o.max_displacement);
+  }
+  sweep.quad_uniform_fallbacks = smoother.uniform_fallbacks();
+  try {
+    FinalizeReport built;
+    PlMap<2> rebuilt = graph->to_map(current.domain_ptr(), current.target_ptr(), &built);
+    // The same coverage of S2, up to rounding: guards against a map the graph form cannot hold
+    // (e.g. an S2 edge whose preimage leaves D between two vertex preimages).
+    const double area = image_area(current);
+    if (built.reversed_faces == 0 && built.dropped_edges.empty() && rebuilt.region_count() > 0 &&
+        std::abs(image_area(rebuilt) - area) <= 1e-9 * area) {
+      current = std::move(rebuilt);
+      return;
+    }
+  } catch (const Error&) {
+    // falls through: the step checks missed an inconsistency; keep the element pass's map
+  }
+  sweep.quadrilateral_pass_rejected = true;
+}
+
 }  // namespace
 
 SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
@@ -166,13 +224,14 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
   SmoothReport report;
   report.weights = options.weights;
   PlMap<2> current(map.domain_ptr(), map.target_ptr(), map.data());
+  if (options.measure_kappa) report.kappa_before = options.measure_kappa(current);
   const Index elements = map.domain().element_count();
   for (int s = 1; s <= options.sweeps; ++s) {
     SmoothSweepReport sweep;
     MapData<2> next = current.data();
     ElementSmoother smoother(current, current.data(), weights, report);
     report.skipped_elements.clear();
-    for (Index t = 0; t < elements; ++t) {
+    for (Index t = 0; t < (options.elements ? elements : 0); ++t) {
       ElementOutcome outcome = smoother.solve(t, s == 1);
       if (outcome.skipped != nullptr) {
         ++report.skipped_by_reason[outcome.skipped];
@@ -182,6 +241,8 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
       if (!outcome.positions.empty()) apply_outcome(current, t, outcome.positions, next, sweep);
     }
     current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next));
+    if (options.quadrilaterals) smooth_quadrilaterals(current, weights, report, sweep);
+    if (options.measure_kappa) sweep.kappa = options.measure_kappa(current);
     report.sweeps.push_back(sweep);
     if (options.after_sweep) options.after_sweep(s, current);
   }

@@ -8,10 +8,14 @@
 /// positive, so Tutte's/Floater's theorem gives an embedding; the result is still checked with
 /// the exact orientation predicate, and an element whose solve would fold keeps its old nodes.
 ///
-/// Node images do not change; node positions and region maps do, everything else is kept.
-/// d = 2 only. Smoothing over the quadrilaterals of two elements (the paper's enlarged domains)
-/// is not done yet: with fixed element boundaries the per-element solve is a fixed point, so a
-/// second sweep reproduces the first.
+/// The element pass changes node positions and region maps only. Then (SmoothOptions::
+/// quadrilaterals) every S1 edge with two triangles is smoothed over their quadrilateral
+/// (construct/src/quad_smoothing.hpp): the S2 vertex preimages of both triangles are re-placed
+/// together and may cross the shared edge, whose crossings with S2 edges are recomputed; the map
+/// is rebuilt through MapBuilder after the pass. Quadrilaterals need a map in which every S2
+/// vertex and edge has a complete preimage and no S1 vertex is a ghost (a parametrization such
+/// as a simplification-built map); for other maps only the element pass runs
+/// (SmoothReport::quadrilaterals_not_applicable says why). d = 2 only.
 ///
 ///   SmoothOptions options;                 // floater weights, one sweep
 ///   SmoothResult r = smooth(map, options); // r.map: the smoothed PlMap<2>
@@ -20,17 +24,40 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 
 namespace plmap {
 
+/// The distribution of κ_Ξ over a map's regions (DESIGN.md §4.7). construct/ does not compute it
+/// (κ lives in verify/, on which construct/ does not depend): SmoothOptions::measure_kappa does.
+struct KappaSummary {
+  double max = 1.0;
+  double mean = 1.0;
+  std::vector<double> quantile_levels;  ///< e.g. 0.5, 0.9, 0.99
+  std::vector<double> quantiles;        ///< κ at those levels
+  /// Histogram of log10 κ: bin i counts regions with log10 κ in [i w, (i + 1) w).
+  double histogram_bin_width = 0.25;
+  std::vector<std::size_t> histogram;
+  Index degenerate_regions = 0;  ///< zero measure on either side (κ infinite), not counted above
+};
+
 struct SmoothOptions {
-  /// Passes over all elements (default 1; see the file comment: more sweeps change nothing until
-  /// quadrilateral smoothing exists).
+  /// Passes over all elements and edges (default 1). The element pass alone is a fixed point
+  /// after one sweep; the quadrilaterals couple neighbouring elements, so more sweeps keep
+  /// improving the map (paper: fewer than ten are enough).
   int sweeps = 1;
+  /// Run the element pass in each sweep (default true); false leaves only the quadrilaterals.
+  bool elements = true;
+  /// After the element pass of each sweep, smooth over the quadrilateral of every interior S1
+  /// edge (default true).
+  bool quadrilaterals = true;
   /// Smoothing weights: "floater" (default, the paper's shape-preserving weights), "mean-value",
   /// "uniform".
   std::string weights = "floater";
+  /// If given, κ_Ξ is measured before the first sweep and after each one, into the report
+  /// (e.g. from verify's compute_quality, as `plmap smooth` does).
+  std::function<KappaSummary(const PlMap<2>&)> measure_kappa;
   /// Called after each sweep with its number (1-based) and the map so far; e.g. the CLI computes
   /// κ with verify/ there, which construct/ does not depend on. Optional.
   std::function<void(int sweep, const PlMap<2>&)> after_sweep;
@@ -41,10 +68,29 @@ struct SmoothSweepReport {
   Index nodes_moved = 0;        ///< free nodes whose position changed
   /// Largest node displacement, in the element's local coordinates (the reference triangle).
   double max_displacement = 0.0;
+  /// κ_Ξ after this sweep (when SmoothOptions::measure_kappa is given).
+  std::optional<KappaSummary> kappa;
+
+  // ---- the quadrilateral pass ----
+  Index quadrilaterals_smoothed = 0;  ///< quadrilateral steps kept
+  Index quad_nodes_moved = 0;         ///< vertex preimages moved by them (counted per step)
+  Index nodes_crossed = 0;            ///< of these, those that changed S1 element
+  /// Largest move in one step, relative to the length of the quadrilateral's shared edge.
+  double quad_max_displacement = 0.0;
+  /// Steps' unknowns whose weights model refused their star and got uniform weights instead.
+  Index quad_uniform_fallbacks = 0;
+  /// Steps refused (the quadrilateral left as it was), by reason: "non-convex quadrilateral",
+  /// "fold-over", "node leaves the quadrilateral", "crossing next to a vertex", ...
+  std::map<std::string, Index> quadrilaterals_skipped_by_reason;
+  /// True if the rebuilt map was refused (MapBuilder found a crossing or a reversed face, which
+  /// the step's checks should have prevented): the sweep then keeps the element pass only.
+  bool quadrilateral_pass_rejected = false;
 };
 
 struct SmoothReport {
   std::vector<SmoothSweepReport> sweeps;
+  /// κ_Ξ of the input (when SmoothOptions::measure_kappa is given).
+  std::optional<KappaSummary> kappa_before;
   Index free_nodes = 0;  ///< interior nodes (the unknowns), counted once
   /// Nodes whose weights model refused their star (degenerate: a zero spoke or angle); they were
   /// given uniform weights, which never fail.
@@ -55,6 +101,9 @@ struct SmoothReport {
   std::map<std::string, Index> skipped_by_reason;
   std::vector<Index> skipped_elements;  ///< of the last sweep
   std::string weights;
+  /// Why the quadrilateral pass did not run (the map is not a parametrization in the needed
+  /// sense), or empty.
+  std::string quadrilaterals_not_applicable;
   double seconds = 0.0;
 };
 

@@ -1,0 +1,396 @@
+// One quadrilateral smoothing step; see quad_smoothing.hpp for the method.
+
+#include "quad_smoothing.hpp"
+
+#include <plmap/core/predicates.hpp>
+#include <plmap/strategies/smoothing/uniform_weights.hpp>
+
+#include <Eigen/LU>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace plmap::smoothing {
+
+namespace {
+
+using Vec2 = Eigen::Vector2d;
+
+/// Barycentric clearance: an unknown closer than this (in its triangle's barycentric
+/// coordinates) to an S1 edge, or a new crossing closer than this (edge parameter) to A or B,
+/// makes the step refused. Far above MapBuilder's snap tolerance (1e-10), so the builder never
+/// snaps what the step kept apart; relative to the element, hence scale free.
+constexpr double clearance = 1e-8;
+
+/// Spoke triangles this well conditioned (κ, dimensionless) may get worse in a step: near an
+/// isometry the guard below would only stop the weights from trading one good piece for another.
+constexpr double free_condition = 3.0;
+
+/// The quadrilateral laid into the plane: A at the origin, B on the positive x axis, C1 above,
+/// C2 below; and the affine maps between each triangle's local coordinates and the plane.
+struct Unfolding {
+  Index e = invalid_index, t1 = invalid_index, t2 = invalid_index;
+  Index a = invalid_index, b = invalid_index, c1 = invalid_index, c2 = invalid_index;
+  Vec2 pa, pb, pc1, pc2;
+  std::array<Vec2, 3> corners1, corners2;  ///< plane positions of each triangle's corners 0, 1, 2
+  double length = 0.0;
+
+  const std::array<Vec2, 3>& corners(Index t) const { return t == t1 ? corners1 : corners2; }
+  Vec2 plane(Index t, const LocalPoint<2>& x) const {
+    const auto& c = corners(t);
+    return c[0] + x.x() * (c[1] - c[0]) + x.y() * (c[2] - c[0]);
+  }
+  LocalPoint<2> local(Index t, const Vec2& p) const {
+    const auto& c = corners(t);
+    Eigen::Matrix2d m;
+    m.col(0) = c[1] - c[0];
+    m.col(1) = c[2] - c[0];
+    return m.inverse() * (p - c[0]);
+  }
+  std::optional<Vec2> vertex(Index v) const {
+    if (v == a) return pa;
+    if (v == b) return pb;
+    if (v == c1) return pc1;
+    if (v == c2) return pc2;
+    return std::nullopt;
+  }
+  /// Plane position of a place in the closed quadrilateral (the caller knows it is there).
+  std::optional<Vec2> place(const Surface<2>& s1, const DomainPlace& p) const {
+    switch (p.kind) {
+      case DomainPlace::Kind::vertex: return vertex(p.where);
+      case DomainPlace::Kind::edge: {
+        const auto ends = s1.edge_vertices(p.where);
+        const auto lo = vertex(ends[0]), hi = vertex(ends[1]);
+        if (!lo || !hi) return std::nullopt;
+        return Vec2(*lo + p.edge_parameter * (*hi - *lo));
+      }
+      case DomainPlace::Kind::element:
+        if (p.where != t1 && p.where != t2) return std::nullopt;
+        return plane(p.where, p.local);
+    }
+    return std::nullopt;
+  }
+};
+
+/// A straight piece of an S2 edge inside the quadrilateral after the merge: from polyline point
+/// `first` to `last` (the points between are crossings of e, dropped).
+struct Piece {
+  Index edge;
+  std::size_t first, last;
+  std::array<int, 2> unknown{-1, -1};  ///< per end: unknown index, or -1 if fixed
+  std::array<Index, 2> vertex{invalid_index, invalid_index};  ///< per end: S2 vertex, if it is one
+  std::array<Vec2, 2> fixed{Vec2::Zero(), Vec2::Zero()};       ///< per fixed end: plane position
+  std::array<double, 2> target_parameter{0.0, 0.0};
+};
+
+/// Condition number of the affine map from the plane triangle p to the space triangle w
+/// (infinite if either is degenerate).
+double condition(const std::array<Vec2, 3>& p, const std::array<Eigen::Vector3d, 3>& w) {
+  Eigen::Matrix2d dp;
+  dp.col(0) = p[1] - p[0];
+  dp.col(1) = p[2] - p[0];
+  const double det = dp.determinant();
+  if (!(std::abs(det) > 0.0)) return std::numeric_limits<double>::infinity();
+  Eigen::Matrix<double, 3, 2> dw;
+  dw.col(0) = w[1] - w[0];
+  dw.col(1) = w[2] - w[0];
+  const Eigen::Matrix<double, 3, 2> a = dw * dp.inverse();
+  const Eigen::Matrix2d g = a.transpose() * a;
+  const double mean = 0.5 * g.trace(), gap = std::sqrt(std::max(0.0, mean * mean - g.determinant()));
+  const double smallest = mean - gap;
+  if (!(smallest > 0.0)) return std::numeric_limits<double>::infinity();
+  return std::sqrt((mean + gap) / smallest);
+}
+
+double ccw_angle(const Vec2& from, const Vec2& to) {
+  double a = std::atan2(from.x() * to.y() - from.y() * to.x(), from.dot(to));
+  if (a <= 0.0) a += 2.0 * std::numbers::pi;
+  return a;
+}
+
+}  // namespace
+
+QuadSmoother::QuadSmoother(PreimageGraph& graph, const Surface<2>& domain, const Surface<2>& target,
+                           AnySmoothingWeights weights)
+    : g_(graph), s1_(domain), s2_(target), weights_(std::move(weights)) {
+  edges_in_element_.assign(static_cast<std::size_t>(domain.element_count()), {});
+  for (Index e = 0; e < target.edge_count(); ++e) index_edge(e);
+}
+
+void QuadSmoother::index_edge(Index target_edge) {
+  const std::size_t n = polyline_size(g_, target_edge);
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const Index t = common_element(s1_, polyline_point(g_, s2_, target_edge, i), polyline_point(g_, s2_, target_edge, i + 1), nullptr);
+    if (t == invalid_index) continue;
+    auto& list = edges_in_element_[t];
+    if (std::find(list.begin(), list.end(), target_edge) == list.end()) list.push_back(target_edge);
+  }
+}
+
+bool QuadSmoother::has_quadrilateral(Index e) const {
+  const auto inc = s1_.edge_elements(e);
+  return inc.size() == 2 && s1_.local_edge_is_forward(inc[0].element, inc[0].local_edge) !=
+                                s1_.local_edge_is_forward(inc[1].element, inc[1].local_edge);
+}
+
+QuadOutcome QuadSmoother::smooth(Index e) {
+  QuadOutcome out;
+  const auto refuse = [&out](const char* why) {
+    out = QuadOutcome{};
+    out.skipped = why;
+    return out;
+  };
+  const auto inc = s1_.edge_elements(e);
+  Unfolding u;
+  u.e = e;
+  u.t1 = inc[0].element;
+  u.t2 = inc[1].element;
+  const int k1 = inc[0].local_edge, k2 = inc[1].local_edge;
+  const auto& e1 = s1_.element(u.t1);
+  const auto& e2 = s1_.element(u.t2);
+  u.a = e1[k1];
+  u.b = e1[(k1 + 1) % 3];
+  u.c1 = e1[(k1 + 2) % 3];
+  u.c2 = e2[(k2 + 2) % 3];
+  if (u.c1 == u.c2 || e2[k2] != u.b) return refuse("degenerate quadrilateral");
+  {
+    const Eigen::Vector3d wa = s1_.vertex(u.a), wb = s1_.vertex(u.b);
+    u.length = (wb - wa).norm();
+    const Eigen::Vector3d dir = (wb - wa) / u.length;
+    const auto lay = [&](const Eigen::Vector3d& w, double side) {
+      const double x = (w - wa).dot(dir);
+      return Vec2(x, side * ((w - wa) - x * dir).norm());
+    };
+    u.pa = Vec2(0.0, 0.0);
+    u.pb = Vec2(u.length, 0.0);
+    u.pc1 = lay(s1_.vertex(u.c1), 1.0);
+    u.pc2 = lay(s1_.vertex(u.c2), -1.0);
+  }
+  u.corners1[k1] = u.pa, u.corners1[(k1 + 1) % 3] = u.pb, u.corners1[(k1 + 2) % 3] = u.pc1;
+  u.corners2[k2] = u.pb, u.corners2[(k2 + 1) % 3] = u.pa, u.corners2[(k2 + 2) % 3] = u.pc2;
+  // Convex (counter-clockwise A, C2, B, C1): then every straight segment between two points of
+  // the closed quadrilateral stays in it, and Tutte/Floater applies.
+  if (orient2d(u.pa, u.pc2, u.pb) <= 0 || orient2d(u.pc2, u.pb, u.pc1) <= 0 || orient2d(u.pb, u.pc1, u.pa) <= 0 ||
+      orient2d(u.pc1, u.pa, u.pc2) <= 0)
+    return refuse("non-convex quadrilateral");
+
+  // ---- merge: the pieces of S2 edges in the quadrilateral, and the unknowns ----
+  std::vector<Index> relevant = edges_in_element_[u.t1];
+  for (Index x : edges_in_element_[u.t2])
+    if (std::find(relevant.begin(), relevant.end(), x) == relevant.end()) relevant.push_back(x);
+  const auto movable = [&](const DomainPlace& p) {
+    return (p.kind == DomainPlace::Kind::element && (p.where == u.t1 || p.where == u.t2)) ||
+           (p.kind == DomainPlace::Kind::edge && p.where == e);
+  };
+  std::vector<Index> unknown_vertex;  // S2 vertex of each unknown
+  const auto unknown_of = [&](Index v) {
+    const auto it = std::find(unknown_vertex.begin(), unknown_vertex.end(), v);
+    if (it != unknown_vertex.end()) return static_cast<int>(it - unknown_vertex.begin());
+    unknown_vertex.push_back(v);
+    return static_cast<int>(unknown_vertex.size()) - 1;
+  };
+  std::vector<Piece> pieces;
+  for (Index te : relevant) {
+    const std::size_t n = polyline_size(g_, te);
+    std::vector<char> inside(n - 1, 0);
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      bool along = false;
+      const Index t = common_element(s1_, polyline_point(g_, s2_, te, i), polyline_point(g_, s2_, te, i + 1), &along);
+      if (along) return refuse("S2 edge along an S1 edge");
+      inside[i] = (t == u.t1 || t == u.t2);
+    }
+    for (std::size_t i = 0; i + 1 < n;) {
+      if (!inside[i]) {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      while (j + 1 < n && inside[j]) ++j;  // segments i .. j-1 inside: points i .. j
+      for (std::size_t p = i + 1; p < j; ++p)
+        if (g_.crossings[te][p - 1].domain_edge != e) return refuse("S2 edge meets a triangle twice");
+      if (j - i > 2) return refuse("S2 edge crosses the shared edge twice");
+      Piece piece{te, i, j, {-1, -1}, {invalid_index, invalid_index}, {Vec2::Zero(), Vec2::Zero()}, {0.0, 0.0}};
+      for (int end = 0; end < 2; ++end) {
+        const std::size_t at = end == 0 ? i : j;
+        const DomainPlace place = polyline_point(g_, s2_, te, at);
+        piece.target_parameter[end] = polyline_target_parameter(g_, te, at);
+        if (at == 0 || at == n - 1) piece.vertex[end] = s2_.edge_vertices(te)[at == 0 ? 0 : 1];
+        if (piece.vertex[end] != invalid_index && movable(place)) {
+          piece.unknown[end] = unknown_of(piece.vertex[end]);
+        } else {
+          const auto p = u.place(s1_, place);
+          if (!p) return refuse("S2 edge leaves the quadrilateral unexpectedly");
+          piece.fixed[end] = *p;
+        }
+      }
+      pieces.push_back(piece);
+      i = j;
+    }
+  }
+  if (unknown_vertex.empty()) return out;
+
+  // ---- the convex-combination system ----
+  const int unknowns = static_cast<int>(unknown_vertex.size());
+  std::vector<std::vector<std::pair<int, int>>> ring_of(unknown_vertex.size());  // (piece, end of the neighbour)
+  for (int p = 0; p < static_cast<int>(pieces.size()); ++p)
+    for (int end = 0; end < 2; ++end)
+      if (pieces[p].unknown[end] >= 0) ring_of[pieces[p].unknown[end]].push_back({p, 1 - end});
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
+  std::vector<std::vector<std::pair<int, int>>> ordered_ring(unknown_vertex.size());
+  std::vector<std::vector<Eigen::Vector3d>> ring_world(unknown_vertex.size());
+  for (int i = 0; i < unknowns; ++i) {
+    const Index v = unknown_vertex[i];
+    // S2's cyclic order of v's neighbours: next(x) = y for each S2 triangle (v, x, y)
+    const auto star = s2_.vertex_elements(v);
+    std::vector<std::pair<Index, Index>> next;
+    for (Index s : star) {
+      const int k = s2_.local_corner(s, v);
+      next.push_back({s2_.element(s)[(k + 1) % 3], s2_.element(s)[(k + 2) % 3]});
+    }
+    std::vector<Index> cycle{next.front().first};
+    while (cycle.size() <= next.size()) {
+      const auto it = std::find_if(next.begin(), next.end(), [&](const auto& xy) { return xy.first == cycle.back(); });
+      if (it == next.end()) return refuse("vertex preimage with an open S2 star");
+      if (it->second == cycle.front()) break;
+      cycle.push_back(it->second);
+    }
+    if (cycle.size() != next.size() || ring_of[i].size() != cycle.size()) return refuse("vertex preimage with an open S2 star");
+    std::vector<Eigen::Vector3d> ring;
+    for (Index x : cycle) {
+      const Index te = s2_.find_edge(v, x);
+      const auto it = std::find_if(ring_of[i].begin(), ring_of[i].end(), [&](const auto& pe) { return pieces[pe.first].edge == te; });
+      if (it == ring_of[i].end()) return refuse("vertex preimage with an open S2 star");
+      ordered_ring[i].push_back(*it);
+      const auto ends = s2_.edge_vertices(te);
+      const double t = pieces[it->first].target_parameter[it->second];
+      ring.push_back((1.0 - t) * s2_.vertex(ends[0]) + t * s2_.vertex(ends[1]));
+    }
+    auto w = weights_(s2_.vertex(v), ring);
+    if (!w) {
+      w = UniformWeights{}.weights(s2_.vertex(v), ring);
+      ++uniform_fallbacks_;
+    }
+    triplets.emplace_back(i, i, 1.0);
+    for (std::size_t j = 0; j < ring.size(); ++j) {
+      const auto [p, end] = ordered_ring[i][j];
+      if (pieces[p].unknown[end] >= 0)
+        triplets.emplace_back(i, pieces[p].unknown[end], -(*w)[j]);
+      else
+        rhs.row(i) += (*w)[j] * pieces[p].fixed[end].transpose();
+    }
+    ring_world[i] = std::move(ring);
+    if (g_.orientation < 0) {
+      std::reverse(ordered_ring[i].begin(), ordered_ring[i].end());
+      std::reverse(ring_world[i].begin(), ring_world[i].end());
+    }
+  }
+  Eigen::SparseMatrix<double> matrix(unknowns, unknowns);
+  matrix.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(matrix);
+  if (lu.info() != Eigen::Success) return refuse("solver");
+  const Eigen::MatrixX2d x = lu.solve(rhs);
+  if (lu.info() != Eigen::Success || !x.allFinite()) return refuse("solver");
+
+  // ---- checks ----
+  std::vector<Vec2> position(unknown_vertex.size());
+  std::vector<DomainPlace> new_place(unknown_vertex.size());
+  for (int i = 0; i < unknowns; ++i) {
+    position[i] = x.row(i).transpose();
+    const int side = orient2d(u.pa, u.pb, position[i]);
+    if (side == 0) return refuse("node on the shared edge");
+    const Index t = side > 0 ? u.t1 : u.t2;
+    const LocalPoint<2> local = u.local(t, position[i]);
+    const Barycentric<2> b = barycentric_from_local<2>(local);
+    if (!(b.minCoeff() > clearance)) return refuse("node leaves the quadrilateral");
+    new_place[i] = {DomainPlace::Kind::element, t, 0.0, local};
+  }
+  const auto end_position = [&](const Piece& p, int end) { return p.unknown[end] >= 0 ? position[p.unknown[end]] : p.fixed[end]; };
+  for (std::size_t p = 0; p < pieces.size(); ++p)
+    for (std::size_t q = p + 1; q < pieces.size(); ++q)
+      if (segments_cross_properly(end_position(pieces[p], 0), end_position(pieces[p], 1), end_position(pieces[q], 0),
+                                  end_position(pieces[q], 1)))
+        return refuse("fold-over");
+  for (int i = 0; i < unknowns; ++i) {
+    double turn = 0.0;
+    const auto& ring = ordered_ring[i];
+    for (std::size_t j = 0; j < ring.size(); ++j) {
+      const Vec2 d0 = end_position(pieces[ring[j].first], ring[j].second) - position[i];
+      const auto& nx = ring[(j + 1) % ring.size()];
+      const Vec2 d1 = end_position(pieces[nx.first], nx.second) - position[i];
+      if (orient2d(Vec2::Zero(), d0, d1) == 0 && d0.dot(d1) > 0.0) return refuse("fold-over");
+      turn += ccw_angle(d0, d1);
+    }
+    if (std::abs(turn - 2.0 * std::numbers::pi) > 1e-6) return refuse("fold-over");
+  }
+  // The worst spoke triangle (v, neighbour j, neighbour j + 1) against its image: a step that
+  // would make it worse is refused, so that sweeps do not trade the quadrilateral's worst piece
+  // for a better average (without this, κ max creeps up again after a few sweeps).
+  const auto worst_spoke = [&](const std::vector<Vec2>& at) {
+    double worst = 1.0;
+    for (int i = 0; i < unknowns; ++i) {
+      const auto& ring = ordered_ring[i];
+      const auto end_at = [&](std::pair<int, int> pe) {
+        const Piece& p = pieces[pe.first];
+        return p.unknown[pe.second] >= 0 ? at[p.unknown[pe.second]] : p.fixed[pe.second];
+      };
+      for (std::size_t j = 0; j < ring.size(); ++j) {
+        const std::size_t k = (j + 1) % ring.size();
+        worst = std::max(worst, condition({at[i], end_at(ring[j]), end_at(ring[k])},
+                                          {s2_.vertex(unknown_vertex[i]), ring_world[i][j], ring_world[i][k]}));
+      }
+    }
+    return worst;
+  };
+  std::vector<Vec2> old_position(unknown_vertex.size());
+  for (int i = 0; i < unknowns; ++i) old_position[i] = *u.place(s1_, g_.vertex[unknown_vertex[i]]);
+  if (worst_spoke(position) > std::max(worst_spoke(old_position), free_condition))
+    return refuse("would raise the worst condition number");
+
+  // new crossings with e
+  std::vector<std::optional<EdgeCrossing>> cut(pieces.size());
+  const bool a_is_smaller = u.a < u.b;
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    const Vec2 s = end_position(pieces[p], 0), t = end_position(pieces[p], 1);
+    const int ss = orient2d(u.pa, u.pb, s), st = orient2d(u.pa, u.pb, t);
+    if (ss == 0 && st == 0) return refuse("S2 edge along an S1 edge");
+    if (ss * st >= 0) continue;
+    const double lambda = s.y() / (s.y() - t.y());
+    const double along = (s.x() + lambda * (t.x() - s.x())) / u.length;
+    if (!(along > clearance && along < 1.0 - clearance)) return refuse("crossing next to a vertex");
+    const double tp = pieces[p].target_parameter[0] + lambda * (pieces[p].target_parameter[1] - pieces[p].target_parameter[0]);
+    cut[p] = EdgeCrossing{e, a_is_smaller ? along : 1.0 - along, tp};
+  }
+
+  // ---- apply ----
+  for (int i = 0; i < unknowns; ++i) {
+    DomainPlace& old = g_.vertex[unknown_vertex[i]];
+    const double shift = (position[i] - old_position[i]).norm() / u.length;
+    if (shift > 0.0) ++out.nodes_moved;
+    if (old.kind != DomainPlace::Kind::element || old.where != new_place[i].where) ++out.nodes_crossed;
+    out.max_displacement = std::max(out.max_displacement, shift);
+    old = new_place[i];
+  }
+  // pieces of one S2 edge from the last to the first, so that earlier point indices stay valid
+  std::vector<std::size_t> order(pieces.size());
+  for (std::size_t p = 0; p < order.size(); ++p) order[p] = p;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return pieces[a].edge != pieces[b].edge ? pieces[a].edge < pieces[b].edge : pieces[a].first > pieces[b].first;
+  });
+  for (std::size_t p : order) {
+    auto& list = g_.crossings[pieces[p].edge];
+    const auto first = list.begin() + static_cast<std::ptrdiff_t>(pieces[p].first);  // crossing index of point first + 1
+    list.erase(first, first + static_cast<std::ptrdiff_t>(pieces[p].last - pieces[p].first - 1));
+    if (cut[p]) list.insert(list.begin() + static_cast<std::ptrdiff_t>(pieces[p].first), *cut[p]);
+  }
+  for (Index t : {u.t1, u.t2}) edges_in_element_[t].clear();
+  for (Index te : relevant) index_edge(te);
+  return out;
+}
+
+}  // namespace plmap::smoothing
