@@ -103,6 +103,8 @@ int run_simplify(const SimplifyCommand& o) {
   j["regions"] = result.map.region_count();
   j["feature_edges"] = r.feature_edges;
   j["feature_vertices"] = r.feature_vertices;
+  j["feature_corners"] = r.feature_corners;
+  j["removed_along_lines"] = r.removed_along_lines;
   j["skipped_vertices"] = r.skipped_vertices;
   Json skipped = Json::object();
   for (const auto& [why, count] : r.skipped_by_reason) skipped[why] = count;
