@@ -48,3 +48,23 @@ def simplify_rejects_faces_that_are_not_triangles_or_polygons():
     write("two.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n2 0 3\n")
     expect_clean_error(["simplify", "two.off", "-o", "two.plmap", "--target-elements", 1], mention="two.off")
     expect(not os.path.exists(os.path.join(WORK, "two.plmap")), "two.plmap was written")
+
+
+@case
+def simplify_curves_open_and_closed():
+    run("generate", "polyline", "--segments", 120, "--seed", 5, "-o", "open.curve")
+    j = run_json("simplify", "open.curve", "-o", "open.plmap", "--coarse", "open_coarse.curve",
+                 "--target-elements", 10, "--feature-angle", 180, "--json")
+    expect(j["target_reached"] and j["elements_after"] == 10, j)
+    expect(j["feature_corners"] == 2, j)  # the two ends of the open curve
+    run("check", "--parametrization", "open.plmap")
+    info = run_json("info", "open_coarse.curve", "--json")
+    expect(info["elements"] == 10, info)
+    run("generate", "polyline", "--segments", 60, "--seed", 6, "--closed", "-o", "closed.curve")
+    j = run_json("simplify", "closed.curve", "-o", "closed.plmap", "--max-error", 0.05, "--oracle",
+                 "hausdorff", "--oracle", "long-edge:0.1", "--json")
+    expect(j["elements_after"] < 60 and j["hausdorff_error"] <= 0.05, j)
+    run("check", "--parametrization", "closed.plmap")
+    expect_clean_error(["simplify", "closed.curve", "-o", "never.plmap", "--target-elements", 60],
+                       mention="not below")
+    expect(not os.path.exists(os.path.join(WORK, "never.plmap")), "never.plmap was written")
