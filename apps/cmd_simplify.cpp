@@ -4,6 +4,7 @@
 #include "cli_common.hpp"
 
 #include <plmap/construct/simplify.hpp>
+#include <plmap/construct/simplify_curve.hpp>
 #include <plmap/strategies/simplification/simplification_registry.hpp>
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/map_file.hpp>
@@ -44,6 +45,9 @@ Json quality_json(const QualityReport& q) {
   return j;
 }
 
+template <int d>
+int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const SimplifyReport& r);
+
 int run_simplify(const SimplifyCommand& o) {
   SimplifyOptions options;
   options.target_elements = o.target_elements;
@@ -72,7 +76,12 @@ int run_simplify(const SimplifyCommand& o) {
     if (!parent.empty() && !std::filesystem::is_directory(parent))
       throw Error(fmt::format("{}: cannot write here, the directory {} does not exist", out, parent.string()));
   }
-  AnySurface any = read_any_surface(o.fine, 2);
+  AnySurface any = read_any_surface(o.fine);
+  if (std::holds_alternative<Surface<1>>(any)) {
+    auto curve = std::make_shared<const Surface<1>>(std::move(std::get<0>(any)));
+    const CurveSimplifyResult result = simplify_curve(curve, std::move(options));
+    return report_simplification(o, result.map, result.report);
+  }
   auto fine = std::make_shared<const Surface<2>>(std::move(std::get<1>(any)));
 
   const bool show_progress = o.progress || (!o.no_progress && isatty(STDERR_FILENO));
@@ -83,11 +92,15 @@ int run_simplify(const SimplifyCommand& o) {
     };
   const SimplifyResult result = simplify(fine, std::move(options));
   if (show_progress) std::cerr << '\n';
+  return report_simplification(o, result.map, result.report);
+}
 
-  if (!o.coarse.empty()) write_surface(o.coarse, result.map.domain());
-  save_map(o.output, result.map);
+/// Writes the outputs and prints the summary, for surfaces and curves alike.
+template <int d>
+int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const SimplifyReport& r) {
+  if (!o.coarse.empty()) write_surface(o.coarse, map.domain());
+  save_map(o.output, map);
 
-  const SimplifyReport& r = result.report;
   Json j;
   j["map"] = o.output;
   if (!o.coarse.empty()) j["coarse"] = o.coarse;
@@ -99,10 +112,12 @@ int run_simplify(const SimplifyCommand& o) {
   j["target_reached"] = r.target_reached;
   j["hausdorff_error"] = r.hausdorff_error;
   j["hausdorff_error_relative"] = r.hausdorff_error_relative;
-  j["quality"] = quality_json(compute_quality(result.map));
-  j["regions"] = result.map.region_count();
+  j["quality"] = quality_json(compute_quality(map));
+  j["regions"] = map.region_count();
   j["feature_edges"] = r.feature_edges;
   j["feature_vertices"] = r.feature_vertices;
+  j["feature_corners"] = r.feature_corners;
+  j["removed_along_lines"] = r.removed_along_lines;
   j["skipped_vertices"] = r.skipped_vertices;
   Json skipped = Json::object();
   for (const auto& [why, count] : r.skipped_by_reason) skipped[why] = count;
@@ -123,13 +138,14 @@ void register_simplify(CLI::App& app, Action& action) {
   auto o = std::make_shared<SimplifyCommand>();
   CLI::App* cmd = app.add_subcommand(
       "simplify",
-      "Simplify a fine triangle surface into a coarse one S1 and build the parametrization of the "
-      "fine surface over S1 (paper 3.3.1): vertices are removed one at a time, cheapest first by "
-      "the error oracles; feature lines (boundary, non-manifold, sharp edges) are kept.");
-  cmd->add_option("FINE", o->fine, "The fine triangle surface S2")->required();
+      "Simplify a fine triangle surface (or curve) into a coarse one S1 and build the parametrization "
+      "of the fine one over S1 (paper 3.3.1): vertices are removed one at a time, cheapest first by "
+      "the error oracles; feature lines (boundary, non-manifold, sharp edges) are kept, vertices on "
+      "them are removed only along them, feature corners never.");
+  cmd->add_option("FINE", o->fine, "The fine triangle surface or curve S2")->required();
   cmd->add_option("-o,--output", o->output, "Map file to write (.plmap, S1 -> S2), replaced atomically")->required();
   cmd->add_option("--coarse", o->coarse, "Also write the coarse surface S1 to this file (any surface format)");
-  cmd->add_option("--target-elements", o->target_elements, "Stop at this many triangles")
+  cmd->add_option("--target-elements", o->target_elements, "Stop at this many triangles (segments for a curve)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--target-vertices", o->target_vertices, "Stop at this many vertices")
       ->check(CLI::PositiveNumber);

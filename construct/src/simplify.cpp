@@ -56,6 +56,7 @@ class Simplifier {
       : options_(options),
         map_(fine, options.edit),
         flatten_(make_star_flattening(options.flattening)),
+        flatten_half_(make_half_star_flattening(options.flattening)),
         triangulate_(make_hole_triangulation(options.hole_triangulation)) {
     const Surface<2>& s = *fine;
     double total = 0.0;
@@ -64,13 +65,35 @@ class Simplifier {
       total += (s.vertex(ab[0]) - s.vertex(ab[1])).norm();
     }
     length_scale_ = s.edge_count() > 0 ? total / s.edge_count() : 1.0;
+    // A vertex with exactly two feature edges lies on a feature line and is removed along it;
+    // any other vertex with feature edges is a feature corner and stays.
     const std::vector<char> feature = feature_edges(s, options.feature_angle_degrees);
     feature_vertex_.assign(s.vertex_count(), 0);
+    line_neighbours_.assign(s.vertex_count(), {invalid_index, invalid_index});
+    std::vector<int> feature_degree(s.vertex_count(), 0);
     for (Index e = 0; e < s.edge_count(); ++e)
       if (feature[e]) {
         ++feature_edge_count_;
-        for (Index v : s.edge_vertices(e)) feature_vertex_[v] = 1;
+        const auto ab = s.edge_vertices(e);
+        for (int m = 0; m < 2; ++m) {
+          const Index v = ab[m];
+          feature_vertex_[v] = 1;
+          if (feature_degree[v] < 2) line_neighbours_[v][feature_degree[v]] = ab[1 - m];
+          ++feature_degree[v];
+        }
       }
+    // A line that turns by more than the feature angle at a vertex has a corner there too (the
+    // corner of a square's boundary), as for curves.
+    const double cos_limit = std::cos(options.feature_angle_degrees * std::numbers::pi / 180.0);
+    corner_.assign(s.vertex_count(), 0);
+    for (Index v = 0; v < s.vertex_count(); ++v) {
+      corner_[v] = feature_degree[v] != 0 && feature_degree[v] != 2;
+      if (feature_degree[v] == 2 && options.feature_angle_degrees < 180.0) {
+        const Eigen::Vector3d in = (s.vertex(v) - s.vertex(line_neighbours_[v][0])).normalized();
+        const Eigen::Vector3d out = (s.vertex(line_neighbours_[v][1]) - s.vertex(v)).normalized();
+        corner_[v] = in.dot(out) < cos_limit;
+      }
+    }
     stamp_.assign(s.vertex_count(), 0);
     last_refusal_.assign(s.vertex_count(), {});
   }
@@ -81,11 +104,18 @@ class Simplifier {
     for (char f : feature_vertex_) n += f;
     return n;
   }
+  Index feature_corner_count() const {
+    Index n = 0;
+    for (char f : corner_) n += f;
+    return n;
+  }
+  bool is_corner(Index v) const { return corner_[v] != 0; }
   const std::vector<std::string>& last_refusal() const { return last_refusal_; }
   bool is_feature(Index v) const { return feature_vertex_[v] != 0; }
   EditableMap& map() { return map_; }
 
   Attempt attempt(Index v) const {
+    if (line_neighbours_[v][0] != invalid_index && !is_corner(v)) return attempt_along_line(v);
     Attempt a;
     a.plan.vertex = v;
     const std::vector<Index> ring = map_.closed_ring(v);
@@ -118,6 +148,64 @@ class Simplifier {
       if (a.plan.refusal != RemovalRefusal::node_on_new_edge || a.plan.blocking_diagonal[0] < 0) break;
       avoided.push_back(a.plan.blocking_diagonal);
     }
+    return judge(std::move(a));
+  }
+
+  /// The removal of v along its feature line: each side of the line (half-star) is flattened
+  /// onto a half-disk and re-triangulated on its own; the new edge joins the line neighbours.
+  Attempt attempt_along_line(Index v) const {
+    Attempt a;
+    a.plan.vertex = v;
+    const auto [left, right] = line_neighbours_[v];
+    std::vector<StarSheet> sheets = map_.line_star_sheets(v, left, right);
+    if (sheets.empty()) {
+      a.refusal = to_string(RemovalRefusal::not_a_disk_star);
+      return a;
+    }
+    std::vector<std::vector<Eigen::Vector2d>> flat;
+    for (const StarSheet& sheet : sheets) {
+      if (sheet.ring.size() < 3) {
+        a.refusal = to_string(RemovalRefusal::single_triangle_side);
+        return a;
+      }
+      std::vector<Eigen::Vector3d> ring_positions;
+      for (Index w : sheet.ring) ring_positions.push_back(map_.position(w));
+      auto f = flatten_half_(map_.position(v), ring_positions);
+      if (!f) {
+        a.refusal = to_string(RemovalRefusal::flattening_not_simple);
+        return a;
+      }
+      flat.push_back(std::move(*f));
+    }
+    // Diagonals through a node of a sheet are avoided by triangulating that sheet again.
+    std::vector<std::array<int, 3>> avoided;  // sheet, i, j
+    std::vector<std::vector<std::array<int, 3>>> triangles(sheets.size());
+    std::size_t budget = 0;
+    for (const StarSheet& sheet : sheets) budget += sheet.ring.size();
+    for (std::size_t tries = 0; tries < budget; ++tries) {
+      for (std::size_t g = 0; g < sheets.size(); ++g) {
+        const std::vector<Index>& ring = sheets[g].ring;
+        const int sheet = static_cast<int>(g);
+        const DiagonalAllowed allowed = [&](int i, int j) {
+          const std::array<int, 3> key{sheet, std::min(i, j), std::max(i, j)};
+          return std::find(avoided.begin(), avoided.end(), key) == avoided.end() && !map_.has_edge(ring[i], ring[j]);
+        };
+        auto t = triangulate_(flat[g], allowed);
+        if (!t) {
+          a.refusal = to_string(RemovalRefusal::no_triangulation);
+          return a;
+        }
+        triangles[g] = std::move(*t);
+      }
+      a.plan = map_.plan_vertex_removal(v, sheets, flat, triangles);
+      if (a.plan.refusal != RemovalRefusal::node_on_new_edge || a.plan.blocking_diagonal[0] < 0) break;
+      avoided.push_back({a.plan.blocking_sheet, a.plan.blocking_diagonal[0], a.plan.blocking_diagonal[1]});
+    }
+    return judge(std::move(a));
+  }
+
+  /// Refusal by the planner, the error bound, or the oracles.
+  Attempt judge(Attempt a) const {
     if (!a.plan.accepted()) {
       a.refusal = to_string(a.plan.refusal);
       return a;
@@ -131,10 +219,19 @@ class Simplifier {
     return a;
   }
 
+  /// After v was removed along its line, its line neighbours are each other's.
+  void join_line_neighbours(Index v) {
+    const auto [left, right] = line_neighbours_[v];
+    if (left == invalid_index || is_corner(v)) return;
+    for (auto [end, other] : {std::pair{left, right}, std::pair{right, left}})
+      for (Index& n : line_neighbours_[end])
+        if (n == v) n = other;
+  }
+
   /// Ranks v (if removable) and queues it; an older queue entry of v becomes stale.
   void rank(Index v) {
     ++stamp_[v];
-    if (!map_.is_live_vertex(v) || is_feature(v)) return;
+    if (!map_.is_live_vertex(v) || is_corner(v)) return;
     const Attempt a = attempt(v);
     last_refusal_[v] = a.refusal;
     if (a.refusal.empty()) queue_.push({a.verdict.cost, v, stamp_[v]});
@@ -167,7 +264,9 @@ class Simplifier {
       }
       map_.apply(a.plan);
       options_.oracles.on_applied(map_, a.plan);
+      join_line_neighbours(top.vertex);
       ++report.removed_vertices;
+      if (a.plan.line_edge[0] != invalid_index) ++report.removed_along_lines;
       for (Index w : a.plan.ring) rank(w);
       if (options_.progress && options_.progress_every > 0 && report.removed_vertices % options_.progress_every == 0)
         options_.progress({report.removed_vertices, map_.live_triangle_count(), options_.target_elements});
@@ -185,9 +284,13 @@ class Simplifier {
   SimplifyOptions& options_;
   EditableMap map_;
   AnyStarFlattening flatten_;
+  AnyStarFlattening flatten_half_;
   AnyHoleTriangulation triangulate_;
   double length_scale_ = 1.0;
   std::vector<char> feature_vertex_;
+  std::vector<char> corner_;  ///< feature corners: never removed
+  /// Per vertex on a feature line, its two neighbours along the line in S1 (invalid if none).
+  std::vector<std::array<Index, 2>> line_neighbours_;
   Index feature_edge_count_ = 0;
   std::vector<std::uint32_t> stamp_;
   std::vector<std::string> last_refusal_;
@@ -225,13 +328,14 @@ SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions 
   Simplifier simplifier(fine, options);
   report.feature_edges = simplifier.feature_edge_count();
   report.feature_vertices = simplifier.feature_vertex_count();
+  report.feature_corners = simplifier.feature_corner_count();
   simplifier.run(report);
   report.seconds_simplify = seconds_since(start);
   if (options.progress)
     options.progress({report.removed_vertices, simplifier.map().live_triangle_count(), options.target_elements});
 
   for (Index v = 0; v < s.vertex_count(); ++v) {
-    if (!simplifier.map().is_live_vertex(v) || simplifier.is_feature(v)) continue;
+    if (!simplifier.map().is_live_vertex(v) || simplifier.is_corner(v)) continue;
     const std::string& why = simplifier.last_refusal()[v];
     if (why.empty()) continue;  // still removable: the target stopped the run
     ++report.skipped_by_reason[why];

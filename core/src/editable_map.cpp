@@ -22,6 +22,7 @@ const char* to_string(RemovalRefusal reason) {
     case RemovalRefusal::node_on_new_edge: return "node_on_new_edge";
     case RemovalRefusal::edge_along_new_edge: return "edge_along_new_edge";
     case RemovalRefusal::crossing_edges: return "crossing_edges";
+    case RemovalRefusal::single_triangle_side: return "single_triangle_side";
   }
   return "unknown";
 }
@@ -46,6 +47,8 @@ EditableMap::EditableMap(std::shared_ptr<const Surface<2>> target, EditOptions o
   s.live_triangles = nt;
   s.preimage_triangle.assign(nv, invalid_index);
   s.preimage_barycentric.assign(nv, Eigen::Vector3d::Zero());
+  s.preimage_edge.assign(nv, {invalid_index, invalid_index});
+  s.preimage_edge_parameter.assign(nv, 0.0);
   s.triangle_vertices.resize(nt);
   s.triangle_edges.resize(nt);
   s.polylines.resize(ne);
@@ -109,6 +112,44 @@ std::vector<Index> EditableMap::closed_ring(Index v) const {
   return ring;
 }
 
+std::vector<StarSheet> EditableMap::line_star_sheets(Index v, Index a, Index b) const {
+  const Impl& s = *impl_;
+  // Each star triangle (v, x, y), counter-clockwise, contributes the ring arc x -> y. A sheet is
+  // a chain of arcs from one line neighbour to the other; every other ring vertex must start
+  // and end exactly one arc (the fan is manifold and consistently oriented there).
+  std::vector<std::array<Index, 2>> arcs;
+  for (Index t : s.vertex_triangles[v]) {
+    const auto& c = s.triangles[t];
+    const int k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
+    arcs.push_back({c[(k + 1) % 3], c[(k + 2) % 3]});
+  }
+  auto is_end = [a, b](Index w) { return w == a || w == b; };
+  std::vector<char> used(arcs.size(), 0);
+  std::vector<StarSheet> sheets;
+  for (std::size_t first = 0; first < arcs.size(); ++first) {
+    if (used[first] || !is_end(arcs[first][0])) continue;
+    used[first] = 1;
+    StarSheet sheet{{arcs[first][0], arcs[first][1]}, false};
+    while (!is_end(sheet.ring.back())) {
+      std::size_t next = arcs.size();
+      int starts = 0;
+      for (std::size_t i = 0; i < arcs.size(); ++i)
+        if (arcs[i][0] == sheet.ring.back()) {
+          ++starts;
+          next = i;
+        }
+      if (starts != 1 || used[next] || sheet.ring.size() > arcs.size()) return {};
+      used[next] = 1;
+      sheet.ring.push_back(arcs[next][1]);
+    }
+    if (sheet.ring.back() == sheet.ring.front()) return {};
+    sheets.push_back(std::move(sheet));
+  }
+  for (char u : used)
+    if (!u) return {};
+  return sheets;
+}
+
 void EditableMap::apply(const VertexRemovalPlan& plan) {
   Impl& s = *impl_;
   if (!plan.accepted()) throw Error(fmt::format("EditableMap::apply: the removal of vertex {} was refused ({})",
@@ -142,11 +183,24 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
   }
   s.live_triangles += static_cast<Index>(plan.new_triangles.size()) - static_cast<Index>(plan.old_triangles.size());
 
+  if (plan.line_edge[0] != invalid_index) {
+    // The nodes of the two removed line edges are among the relocations, onto the new edge.
+    for (Index end : plan.line_edge) s.edge_vertices.erase(Impl::edge_key(sorted_pair(plan.vertex, end)));
+  }
   for (const auto& r : plan.relocations) {
-    const Index t = base + r.new_triangle;
-    s.preimage_triangle[r.target_vertex] = t;
-    s.preimage_barycentric[r.target_vertex] = r.barycentric;
-    s.triangle_vertices[t].push_back(r.target_vertex);
+    const Index w = r.target_vertex;
+    if (r.new_triangle >= 0) {
+      const Index t = base + r.new_triangle;
+      s.preimage_triangle[w] = t;
+      s.preimage_barycentric[w] = r.barycentric;
+      s.preimage_edge[w] = {invalid_index, invalid_index};
+      s.triangle_vertices[t].push_back(w);
+    } else {
+      s.preimage_triangle[w] = invalid_index;
+      s.preimage_edge[w] = plan.line_edge;
+      s.preimage_edge_parameter[w] = r.edge_parameter;
+      s.edge_vertices[Impl::edge_key(plan.line_edge)].push_back(w);
+    }
   }
   for (const auto& edit : plan.polyline_edits) {
     EdgePolyline& p = s.polylines[edit.target_edge];
@@ -206,6 +260,13 @@ PlMap<2> EditableMap::to_map(BuilderOptions options) const {
   for (Index w = 0; w < t2.vertex_count(); ++w) {
     if (s.vertex_live[w]) {
       builder.add_vertex_preimage_at_vertex(w, vertex_number[w]);
+    } else if (s.on_edge(w)) {
+      // Renumbering keeps the order of vertices, so the parameter's direction stays.
+      const Index edge = domain->find_edge(vertex_number[s.preimage_edge[w][0]], vertex_number[s.preimage_edge[w][1]]);
+      if (edge == invalid_index)
+        throw InvalidMapError(fmt::format("EditableMap: the preimage of S2 vertex {} lies on S1 vertices {} and {}, which share no edge",
+                                          w, s.preimage_edge[w][0], s.preimage_edge[w][1]));
+      builder.add_vertex_preimage_on_edge(w, edge, s.preimage_edge_parameter[w]);
     } else {
       const Eigen::Vector3d& b = s.preimage_barycentric[w];
       builder.add_vertex_preimage(w, {triangle_number[s.preimage_triangle[w]], LocalPoint<2>(b(1), b(2))});

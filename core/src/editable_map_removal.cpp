@@ -1,11 +1,14 @@
 // EditableMap::plan_vertex_removal: one step of paper 3.3.1 on the editing form.
 //
-// The star of v is flattened by the caller (one planar position per ring vertex, v at the
-// origin); each star triangle maps affinely onto its fan triangle, so every node of the star's
-// graphs keeps its barycentric coordinates and gets a planar position: the graphs are merged
-// into one plane graph on the polygon. Vertex preimages are located in the new triangles; every
-// S2 edge polyline that runs through the star is cut along the new triangles' interior edges
-// (its old crossings on the removed spokes disappear, so inside each new triangle it becomes the
+// The star of v is given as sheets (one closed fan, or for a vertex on a feature line one open
+// fan per side of the line), each flattened by the caller (one planar position per ring vertex,
+// v at the origin); each star triangle maps affinely onto its fan triangle, so every node of the
+// star's graphs keeps its barycentric coordinates and gets a planar position: the graphs of a
+// sheet are merged into one plane graph on its polygon. Vertex preimages are located in the new
+// triangles (on a feature line: v and the nodes of the removed line edges move onto the new
+// edge joining the line neighbours, at the same parameter in every sheet); every S2 edge
+// polyline that runs through the star is cut along the new triangles' interior edges (its old
+// crossings on the removed spokes disappear, so inside each new triangle it becomes the
 // straight segment between its new crossings). Finally each new triangle's segments are checked
 // not to cross, with exact predicates on the shared planar coordinates.
 
@@ -34,7 +37,7 @@ Eigen::Vector3d planar_barycentric(const Vec2& a, const Vec2& b, const Vec2& c, 
 /// A point of a polyline inside the star, with what it lies on in the new triangulation.
 struct PlanarPoint {
   Vec2 position;
-  Index corner = invalid_index;                          ///< S1 vertex it is, if any
+  Index corner = invalid_index;                             ///< S1 vertex it is, if any
   std::array<Index, 2> edge{invalid_index, invalid_index};  ///< S1 edge it lies on, if any
 };
 
@@ -53,10 +56,48 @@ struct Piece {
   Vec2 from, to;
 };
 
+/// One sheet of the star during planning.
+struct SheetPlan {
+  const std::vector<Index>* ring = nullptr;
+  std::span<const Vec2> flat;
+  std::span<const std::array<int, 3>> triangulation;
+  bool closed = true;
+  int first_old = 0, first_new = 0;
+  std::vector<std::array<int, 2>> diagonals;          ///< interior edges of the triangulation
+  std::vector<std::pair<Index, Vec2>> moved;          ///< vertex preimages inside, planar
+
+  int size() const { return static_cast<int>(ring->size()); }
+  int ring_index(Index w) const {
+    for (std::size_t i = 0; i < ring->size(); ++i)
+      if ((*ring)[i] == w) return static_cast<int>(i);
+    return -1;
+  }
+  /// The polygon's edges: consecutive ring vertices, and for an open sheet also its last and
+  /// first vertex (the new line edge).
+  bool adjacent(int i, int j) const {
+    const int k = size();
+    return (i + 1) % k == j || (j + 1) % k == i;
+  }
+  const Vec2* moved_position(Index w) const {
+    for (const auto& [u, p] : moved)
+      if (u == w) return &p;
+    return nullptr;
+  }
+};
+
 }  // namespace
 
 VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2> flattened_ring,
                                                    std::span<const std::array<int, 3>> triangulation) const {
+  const StarSheet sheet{closed_ring(v), true};
+  const std::vector<Vec2> flat(flattened_ring.begin(), flattened_ring.end());
+  const std::vector<std::array<int, 3>> triangles(triangulation.begin(), triangulation.end());
+  return plan_vertex_removal(v, std::span(&sheet, 1), std::span(&flat, 1), std::span(&triangles, 1));
+}
+
+VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const StarSheet> sheets,
+                                                   std::span<const std::vector<Vec2>> flattened,
+                                                   std::span<const std::vector<std::array<int, 3>>> triangulations) const {
   const Impl& s = *impl_;
   const double clearance = s.options.edge_clearance;
   VertexRemovalPlan plan;
@@ -67,85 +108,150 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2
     return std::move(plan);
   };
 
-  plan.ring = closed_ring(v);
-  const std::vector<Index>& ring = plan.ring;
-  const int k = static_cast<int>(ring.size());
-  if (k < 3 || static_cast<int>(flattened_ring.size()) != k) return refuse(RemovalRefusal::not_a_disk_star);
-  auto ring_index = [&ring](Index w) {
-    for (std::size_t i = 0; i < ring.size(); ++i)
-      if (ring[i] == w) return static_cast<int>(i);
-    return -1;
-  };
-  auto planar_corner = [&](Index w) -> Vec2 { return w == v ? Vec2::Zero() : flattened_ring[ring_index(w)]; };
+  const int sheet_count = static_cast<int>(sheets.size());
+  if (sheet_count == 0 || flattened.size() != sheets.size() || triangulations.size() != sheets.size())
+    return refuse(RemovalRefusal::not_a_disk_star);
+  const bool on_line = !sheets[0].closed;
+  for (const StarSheet& sheet : sheets)
+    if (sheet.closed == on_line || (!on_line && sheet_count != 1)) return refuse(RemovalRefusal::not_a_disk_star);
+  std::array<Index, 2> line_key{invalid_index, invalid_index};
+  if (on_line) {
+    if (sheets[0].ring.size() < 2) return refuse(RemovalRefusal::not_a_disk_star);
+    line_key = sorted_pair(sheets[0].ring.front(), sheets[0].ring.back());
+    for (const StarSheet& sheet : sheets) {
+      if (sheet.ring.size() < 2 || sorted_pair(sheet.ring.front(), sheet.ring.back()) != line_key)
+        return refuse(RemovalRefusal::not_a_disk_star);
+      if (sheet.ring.size() == 2) return refuse(RemovalRefusal::single_triangle_side);
+    }
+    plan.line_edge = line_key;
+  }
+  const Vec2 origin = Vec2::Zero();
 
-  // Star triangles in ring order: star[i] = (v, ring[i], ring[i+1]).
-  plan.old_triangles.assign(k, invalid_index);
-  for (Index t : s.vertex_triangles[v]) {
-    const auto& c = s.triangles[t];
-    const int at = c[0] == v ? 0 : c[1] == v ? 1 : 2;
-    plan.old_triangles[ring_index(c[(at + 1) % 3])] = t;
+  // ---- the star's triangles, sheet by sheet: sheet triangle i is (v, ring[i], ring[i+1]) ----
+  std::vector<SheetPlan> sp(sheet_count);
+  for (int g = 0; g < sheet_count; ++g) {
+    SheetPlan& sh = sp[g];
+    sh.ring = &sheets[g].ring;
+    sh.flat = flattened[g];
+    sh.triangulation = triangulations[g];
+    sh.closed = sheets[g].closed;
+    const int k = sh.size();
+    if (k < 3 || static_cast<int>(sh.flat.size()) != k) return refuse(RemovalRefusal::not_a_disk_star);
+    const int fan = sh.closed ? k : k - 1;
+    sh.first_old = static_cast<int>(plan.old_triangles.size());
+    for (int i = 0; i < fan; ++i) {
+      const Index x = (*sh.ring)[i], y = (*sh.ring)[(i + 1) % k];
+      Index found = invalid_index;
+      for (Index t : s.vertex_triangles[v]) {
+        const auto& c = s.triangles[t];
+        const int at = c[0] == v ? 0 : c[1] == v ? 1 : 2;
+        if (c[(at + 1) % 3] == x && c[(at + 2) % 3] == y) found = t;
+      }
+      if (found == invalid_index) return refuse(RemovalRefusal::not_a_disk_star);
+      plan.old_triangles.push_back(found);
+      plan.old_triangle_sheet.push_back(g);
+    }
+    for (Index w : *sh.ring)
+      if (std::find(plan.ring.begin(), plan.ring.end(), w) == plan.ring.end()) plan.ring.push_back(w);
+    for (int i = 0; i < fan; ++i)
+      if (orient2d(origin, sh.flat[i], sh.flat[(i + 1) % k]) <= 0) return refuse(RemovalRefusal::flattening_not_simple);
+    if (!sh.closed) {
+      if (sh.flat.front().y() != 0.0 || sh.flat.back().y() != 0.0 || !(sh.flat.front().x() > 0.0) ||
+          !(sh.flat.back().x() < 0.0))
+        return refuse(RemovalRefusal::flattening_not_simple);
+      for (int i = 1; i + 1 < k; ++i)
+        if (!(sh.flat[i].y() > 0.0)) return refuse(RemovalRefusal::flattening_not_simple);
+    }
+  }
+  {
+    std::vector<Index> all = plan.old_triangles;
+    std::sort(all.begin(), all.end());
+    if (std::adjacent_find(all.begin(), all.end()) != all.end() || all.size() != s.vertex_triangles[v].size())
+      return refuse(RemovalRefusal::not_a_disk_star);
   }
   auto star_position = [&plan](Index t) {
     const auto it = std::find(plan.old_triangles.begin(), plan.old_triangles.end(), t);
     return it == plan.old_triangles.end() ? -1 : static_cast<int>(it - plan.old_triangles.begin());
   };
-  const Vec2 origin = Vec2::Zero();
-  for (int i = 0; i < k; ++i)
-    if (orient2d(origin, flattened_ring[i], flattened_ring[(i + 1) % k]) <= 0)
-      return refuse(RemovalRefusal::flattening_not_simple);
+  auto planar_corner = [&](int g, Index w) -> Vec2 { return w == v ? origin : sp[g].flat[sp[g].ring_index(w)]; };
+
+  // On a feature line every sheet must place v (the origin) at the same parameter of the new
+  // edge, or the sheets would disagree about where the line's nodes go.
+  auto line_parameter = [&](int g, const Vec2& p) {
+    const Vec2 from = planar_corner(g, line_key[0]), to = planar_corner(g, line_key[1]);
+    return (p.x() - from.x()) / (to.x() - from.x());
+  };
+  if (on_line)
+    for (int g = 1; g < sheet_count; ++g)
+      if (std::abs(line_parameter(g, origin) - line_parameter(0, origin)) > 1e-12)
+        return refuse(RemovalRefusal::flattening_not_simple);
 
   // ---- the new triangles ----
-  if (static_cast<int>(triangulation.size()) != k - 2) return refuse(RemovalRefusal::no_triangulation);
-  auto ring_adjacent = [k](int i, int j) { return (i + 1) % k == j || (j + 1) % k == i; };
-  Eigen::Vector3d star_normal = Eigen::Vector3d::Zero();
   const double area_scale = (s.target->bounding_box_max() - s.target->bounding_box_min()).squaredNorm();
   const Eigen::Vector3d& pv = position(v);
-  for (int i = 0; i < k; ++i) {
-    const Eigen::Vector3d& a = position(ring[i]);
-    const Eigen::Vector3d& b = position(ring[(i + 1) % k]);
-    star_normal += (a - pv).cross(b - pv);
-  }
-  for (const auto& tri : triangulation) {
-    for (int m = 0; m < 3; ++m) {
-      const int i = tri[m], j = tri[(m + 1) % 3];
-      if (i < 0 || i >= k || j < 0 || j >= k || i == j) return refuse(RemovalRefusal::no_triangulation);
-      if (!ring_adjacent(i, j) && s.has_edge(ring[i], ring[j])) return refuse(RemovalRefusal::existing_edge);
+  if (on_line && s.has_edge(line_key[0], line_key[1])) return refuse(RemovalRefusal::existing_edge);
+  std::vector<std::array<Index, 2>> new_edges;
+  for (int g = 0; g < sheet_count; ++g) {
+    SheetPlan& sh = sp[g];
+    const int k = sh.size();
+    const std::vector<Index>& ring = *sh.ring;
+    Eigen::Vector3d sheet_normal = Eigen::Vector3d::Zero();
+    for (int i = 0; i < (sh.closed ? k : k - 1); ++i)
+      sheet_normal += (position(ring[i]) - pv).cross(position(ring[(i + 1) % k]) - pv);
+    sh.first_new = static_cast<int>(plan.new_triangles.size());
+    if (static_cast<int>(sh.triangulation.size()) != k - 2) return refuse(RemovalRefusal::no_triangulation);
+    for (const auto& tri : sh.triangulation) {
+      for (int m = 0; m < 3; ++m) {
+        const int i = tri[m], j = tri[(m + 1) % 3];
+        if (i < 0 || i >= k || j < 0 || j >= k || i == j) return refuse(RemovalRefusal::no_triangulation);
+        if (!sh.adjacent(i, j)) {
+          if (s.has_edge(ring[i], ring[j])) return refuse(RemovalRefusal::existing_edge);
+          if (i < j) {
+            sh.diagonals.push_back({i, j});
+            new_edges.push_back(sorted_pair(ring[i], ring[j]));
+          }
+        }
+      }
+      if (orient2d(sh.flat[tri[0]], sh.flat[tri[1]], sh.flat[tri[2]]) <= 0) return refuse(RemovalRefusal::no_triangulation);
+      const std::array<Index, 3> corners{ring[tri[0]], ring[tri[1]], ring[tri[2]]};
+      const Eigen::Vector3d normal =
+          (position(corners[1]) - position(corners[0])).cross(position(corners[2]) - position(corners[0]));
+      if (0.5 * normal.norm() <= s.options.min_relative_area * area_scale)
+        return refuse(RemovalRefusal::degenerate_triangle);
+      if (normal.dot(sheet_normal) <= 0.0) return refuse(RemovalRefusal::fold_over);
+      plan.new_triangles.push_back(corners);
+      plan.new_triangle_sheet.push_back(g);
     }
-    if (orient2d(flattened_ring[tri[0]], flattened_ring[tri[1]], flattened_ring[tri[2]]) <= 0)
-      return refuse(RemovalRefusal::no_triangulation);
-    const std::array<Index, 3> corners{ring[tri[0]], ring[tri[1]], ring[tri[2]]};
-    const Eigen::Vector3d normal =
-        (position(corners[1]) - position(corners[0])).cross(position(corners[2]) - position(corners[0]));
-    if (0.5 * normal.norm() <= s.options.min_relative_area * area_scale) return refuse(RemovalRefusal::degenerate_triangle);
-    if (normal.dot(star_normal) <= 0.0) return refuse(RemovalRefusal::fold_over);
-    plan.new_triangles.push_back(corners);
-  }
-  if (k == 3) {  // the hole's one triangle must not exist already (it would close a tetrahedron-like pocket)
-    for (Index t : s.vertex_triangles[ring[0]]) {
-      if (star_position(t) >= 0) continue;
-      auto c = s.triangles[t];
-      std::sort(c.begin(), c.end());
-      auto n = plan.new_triangles[0];
+    if (sh.closed && k == 3) {  // the hole's one triangle must not exist already (a tetrahedron-like pocket)
+      auto n = plan.new_triangles[sh.first_new];
       std::sort(n.begin(), n.end());
-      if (c == n) return refuse(RemovalRefusal::existing_edge);
+      for (Index t : s.vertex_triangles[ring[0]]) {
+        if (star_position(t) >= 0) continue;
+        auto c = s.triangles[t];
+        std::sort(c.begin(), c.end());
+        if (c == n) return refuse(RemovalRefusal::existing_edge);
+      }
     }
   }
-  // Planar corners of the new triangles, and where a planar point falls among them.
-  std::vector<std::array<Vec2, 3>> new_planar(k - 2);
-  for (int n = 0; n < k - 2; ++n)
-    for (int m = 0; m < 3; ++m) new_planar[n][m] = flattened_ring[triangulation[n][m]];
-  auto locate = [&](const Vec2& p, Eigen::Vector3d* barycentric) {
+  std::sort(new_edges.begin(), new_edges.end());
+  if (std::adjacent_find(new_edges.begin(), new_edges.end()) != new_edges.end())
+    return refuse(RemovalRefusal::existing_edge);
+
+  // Where a planar point of sheet g falls among the sheet's new triangles.
+  auto locate = [&](int g, const Vec2& p, Eigen::Vector3d* barycentric) {
+    const SheetPlan& sh = sp[g];
     int best = -1;
     double best_min = -std::numeric_limits<double>::infinity();
-    for (int n = 0; n < k - 2; ++n) {
-      const Eigen::Vector3d b = planar_barycentric(new_planar[n][0], new_planar[n][1], new_planar[n][2], p);
+    for (int n = 0; n < sh.size() - 2; ++n) {
+      const auto& tri = sh.triangulation[n];
+      const Eigen::Vector3d b = planar_barycentric(sh.flat[tri[0]], sh.flat[tri[1]], sh.flat[tri[2]], p);
       if (b.minCoeff() > best_min) {
         best_min = b.minCoeff();
         best = n;
         if (barycentric) *barycentric = b;
       }
     }
-    return std::pair{best, best_min};
+    return std::pair{best < 0 ? -1 : sh.first_new + best, best_min};
   };
   auto world_on_new = [&](int n, const Eigen::Vector3d& b) {
     const auto& c = plan.new_triangles[n];
@@ -158,37 +264,113 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2
     plan.max_node_distance = std::max(plan.max_node_distance, (domain - image).norm());
   };
 
-  // ---- merge: planar positions of the vertex preimages of the star, and their new places ----
-  std::vector<std::pair<Index, Vec2>> moved;  // S2 vertex, planar position
-  moved.emplace_back(v, origin);
-  for (int i = 0; i < k; ++i) {
-    const Index t = plan.old_triangles[i];
-    const auto& c = s.triangles[t];
-    for (Index w : s.triangle_vertices[t]) {
-      const Eigen::Vector3d& b = s.preimage_barycentric[w];
-      moved.emplace_back(w, b(0) * planar_corner(c[0]) + b(1) * planar_corner(c[1]) + b(2) * planar_corner(c[2]));
-    }
-  }
-  for (const auto& [w, p] : moved) {
-    Eigen::Vector3d b;
-    const auto [n, min_coordinate] = locate(p, &b);
-    if (n < 0 || !(min_coordinate > clearance)) {
-      if (n >= 0) {  // name the new edge it is on, if that is a diagonal, so the caller can avoid it
-        int side = 0;
-        for (int m = 1; m < 3; ++m)
-          if (b(m) < b(side)) side = m;
-        const int i = triangulation[n][(side + 1) % 3], j = triangulation[n][(side + 2) % 3];
-        if (!ring_adjacent(i, j)) plan.blocking_diagonal = {std::min(i, j), std::max(i, j)};
+  // ---- merge: planar positions of the vertex preimages of each sheet, and their new places ----
+  if (!on_line) sp[0].moved.emplace_back(v, origin);
+  for (int g = 0; g < sheet_count; ++g) {
+    SheetPlan& sh = sp[g];
+    const int fan = sh.closed ? sh.size() : sh.size() - 1;
+    for (int i = 0; i < fan; ++i) {
+      const Index t = plan.old_triangles[sh.first_old + i];
+      const auto& c = s.triangles[t];
+      for (Index w : s.triangle_vertices[t]) {
+        const Eigen::Vector3d& b = s.preimage_barycentric[w];
+        sh.moved.emplace_back(w, b(0) * planar_corner(g, c[0]) + b(1) * planar_corner(g, c[1]) + b(2) * planar_corner(g, c[2]));
       }
-      return refuse(RemovalRefusal::node_on_new_edge);
     }
-    plan.relocations.push_back({w, n, b});
-    record_node(world_on_new(n, b), t2.vertex(w));
+    for (const auto& [w, p] : sh.moved) {
+      Eigen::Vector3d b;
+      const auto [n, min_coordinate] = locate(g, p, &b);
+      if (n < 0 || !(min_coordinate > clearance)) {
+        if (n >= 0) {  // name the new edge it is on, if that is a diagonal, so the caller can avoid it
+          int side = 0;
+          for (int m = 1; m < 3; ++m)
+            if (b(m) < b(side)) side = m;
+          const auto& tri = sh.triangulation[n - sh.first_new];
+          const int i = tri[(side + 1) % 3], j = tri[(side + 2) % 3];
+          if (!sh.adjacent(i, j)) {
+            plan.blocking_diagonal = {std::min(i, j), std::max(i, j)};
+            plan.blocking_sheet = g;
+          }
+        }
+        return refuse(RemovalRefusal::node_on_new_edge);
+      }
+      plan.relocations.push_back({w, n, b, 0.0});
+      record_node(world_on_new(n, b), t2.vertex(w));
+    }
   }
-  auto moved_position = [&moved](Index w) -> const Vec2* {
-    for (const auto& [u, p] : moved)
-      if (u == w) return &p;
-    return nullptr;
+
+  // ---- the line's nodes (v, and the nodes of the two removed line edges) onto the new edge ----
+  // Distance from v along the removed line edge (v, end) of S2 vertex w on it.
+  auto spoke_fraction = [&](Index w) {
+    const double t = s.preimage_edge_parameter[w];
+    return s.preimage_edge[w][0] == v ? t : 1.0 - t;
+  };
+  auto line_end_of = [&](Index w) -> Index {  // the line end whose removed edge w lies on, or invalid
+    if (!on_line || !s.on_edge(w)) return invalid_index;
+    for (Index end : line_key)
+      if (s.preimage_edge[w] == sorted_pair(v, end)) return end;
+    return invalid_index;
+  };
+  if (on_line) {
+    std::vector<std::pair<Index, Vec2>> line_nodes{{v, origin}};
+    for (Index end : line_key)
+      if (const auto* on = s.vertices_on_edge(sorted_pair(v, end)))
+        for (Index w : *on) line_nodes.emplace_back(w, spoke_fraction(w) * planar_corner(0, end));
+    for (const auto& [w, p] : line_nodes) {
+      const double t = line_parameter(0, p);
+      if (!(t > clearance && t < 1.0 - clearance)) return refuse(RemovalRefusal::node_on_new_edge);
+      plan.relocations.push_back({w, -1, Eigen::Vector3d::Zero(), t});
+      record_node((1.0 - t) * position(line_key[0]) + t * position(line_key[1]), t2.vertex(w));
+    }
+  }
+
+  // The planar point of S2 vertex w in sheet g, as it lies after the step; false if w is not in
+  // that sheet (an inconsistent state; never expected).
+  auto vertex_point = [&](int g, Index w, PlanarPoint& q) {
+    const SheetPlan& sh = sp[g];
+    if (on_line && (w == v || line_end_of(w) != invalid_index)) {
+      q.position = w == v ? origin : spoke_fraction(w) * planar_corner(g, line_end_of(w));
+      q.edge = line_key;
+      return true;
+    }
+    if (s.vertex_live[w] && w != v) {
+      const int i = sh.ring_index(w);
+      if (i < 0) return false;
+      q.position = sh.flat[i];
+      q.corner = w;
+      return true;
+    }
+    if (s.vertex_live[w] || !s.on_edge(w)) {
+      const Vec2* at = sh.moved_position(w);
+      if (!at) return false;
+      q.position = *at;
+      return true;
+    }
+    const auto e = s.preimage_edge[w];  // on a ring edge: it stays there
+    const int i = sh.ring_index(e[0]), j = sh.ring_index(e[1]);
+    if (i < 0 || j < 0) return false;
+    q.position = (1.0 - s.preimage_edge_parameter[w]) * sh.flat[i] + s.preimage_edge_parameter[w] * sh.flat[j];
+    q.edge = e;
+    return true;
+  };
+  // The S1 edge (smaller first) that both S2 vertices lie on (as corners or on-edge nodes), if any.
+  auto common_edge = [&](Index w1, Index w2) -> std::array<Index, 2> {
+    const std::array<Index, 2> none{invalid_index, invalid_index};
+    const bool c1 = s.vertex_live[w1] != 0, c2 = s.vertex_live[w2] != 0;
+    const bool e1 = !c1 && s.on_edge(w1), e2 = !c2 && s.on_edge(w2);
+    if (c1 && c2) return s.has_edge(w1, w2) ? sorted_pair(w1, w2) : none;
+    if (c1 && e2) return s.preimage_edge[w2][0] == w1 || s.preimage_edge[w2][1] == w1 ? s.preimage_edge[w2] : none;
+    if (e1 && c2) return s.preimage_edge[w1][0] == w2 || s.preimage_edge[w1][1] == w2 ? s.preimage_edge[w1] : none;
+    if (e1 && e2) return s.preimage_edge[w1] == s.preimage_edge[w2] ? s.preimage_edge[w1] : none;
+    return none;
+  };
+  auto new_triangle_with = [&](int g, Index a, Index b) {
+    for (int n = sp[g].first_new; n < sp[g].first_new + sp[g].size() - 2; ++n) {
+      const auto& c = plan.new_triangles[n];
+      const bool has_a = c[0] == a || c[1] == a || c[2] == a, has_b = c[0] == b || c[1] == b || c[2] == b;
+      if (has_a && has_b) return n;
+    }
+    return -1;
   };
 
   // ---- cut: every S2 edge polyline with a segment in the star ----
@@ -196,22 +378,6 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2
   for (Index t : plan.old_triangles) edges.insert(edges.end(), s.triangle_edges[t].begin(), s.triangle_edges[t].end());
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-
-  // Interior edges of the new triangulation (the diagonals), as ring index pairs.
-  std::vector<std::array<int, 2>> diagonals;
-  for (const auto& tri : triangulation)
-    for (int m = 0; m < 3; ++m) {
-      const int i = tri[m], j = tri[(m + 1) % 3];
-      if (i < j && !ring_adjacent(i, j)) diagonals.push_back({i, j});
-    }
-  auto new_triangle_with = [&](Index a, Index b) {
-    for (int n = 0; n < k - 2; ++n) {
-      const auto& c = plan.new_triangles[n];
-      const bool has_a = c[0] == a || c[1] == a || c[2] == a, has_b = c[0] == b || c[1] == b || c[2] == b;
-      if (has_a && has_b) return n;
-    }
-    return -1;
-  };
 
   std::vector<Piece> pieces;
   for (Index e : edges) {
@@ -229,6 +395,26 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2
       edit.point_edge_parameter.push_back(p.edge_parameter[i]);
       edit.point_target_parameter.push_back(p.target_parameter[i]);
     };
+
+    // An S2 edge whose preimage runs along an S1 edge stays along it: along a ring edge, it now
+    // borders the new triangle of its sheet there; along a removed line edge, it is now a piece
+    // of the new line edge.
+    if (segments == 1) {
+      const std::array<Index, 2> along = common_edge(p.vertex[0], p.vertex[1]);
+      const bool on_removed_line_edge =
+          on_line && (along == sorted_pair(v, line_key[0]) || along == sorted_pair(v, line_key[1]));
+      if (along[0] != invalid_index && (on_removed_line_edge || (along[0] != v && along[1] != v))) {
+        const int g = on_removed_line_edge ? 0 : plan.old_triangle_sheet[star_position(p.segment_triangle[0])];
+        const int n = on_removed_line_edge ? new_triangle_with(0, line_key[0], line_key[1]) : new_triangle_with(g, along[0], along[1]);
+        if (n < 0) return refuse(RemovalRefusal::edge_along_new_edge);
+        push_point(0);
+        edit.segment_triangle.push_back(-(n + 1));
+        push_point(1);
+        plan.polyline_edits.push_back(std::move(edit));
+        continue;
+      }
+    }
+
     push_point(0);
     int i = 0;
     while (i < segments) {
@@ -238,22 +424,14 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2
         ++i;
         continue;
       }
-      int run_end = i;  // segments i .. run_end lie in the star
+      int run_end = i;  // segments i .. run_end lie in the star, all in one sheet
       while (run_end + 1 < segments && star_position(p.segment_triangle[run_end + 1]) >= 0) ++run_end;
-
-      // The S2 edge runs along a ring edge (its preimage is that S1 edge): it stays, only its
-      // triangle is now the new one on the hole's side.
-      const bool along_ring_edge = i == run_end && p.vertex[i] != invalid_index && p.vertex[i + 1] != invalid_index &&
-                                   s.vertex_live[p.vertex[i]] && s.vertex_live[p.vertex[i + 1]] &&
-                                   p.vertex[i] != v && p.vertex[i + 1] != v;
-      if (along_ring_edge) {
-        const int n = new_triangle_with(p.vertex[i], p.vertex[i + 1]);
-        if (n < 0) return refuse(RemovalRefusal::edge_along_new_edge);
-        edit.segment_triangle.push_back(-(n + 1));
-        push_point(i + 1);
-        i = run_end + 1;
-        continue;
-      }
+      const int g = plan.old_triangle_sheet[star_position(p.segment_triangle[i])];
+      for (int j = i; j <= run_end; ++j)
+        if (plan.old_triangle_sheet[star_position(p.segment_triangle[j])] != g)
+          return refuse(RemovalRefusal::crossing_edges);  // crosses the feature line; never expected
+      const SheetPlan& sh = sp[g];
+      const std::vector<Index>& ring = *sh.ring;
 
       // Planar points of the run, each from the first star triangle that holds it.
       std::vector<PlanarPoint> points;
@@ -262,32 +440,26 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2
         const auto& c = s.triangles[t];
         PlanarPoint q;
         if (p.vertex[j] != invalid_index) {
-          const Index w = p.vertex[j];
-          if (s.vertex_live[w] && w != v) {
-            q.position = planar_corner(w);
-            q.corner = w;
-          } else {
-            const Vec2* at = moved_position(w);
-            if (!at) return refuse(RemovalRefusal::crossing_edges);  // inconsistent state; never expected
-            q.position = *at;
-          }
+          if (!vertex_point(g, p.vertex[j], q)) return refuse(RemovalRefusal::crossing_edges);  // never expected
         } else {
           const auto [a, b] = p.edge[j];
           if ((a != c[0] && a != c[1] && a != c[2]) || (b != c[0] && b != c[1] && b != c[2]))
             return refuse(RemovalRefusal::crossing_edges);  // inconsistent state; never expected
-          q.position = (1.0 - p.edge_parameter[j]) * planar_corner(a) + p.edge_parameter[j] * planar_corner(b);
+          const bool line_spoke = on_line && (p.edge[j] == sorted_pair(v, line_key[0]) || p.edge[j] == sorted_pair(v, line_key[1]));
+          if (line_spoke) return refuse(RemovalRefusal::edge_along_new_edge);  // crosses the feature line; never expected
+          q.position = (1.0 - p.edge_parameter[j]) * planar_corner(g, a) + p.edge_parameter[j] * planar_corner(g, b);
           if (a != v && b != v) q.edge = p.edge[j];  // on a ring edge: it stays a crossing
         }
         points.push_back(q);
       }
 
-      // Cut every planar segment of the run along the diagonals.
+      // Cut every planar segment of the run along the sheet's diagonals.
       PlanarPoint previous = points.front();
       std::array<Index, 2> previous_diagonal{invalid_index, invalid_index};
       auto emit_piece_to = [&](const PlanarPoint& to) -> bool {
         if (shares_an_edge(previous, to)) return false;
         Vec2 mid = 0.5 * (previous.position + to.position);
-        const auto [n, min_coordinate] = locate(mid, nullptr);
+        const auto [n, min_coordinate] = locate(g, mid, nullptr);
         if (n < 0 || !(min_coordinate > 0.0)) return false;
         edit.segment_triangle.push_back(-(n + 1));
         pieces.push_back({n, previous.position, to.position});
@@ -303,13 +475,13 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2
           double parameter;  // on the diagonal, from its first ring vertex
         };
         std::vector<Cut> cuts;
-        for (int g = 0; g < static_cast<int>(diagonals.size()); ++g) {
-          const Index da = ring[diagonals[g][0]], db = ring[diagonals[g][1]];
+        for (int d = 0; d < static_cast<int>(sh.diagonals.size()); ++d) {
+          const Index da = ring[sh.diagonals[d][0]], db = ring[sh.diagonals[d][1]];
           // A point that is a diagonal's own end never crosses it.
           if (points[j].corner == da || points[j].corner == db || points[j + 1].corner == da || points[j + 1].corner == db)
             continue;
-          const Vec2& d0 = flattened_ring[diagonals[g][0]];
-          const Vec2& d1 = flattened_ring[diagonals[g][1]];
+          const Vec2& d0 = sh.flat[sh.diagonals[d][0]];
+          const Vec2& d1 = sh.flat[sh.diagonals[d][1]];
           const int o1 = orient2d(from, to, d0), o2 = orient2d(from, to, d1);
           const int o3 = orient2d(d0, d1, from), o4 = orient2d(d0, d1, to);
           if (o1 == 0 || o2 == 0 || o3 == 0 || o4 == 0) {
@@ -323,16 +495,16 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2
           const double along = (w.x() * q.y() - w.y() * q.x()) / denom;
           const double parameter = (w.x() * r.y() - w.y() * r.x()) / denom;
           if (!(parameter > clearance && parameter < 1.0 - clearance)) return refuse(RemovalRefusal::edge_along_new_edge);
-          cuts.push_back({std::clamp(along, 0.0, 1.0), g, parameter});
+          cuts.push_back({std::clamp(along, 0.0, 1.0), d, parameter});
         }
         std::sort(cuts.begin(), cuts.end(), [](const Cut& x, const Cut& y) { return x.along < y.along; });
         for (const Cut& cut : cuts) {
-          const int di = diagonals[cut.diagonal][0], dj = diagonals[cut.diagonal][1];
+          const int di = sh.diagonals[cut.diagonal][0], dj = sh.diagonals[cut.diagonal][1];
           const std::array<Index, 2> key = sorted_pair(ring[di], ring[dj]);
           if (key == previous_diagonal) return refuse(RemovalRefusal::edge_along_new_edge);
           const double t_on_edge = ring[di] < ring[dj] ? cut.parameter : 1.0 - cut.parameter;
           PlanarPoint crossing;
-          crossing.position = (1.0 - cut.parameter) * flattened_ring[di] + cut.parameter * flattened_ring[dj];
+          crossing.position = (1.0 - cut.parameter) * sh.flat[di] + cut.parameter * sh.flat[dj];
           crossing.edge = key;
           const double target_parameter =
               (1.0 - cut.along) * p.target_parameter[i + j] + cut.along * p.target_parameter[i + j + 1];

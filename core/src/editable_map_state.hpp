@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <unordered_map>
 #include <memory>
 #include <vector>
 
@@ -42,12 +44,28 @@ struct EditableMap::Impl {
   // coordinates strictly inside it.
   std::vector<Index> preimage_triangle;
   std::vector<Eigen::Vector3d> preimage_barycentric;
+  // Preimages of S2 vertices that lie on an S1 edge (feature-line removals put them there): the
+  // edge (smaller vertex first; invalid if not on an edge) and the parameter from its smaller
+  // vertex, strictly between the ends. edge_vertices lists them per S1 edge.
+  std::vector<std::array<Index, 2>> preimage_edge;
+  std::vector<double> preimage_edge_parameter;
+  std::unordered_map<std::uint64_t, std::vector<Index>> edge_vertices;
 
   std::vector<EdgePolyline> polylines;  ///< per S2 edge
   /// Per S1 triangle: the S2 vertices whose preimage is inside, and the S2 edges with a segment
   /// inside (an edge may be listed more than once).
   std::vector<std::vector<Index>> triangle_vertices;
   std::vector<std::vector<Index>> triangle_edges;
+
+  static std::uint64_t edge_key(std::array<Index, 2> e) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(e[0])) << 32) | static_cast<std::uint32_t>(e[1]);
+  }
+  /// The S2 vertices whose preimage lies on the S1 edge e (smaller vertex first).
+  const std::vector<Index>* vertices_on_edge(std::array<Index, 2> e) const {
+    const auto it = edge_vertices.find(edge_key(e));
+    return it == edge_vertices.end() ? nullptr : &it->second;
+  }
+  bool on_edge(Index w) const { return preimage_edge[w][0] != invalid_index; }
 
   bool has_edge(Index a, Index b) const {
     for (Index t : vertex_triangles[a]) {

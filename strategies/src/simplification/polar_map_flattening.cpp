@@ -36,4 +36,36 @@ std::optional<std::vector<Eigen::Vector2d>> PolarMapFlattening::flatten(const Ei
   return out;
 }
 
+std::optional<std::vector<Eigen::Vector2d>> PolarMapFlattening::flatten_half(const Eigen::Vector3d& center,
+                                                                             std::span<const Eigen::Vector3d> ring) const {
+  const std::size_t k = ring.size();
+  if (k < 3) return std::nullopt;
+  std::vector<double> radius(k), angle(k - 1);
+  double total = 0.0, longest = 0.0;
+  for (std::size_t i = 0; i < k; ++i) {
+    radius[i] = (ring[i] - center).norm();
+    if (!(radius[i] > 0.0)) return std::nullopt;
+    longest = std::max(longest, radius[i]);
+  }
+  for (std::size_t i = 0; i + 1 < k; ++i) {
+    const Eigen::Vector3d a = ring[i] - center, b = ring[i + 1] - center;
+    angle[i] = std::atan2(a.cross(b).norm(), a.dot(b));
+    if (!(angle[i] > 0.0)) return std::nullopt;
+    total += angle[i];
+  }
+  const double scale = std::numbers::pi / total;
+  std::vector<Eigen::Vector2d> out(k);
+  // The ends lie exactly on the x axis, so that the removed vertex (the origin) is exactly on
+  // the segment between them.
+  out[0] = {radius[0] / longest, 0.0};
+  out[k - 1] = {-radius[k - 1] / longest, 0.0};
+  double phi = 0.0;
+  for (std::size_t i = 1; i + 1 < k; ++i) {
+    phi += scale * angle[i - 1];
+    const double r = radius[i] / longest;
+    out[i] = {r * std::cos(phi), r * std::sin(phi)};
+  }
+  return out;
+}
+
 }  // namespace plmap

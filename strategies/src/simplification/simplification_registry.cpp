@@ -36,6 +36,11 @@ AnyStarFlattening make_star_flattening(std::string_view name) {
   throw Error(fmt::format("unknown flattening '{}' (valid: {})", name, fmt::join(flattenings, ", ")));
 }
 
+AnyStarFlattening make_half_star_flattening(std::string_view name) {
+  make_star_flattening(name);  // the same names are valid
+  return [](const Eigen::Vector3d& c, std::span<const Eigen::Vector3d> r) { return PolarMapFlattening{}.flatten_half(c, r); };
+}
+
 AnyHoleTriangulation make_hole_triangulation(std::string_view name) {
   if (name == "constrained-delaunay") return wrap_triangulation<ConstrainedDelaunayHole>();
   if (name == "min-max-aspect") return wrap_triangulation<MinMaxAspectTriangulation>();

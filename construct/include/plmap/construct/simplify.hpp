@@ -7,8 +7,9 @@
 /// Start with S1 = S2 and Ξ = identity; remove S1 vertices one at a time, cheapest first by the
 /// error oracles; each step flattens the star (strategy), re-triangulates the hole (strategy),
 /// merges and cuts the star's graphs (EditableMap) and is refused if Ξ would become invalid.
-/// After every step Ξ is valid. Feature vertices (on a boundary, non-manifold or sharp edge)
-/// are kept, so the feature lines of S2 stay edges of S1.
+/// After every step Ξ is valid. Feature edges (boundary, non-manifold, sharp) form feature
+/// lines: a vertex on a line (two feature edges) is removed only along it, feature corners
+/// never, so the feature lines of S2 stay chains of S1 edges.
 ///
 ///   SimplifyOptions options;
 ///   options.target_elements = 500;
@@ -45,6 +46,7 @@ struct SimplifyOptions {
   double max_error = std::numeric_limits<double>::infinity();
   /// Edges whose dihedral angle (between the two triangle normals) exceeds this, in degrees,
   /// are feature edges, like boundary and non-manifold edges. 180 turns sharp features off.
+  /// A feature line that turns by more than this at a vertex has a corner there.
   double feature_angle_degrees = 60.0;
   /// Flattening of the star: "polar-map" (paper) or "plane-projection".
   std::string flattening = "polar-map";
@@ -63,13 +65,17 @@ struct SimplifyReport {
   Index elements_before = 0, elements_after = 0;
   Index vertices_before = 0, vertices_after = 0;
   Index removed_vertices = 0;
+  Index removed_along_lines = 0;  ///< of these, vertices removed along a feature line
   Index feature_edges = 0;
-  Index feature_vertices = 0;  ///< kept because they lie on a feature line
+  Index feature_vertices = 0;  ///< S2 vertices on feature edges (line vertices and corners)
+  /// Feature vertices never removed: on one or more than two feature edges, or where their
+  /// line turns by more than the feature angle.
+  Index feature_corners = 0;
   /// Largest distance between a node of the final map on S1 and its image on S2 (the modified
   /// Hausdorff distance of the whole map), and that divided by S2's bounding-box diagonal.
   double hausdorff_error = 0.0;
   double hausdorff_error_relative = 0.0;
-  /// Live, non-feature vertices that could not be removed when the run stopped, by the reason
+  /// Live vertices other than feature corners that could not be removed when the run stopped, by the reason
   /// of the last attempt (a RemovalRefusal name, "oracle_veto" or "max_error").
   std::map<std::string, Index> skipped_by_reason;
   Index skipped_vertices = 0;

@@ -22,9 +22,9 @@
 /// is straightened inside each new triangle) and checks that the result is still a valid map.
 /// A step that would make Ξ invalid is refused with a reason, and nothing changes.
 ///
-/// Deliberate simplification (see docs/algorithms/simplification.md): vertex preimages never lie
-/// on an S1 edge except at S1 vertices (a step that would put one within
-/// `EditOptions::edge_clearance` of a new edge is refused), so no touching nodes arise.
+/// Vertex preimages lie on an S1 edge (touching nodes) only on feature lines, where a removal
+/// along the line moves them there; elsewhere a step that would put one within
+/// `EditOptions::edge_clearance` of a new edge is refused (see docs/algorithms/simplification.md).
 
 #include <plmap/core/map_builder.hpp>
 #include <plmap/core/pl_map.hpp>
@@ -54,6 +54,7 @@ enum class RemovalRefusal {
   node_on_new_edge,       ///< a vertex preimage would lie on (or too close to) a new edge
   edge_along_new_edge,    ///< an S2 edge's preimage would run along, or touch, a new edge
   crossing_edges,         ///< straightened S2 edge preimages would cross inside a new triangle
+  single_triangle_side,   ///< a side of the feature line is one triangle: it would collapse onto the new edge
 };
 
 const char* to_string(RemovalRefusal reason);
@@ -71,17 +72,35 @@ struct EditOptions {
   double min_relative_area = 1e-12;
 };
 
+/// One side of the star of an S1 vertex v. A vertex off the feature lines has one closed sheet:
+/// its ring, counter-clockwise around v. A vertex on a feature line (exactly two feature edges,
+/// to its line neighbours a and b) has one open sheet per side of the line (one on a boundary,
+/// two on a sharp edge, more on a non-manifold line): the fan of triangles between the two
+/// line spokes, its ring running counter-clockwise around v from one line neighbour to the other.
+struct StarSheet {
+  std::vector<Index> ring;
+  bool closed = true;
+};
+
 /// One planned removal of an S1 vertex: the new triangles and where every node of the star goes.
 /// Produced by EditableMap::plan_vertex_removal and consumed by EditableMap::apply (or thrown
 /// away: planning changes nothing).
 struct VertexRemovalPlan {
   Index vertex = invalid_index;
   RemovalRefusal refusal = RemovalRefusal::none;
-  /// The ring of the star, counter-clockwise, and the star's triangles (S1 triangle ids).
+  /// The ring of the star (counter-clockwise for a closed star; the rings of all sheets, each
+  /// vertex once, for a vertex on a feature line) and the star's triangles (S1 triangle ids).
   std::vector<Index> ring;
   std::vector<Index> old_triangles;
   /// New triangles as S1 vertex triples, oriented like the star.
   std::vector<std::array<Index, 3>> new_triangles;
+  /// The sheet (StarSheet index) of each old and each new triangle: oracles compare a new
+  /// triangle only with the old ones of its own side of a feature line.
+  std::vector<int> old_triangle_sheet;
+  std::vector<int> new_triangle_sheet;
+  /// For a vertex on a feature line: the new S1 edge joining its line neighbours (smaller
+  /// first), onto which the nodes of the removed line edges move; invalid otherwise.
+  std::array<Index, 2> line_edge{invalid_index, invalid_index};
 
   /// Geometry the error oracles look at: for every node whose preimage moved or was created
   /// (relocated vertex preimages, new crossings), its position on the new S1 triangles and its
@@ -95,8 +114,9 @@ struct VertexRemovalPlan {
   // ---- what apply() writes (internal to EditableMap) ----
   struct Relocation {
     Index target_vertex;
-    int new_triangle;  ///< index into new_triangles
+    int new_triangle;  ///< index into new_triangles, or -1: onto line_edge at edge_parameter
     Eigen::Vector3d barycentric;
+    double edge_parameter;  ///< from line_edge[0], when new_triangle is -1
   };
   struct PolylineEdit {
     Index target_edge;
@@ -110,9 +130,10 @@ struct VertexRemovalPlan {
   std::vector<PolylineEdit> polyline_edits;
   Index triangle_count_at_planning = 0;
 
-  /// For node_on_new_edge: the diagonal (ring indices) the node would lie on, if it is one; a
-  /// caller may re-triangulate without it.
+  /// For node_on_new_edge: the diagonal (ring indices of sheet blocking_sheet) the node would
+  /// lie on, if it is one; a caller may re-triangulate that sheet without it.
   std::array<int, 2> blocking_diagonal{-1, -1};
+  int blocking_sheet = -1;
 
   bool accepted() const { return refusal == RemovalRefusal::none; }
 };
@@ -146,12 +167,27 @@ class EditableMap {
   /// The ring of v's star, counter-clockwise, if the star is one closed fan of consistently
   /// oriented triangles (an interior manifold vertex); empty otherwise.
   std::vector<Index> closed_ring(Index v) const;
+  /// The sheets of the star of v on the feature line through its neighbours a and b (see
+  /// StarSheet); empty if v's triangles do not split into fans from a to b, each consistently
+  /// oriented.
+  std::vector<StarSheet> line_star_sheets(Index v, Index a, Index b) const;
 
   /// Plans the removal of S1 vertex v given the flattened ring (one planar position per ring
   /// vertex, counter-clockwise around v at the origin; ring order as closed_ring(v)) and the
   /// triangulation of that polygon (triples of ring indices). Never changes the map.
   VertexRemovalPlan plan_vertex_removal(Index v, std::span<const Eigen::Vector2d> flattened_ring,
                                         std::span<const std::array<int, 3>> triangulation) const;
+  /// The general form: plans the removal of v given its sheets (one closed sheet, or the open
+  /// sheets of a vertex on a feature line), the flattening of each sheet and its triangulation.
+  /// An open sheet's flattening puts its first ring vertex on the positive x axis, its last on
+  /// the negative x axis (y exactly 0) and the others above; v is at the origin, so it lies on
+  /// the new edge joining the line neighbours, and all sheets must place the line's nodes at the
+  /// same parameters of that edge. The triangulation of an open sheet fills the polygon of its
+  /// ring (closed by the new edge). The line's nodes (v and the nodes on the removed line edges)
+  /// move onto the new edge.
+  VertexRemovalPlan plan_vertex_removal(Index v, std::span<const StarSheet> sheets,
+                                        std::span<const std::vector<Eigen::Vector2d>> flattened,
+                                        std::span<const std::vector<std::array<int, 3>>> triangulations) const;
   /// Carries out an accepted plan made on the current state.
   void apply(const VertexRemovalPlan& plan);
 

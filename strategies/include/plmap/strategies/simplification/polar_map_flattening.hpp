@@ -12,6 +12,14 @@ namespace plmap {
 struct PolarMapFlattening {
   std::optional<std::vector<Eigen::Vector2d>> flatten(const Eigen::Vector3d& center,
                                                       std::span<const Eigen::Vector3d> ring) const;
+  /// The half-star of a vertex on a feature line (an open fan, ring from one line neighbour to
+  /// the other) laid out on the upper half-disk: angles scaled by π / (sum of angles), spoke
+  /// lengths kept (relative to the longest), the first ring vertex on the positive x axis and
+  /// the last on the negative one. Keeping the lengths (no power) places the two line
+  /// neighbours at the same relative distances in every half-star of the vertex, so all sides
+  /// of the line agree where its nodes go on the new edge (the 1-d polar map of the line).
+  std::optional<std::vector<Eigen::Vector2d>> flatten_half(const Eigen::Vector3d& center,
+                                                           std::span<const Eigen::Vector3d> ring) const;
 };
 static_assert(StarFlattening<PolarMapFlattening>);
 

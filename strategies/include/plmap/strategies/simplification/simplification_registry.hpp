@@ -22,6 +22,12 @@ using AnyHoleTriangulation =
 AnyStarFlattening make_star_flattening(std::string_view name);
 std::span<const std::string_view> star_flattening_names();
 
+/// The flattening of the half-stars of a vertex on a feature line (an open fan from one line
+/// neighbour to the other), by the same names. Both give the half-disk polar map
+/// (PolarMapFlattening::flatten_half): a plane projection cannot put the removed vertex on the
+/// segment between its line neighbours, which the removal along the line needs.
+AnyStarFlattening make_half_star_flattening(std::string_view name);
+
 /// "constrained-delaunay" (default), "min-max-aspect". Throws plmap::Error otherwise.
 AnyHoleTriangulation make_hole_triangulation(std::string_view name);
 std::span<const std::string_view> hole_triangulation_names();

@@ -15,6 +15,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace plmap {
@@ -40,6 +41,13 @@ class WeightedOracles {
   void on_applied(const EditableMap& map, const VertexRemovalPlan& plan);
 
   bool empty() const { return members_.empty(); }
+  /// The members' names and weights, in order (curve simplification maps the names that make
+  /// sense for curves onto its own costs).
+  std::vector<std::pair<std::string, double>> named_weights() const {
+    std::vector<std::pair<std::string, double>> out;
+    for (const Member& m : members_) out.emplace_back(m.name, m.weight);
+    return out;
+  }
   /// "hausdorff:1,aspect-ratio:0.1": for reports.
   std::string description() const;
 
