@@ -9,7 +9,7 @@
 //
 // Usage: bench_simplification_peers --tool plmap|psurface|cgal --mesh FILE.off --target N
 //            [--oracle NAME[:WEIGHT]]... [--feature-angle DEG] [--sweeps K] [--weights NAME]
-//            [--refine-levels L]
+//            [--refine-levels L] [--psurface-aspect-ratio W] [--psurface-hausdorff W]
 //        bench_simplification_peers --list-tools
 // Exit 2 with one line on stderr for bad arguments or an unreadable mesh.
 
@@ -47,6 +47,8 @@ int run(int argc, char** argv) {
     else if (a == "--sweeps") request.smooth_sweeps = std::stoi(value());
     else if (a == "--weights") request.smoothing_weights = value();
     else if (a == "--refine-levels") request.refine_levels = std::stoi(value());
+    else if (a == "--psurface-aspect-ratio") request.psurface_aspect_ratio = std::stod(value());
+    else if (a == "--psurface-hausdorff") request.psurface_hausdorff = std::stod(value());
     else if (a == "--list-tools") {
       std::cout << "plmap\ncgal\n";
 #ifdef PLMAP_PEERS_HAVE_PSURFACE
