@@ -10,6 +10,10 @@ namespace plmap::peers {
 /// Steady-clock seconds since an arbitrary origin.
 double now_seconds();
 
+/// CPU seconds the process has used (all threads). On a loaded machine the wall time of a
+/// single-threaded tool includes the time other processes held the core; its CPU time does not.
+double process_cpu_seconds();
+
 /// Wall clock and memory of the measured part; start() also resets the process's peak memory.
 class Measurement {
  public:

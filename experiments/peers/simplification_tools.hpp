@@ -40,7 +40,8 @@ struct SimplificationRequest {
 struct SimplificationOutcome {
   bool ok = false;
   std::string error;
-  double seconds_simplify = 0.0, seconds_smooth = 0.0;
+  double seconds_simplify = 0.0, seconds_smooth = 0.0;  ///< wall clock
+  double cpu_simplify = 0.0, cpu_smooth = 0.0;          ///< CPU time of the process
   /// Everything else the tool measured (elements, Hausdorff, kappa, aspect ratios, ...).
   nlohmann::json figures = nlohmann::json::object();
 };

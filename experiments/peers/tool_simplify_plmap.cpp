@@ -44,13 +44,18 @@ SimplificationOutcome simplify_with_plmap(const SimplificationRequest& request, 
   try {
     clock.start();
     auto t0 = std::chrono::steady_clock::now();
+    const double c0 = process_cpu_seconds();
     SimplifyResult simplified = simplify(request.fine, options);
     auto t1 = std::chrono::steady_clock::now();
+    const double c1 = process_cpu_seconds();
     PlMap<2> map = std::move(simplified.map);
     std::optional<PlMap<2>> smoothed;
     if (request.smooth_sweeps > 0) smoothed = smooth(map, smoothing).map;
     auto t2 = std::chrono::steady_clock::now();
+    const double c2 = process_cpu_seconds();
     clock.stop();
+    out.cpu_simplify = c1 - c0;
+    out.cpu_smooth = c2 - c1;
     out.seconds_simplify = std::chrono::duration<double>(t1 - t0).count();
     out.seconds_smooth = std::chrono::duration<double>(t2 - t1).count();
     const PlMap<2>& final_map = smoothed ? *smoothed : map;

@@ -243,6 +243,7 @@ SimplificationOutcome simplify_with_psurface(const SimplificationRequest& reques
     QuietStdout quiet;
     clock.start();
     const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = process_cpu_seconds();
     par->removeExtraEdges();  // the removal steps work on the graph without its closure
     EdgeTree tree;            // empty: intersections are not checked (QualityRequest's default)
     const int vertex_count = int(par->getNumVertices());
@@ -268,8 +269,10 @@ SimplificationOutcome simplify_with_psurface(const SimplificationRequest& reques
     par->createPointLocationStructure();
     const auto t1 = std::chrono::steady_clock::now();
     out.seconds_simplify = std::chrono::duration<double>(t1 - t0).count();
+    out.cpu_simplify = process_cpu_seconds() - c0;
     before = measure_graph(*par);  // not part of either time (it is in the peak-memory window)
     const auto t2 = std::chrono::steady_clock::now();
+    const double c2 = process_cpu_seconds();
     if (request.smooth_sweeps > 0) {
       par->removeExtraEdges();
       std::vector<unsigned int> node_stack;
@@ -288,6 +291,7 @@ SimplificationOutcome simplify_with_psurface(const SimplificationRequest& reques
       par->hasUpToDatePointLocationStructure = false;
       par->createPointLocationStructure();
     }
+    out.cpu_smooth = process_cpu_seconds() - c2;
     clock.stop();
     out.seconds_smooth = std::chrono::duration<double>(std::chrono::steady_clock::now() - t2).count();
   } catch (const std::exception& e) {

@@ -187,6 +187,7 @@ TEST(SimplificationSteps, PeerSimplifyMeasuresEveryToolWithTheSameCode) {
     EXPECT_GE(m["peer_simplify.coarse_aspect_max"].get<double>(), m["peer_simplify.coarse_aspect_p90"].get<double>());
     EXPECT_GT(row.timings["peer_simplify.seconds"]["median"].get<double>(), 0.0);
     EXPECT_TRUE(row.timings.contains("peer_simplify.peak_mib"));
+    EXPECT_GT(row.timings["peer_simplify.cpu_seconds"]["median"].get<double>(), 0.0);
     if (tool == "cgal") {
       // no map: no Hausdorff distance, no kappa
       EXPECT_TRUE(m["peer_simplify.hausdorff"].is_null());

@@ -447,7 +447,8 @@ class Pipeline {
       m.metrics[prefix + "coarse_aspect_" + q] = field("coarse_aspect", q);
       m.metrics[prefix + "refined_aspect_" + q] = field("refined_aspect", q);
     }
-    for (const char* t : {"seconds", "seconds_simplify", "seconds_smooth"})
+    for (const char* t :
+         {"seconds", "seconds_simplify", "seconds_smooth", "cpu_seconds", "cpu_seconds_simplify", "cpu_seconds_smooth"})
       if (line[t].is_number()) m.timings[prefix + t] = line[t].get<double>();
     if (field(nullptr, "peak_increase_mib").is_number())
       m.timings[prefix + "peak_mib"] = line["peak_increase_mib"].get<double>();

@@ -412,6 +412,9 @@ const std::vector<MetricSpec>& step_metrics(const std::string& kind) {
       {"seconds", true, "wall time of simplification and smoothing"},
       {"seconds_simplify", true, "wall time of the simplification"},
       {"seconds_smooth", true, "wall time of the smoothing"},
+      {"cpu_seconds", true, "CPU time of simplification and smoothing (the fair figure on a loaded machine)"},
+      {"cpu_seconds_simplify", true, "CPU time of the simplification"},
+      {"cpu_seconds_smooth", true, "CPU time of the smoothing"},
       {"peak_mib", true, "peak resident memory above the input during both (MiB)"}};
   if (kind == "build") return build;
   if (kind == "project") return project;
