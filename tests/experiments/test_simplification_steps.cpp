@@ -8,6 +8,7 @@
 #include <plmap/experiment/config_error.hpp>
 #include <plmap/experiment/runner.hpp>
 #include <plmap/experiment/schema.hpp>
+#include <plmap/experiment/sweep.hpp>
 #include <plmap/verify/generators/closed_surfaces.hpp>
 
 #include <gtest/gtest.h>
@@ -143,6 +144,16 @@ TEST(SimplificationSteps, TwoOraclesOnTwoMeshesAreOneConfig) {
   EXPECT_EQ(rows[0].config["simplify.oracles"], "hausdorff:1");
   EXPECT_EQ(rows[1].config["simplify.oracles"], "hausdorff:1, aspect-ratio:0.5");
   EXPECT_NE(rows[0].metrics["simplify.coarse_aspect_mean"], rows[1].metrics["simplify.coarse_aspect_mean"]);
+}
+
+TEST(SimplificationSteps, TheShippedConfigsAreValid) {
+  if (!simplification_benchmark_available() || !projection_available()) GTEST_SKIP() << "built without the steps";
+  if (cgal_data_location().empty()) GTEST_SKIP() << "libcgal-demo's data set is missing";
+  const std::filesystem::path configs = std::filesystem::path(PLMAP_EXPERIMENTS_DIR) / "configs";
+  const auto peers = parse_experiment_file(configs / "simplification_peers.toml");
+  EXPECT_EQ(run_count(peers), 18u);  // three meshes, two targets, three tools
+  const auto oracles = parse_experiment_file(configs / "simplification_oracles.toml");
+  EXPECT_EQ(run_count(oracles), 10u);  // five meshes, two oracle combinations
 }
 
 /// The tools the benchmark was built with (`--list-tools`), one per line.
