@@ -139,6 +139,9 @@ TEST(SimplificationSteps, TwoOraclesOnTwoMeshesAreOneConfig) {
     EXPECT_TRUE(row.timings.contains("simplify.seconds"));
     EXPECT_TRUE(row.timings.contains("smooth.seconds"));
     EXPECT_TRUE(row.timings.contains("refine.seconds"));
+    // simplification builds the editable form and the map: it needs memory
+    ASSERT_TRUE(row.timings.contains("simplify.peak_mib"));
+    EXPECT_GE(row.timings["simplify.peak_mib"]["median"].get<double>(), 0.0);
   }
   // the oracles are a column and change the result
   EXPECT_EQ(rows[0].config["simplify.oracles"], "hausdorff:1");

@@ -21,6 +21,7 @@
 #include <plmap/construct/smooth.hpp>
 #include <plmap/verify/quality.hpp>
 #endif
+#include "peak_memory.hpp"
 #include "resolve.hpp"
 
 #include <fmt/format.h>
@@ -316,6 +317,11 @@ class Pipeline {
     m.metrics[prefix + "kappa_p99" + suffix] = number(p99);
   }
 
+  /// Peak resident memory of the step above what the process held before it (MiB), when known.
+  static void record_peak(Measurements& m, const std::string& prefix, const detail::PeakMemory& memory) {
+    if (const auto mib = memory.increase_mib()) m.timings[prefix + "peak_mib"] = *mib;
+  }
+
   static void record_aspect(Measurements& m, const std::string& name, const AspectRatioSummary& a) {
     m.metrics[name + "_mean"] = a.mean;
     m.metrics[name + "_p90"] = a.p90;
@@ -337,9 +343,12 @@ class Pipeline {
     options.feature_angle_degrees = p.real("feature_angle");
     options.flattening = p.text("flattening");
     options.hole_triangulation = p.text("hole_triangulation");
+    detail::PeakMemory memory;
+    memory.start();
     const auto start = std::chrono::steady_clock::now();
     SimplifyResult result = plmap::simplify(s1_, options);
     m.timings[prefix + "seconds"] = seconds_since(start);
+    record_peak(m, prefix, memory);
     map_ = std::make_shared<const PlMap<d>>(std::move(result.map));
     m.metrics[prefix + "elements"] = map_->domain().element_count();
     m.metrics[prefix + "vertices"] = map_->domain().vertex_count();
@@ -356,9 +365,12 @@ class Pipeline {
     SmoothOptions options;
     options.sweeps = int(p.integer("sweeps"));
     options.weights = p.text("weights");
+    detail::PeakMemory memory;
+    memory.start();
     const auto start = std::chrono::steady_clock::now();
     SmoothResult result = plmap::smooth(*map_, options);
     m.timings[prefix + "seconds"] = seconds_since(start);
+    record_peak(m, prefix, memory);
     map_ = std::make_shared<const PlMap<d>>(std::move(result.map));
     record_kappa(m, prefix, "");
     m.metrics[prefix + "hausdorff"] = relative_hausdorff();
@@ -366,9 +378,12 @@ class Pipeline {
   }
 
   void refine_step(const ParameterSet& p, Measurements& m, const std::string& prefix) {
+    detail::PeakMemory memory;
+    memory.start();
     const auto start = std::chrono::steady_clock::now();
     const RefineResult result = refine_through_map(*map_, {.levels = int(p.integer("levels"))});
     m.timings[prefix + "seconds"] = seconds_since(start);
+    record_peak(m, prefix, memory);
     m.metrics[prefix + "elements"] = result.report.elements;
     m.metrics[prefix + "distance_max"] = result.report.distance_max_relative;
     m.metrics[prefix + "distance_mean"] = result.report.distance_mean;

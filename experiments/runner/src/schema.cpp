@@ -369,7 +369,8 @@ const std::vector<MetricSpec>& step_metrics(const std::string& kind) {
       {"coarse_aspect_p90", false, "90th percentile of S1's aspect ratio"},
       {"coarse_aspect_max", false, "largest aspect ratio of S1"},
       {"target_reached", false, "the element target was reached"},
-      {"seconds", true, "wall time of the simplification"}};
+      {"seconds", true, "wall time of the simplification"},
+      {"peak_mib", true, "peak resident memory of the step above the process's before it (MiB; Linux)"}};
   static const std::vector<MetricSpec> smooth = {
       {"kappa_max_before", false, "largest kappa before smoothing"},
       {"kappa_mean_before", false, "mean kappa before"},
@@ -379,7 +380,8 @@ const std::vector<MetricSpec>& step_metrics(const std::string& kind) {
       {"kappa_p99", false, "99th percentile of kappa after"},
       {"hausdorff", false, "modified Hausdorff distance after smoothing / S2's bounding-box diagonal"},
       {"nodes_moved", false, "free nodes moved (last sweep)"},
-      {"seconds", true, "wall time of the smoothing"}};
+      {"seconds", true, "wall time of the smoothing"},
+      {"peak_mib", true, "peak resident memory of the step above the process's before it (MiB; Linux)"}};
   static const std::vector<MetricSpec> refine = {
       {"elements", false, "triangles of the refined surface"},
       {"distance_max", false, "largest distance to S2 / S2's bounding-box diagonal"},
@@ -390,7 +392,8 @@ const std::vector<MetricSpec>& step_metrics(const std::string& kind) {
       {"refined_aspect_mean", false, "mean aspect ratio of the refined surface"},
       {"refined_aspect_p90", false, "90th percentile of the refined surface's aspect ratio"},
       {"refined_aspect_max", false, "largest aspect ratio of the refined surface"},
-      {"seconds", true, "wall time of the refinement"}};
+      {"seconds", true, "wall time of the refinement"},
+      {"peak_mib", true, "peak resident memory of the step above the process's before it (MiB; Linux)"}};
   static const std::vector<MetricSpec> peer_simplify = {
       {"ok", false, "the tool produced its coarse surface (false: see error)"},
       {"error", false, "why not: the tool's exception, a time-out (empty if ok)"},
