@@ -31,6 +31,7 @@
 #include <psurface/GmshIO.h>
 // clang-format on
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <unistd.h>
@@ -151,13 +152,20 @@ struct GraphFigures {
   std::vector<double> kappas;
   double hausdorff = 0.0;
   long nodes = 0;
+  /// Sum of the regions' areas on the base grid over the base grid's area: 1 when the regions
+  /// enumerated tile every base triangle (a check of the enumeration, not of PSurface).
+  double region_area_ratio = 0.0;
 };
+
+double area(const std::array<WorldPoint<2>, 3>& t) { return 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).norm(); }
 
 /// Regions (the triangles of every base triangle's closed plane graph) and nodes of the map.
 GraphFigures measure_graph(const Par& par) {
   GraphFigures g;
+  double region_area = 0.0, base_area = 0.0;
   for (int t = 0; t < int(par.getNumTriangles()); ++t) {
     const auto& tri = par.triangles(t);
+    base_area += area({base_position(par, t, 1, 0), base_position(par, t, 0, 1), base_position(par, t, 0, 0)});
     g.nodes += long(tri.nodes.size());
     for (std::size_t n = 0; n < tri.nodes.size(); ++n) {
       const auto& xi = tri.nodes[n].domainPos();
@@ -173,8 +181,10 @@ GraphFigures measure_graph(const Par& par) {
         image[k] = world(par.imagePos(t, node));
       }
       g.kappas.push_back(triangle_conditioning(domain, image).kappa);
+      region_area += area(domain);
     }
   }
+  g.region_area_ratio = base_area > 0 ? region_area / base_area : 0.0;
   return g;
 }
 
@@ -322,6 +332,7 @@ SimplificationOutcome simplify_with_psurface(const SimplificationRequest& reques
     f["details"]["refined_map_failures"] = failures;
   }
   f["details"]["removed_vertices"] = removed;
+  f["details"]["region_area_ratio"] = after.region_area_ratio;
   f["details"]["refused_removals"] = refused;
   f["details"]["smoothing_failures"] = smoothing_failures;
   out.figures = std::move(f);
