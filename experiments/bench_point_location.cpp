@@ -13,13 +13,17 @@
 //
 // Usage: bench_point_location [--queries N] [--femur path/to/femur.off] [--json out.json]
 //                             [--quick] [--cells-per-region X] [--only LOCATOR] [--femur-only]
+//                             [--map FILE.plmap]...
 //   --cells-per-region  grid density of cell-grid (default: CellGridOptions's)
 //   --only              measure only this locator (and the floor)
 //   --femur-only        skip the growth series (no growth exponents then)
+//   --map FILE.plmap    also measure a map from a file (d = 2 and covering S1, e.g. one made by
+//                       `plmap simplify`); repeatable
 
 #include <plmap/verify/generators/subdivision_maps.hpp>
 
 #include <plmap/core/evaluation.hpp>
+#include <plmap/core/io/map_file.hpp>
 #include <plmap/core/io/surface_reader.hpp>
 #include <plmap/strategies/point_locator_registry.hpp>
 #include <plmap/verify/generators/simplified_surface.hpp>
@@ -85,7 +89,7 @@ Timing measure(Work&& work, std::size_t available, double target_seconds) {
 
 struct Case {
   std::string name;
-  generators::SubdivisionMap<2> refinement;
+  std::shared_ptr<const PlMap<2>> map;
 };
 
 /// The femur of CGAL's data set simplified to about `faces` triangles by edge collapse.
@@ -112,7 +116,7 @@ std::vector<SurfacePoint<2>> random_queries(const Surface<2>& s1, std::size_t n,
 
 Json run_case(const Case& c, std::size_t query_count, unsigned all_threads, double target_seconds,
              const point_location::CellGridOptions& cell_grid_options, const std::string& only) {
-  const PlMap<2>& map = *c.refinement.map;
+  const PlMap<2>& map = *c.map;
   const auto& s1 = map.domain();
   const auto queries = random_queries(s1, query_count, 12345);
   std::vector<Evaluation<2>> out(queries.size());
@@ -247,6 +251,7 @@ double fit_exponent(const std::vector<double>& x, const std::vector<double>& y) 
 int main(int argc, char** argv) {
   std::size_t query_count = 1 << 20;
   std::string femur_path, json_path;
+  std::vector<std::string> map_paths;
   bool quick = false, femur_only = false;
   std::string only;
   point_location::CellGridOptions cell_grid_options;
@@ -257,11 +262,12 @@ int main(int argc, char** argv) {
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else if (a == "--femur-only") femur_only = true;
     else if (a == "--femur" && i + 1 < argc) femur_path = argv[++i];
+    else if (a == "--map" && i + 1 < argc) map_paths.emplace_back(argv[++i]);
     else if (a == "--json" && i + 1 < argc) json_path = argv[++i];
     else if (a == "--quick") quick = true;
     else {
       fmt::print(stderr, "usage: {} [--queries N] [--femur femur.off] [--json out.json] [--quick]\n"
-                 "       [--cells-per-region X] [--only LOCATOR] [--femur-only]\n", argv[0]);
+                 "       [--cells-per-region X] [--only LOCATOR] [--femur-only] [--map FILE.plmap]...\n", argv[0]);
       return 2;
     }
   }
@@ -277,17 +283,20 @@ int main(int argc, char** argv) {
     for (int k : ks) {
       const int grid = std::max(3, int(std::lround(std::sqrt(50000.0 / (2.0 * k * k)))));
       cases.push_back({fmt::format("grid{}x{}, {}x{} refinement", grid, grid, k, k),
-                       generators::subdivision_map(generators::bumpy_grid(grid), k, 0.2, 100 + k)});
+                       generators::subdivision_map(generators::bumpy_grid(grid), k, 0.2, 100 + k).map});
     }
     const std::size_t growth_cases = cases.size();
     if (!femur_path.empty()) {
       const auto femur = coarse_femur(femur_path, 500);
       for (int k : {4, 5})
         cases.push_back({fmt::format("femur {} tris, {}x{} refinement", femur->element_count(), k, k),
-                         generators::subdivision_map(femur, k, 0.2, 200 + k)});
+                         generators::subdivision_map(femur, k, 0.2, 200 + k).map});
     }
+    for (const auto& path : map_paths)
+      cases.push_back({std::filesystem::path(path).filename().string(),
+                       std::make_shared<const PlMap<2>>(load_map<2>(path))});
 
-    if (cases.empty()) throw Error("--femur-only needs --femur path/to/femur.off");
+    if (cases.empty()) throw Error("--femur-only needs --femur path/to/femur.off or --map FILE.plmap");
     Json report;
     report["threads"] = all_threads;
     report["queries"] = query_count;

@@ -34,65 +34,6 @@ namespace plmap::peers {
 
 namespace {
 
-double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-/// A "VmXXX:  1234 kB" field of /proc/self/status in KiB, or -1.
-long status_kib(const std::string& field) {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-    if (line.rfind(field + ":", 0) == 0) return std::stol(line.substr(field.size() + 1));
-  return -1;
-}
-
-}  // namespace
-
-void Measurement::start() {
-  // Writing 5 to clear_refs resets VmHWM to the current resident size (Linux >= 4.0), so the peak
-  // seen at stop() belongs to the measured part alone.
-  {
-    std::ofstream clear("/proc/self/clear_refs");
-    clear << "5";
-    clear.flush();
-    reset_ok_ = static_cast<bool>(clear);
-  }
-  baseline_kib_ = status_kib("VmRSS");
-  start_time_ = now();
-}
-
-void Measurement::stop() {
-  seconds_ = now() - start_time_;
-  peak_kib_ = status_kib("VmHWM");
-  if (peak_kib_ < 0) {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    peak_kib_ = usage.ru_maxrss;
-  }
-}
-
-QuietStdout::QuietStdout() {
-  std::cout.flush();
-  std::fflush(stdout);
-  saved_ = dup(STDOUT_FILENO);
-  const int null = open("/dev/null", O_WRONLY);
-  if (null >= 0) {
-    dup2(null, STDOUT_FILENO);
-    close(null);
-  }
-}
-
-QuietStdout::~QuietStdout() {
-  std::cout.flush();
-  std::fflush(stdout);
-  if (saved_ >= 0) {
-    dup2(saved_, STDOUT_FILENO);
-    close(saved_);
-  }
-}
-
-namespace {
-
 struct Arguments {
   std::string tool = "plmap", family = "plane", femur, write_inputs;
   long size = 2000;
@@ -187,11 +128,11 @@ int run(int argc, char** argv) {
       throw std::invalid_argument(fmt::format("unknown argument '{}'", a));
     }
   }
-  const double t0 = now();
+  const double t0 = now_seconds();
   nlohmann::json line;
   if (args.family == "circle") {
     const auto input = concentric_circles(args.size, args.seed);
-    line = measure<1>(args, input, now() - t0);
+    line = measure<1>(args, input, now_seconds() - t0);
   } else {
     SurfacePair<2> input;
     if (args.family == "plane") input = facing_planes(args.size, args.seed);
@@ -199,7 +140,7 @@ int run(int argc, char** argv) {
     else if (args.family == "femur") input = femur_pair(args.femur, true, args.seed);
     else if (args.family == "femur-offset") input = femur_pair(args.femur, false, args.seed);
     else throw std::invalid_argument(fmt::format("unknown case '{}'", args.family));
-    line = measure<2>(args, input, now() - t0);
+    line = measure<2>(args, input, now_seconds() - t0);
   }
   std::cout << line.dump() << std::endl;
   return 0;

@@ -84,7 +84,7 @@ std::vector<BadCase> bad_cases() {
       {"run must be boolean", with(&Parts::inputs, "[[inputs]]\nkind = \"grid\"\nrun = 1\n"), "inputs[0].run",
        "boolean"},
       {"missing pipeline", with(&Parts::pipeline, ""), "pipeline", "missing"},
-      {"unknown step", with(&Parts::pipeline, "[[pipeline]]\nstep = \"smooth\"\n"), "pipeline[0].step",
+      {"unknown step", with(&Parts::pipeline, "[[pipeline]]\nstep = \"polish\"\n"), "pipeline[0].step",
        "unknown step"},
       {"missing map kind", with(&Parts::pipeline, "[[pipeline]]\nstep = \"build\"\n"), "pipeline[0].map", "missing"},
       {"unknown map kind", with(&Parts::pipeline, "[[pipeline]]\nstep = \"build\"\nmap = \"magic\"\n"),

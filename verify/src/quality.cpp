@@ -62,22 +62,29 @@ RegionConditioning region_conditioning(const PlMap<d>& map, Index region) {
     c.sigma_min = c.sigma_max = image / domain;
     c.kappa = 1.0;
   } else {
-    const Eigen::Matrix2d p = frame_coordinates(ri.domain_world);
-    const Eigen::Matrix2d q = frame_coordinates(ri.target_world);
-    const double det_p = p(0, 0) * p(1, 1);
-    if (!(det_p > 0)) {
-      c.kappa = std::numeric_limits<double>::infinity();
-      c.sigma_min = 0.0;
-      c.sigma_max = std::numeric_limits<double>::infinity();
-      return c;
-    }
-    // A maps the domain frame coordinates to the image frame coordinates: A P = Q.
-    const Eigen::Matrix2d a = q * p.inverse();
-    const auto [smax, smin] = singular_values(a);
-    c.sigma_max = smax;
-    c.sigma_min = smin;
-    c.kappa = smin > 0 ? smax / smin : std::numeric_limits<double>::infinity();
+    c = triangle_conditioning(ri.domain_world, ri.target_world);
   }
+  return c;
+}
+
+RegionConditioning triangle_conditioning(const std::array<WorldPoint<2>, 3>& domain,
+                                         const std::array<WorldPoint<2>, 3>& image) {
+  RegionConditioning c;
+  const Eigen::Matrix2d p = frame_coordinates(domain);
+  const Eigen::Matrix2d q = frame_coordinates(image);
+  const double det_p = p(0, 0) * p(1, 1);
+  if (!(det_p > 0)) {
+    c.kappa = std::numeric_limits<double>::infinity();
+    c.sigma_min = 0.0;
+    c.sigma_max = std::numeric_limits<double>::infinity();
+    return c;
+  }
+  // A maps the domain frame coordinates to the image frame coordinates: A P = Q.
+  const Eigen::Matrix2d a = q * p.inverse();
+  const auto [smax, smin] = singular_values(a);
+  c.sigma_max = smax;
+  c.sigma_min = smin;
+  c.kappa = smin > 0 ? smax / smin : std::numeric_limits<double>::infinity();
   return c;
 }
 

@@ -6,6 +6,7 @@
 #include <plmap/experiment/config.hpp>
 #include <plmap/experiment/sweep.hpp>
 #include <plmap/strategies/point_locator_registry.hpp>
+#include <plmap/strategies/simplification/weighted_oracles.hpp>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -139,6 +140,17 @@ ParameterSet resolve_input(const ExperimentConfig& config, int index, const Para
   return p;
 }
 
+std::vector<std::string> split_oracles(const std::string& list) {
+  std::vector<std::string> specs;
+  std::stringstream stream(list);
+  for (std::string item; std::getline(stream, item, ',');) {
+    const auto first = item.find_first_not_of(" \t"), last = item.find_last_not_of(" \t");
+    if (first == std::string::npos) continue;
+    specs.push_back(item.substr(first, last + 1 - first));
+  }
+  return specs;
+}
+
 ParameterSet resolve_step(const ExperimentConfig& config, int index, const ParameterSet& given,
                           int dimension, const KeyNames& names) {
   const StepConfig& step = config.pipeline[index];
@@ -158,6 +170,20 @@ ParameterSet resolve_step(const ExperimentConfig& config, int index, const Param
                         fmt::format("point locator \"{}\" does not work on {} (valid: {})", locator,
                                     dimension == 1 ? "curves (d = 1)" : "triangle surfaces (d = 2)", join(valid)));
     p.set("locator", locator);
+  }
+  static const std::set<std::string> triangles_only = {"simplify", "smooth", "refine", "peer_simplify"};
+  if (triangles_only.count(step.kind) && dimension != 2)
+    throw ConfigError(source_of(config, step.key + ".step"), step.key + ".step",
+                      fmt::format("step \"{}\" works on triangle surfaces (d = 2), not on curves", step.kind));
+  if (step.kind == "simplify" || step.kind == "peer_simplify") {
+    const std::string key = key_of(step.key, "oracles", names);
+    try {
+      WeightedOracles oracles;
+      for (const auto& spec : split_oracles(p.text("oracles"))) oracles.add_spec(spec);
+      if (oracles.empty()) throw Error("name at least one oracle");
+    } catch (const Error& e) {
+      throw ConfigError(source_of(config, key), key, e.what());
+    }
   }
   if (step.kind == "project") {
     const std::string& target = p.text("target");
@@ -290,6 +316,7 @@ class Parser {
     parse_inputs(root);
     parse_pipeline(root);
     check_peer_inputs();
+    check_peer_simplify_inputs();
     // The pipeline parameters are checked for each dimension the inputs have.
     std::set<int> dimensions;
     for (const auto& in : config_.inputs)
@@ -430,9 +457,10 @@ class Parser {
       if (!names.insert(step.name).second)
         fail(step.key + ".name", fmt::format("step name \"{}\" is used twice; give one of the steps another "
                                              "name = \"...\"", step.name));
-      if ((step.kind == "evaluate" || step.kind == "check") && !have_map)
-        fail(step.key + ".step", fmt::format("step \"{}\" needs a map: put a build or project step before it", step.kind));
-      if (step.kind == "build" || step.kind == "project") have_map = true;
+      if ((step.kind == "evaluate" || step.kind == "check" || step.kind == "smooth" || step.kind == "refine") && !have_map)
+        fail(step.key + ".step",
+             fmt::format("step \"{}\" needs a map: put a build, project or simplify step before it", step.kind));
+      if (step.kind == "build" || step.kind == "project" || step.kind == "simplify") have_map = true;
       const auto& schema = step_schema(step.kind);
       std::vector<std::string> valid = {"step", "name"};
       for (const auto& s : schema) valid.push_back(s.name);
@@ -440,6 +468,24 @@ class Parser {
       for (const auto& s : schema)
         if (const toml::node* n = t.get(s.name)) step.given.set(s.name, convert(*n, s, step.key + "." + s.name));
       config_.pipeline.push_back(std::move(step));
+    }
+  }
+
+  /// peer_simplify hands a mesh file to the benchmark: every input it runs on must be a file or a
+  /// CGAL mesh as it is (not simplified by simplify_to).
+  void check_peer_simplify_inputs() const {
+    const auto step = std::find_if(config_.pipeline.begin(), config_.pipeline.end(),
+                                   [](const StepConfig& s) { return s.kind == "peer_simplify"; });
+    if (step == config_.pipeline.end()) return;
+    for (const auto& in : config_.inputs) {
+      if (!in.run) continue;
+      if (in.kind != "file" && in.kind != "cgal")
+        fail(in.key + ".kind", fmt::format("input \"{}\" is of kind \"{}\", but {} (peer_simplify) runs only on "
+                                           "file or cgal inputs (give other inputs run = false)",
+                                           in.name, in.kind, step->key));
+      if (in.kind == "cgal" && in.parameters.has("simplify_to") && in.parameters.integer("simplify_to") > 0)
+        fail(in.key + ".simplify_to", fmt::format("input \"{}\": {} (peer_simplify) reads the mesh file itself, "
+                                                  "so simplify_to must be 0", in.name, step->key));
     }
   }
 

@@ -20,6 +20,9 @@ const ParameterSpec* find_spec(const std::vector<ParameterSpec>& schema, const s
 /// "a, b, c"
 std::string join(const std::vector<std::string>& items, const std::string& separator = ", ");
 
+/// The members of an oracle list "hausdorff:1,aspect-ratio:0.5" (spaces around commas allowed).
+std::vector<std::string> split_oracles(const std::string& list);
+
 /// Bounds and valid choices of one typed value.
 void check_value(const std::string& source, const std::string& key, const ParameterSpec& spec,
                  const ParameterValue& value);

@@ -16,7 +16,13 @@
 #include <plmap/verify/generators/random_maps.hpp>
 #ifdef PLMAP_EXPERIMENT_HAS_CONSTRUCT
 #include <plmap/construct/project.hpp>
+#include <plmap/construct/refine_through_map.hpp>
+#include <plmap/construct/simplify.hpp>
+#include <plmap/construct/smooth.hpp>
+#include <plmap/verify/quality.hpp>
 #endif
+#include "peak_memory.hpp"
+#include "resolve.hpp"
 
 #include <fmt/format.h>
 
@@ -80,6 +86,14 @@ class Pipeline {
     if (step.kind == "evaluate") return evaluate(p, m, prefix);
     if (step.kind == "check") return check(p, m, prefix);
     if (step.kind == "peer_project") return peer_project(p, m, prefix);
+    if (step.kind == "peer_simplify") return peer_simplify(p, m, prefix);
+    if constexpr (d == 2) {
+#ifdef PLMAP_EXPERIMENT_HAS_CONSTRUCT
+      if (step.kind == "simplify") return simplify_step(p, m, prefix);
+      if (step.kind == "smooth") return smooth_step(p, m, prefix);
+      if (step.kind == "refine") return refine_step(p, m, prefix);
+#endif
+    }
     throw Error("unknown step " + step.kind);
   }
 
@@ -278,6 +292,181 @@ class Pipeline {
     m.metrics[prefix + "covered_target_error"] = real("covered_target_relative_error");
     if (real("seconds").is_number()) m.timings[prefix + "seconds"] = line["seconds"].get<double>();
     if (real("peak_increase_mib").is_number()) m.timings[prefix + "peak_mib"] = line["peak_increase_mib"].get<double>();
+  }
+
+#ifdef PLMAP_EXPERIMENT_HAS_CONSTRUCT
+  /// The modified Hausdorff distance of the current map over S2's bounding-box diagonal: the
+  /// largest node-to-image distance (convex on each region, so the maximum is at a node).
+  double relative_hausdorff() const {
+    double h = 0.0;
+    for (Index n = 0; n < map_->node_count(); ++n)
+      h = std::max(h, (map_->node_domain_world(n) - map_->node_target_world(n)).norm());
+    const auto& v = map_->target().vertices();
+    WorldPoint<d> lo = v.front(), hi = v.front();
+    for (const auto& x : v) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    return h / (hi - lo).norm();
+  }
+
+  void record_kappa(Measurements& m, const std::string& prefix, const std::string& suffix) {
+    const QualityReport q = compute_quality(*map_);
+    m.metrics[prefix + "kappa_max" + suffix] = number(q.kappa_max);
+    m.metrics[prefix + "kappa_mean" + suffix] = number(q.kappa_mean);
+    double p99 = q.kappa_max;
+    for (std::size_t i = 0; i < q.quantile_levels.size(); ++i)
+      if (q.quantile_levels[i] == 0.99) p99 = q.quantiles[i];
+    m.metrics[prefix + "kappa_p99" + suffix] = number(p99);
+  }
+
+  /// Peak resident memory of the step above what the process held before it (MiB), when known.
+  static void record_peak(Measurements& m, const std::string& prefix, const detail::PeakMemory& memory) {
+    if (const auto mib = memory.increase_mib()) m.timings[prefix + "peak_mib"] = *mib;
+  }
+
+  static void record_aspect(Measurements& m, const std::string& name, const AspectRatioSummary& a) {
+    m.metrics[name + "_mean"] = a.mean;
+    m.metrics[name + "_p90"] = a.p90;
+    m.metrics[name + "_max"] = a.max;
+  }
+
+  /// plmap::simplify on the input: S1 becomes the coarse surface, the map Ξ: S1 → input.
+  void simplify_step(const ParameterSet& p, Measurements& m, const std::string& prefix) {
+    SimplifyOptions options;
+    options.target_elements = Index(p.integer("target_elements"));
+    const double diagonal = [&] {
+      const auto& v = s1_->vertices();
+      WorldPoint<d> lo = v.front(), hi = v.front();
+      for (const auto& x : v) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+      return (hi - lo).norm();
+    }();
+    if (p.real("max_error") > 0) options.max_error = p.real("max_error") * diagonal;
+    for (const auto& spec : detail::split_oracles(p.text("oracles"))) options.oracles.add_spec(spec);
+    options.feature_angle_degrees = p.real("feature_angle");
+    options.flattening = p.text("flattening");
+    options.hole_triangulation = p.text("hole_triangulation");
+    detail::PeakMemory memory;
+    memory.start();
+    const auto start = std::chrono::steady_clock::now();
+    SimplifyResult result = plmap::simplify(s1_, options);
+    m.timings[prefix + "seconds"] = seconds_since(start);
+    record_peak(m, prefix, memory);
+    map_ = std::make_shared<const PlMap<d>>(std::move(result.map));
+    m.metrics[prefix + "elements"] = map_->domain().element_count();
+    m.metrics[prefix + "vertices"] = map_->domain().vertex_count();
+    m.metrics[prefix + "nodes"] = map_->node_count();
+    m.metrics[prefix + "regions"] = map_->region_count();
+    m.metrics[prefix + "hausdorff"] = relative_hausdorff();
+    record_kappa(m, prefix, "");
+    record_aspect(m, prefix + "coarse_aspect", aspect_ratio_summary(map_->domain()));
+    m.metrics[prefix + "target_reached"] = result.report.target_reached;
+  }
+
+  void smooth_step(const ParameterSet& p, Measurements& m, const std::string& prefix) {
+    record_kappa(m, prefix, "_before");
+    SmoothOptions options;
+    options.sweeps = int(p.integer("sweeps"));
+    options.weights = p.text("weights");
+    detail::PeakMemory memory;
+    memory.start();
+    const auto start = std::chrono::steady_clock::now();
+    SmoothResult result = plmap::smooth(*map_, options);
+    m.timings[prefix + "seconds"] = seconds_since(start);
+    record_peak(m, prefix, memory);
+    map_ = std::make_shared<const PlMap<d>>(std::move(result.map));
+    record_kappa(m, prefix, "");
+    m.metrics[prefix + "hausdorff"] = relative_hausdorff();
+    m.metrics[prefix + "nodes_moved"] = result.report.sweeps.empty() ? 0 : result.report.sweeps.back().nodes_moved;
+  }
+
+  void refine_step(const ParameterSet& p, Measurements& m, const std::string& prefix) {
+    detail::PeakMemory memory;
+    memory.start();
+    const auto start = std::chrono::steady_clock::now();
+    const RefineResult result = refine_through_map(*map_, {.levels = int(p.integer("levels"))});
+    m.timings[prefix + "seconds"] = seconds_since(start);
+    record_peak(m, prefix, memory);
+    m.metrics[prefix + "elements"] = result.report.elements;
+    m.metrics[prefix + "distance_max"] = result.report.distance_max_relative;
+    m.metrics[prefix + "distance_mean"] = result.report.distance_mean;
+    record_aspect(m, prefix + "coarse_aspect", result.report.coarse_quality);
+    record_aspect(m, prefix + "refined_aspect", result.report.refined_quality);
+  }
+#endif
+
+  /// One tool's simplification of the input mesh (plmap, PSurface or CGAL's floor), run by
+  /// experiments/peers' bench_simplification_peers in a child process per repetition, so that
+  /// the tools are measured the same way (wall time and peak memory of the child's measured part,
+  /// every result measured with plmap's code).
+  void peer_simplify(const ParameterSet& p, Measurements& m, const std::string& prefix) {
+    const InputConfig& input = config_.inputs[run_.input_index];
+    const ParameterSet& in = run_.input_parameters;
+    const std::string program = simplification_benchmark_program();
+    if (program.empty()) throw Error("peer_simplify: this build has no experiments/peers simplification benchmark");
+    if (std::error_code ec; !std::filesystem::is_regular_file(program, ec))
+      throw Error(fmt::format("peer_simplify: the benchmark {} does not exist (build the target "
+                              "bench_simplification_peers, or set PLMAP_SIMPLIFICATION_BENCH)",
+                              program));
+    std::filesystem::path mesh;
+    if (input.kind == "cgal") {
+      mesh = inputs_.cgal_mesh(in.text("mesh"));
+    } else {
+      mesh = in.text("path");
+      if (mesh.is_relative()) mesh = config_.base_directory / mesh;
+    }
+    std::vector<std::string> argv = {program, "--tool", p.text("tool"), "--mesh", mesh.string(), "--target",
+                                     std::to_string(p.integer("target_elements")), "--feature-angle",
+                                     fmt::format("{}", p.real("feature_angle")), "--sweeps",
+                                     std::to_string(p.integer("sweeps")), "--weights", p.text("weights"),
+                                     "--refine-levels", std::to_string(p.integer("refine_levels")),
+                                     "--psurface-aspect-ratio", fmt::format("{}", p.real("psurface_aspect_ratio")),
+                                     "--psurface-hausdorff", fmt::format("{}", p.real("psurface_hausdorff"))};
+    for (const auto& spec : detail::split_oracles(p.text("oracles"))) argv.insert(argv.end(), {"--oracle", spec});
+    auto failed = [&](std::string why) {
+      m.metrics[prefix + "ok"] = false;
+      m.metrics[prefix + "error"] = std::move(why);
+    };
+    const auto result = detail::run_process(argv, {}, p.real("timeout_seconds"));
+    if (result.timed_out) return failed(fmt::format("timed out after {} s", p.real("timeout_seconds")));
+    std::string last;
+    if (const auto end = result.output.find_last_not_of("\n"); end != std::string::npos) {
+      const auto newline = result.output.rfind('\n', end);
+      const std::size_t start = newline == std::string::npos ? 0 : newline + 1;
+      last = result.output.substr(start, end + 1 - start);
+    }
+    if (result.exit_code != 0 || last.empty() || last.front() != '{') {
+      std::string why = result.errors.empty() ? result.output : result.errors;
+      while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
+      if (result.exit_code == 2 && why.find("not built in") != std::string::npos)
+        throw Error(fmt::format("peer_simplify: {} ({} was built without that peer's Debian package)", why, program));
+      if (result.exit_code == 2) throw Error(fmt::format("peer_simplify: {}", why));
+      return failed(fmt::format("{} exited with {}: {}", program, result.exit_code, why));
+    }
+    const Json line = Json::parse(last, nullptr, /*allow_exceptions=*/false);
+    if (line.is_discarded() || !line.contains("ok") || !line.contains("seconds"))
+      return failed(fmt::format("{} printed no result line: {}", program, last.substr(0, 200)));
+    const auto field = [&](const char* group, const char* key) {
+      const Json& g = group ? (line.contains(group) ? line[group] : Json()) : line;
+      return g.is_object() && g.contains(key) && g[key].is_number() ? g[key] : Json(nullptr);
+    };
+    const bool ok = line["ok"].is_boolean() && line["ok"].get<bool>();
+    m.metrics[prefix + "ok"] = ok;
+    m.metrics[prefix + "error"] = line.contains("error") && line["error"].is_string() ? line["error"] : Json("");
+    if (!ok) return;
+    m.metrics[prefix + "elements"] = field(nullptr, "elements");
+    m.metrics[prefix + "hausdorff_before_smoothing"] = field(nullptr, "hausdorff_before_smoothing");
+    m.metrics[prefix + "hausdorff"] = field(nullptr, "hausdorff");
+    for (const char* q : {"max", "mean", "p99"}) {
+      m.metrics[prefix + "kappa_" + q + "_before"] = field("kappa_before", q);
+      m.metrics[prefix + "kappa_" + q] = field("kappa_after", q);
+    }
+    for (const char* q : {"mean", "p90", "max"}) {
+      m.metrics[prefix + "coarse_aspect_" + q] = field("coarse_aspect", q);
+      m.metrics[prefix + "refined_aspect_" + q] = field("refined_aspect", q);
+    }
+    for (const char* t :
+         {"seconds", "seconds_simplify", "seconds_smooth", "cpu_seconds", "cpu_seconds_simplify", "cpu_seconds_smooth"})
+      if (line[t].is_number()) m.timings[prefix + t] = line[t].get<double>();
+    if (field(nullptr, "peak_increase_mib").is_number())
+      m.timings[prefix + "peak_mib"] = line["peak_increase_mib"].get<double>();
   }
 
   const ExperimentConfig& config_;

@@ -1,6 +1,8 @@
 #include <plmap/experiment/schema.hpp>
 
 #include <plmap/strategies/point_locator_registry.hpp>
+#include <plmap/strategies/simplification/simplification_registry.hpp>
+#include <plmap/strategies/smoothing/smoothing_weights_registry.hpp>
 
 #include <algorithm>
 #include <cstdlib>
@@ -27,6 +29,11 @@ ParameterSpec boolean(std::string name, bool def, std::string doc) {
   ParameterSpec s;
   s.name = std::move(name), s.type = ParameterType::boolean, s.default_value = def;
   s.doc = std::move(doc);
+  return s;
+}
+ParameterSpec text(std::string name, std::string def, std::string doc) {
+  ParameterSpec s;
+  s.name = std::move(name), s.type = ParameterType::text, s.default_value = std::move(def), s.doc = std::move(doc);
   return s;
 }
 ParameterSpec required_text(std::string name, std::string doc) {
@@ -65,6 +72,10 @@ ParameterSpec only_for(ParameterSpec s, std::string key, std::vector<std::string
 
 constexpr double unbounded = 1e300;
 
+std::vector<std::string> names_of(std::span<const std::string_view> names) {
+  return {names.begin(), names.end()};
+}
+
 const std::vector<std::string> kInputKinds = {"file",          "cgal",           "grid",
                                               "delaunay",      "bumpy-grid",     "open-polyline",
                                               "closed-polyline", "star-polyline", "contact-pair",
@@ -76,6 +87,12 @@ std::vector<std::string> make_step_kinds() {
   kinds.push_back("evaluate");
   kinds.push_back("check");
   if (peer_benchmark_available()) kinds.push_back("peer_project");
+  if (projection_available()) {
+    kinds.push_back("simplify");
+    kinds.push_back("smooth");
+    kinds.push_back("refine");
+  }
+  if (simplification_benchmark_available()) kinds.push_back("peer_simplify");
   return kinds;
 }
 
@@ -107,6 +124,23 @@ std::string peer_benchmark_program() {
   if (const char* env = std::getenv("PLMAP_PEER_BENCH"); env && *env) return env;
 #ifdef PLMAP_EXPERIMENT_PEER_BENCH
   return PLMAP_EXPERIMENT_PEER_BENCH;
+#else
+  return {};
+#endif
+}
+
+bool simplification_benchmark_available() {
+#ifdef PLMAP_EXPERIMENT_SIMPLIFICATION_BENCH
+  return true;
+#else
+  return false;
+#endif
+}
+
+std::string simplification_benchmark_program() {
+  if (const char* env = std::getenv("PLMAP_SIMPLIFICATION_BENCH"); env && *env) return env;
+#ifdef PLMAP_EXPERIMENT_SIMPLIFICATION_BENCH
+  return PLMAP_EXPERIMENT_SIMPLIFICATION_BENCH;
 #else
   return {};
 #endif
@@ -230,11 +264,46 @@ const std::vector<ParameterSpec>& step_schema(const std::string& kind) {
       real("timeout_seconds", 1800, 1, 1e6, "a child still running after this long is killed; the run records why"),
       integer("psurface_max_elements", 25000, 0, 1e9,
               "PSurface tests all pairs of elements (hours beyond ~20k): larger S1 are skipped and recorded as such")};
+  static const std::vector<ParameterSpec> simplify = {
+      integer("target_elements", 0, 0, 1e9, "stop at this many triangles (0: no element target)"),
+      real("max_error", 0.0, 0.0, unbounded,
+           "refuse steps whose modified Hausdorff distance exceeds this multiple of the mesh's bounding-box "
+           "diagonal (0: no bound)"),
+      text("oracles", "hausdorff:1,aspect-ratio:0.05,normal-deviation:0.5",
+           "error oracles NAME[:WEIGHT], comma-separated (a weighted combination)"),
+      real("feature_angle", 60.0, 0.0, 180.0, "edges with a larger dihedral angle (degrees) are feature lines"),
+      choice("flattening", "polar-map", names_of(star_flattening_names()), "star flattening", "flattening of a star"),
+      choice("hole_triangulation", "constrained-delaunay", names_of(hole_triangulation_names()), "hole triangulation",
+             "re-triangulation of the hole")};
+  static const std::vector<ParameterSpec> smooth = {
+      integer("sweeps", 1, 1, 1000, "passes over all elements"),
+      choice("weights", "floater", names_of(smoothing_weights_names()), "smoothing weights",
+             "convex-combination weights")};
+  static const std::vector<ParameterSpec> refine = {
+      integer("levels", 2, 0, 8, "uniform refinement levels of S1 (each splits every triangle into four)")};
+  static const std::vector<ParameterSpec> peer_simplify = {
+      choice("tool", std::nullopt, {"plmap", "psurface", "cgal"}, "simplification tool",
+             "plmap (simplify + smooth), PSurface 2.0 (point removal + edge relaxation) or CGAL's edge collapse "
+             "(the floor, no map), run by experiments/peers' bench_simplification_peers in a child process"),
+      integer("target_elements", 500, 1, 1e9, "triangles to simplify to"),
+      text("oracles", "hausdorff:1,aspect-ratio:1", "plmap's error oracles NAME[:WEIGHT], comma-separated"),
+      real("feature_angle", 180.0, 0.0, 180.0,
+           "plmap's feature-line angle (180: no sharp features, as PSurface sees an unmarked mesh)"),
+      real("psurface_aspect_ratio", 0.5, 0.0, unbounded, "PSurface's QualityRequest aspect-ratio weight"),
+      real("psurface_hausdorff", 0.5, 0.0, unbounded, "PSurface's QualityRequest Hausdorff weight"),
+      integer("sweeps", 1, 0, 1000, "smoothing sweeps (0: none)"),
+      choice("weights", "floater", names_of(smoothing_weights_names()), "smoothing weights", "plmap's smoothing weights"),
+      integer("refine_levels", 2, 0, 6, "refinement levels for the refined surface's quality (0: skip)"),
+      real("timeout_seconds", 1800, 1, 1e6, "a child still running after this long is killed; the run records why")};
   if (kind == "build") return build;
   if (kind == "project") return project;
   if (kind == "evaluate") return evaluate;
   if (kind == "check") return check;
   if (kind == "peer_project") return peer_project;
+  if (kind == "simplify") return simplify;
+  if (kind == "smooth") return smooth;
+  if (kind == "refine") return refine;
+  if (kind == "peer_simplify") return peer_simplify;
   throw std::out_of_range("no step kind " + kind);
 }
 
@@ -287,11 +356,78 @@ const std::vector<MetricSpec>& step_metrics(const std::string& kind) {
       {"covered_target_error", false, "(covered - exact) / exact overlap on S2"},
       {"peak_mib", true, "peak resident memory during the projection above what the inputs hold (MiB)"},
       {"seconds", true, "wall time of the projection alone"}};
+  static const std::vector<MetricSpec> simplify = {
+      {"elements", false, "triangles of S1 after simplification"},
+      {"vertices", false, "vertices of S1"},
+      {"nodes", false, "graph nodes of the map"},
+      {"regions", false, "regions of the map"},
+      {"hausdorff", false, "modified Hausdorff distance / S2's bounding-box diagonal"},
+      {"kappa_max", false, "largest condition number of a region"},
+      {"kappa_mean", false, "mean condition number"},
+      {"kappa_p99", false, "99th percentile of the condition number"},
+      {"coarse_aspect_mean", false, "mean aspect ratio of S1's triangles"},
+      {"coarse_aspect_p90", false, "90th percentile of S1's aspect ratio"},
+      {"coarse_aspect_max", false, "largest aspect ratio of S1"},
+      {"target_reached", false, "the element target was reached"},
+      {"seconds", true, "wall time of the simplification"},
+      {"peak_mib", true, "peak resident memory of the step above the process's before it (MiB; Linux)"}};
+  static const std::vector<MetricSpec> smooth = {
+      {"kappa_max_before", false, "largest kappa before smoothing"},
+      {"kappa_mean_before", false, "mean kappa before"},
+      {"kappa_p99_before", false, "99th percentile of kappa before"},
+      {"kappa_max", false, "largest kappa after smoothing"},
+      {"kappa_mean", false, "mean kappa after"},
+      {"kappa_p99", false, "99th percentile of kappa after"},
+      {"hausdorff", false, "modified Hausdorff distance after smoothing / S2's bounding-box diagonal"},
+      {"nodes_moved", false, "free nodes moved (last sweep)"},
+      {"seconds", true, "wall time of the smoothing"},
+      {"peak_mib", true, "peak resident memory of the step above the process's before it (MiB; Linux)"}};
+  static const std::vector<MetricSpec> refine = {
+      {"elements", false, "triangles of the refined surface"},
+      {"distance_max", false, "largest distance to S2 / S2's bounding-box diagonal"},
+      {"distance_mean", false, "mean distance to S2 (surface units)"},
+      {"coarse_aspect_mean", false, "mean aspect ratio of S1"},
+      {"coarse_aspect_p90", false, "90th percentile of S1's aspect ratio"},
+      {"coarse_aspect_max", false, "largest aspect ratio of S1"},
+      {"refined_aspect_mean", false, "mean aspect ratio of the refined surface"},
+      {"refined_aspect_p90", false, "90th percentile of the refined surface's aspect ratio"},
+      {"refined_aspect_max", false, "largest aspect ratio of the refined surface"},
+      {"seconds", true, "wall time of the refinement"},
+      {"peak_mib", true, "peak resident memory of the step above the process's before it (MiB; Linux)"}};
+  static const std::vector<MetricSpec> peer_simplify = {
+      {"ok", false, "the tool produced its coarse surface (false: see error)"},
+      {"error", false, "why not: the tool's exception, a time-out (empty if ok)"},
+      {"elements", false, "triangles of the coarse surface"},
+      {"hausdorff_before_smoothing", false, "largest node-to-image distance / bounding-box diagonal, before smoothing"},
+      {"hausdorff", false, "the same after smoothing (the maps' tools only)"},
+      {"kappa_max_before", false, "largest kappa before smoothing"},
+      {"kappa_mean_before", false, "mean kappa before smoothing"},
+      {"kappa_p99_before", false, "99th percentile of kappa before smoothing"},
+      {"kappa_max", false, "largest kappa after smoothing"},
+      {"kappa_mean", false, "mean kappa after smoothing"},
+      {"kappa_p99", false, "99th percentile of kappa after smoothing"},
+      {"coarse_aspect_mean", false, "mean aspect ratio of the coarse surface"},
+      {"coarse_aspect_p90", false, "90th percentile"},
+      {"coarse_aspect_max", false, "largest"},
+      {"refined_aspect_mean", false, "mean aspect ratio of the coarse surface refined through the map"},
+      {"refined_aspect_p90", false, "90th percentile"},
+      {"refined_aspect_max", false, "largest"},
+      {"seconds", true, "wall time of simplification and smoothing"},
+      {"seconds_simplify", true, "wall time of the simplification"},
+      {"seconds_smooth", true, "wall time of the smoothing"},
+      {"cpu_seconds", true, "CPU time of simplification and smoothing (the fair figure on a loaded machine)"},
+      {"cpu_seconds_simplify", true, "CPU time of the simplification"},
+      {"cpu_seconds_smooth", true, "CPU time of the smoothing"},
+      {"peak_mib", true, "peak resident memory above the input during both (MiB)"}};
   if (kind == "build") return build;
   if (kind == "project") return project;
   if (kind == "evaluate") return evaluate;
   if (kind == "check") return check;
   if (kind == "peer_project") return peer_project;
+  if (kind == "simplify") return simplify;
+  if (kind == "smooth") return smooth;
+  if (kind == "refine") return refine;
+  if (kind == "peer_simplify") return peer_simplify;
   throw std::out_of_range("no step kind " + kind);
 }
 

@@ -48,6 +48,12 @@ struct RegionConditioning {
 template <int d>
 RegionConditioning region_conditioning(const PlMap<d>& map, Index region);
 
+/// The same for the linear map taking the world triangle `domain` to the world triangle `image`
+/// (corner i to corner i): what region_conditioning computes for a region, available to code
+/// that holds a map in another form (the peer benchmarks measure PSurface's regions with it).
+RegionConditioning triangle_conditioning(const std::array<WorldPoint<2>, 3>& domain,
+                                         const std::array<WorldPoint<2>, 3>& image);
+
 /// Kappa of every region and the summary. Linear in the number of regions (the quantiles use
 /// selection, not a full sort).
 template <int d>

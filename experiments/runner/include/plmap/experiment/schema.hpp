@@ -46,4 +46,9 @@ std::string peer_benchmark_program();
 /// contact-pair and contact-circles: the inputs that peer_project accepts.
 bool is_contact_input_kind(const std::string& kind);
 
+/// Whether the peer_simplify step is available (experiments/peers' bench_simplification_peers is
+/// built), and the program it runs (PLMAP_SIMPLIFICATION_BENCH overrides the built one).
+bool simplification_benchmark_available();
+std::string simplification_benchmark_program();
+
 }  // namespace plmap::experiment
