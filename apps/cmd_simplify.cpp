@@ -2,6 +2,7 @@
 // it by point-removal simplification (paper section 3.3.1), and prints what it did.
 
 #include "cli_common.hpp"
+#include "progress_bar.hpp"
 
 #include <plmap/construct/simplify.hpp>
 #include <plmap/strategies/simplification/simplification_registry.hpp>
@@ -11,10 +12,6 @@
 #include <plmap/verify/quality.hpp>
 
 #include <fmt/format.h>
-
-#include <unistd.h>
-
-#include <iostream>
 
 namespace plmap::cli {
 
@@ -28,7 +25,8 @@ struct SimplifyCommand {
   double feature_angle = 60.0;
   std::string flattening = "polar-map", hole_triangulation = "constrained-delaunay";
   unsigned threads = 0;
-  bool json = false, progress = false, no_progress = false;
+  bool json = false;
+  ProgressMode progress = ProgressMode::automatic;
 };
 
 Json quality_json(const QualityReport& q) {
@@ -75,17 +73,13 @@ int run_simplify(const SimplifyCommand& o) {
   AnySurface any = read_any_surface(o.fine, 2);
   auto fine = std::make_shared<const Surface<2>>(std::move(std::get<1>(any)));
 
-  const bool show_progress = o.progress || (!o.no_progress && isatty(STDERR_FILENO));
-  if (show_progress)
-    options.progress = [](const SimplifyProgress& p) {
-      std::cerr << fmt::format("\rsimplify: {} vertices removed, {} triangles", p.removed_vertices, p.elements)
-                << (p.target_elements > 0 ? fmt::format(" (target {})", p.target_elements) : std::string()) << std::flush;
-    };
+  ProgressBar bar(o.progress);
+  options.progress = bar.callback();
   const SimplifyResult result = simplify(fine, std::move(options));
-  if (show_progress) std::cerr << '\n';
 
   if (!o.coarse.empty()) write_surface(o.coarse, result.map.domain());
-  save_map(o.output, result.map);
+  save_map(o.output, result.map, bar.callback());
+  bar.finish();
 
   const SimplifyReport& r = result.report;
   Json j;
@@ -111,6 +105,7 @@ int run_simplify(const SimplifyCommand& o) {
   j["flattening"] = r.flattening;
   j["hole_triangulation"] = r.hole_triangulation;
   j["feature_angle"] = o.feature_angle;
+  j["threads"] = resolved_threads(o.threads);
   j["seconds"] = r.seconds_total;
   j["seconds_by_phase"] = {{"simplify", r.seconds_simplify}, {"finalize", r.seconds_finalize}};
   print_result(j, o.json);
@@ -149,9 +144,8 @@ void register_simplify(CLI::App& app, Action& action) {
   cmd->add_option("--hole-triangulation", o->hole_triangulation,
                   "Re-triangulation: constrained-delaunay or min-max-aspect")
       ->capture_default_str();
-  cmd->add_option("--threads", o->threads, "Threads of the final closure (0: all cores)")->capture_default_str();
-  cmd->add_flag("--progress", o->progress, "Show progress on stderr even when it is not a terminal");
-  cmd->add_flag("--no-progress", o->no_progress, "No progress on stderr");
+  add_threads_option(*cmd, o->threads, "Threads of the final closure");
+  add_progress_options(*cmd, o->progress);
   cmd->add_flag("--json", o->json, "Print the summary as JSON");
   cmd->callback([o, &action] {
     if (o->target_elements == 0 && o->target_vertices == 0 && !std::isfinite(o->max_error))

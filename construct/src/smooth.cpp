@@ -168,6 +168,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
   PlMap<2> current(map.domain_ptr(), map.target_ptr(), map.data());
   const Index elements = map.domain().element_count();
   for (int s = 1; s <= options.sweeps; ++s) {
+    report_progress(options.progress, "smoothing sweeps", static_cast<std::uint64_t>(s - 1), static_cast<std::uint64_t>(options.sweeps));
     SmoothSweepReport sweep;
     MapData<2> next = current.data();
     ElementSmoother smoother(current, current.data(), weights, report);
@@ -184,6 +185,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
     current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next));
     report.sweeps.push_back(sweep);
     if (options.after_sweep) options.after_sweep(s, current);
+    report_progress(options.progress, "smoothing sweeps", static_cast<std::uint64_t>(s), static_cast<std::uint64_t>(options.sweeps));
   }
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return {std::move(current), std::move(report)};
