@@ -3,6 +3,7 @@
 // (verify/ray_check.hpp).
 
 #include "cli_common.hpp"
+#include "progress_bar.hpp"
 
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/core/errors.hpp>
@@ -25,6 +26,7 @@ namespace {
 struct CheckOptions {
   std::string file;
   bool json = false;
+  ProgressMode progress = ProgressMode::automatic;
   bool parametrization = false;
   double max_condition = std::numeric_limits<double>::infinity();
   std::size_t max_reported = 20;
@@ -90,7 +92,7 @@ int run_check(const CheckOptions& o) {
   options.max_condition = o.max_condition;
   options.max_reported_per_rule = o.max_reported;
   if (o.ray_samples > 0) ray_normal_check_from(o.normal_check);  // a bad name fails before the work
-  const AnyPlMap any_map = load_map(o.file);
+  const AnyPlMap any_map = load_map_showing_progress(o.file, o.progress);
   const VerificationReport report = std::visit([&](const auto& map) { return verify(map, options); }, any_map);
   std::optional<std::pair<Json, bool>> rays;
   if (o.ray_samples > 0) rays = std::visit([&](const auto& map) { return ray_check(map, o); }, any_map);
@@ -148,6 +150,7 @@ void register_check(CLI::App& app, Action& action) {
   cmd->add_flag("--allow-negative", o->allow_negative, "Ray check: also accept hits behind S1");
   cmd->add_option("--normal-check", o->normal_check, "Ray check: none, facing or aligned, as given to project")
       ->capture_default_str();
+  add_progress_options(*cmd, o->progress);
   cmd->callback([o, &action] { action = [o] { return run_check(*o); }; });
 }
 

@@ -3,6 +3,7 @@
 // with rsvg-convert (Debian package librsvg2-bin), if it is installed.
 
 #include "cli_common.hpp"
+#include "progress_bar.hpp"
 
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/atomic_file.hpp>
@@ -28,6 +29,7 @@ namespace {
 constexpr const char* png_converter = "rsvg-convert";
 
 struct DrawOptions {
+  ProgressMode progress = ProgressMode::automatic;
   std::string file;
   std::string output;
   std::optional<Index> element;
@@ -132,7 +134,7 @@ int run_draw(const DrawOptions& o) {
   if (ext == ".png" && !find_on_path(png_converter))
     throw Error(o.output + ": writing PNG needs the program rsvg-convert (Debian package "
                 "librsvg2-bin), which is not on PATH; install it, or write an .svg file");
-  const AnyPlMap any = load_map(o.file);
+  const AnyPlMap any = load_map_showing_progress(o.file, o.progress);
   const std::string svg = std::visit([&](const auto& map) { return draw(map, o); }, any);
   if (ext == ".svg")
     write_svg_file(o.output, svg);
@@ -193,6 +195,7 @@ void register_draw(CLI::App& app, Action& action) {
   cmd->add_option("--zoom", o->zoom, "PNG only: scale factor of the pixel size")
       ->check(CLI::Range(0.1, 20.0))
       ->capture_default_str();
+  add_progress_options(*cmd, o->progress);
   cmd->callback([o, &action] {
     if (!o->element && !o->view3d)
       throw CLI::RequiredError("--element T or --view3d");

@@ -4,6 +4,7 @@
 // (eval_points.cpp).
 
 #include "cli_common.hpp"
+#include "progress_bar.hpp"
 #include "eval_points.hpp"
 
 #include <plmap/core/evaluation.hpp>
@@ -31,6 +32,7 @@ struct EvalOptions {
   int repeat = 1;
   bool json = false;
   bool inverse = false;
+  ProgressMode progress = ProgressMode::automatic;
   EvalPointsOptions at_points;  // used when --points is given
 };
 
@@ -127,11 +129,12 @@ int run_eval(const EvalOptions& o) {
     p.inverse = o.inverse;
     p.threads = o.threads;
     p.json = o.json;
+    p.progress = o.progress;
     return run_eval_points(p);
   }
   require_readable_file(o.file);
   const Json j =
-      std::visit([&](const auto& map) { return evaluate_random(map, o); }, load_map(o.file));
+      std::visit([&](const auto& map) { return evaluate_random(map, o); }, load_map_showing_progress(o.file, o.progress));
   print_result(j, o.json);
   return exit_code::success;
 }
@@ -190,6 +193,7 @@ void register_eval(CLI::App& app, Action& action) {
       ->check(positive_number)
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON instead of text");
+  add_progress_options(*cmd, o->progress);
   cmd->callback([o, &action] { action = [o] { return run_eval(*o); }; });
 }
 

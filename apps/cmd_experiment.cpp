@@ -2,6 +2,7 @@
 // `plmap experiment check CONFIG`: checks a config and lists its runs without running them.
 
 #include "cli_common.hpp"
+#include "progress_bar.hpp"
 
 #ifdef PLMAP_HAS_EXPERIMENT_RUNNER
 #include <plmap/experiment/config.hpp>
@@ -20,7 +21,7 @@ struct ExperimentOptions {
   std::string output;
   int repetitions = 0;
   bool no_plots = false;
-  bool quiet = false;
+  ProgressMode progress = ProgressMode::automatic;
   bool json = false;
   std::string gnuplot = "gnuplot";
 };
@@ -38,8 +39,10 @@ int run_experiment_command(const ExperimentOptions& o) {
   options.repetitions_override = o.repetitions;
   options.make_plots = !o.no_plots;
   options.plots.gnuplot = o.gnuplot;
-  if (!o.quiet) options.progress = [](const std::string& message) { std::cerr << message << '\n'; };
+  ProgressBar bar(o.progress);
+  options.progress = bar.callback();
   const auto outcome = experiment::run_experiment(config, o.output, options);
+  bar.finish();
   for (const auto& plot : outcome.plots)
     if (!plot.warning.empty()) std::cerr << "plmap: warning: plot " << plot.name << ": " << plot.warning << '\n';
   nlohmann::json summary = {{"experiment", config.name},
@@ -92,7 +95,8 @@ void register_experiment(CLI::App& app, Action& action) {
       ->check(positive_number);
   run->add_flag("--no-plots", o->no_plots, "Do not call gnuplot");
   run->add_option("--gnuplot", o->gnuplot, "The gnuplot executable")->capture_default_str();
-  run->add_flag("-q,--quiet", o->quiet, "No progress lines on stderr");
+  add_progress_options(*run, o->progress);
+  run->add_flag_callback("-q,--quiet", [o] { o->progress = ProgressMode::never; }, "Same as --no-progress");
   run->add_flag("--json", o->json, "Print the outcome as JSON");
 
   CLI::App* check = cmd->add_subcommand(

@@ -1,6 +1,7 @@
 // `plmap info FILE`: what a surface or map file holds.
 
 #include "cli_common.hpp"
+#include "progress_bar.hpp"
 #include "summaries.hpp"
 
 #include <plmap/core/io/map_file.hpp>
@@ -14,6 +15,7 @@ struct InfoOptions {
   int dimension = 0;
   bool json = false;
   bool quality = true;
+  ProgressMode progress = ProgressMode::automatic;
 };
 
 int run_info(const InfoOptions& o) {
@@ -22,7 +24,7 @@ int run_info(const InfoOptions& o) {
   j["file"] = o.file;
   if (looks_like_map_file(o.file)) {
     j["kind"] = "map";
-    std::visit([&](const auto& map) { j.update(map_summary(map, o.quality)); }, load_map(o.file));
+    std::visit([&](const auto& map) { j.update(map_summary(map, o.quality)); }, load_map_showing_progress(o.file, o.progress));
   } else {
     j["kind"] = "surface";
     std::visit([&](const auto& surface) { j.update(surface_summary(surface)); },
@@ -47,6 +49,7 @@ void register_info(CLI::App& app, Action& action) {
   add_dimension_option(*cmd, o->dimension);
   cmd->add_flag("--json", o->json, "Print JSON instead of text");
   cmd->add_flag("!--no-quality", o->quality, "Maps: skip the kappa statistics");
+  add_progress_options(*cmd, o->progress);
   cmd->callback([o, &action] { action = [o] { return run_info(*o); }; });
 }
 

@@ -2,6 +2,7 @@
 // section 3.2) and prints what was covered and what could not be inserted.
 
 #include "cli_common.hpp"
+#include "progress_bar.hpp"
 
 #include <plmap/construct/project.hpp>
 #include <plmap/core/errors.hpp>
@@ -24,6 +25,7 @@ struct ProjectCommand {
   unsigned threads = 0;
   int dimension = 0;
   std::size_t max_listed = 20;
+  ProgressMode progress = ProgressMode::automatic;
 };
 
 /// Reads one direction per line (d+1 numbers; '#' starts a comment), one per S1 vertex.
@@ -80,8 +82,11 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   options.threads = o.threads;
   if (!o.directions_file.empty()) options.directions = read_directions(o.directions_file, d, s1->vertex_count());
 
+  ProgressBar bar(o.progress);
+  options.progress = bar.callback();
   const ProjectionResult<d> result = project<d>(s1, s2, options);
-  save_map(o.output, result.map);
+  save_map(o.output, result.map, bar.callback());
+  bar.finish();
 
   const auto& r = result.report;
   Json j;
@@ -170,6 +175,7 @@ void register_project(CLI::App& app, Action& action) {
   cmd->add_option("--max-listed", o->max_listed, "Edges not inserted listed in the output")
       ->capture_default_str();
   add_dimension_option(*cmd, o->dimension);
+  add_progress_options(*cmd, o->progress);
   cmd->add_flag("--json", o->json, "Print the summary as JSON");
   cmd->callback([o, &action] { action = [o] { return run_project(*o); }; });
 }

@@ -3,6 +3,7 @@
 // triangle quality.
 
 #include "cli_common.hpp"
+#include "progress_bar.hpp"
 
 #include <plmap/construct/refine_through_map.hpp>
 #include <plmap/core/errors.hpp>
@@ -19,6 +20,7 @@ struct RefineCommand {
   std::string map, output;
   int levels = 1;
   bool json = false;
+  ProgressMode progress = ProgressMode::automatic;
 };
 
 Json quality_json(const AspectRatioSummary& q) {
@@ -28,11 +30,16 @@ Json quality_json(const AspectRatioSummary& q) {
 int run_refine(const RefineCommand& o) {
   check_output_file(o.output, OutputKind::surface, {{"MAP", o.map}});
   require_readable_file(o.map);
-  AnyPlMap any = load_map(o.map);
+  ProgressBar bar(o.progress);
+  AnyPlMap any = load_map(o.map, bar.callback());
   if (!std::holds_alternative<PlMap<2>>(any))
     throw Error(fmt::format("{}: refine needs a map between triangle surfaces (d = 2), this one is between curves", o.map));
-  const RefineResult result = refine_through_map(std::get<PlMap<2>>(any), {o.levels});
+  RefineOptions options;
+  options.levels = o.levels;
+  options.progress = bar.callback();
+  const RefineResult result = refine_through_map(std::get<PlMap<2>>(any), options);
   write_surface(o.output, result.surface);
+  bar.finish();
   const RefineReport& r = result.report;
   Json j;
   j["output"] = o.output;
@@ -65,6 +72,7 @@ void register_refine(CLI::App& app, Action& action) {
   cmd->add_option("--levels", o->levels, "Levels of uniform refinement (each splits a triangle into 4)")
       ->check(CLI::Range(0, 8))
       ->capture_default_str();
+  add_progress_options(*cmd, o->progress);
   cmd->add_flag("--json", o->json, "Print the summary as JSON");
   cmd->callback([o, &action] { action = [o] { return run_refine(*o); }; });
 }

@@ -2,6 +2,7 @@
 // intersections) of a map as a table or for ParaView.
 
 #include "cli_common.hpp"
+#include "progress_bar.hpp"
 
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/map_file.hpp>
@@ -17,13 +18,14 @@ namespace {
 struct RegionsOptions {
   std::string file;
   std::string output;
+  ProgressMode progress = ProgressMode::automatic;
 };
 
 int run_regions(const RegionsOptions& o) {
   check_output_file(o.output, OutputKind::regions, {{"MAP", o.file}});
   require_readable_file(o.file);
   const std::string ext = lower_extension(o.output);
-  const AnyPlMap any = load_map(o.file);
+  const AnyPlMap any = load_map_showing_progress(o.file, o.progress);
   std::visit(
       [&](const auto& map) {
         if (ext == ".csv")
@@ -43,12 +45,13 @@ const std::vector<std::string> export_vtu_file_names = {
 struct ExportOptions {
   std::string file;
   std::string directory;
+  ProgressMode progress = ProgressMode::automatic;
 };
 
 int run_export(const ExportOptions& o) {
   check_output_directory(o.directory, export_vtu_file_names, {}, {{"MAP", o.file}});
   require_readable_file(o.file);
-  const AnyPlMap any = load_map(o.file);
+  const AnyPlMap any = load_map_showing_progress(o.file, o.progress);
   const auto written =
       std::visit([&](const auto& map) { return export_vtu(map, o.directory); }, any);
   for (const auto& path : written) std::cout << "wrote " << path.string() << '\n';
@@ -67,6 +70,7 @@ void register_regions(CLI::App& app, Action& action) {
   cmd->add_option("MAP", o->file, "Map file (.plmap)")->required();
   cmd->add_option("-o,--output", o->output, "Output file, .csv or .vtu (written atomically)")
       ->required();
+  add_progress_options(*cmd, o->progress);
   cmd->callback([o, &action] { action = [o] { return run_regions(*o); }; });
 }
 
@@ -80,6 +84,7 @@ void register_export(CLI::App& app, Action& action) {
   cmd->add_option("MAP", o->file, "Map file (.plmap)")->required();
   cmd->add_option("-o,--output", o->directory, "Output directory (created if missing)")
       ->required();
+  add_progress_options(*cmd, o->progress);
   cmd->callback([o, &action] { action = [o] { return run_export(*o); }; });
 }
 

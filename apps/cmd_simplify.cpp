@@ -2,6 +2,7 @@
 // it by point-removal simplification (paper section 3.3.1), and prints what it did.
 
 #include "cli_common.hpp"
+#include "progress_bar.hpp"
 
 #include <plmap/construct/simplify.hpp>
 #include <plmap/construct/simplify_curve.hpp>
@@ -12,10 +13,6 @@
 #include <plmap/verify/quality.hpp>
 
 #include <fmt/format.h>
-
-#include <unistd.h>
-
-#include <iostream>
 
 namespace plmap::cli {
 
@@ -29,7 +26,8 @@ struct SimplifyCommand {
   double feature_angle = 60.0;
   std::string flattening = "polar-map", hole_triangulation = "constrained-delaunay";
   unsigned threads = 0;
-  bool json = false, progress = false, no_progress = false;
+  bool json = false;
+  ProgressMode progress = ProgressMode::automatic;
 };
 
 Json quality_json(const QualityReport& q) {
@@ -46,7 +44,7 @@ Json quality_json(const QualityReport& q) {
 }
 
 template <int d>
-int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const SimplifyReport& r);
+int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const SimplifyReport& r, ProgressBar& bar);
 
 int run_simplify(const SimplifyCommand& o) {
   SimplifyOptions options;
@@ -77,29 +75,24 @@ int run_simplify(const SimplifyCommand& o) {
       throw Error(fmt::format("{}: cannot write here, the directory {} does not exist", out, parent.string()));
   }
   AnySurface any = read_any_surface(o.fine);
+  ProgressBar bar(o.progress);
+  options.progress = bar.callback();
   if (std::holds_alternative<Surface<1>>(any)) {
     auto curve = std::make_shared<const Surface<1>>(std::move(std::get<0>(any)));
     const CurveSimplifyResult result = simplify_curve(curve, std::move(options));
-    return report_simplification(o, result.map, result.report);
+    return report_simplification(o, result.map, result.report, bar);
   }
   auto fine = std::make_shared<const Surface<2>>(std::move(std::get<1>(any)));
-
-  const bool show_progress = o.progress || (!o.no_progress && isatty(STDERR_FILENO));
-  if (show_progress)
-    options.progress = [](const SimplifyProgress& p) {
-      std::cerr << fmt::format("\rsimplify: {} vertices removed, {} triangles", p.removed_vertices, p.elements)
-                << (p.target_elements > 0 ? fmt::format(" (target {})", p.target_elements) : std::string()) << std::flush;
-    };
   const SimplifyResult result = simplify(fine, std::move(options));
-  if (show_progress) std::cerr << '\n';
-  return report_simplification(o, result.map, result.report);
+  return report_simplification(o, result.map, result.report, bar);
 }
 
 /// Writes the outputs and prints the summary, for surfaces and curves alike.
 template <int d>
-int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const SimplifyReport& r) {
+int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const SimplifyReport& r, ProgressBar& bar) {
   if (!o.coarse.empty()) write_surface(o.coarse, map.domain());
-  save_map(o.output, map);
+  save_map(o.output, map, bar.callback());
+  bar.finish();
 
   Json j;
   j["map"] = o.output;
@@ -126,6 +119,7 @@ int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const S
   j["flattening"] = r.flattening;
   j["hole_triangulation"] = r.hole_triangulation;
   j["feature_angle"] = o.feature_angle;
+  j["threads"] = resolved_threads(o.threads);
   j["seconds"] = r.seconds_total;
   j["seconds_by_phase"] = {{"simplify", r.seconds_simplify}, {"finalize", r.seconds_finalize}};
   print_result(j, o.json);
@@ -165,9 +159,8 @@ void register_simplify(CLI::App& app, Action& action) {
   cmd->add_option("--hole-triangulation", o->hole_triangulation,
                   "Re-triangulation: constrained-delaunay or min-max-aspect")
       ->capture_default_str();
-  cmd->add_option("--threads", o->threads, "Threads of the final closure (0: all cores)")->capture_default_str();
-  cmd->add_flag("--progress", o->progress, "Show progress on stderr even when it is not a terminal");
-  cmd->add_flag("--no-progress", o->no_progress, "No progress on stderr");
+  add_threads_option(*cmd, o->threads, "Threads of the final closure");
+  add_progress_options(*cmd, o->progress);
   cmd->add_flag("--json", o->json, "Print the summary as JSON");
   cmd->callback([o, &action] {
     if (o->target_elements == 0 && o->target_vertices == 0 && !std::isfinite(o->max_error))

@@ -2,6 +2,7 @@
 // convex-combination parametrization (paper 3.3.2) and prints κ_Ξ before and after each sweep.
 
 #include "cli_common.hpp"
+#include "progress_bar.hpp"
 
 #include <plmap/construct/smooth.hpp>
 #include <plmap/core/errors.hpp>
@@ -25,6 +26,7 @@ struct SmoothCommand {
   std::string weights = "floater";
   bool json = false;
   bool no_quadrilaterals = false;
+  ProgressMode progress = ProgressMode::automatic;
 };
 
 /// κ_Ξ's distribution through verify's quality report (construct/ cannot compute it).
@@ -56,7 +58,8 @@ int run_smooth(const SmoothCommand& o) {
     throw UsageError(fmt::format("--weights: unknown smoothing weights '{}' (valid: {})", o.weights, fmt::join(names, ", ")));
   check_output_file(o.output, OutputKind::map, {{"MAP", o.map}});
   require_readable_file(o.map);
-  AnyPlMap any = load_map(o.map);
+  ProgressBar bar(o.progress);
+  AnyPlMap any = load_map(o.map, bar.callback());
   if (!std::holds_alternative<PlMap<2>>(any))
     throw Error(fmt::format("{}: smooth needs a map between triangle surfaces (d = 2), this one is between curves", o.map));
   const PlMap<2>& map = std::get<PlMap<2>>(any);
@@ -69,8 +72,10 @@ int run_smooth(const SmoothCommand& o) {
   options.weights = o.weights;
   options.quadrilaterals = !o.no_quadrilaterals;
   options.measure_kappa = measure_kappa;
+  options.progress = bar.callback();
   const SmoothResult result = smooth(map, options);
-  save_map(o.output, result.map);
+  save_map(o.output, result.map, bar.callback());
+  bar.finish();
 
   const SmoothReport& r = result.report;
   j["before"] = kappa_json(*r.kappa_before);
@@ -123,6 +128,7 @@ void register_smooth(CLI::App& app, Action& action) {
   cmd->add_option("--weights", o->weights, "Smoothing weights: floater, mean-value or uniform")->capture_default_str();
   cmd->add_flag("--no-quadrilaterals", o->no_quadrilaterals,
                 "Smooth inside each element only (the preimages never cross an S1 edge)");
+  add_progress_options(*cmd, o->progress);
   cmd->add_flag("--json", o->json, "Print the summary as JSON");
   cmd->callback([o, &action] { action = [o] { return run_smooth(*o); }; });
 }

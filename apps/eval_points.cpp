@@ -222,7 +222,7 @@ bool is_known_points_output(const std::string& path) {
 int run_eval_points(const EvalPointsOptions& o) {
   require_readable_file(o.map_file);
   require_readable_file(o.points_file);
-  const AnyPlMap map = load_map(o.map_file);
+  const AnyPlMap map = load_map_showing_progress(o.map_file, o.progress);
   const NumericTable table = read_numeric_table(o.points_file);
   return std::visit([&](const auto& m) { return run(o, m, table); }, map);
 }

@@ -3,6 +3,8 @@
 // points, read from a text table or .npy and written as CSV, JSON, .npy or raw float64
 // (docs/algorithms/evaluation.md, "Points from a file").
 
+#include "progress_bar.hpp"
+
 #include "cli_common.hpp"
 
 #include <string>
@@ -18,6 +20,7 @@ struct EvalPointsOptions {
   bool inverse = false;
   unsigned threads = 0;
   bool json = false;  ///< the summary printed when writing to a file
+  ProgressMode progress = ProgressMode::automatic;  ///< of loading the map
 };
 
 /// The output formats by extension: ".csv", ".json", ".npy", ".bin" (raw float64).

@@ -192,6 +192,7 @@ class Projector {
     // second search for S2 vertices that the search from nearby S1 elements does not map.
     t0 = Clock::now();
     const Index n2v = s2_.vertex_count(), n1v = s1_.vertex_count();
+    report_progress(opt_.progress, "rays from S1 vertices", 0, n1v);
     std::vector<std::optional<SurfacePoint<d>>> hit(n1v);
     parallel_for_chunks(n1v, threads_, search_chunk, [&](Index begin, Index end) {
       std::optional<double> mu;  // ray parameter of the previous hit
@@ -199,8 +200,10 @@ class Projector {
       for (Index v = begin; v < end; ++v) hit[v] = cast_ray(v, mu, nearest);
     });
     report.seconds.ghost_nodes = seconds_since(t0);
+    report_progress(opt_.progress, "rays from S1 vertices", n1v, n1v);
 
     t0 = Clock::now();
+    report_progress(opt_.progress, "S2 vertex preimages", 0, n2v);
     std::vector<std::optional<SurfacePoint<d>>> preimage(n2v);
     parallel_for_chunks(n2v, threads_, search_chunk, [&](Index begin, Index end) {
       SearchOffset offset;  // target minus preimage of the previous vertex found
@@ -216,6 +219,7 @@ class Projector {
     });
     report.vertices_found_by_ray_hits = find_remaining_preimages_from_hits(hit, preimage);
     report.seconds.vertex_preimages = seconds_since(t0);
+    report_progress(opt_.progress, "S2 vertex preimages", n2v, n2v);
 
     t0 = Clock::now();
     BuilderOptions bopt;
@@ -295,6 +299,7 @@ class Projector {
     // ---- 3. edge preimages ---------------------------------------------------------------------
     t0 = Clock::now();
     const Index n2e = s2_.edge_count();
+    report_progress(opt_.progress, "S2 edges", 0, n2e);
     entries_.assign(n2e, {});
     find_boundary_entries();
     for (const auto& list : entries_) report.boundary_entries += static_cast<Index>(list.size());
@@ -308,6 +313,7 @@ class Projector {
     release_search_data();
 
     t0 = Clock::now();
+    report_progress(opt_.progress, "finalize", 0, 1);
     FinalizeReport dropped;
     PlMap<d> map = std::move(builder).finalize(&dropped);
     // The image measures give the covered measures and show where images overlap on S2: two
@@ -349,6 +355,7 @@ class Projector {
     measures.covered_domain = images.covered.domain;
     measures.covered_target = images.covered.target;
     report.seconds.total = seconds_since(t_total);
+    report_progress(opt_.progress, "finalize", 1, 1);
     return ProjectionResult<d>{std::move(map), std::move(report), measures};
   }
 
@@ -1419,6 +1426,7 @@ class Projector {
       for (Index e = block; e < block_end; ++e)
         counted[e] = insert_planned_edge(e, planned[e - block], buffers[planned[e - block].worker], builder, report);
       report.seconds.insertion += seconds_since(t0);
+      report_progress(opt_.progress, "S2 edges", block_end, n2e);
     }
   }
 

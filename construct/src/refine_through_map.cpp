@@ -29,6 +29,9 @@ using CgalTriangle = Kernel::Triangle_3;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<CgalTriangle>::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
+/// Elements between two progress calls.
+constexpr Index progress_every = 4096;
+
 double aspect_ratio(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   const double la = (b - c).norm(), lb = (c - a).norm(), lc = (a - b).norm();
   const double area = 0.5 * (b - a).cross(c - a).norm();
@@ -84,7 +87,9 @@ RefineResult refine_through_map(const PlMap<2>& map, const RefineOptions& option
   };
 
   std::vector<Index> lattice((n + 1) * (n + 1));
+  const auto s1_elements = static_cast<std::uint64_t>(s1.element_count());
   for (Index t = 0; t < s1.element_count(); ++t) {
+    if (t % progress_every == 0) report_progress(options.progress, "refining S1 elements", static_cast<std::uint64_t>(t), s1_elements);
     const auto& c = s1.element(t);
     for (int i = 0; i <= n; ++i)
       for (int j = 0; i + j <= n; ++j) {
@@ -121,6 +126,7 @@ RefineResult refine_through_map(const PlMap<2>& map, const RefineOptions& option
       }
   }
 
+  report_progress(options.progress, "refining S1 elements", s1_elements, s1_elements);
   RefineResult result{Surface<2>(std::move(vertices), std::move(elements)), {}};
   RefineReport& r = result.report;
   r.levels = options.levels;
@@ -137,7 +143,9 @@ RefineResult refine_through_map(const PlMap<2>& map, const RefineOptions& option
   double sum = 0.0;
   std::size_t samples = 0;
   const Surface<2>& refined = result.surface;
+  const auto refined_elements = static_cast<std::uint64_t>(refined.element_count());
   for (Index t = 0; t < refined.element_count(); ++t) {
+    if (t % progress_every == 0) report_progress(options.progress, "distance to S2", static_cast<std::uint64_t>(t), refined_elements);
     const Eigen::Vector3d a = refined.corner(t, 0), b = refined.corner(t, 1), c = refined.corner(t, 2);
     for (const Eigen::Vector3d& x : {Eigen::Vector3d((a + b + c) / 3.0), Eigen::Vector3d((a + b) / 2.0),
                                      Eigen::Vector3d((b + c) / 2.0), Eigen::Vector3d((c + a) / 2.0)}) {
@@ -147,6 +155,7 @@ RefineResult refine_through_map(const PlMap<2>& map, const RefineOptions& option
       ++samples;
     }
   }
+  report_progress(options.progress, "distance to S2", refined_elements, refined_elements);
   r.distance_mean = samples > 0 ? sum / samples : 0.0;
   const double diagonal = (s2.bounding_box_max() - s2.bounding_box_min()).norm();
   r.distance_max_relative = diagonal > 0.0 ? r.distance_max / diagonal : 0.0;

@@ -269,9 +269,26 @@ class Simplifier {
       if (a.plan.line_edge[0] != invalid_index) ++report.removed_along_lines;
       for (Index w : a.plan.ring) rank(w);
       if (options_.progress && options_.progress_every > 0 && report.removed_vertices % options_.progress_every == 0)
-        options_.progress({report.removed_vertices, map_.live_triangle_count(), options_.target_elements});
+        report_removals(report, false);
     }
     report.target_reached = target_reached();
+  }
+
+  /// The "removing vertices" progress (see SimplifyOptions::progress); `finished`: the phase
+  /// is over, whether or not the target was reached.
+  void report_removals(const SimplifyReport& report, bool finished) const {
+    std::uint64_t done = static_cast<std::uint64_t>(report.removed_vertices), total = 0;
+    if (options_.target_elements > 0) {
+      total = static_cast<std::uint64_t>(report.elements_before - options_.target_elements);
+      done = static_cast<std::uint64_t>(std::max<Index>(0, report.elements_before - map_.live_triangle_count()));
+    } else if (options_.target_vertices > 0) {
+      total = static_cast<std::uint64_t>(report.vertices_before - options_.target_vertices);
+    }
+    if (total > 0)
+      done = finished ? total : std::min(done, total);
+    else if (finished)
+      total = done;
+    report_progress(options_.progress, "removing vertices", done, total);
   }
 
  private:
@@ -331,8 +348,7 @@ SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions 
   report.feature_corners = simplifier.feature_corner_count();
   simplifier.run(report);
   report.seconds_simplify = seconds_since(start);
-  if (options.progress)
-    options.progress({report.removed_vertices, simplifier.map().live_triangle_count(), options.target_elements});
+  simplifier.report_removals(report, true);
 
   for (Index v = 0; v < s.vertex_count(); ++v) {
     if (!simplifier.map().is_live_vertex(v) || simplifier.is_corner(v)) continue;
@@ -343,7 +359,9 @@ SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions 
   }
 
   const auto finalize_start = Clock::now();
+  report_progress(options.progress, "finalize", 0, 1);
   PlMap<2> map = simplifier.map().to_map(options.builder);
+  report_progress(options.progress, "finalize", 1, 1);
   report.seconds_finalize = seconds_since(finalize_start);
   report.elements_after = map.domain().element_count();
   report.vertices_after = map.domain().vertex_count();

@@ -8,6 +8,7 @@
 
 #include <plmap/core/errors.hpp>
 #include <plmap/core/map_builder.hpp>
+#include <plmap/core/progress.hpp>
 
 #include <fmt/format.h>
 
@@ -167,9 +168,26 @@ class CurveSimplifier {
       rank(u);
       rank(w);
       if (options_.progress && options_.progress_every > 0 && report.removed_vertices % options_.progress_every == 0)
-        options_.progress({report.removed_vertices, live_segments_, options_.target_elements});
+        report_removals(report, false);
     }
     report.target_reached = reached();
+  }
+
+  /// The "removing vertices" progress (see SimplifyOptions::progress), in segments removed
+  /// towards the target; `finished`: the phase is over, whether or not the target was reached.
+  void report_removals(const SimplifyReport& report, bool finished) const {
+    std::uint64_t done = static_cast<std::uint64_t>(report.removed_vertices), total = 0;
+    if (options_.target_elements > 0) {
+      total = static_cast<std::uint64_t>(std::max<Index>(0, report.elements_before - options_.target_elements));
+      done = static_cast<std::uint64_t>(std::max<Index>(0, report.elements_before - live_segments_));
+    } else if (options_.target_vertices > 0) {
+      total = static_cast<std::uint64_t>(std::max<Index>(0, report.vertices_before - options_.target_vertices));
+    }
+    if (total > 0)
+      done = finished ? total : std::min(done, total);
+    else if (finished)
+      total = done;
+    report_progress(options_.progress, "removing vertices", done, total);
   }
 
  private:
@@ -247,7 +265,7 @@ CurveSimplifyResult simplify_curve(std::shared_ptr<const Surface<1>> fine, Simpl
   report.feature_vertices = report.feature_corners;
   simplifier.run(report);
   report.seconds_simplify = seconds_since(start);
-  if (options.progress) options.progress({report.removed_vertices, simplifier.live_segments(), options.target_elements});
+  simplifier.report_removals(report, true);
   for (Index v = 0; v < s.vertex_count(); ++v) {
     if (!simplifier.is_live(v) || simplifier.is_corner(v) || simplifier.last_refusal(v).empty()) continue;
     ++report.skipped_by_reason[simplifier.last_refusal(v)];

@@ -227,6 +227,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
   if (options.measure_kappa) report.kappa_before = options.measure_kappa(current);
   const Index elements = map.domain().element_count();
   for (int s = 1; s <= options.sweeps; ++s) {
+    report_progress(options.progress, "smoothing sweeps", static_cast<std::uint64_t>(s - 1), static_cast<std::uint64_t>(options.sweeps));
     SmoothSweepReport sweep;
     MapData<2> next = current.data();
     ElementSmoother smoother(current, current.data(), weights, report);
@@ -245,6 +246,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
     if (options.measure_kappa) sweep.kappa = options.measure_kappa(current);
     report.sweeps.push_back(sweep);
     if (options.after_sweep) options.after_sweep(s, current);
+    report_progress(options.progress, "smoothing sweeps", static_cast<std::uint64_t>(s), static_cast<std::uint64_t>(options.sweeps));
   }
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return {std::move(current), std::move(report)};

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -68,20 +69,22 @@ const typename InverseIndex<d>::Entry* find_in_element(const InverseIndex<d>& in
                                                        const LocalPoint<d>& y, std::array<double, d + 1>& w) {
   const auto entries = index.entries(element);
   if (!index.has_grid(element)) return find_containing<d>(entries, y, w);
-  for (Index i : index.cell_candidates(element, y)) {
-    const auto& e = entries[static_cast<std::size_t>(i)];
+  const Index first = index.first_candidate(element, y);
+  if (first == invalid_index) return nullptr;
+  auto contains = [&](const typename InverseIndex<d>::Entry& e) {
     w = raw_weights(e, y);
     bool inside = true;
     for (int k = 0; k <= d; ++k) inside &= w[k] >= 0.0;
-    if (inside) return &e;
-  }
+    return inside;
+  };
+  if (contains(entries[static_cast<std::size_t>(first)])) return &entries[static_cast<std::size_t>(first)];
+  for (Index i : index.cell_candidates(element, y).subspan(1))
+    if (contains(entries[static_cast<std::size_t>(i)])) return &entries[static_cast<std::size_t>(i)];
   return nullptr;
 }
 
 template <int d>
-InverseEvaluation<d> preimage_from_weights(const InverseIndex<d>& index, const typename InverseIndex<d>::Entry& e,
-                                           std::array<double, d + 1> w) {
-  const MapData<d>& m = index.map().data();
+InverseEvaluation<d> preimage_from_weights(const typename InverseIndex<d>::Entry& e, std::array<double, d + 1> w) {
   double sum = 0.0;
   for (auto& x : w) sum += x = std::max(x, 0.0);  // clamps weights of points just outside
   InverseEvaluation<d> out;
@@ -90,11 +93,33 @@ InverseEvaluation<d> preimage_from_weights(const InverseIndex<d>& index, const t
   out.region = e.region;
   out.preimage.element = e.element;
   LocalPoint<d> xi = LocalPoint<d>::Zero();
-  for (int j = 0; j <= d; ++j)
-    xi += (w[j] / sum) * m.node_position[m.region_corners[e.region][region_corner_of<d>(e.reversed, j)]];
+  WorldPoint<d> world = WorldPoint<d>::Zero();
+  for (int j = 0; j <= d; ++j) {
+    xi += (w[j] / sum) * e.preimage_local[j];
+    world += (w[j] / sum) * e.preimage_world[j];
+  }
   out.preimage.local = xi;
-  out.world = index.map().domain().world_position(e.element, xi);
+  out.world = world;
   return out;
+}
+
+/// A key that orders points of the reference element along a Z-order curve: images close on
+/// the element get close positions in its entry list, so the candidates of one grid cell share
+/// cache lines.
+template <int d>
+std::uint64_t z_order_key(const LocalPoint<d>& p) {
+  constexpr double scale = 65535.0;
+  auto quantise = [](double x) -> std::uint64_t {
+    const double c = std::clamp(x, 0.0, 1.0) * scale;
+    return c >= 0.0 ? static_cast<std::uint64_t>(c) : 0;  // NaN -> 0
+  };
+  if constexpr (d == 1) {
+    return quantise(p(0));
+  } else {
+    std::uint64_t x = quantise(p(0)), y = quantise(p(1)), key = 0;
+    for (int bit = 0; bit < 16; ++bit) key |= ((x >> bit) & 1u) << (2 * bit) | ((y >> bit) & 1u) << (2 * bit + 1);
+    return key;
+  }
 }
 
 }  // namespace
@@ -130,14 +155,43 @@ InverseIndex<d>::InverseIndex(const PlMap<d>& map, InverseOptions options) : map
         if (e.reversed) std::swap(e.image_corners[1], e.image_corners[2]);
       }
     }
+  for (Entry& e : entry_)
+    for (int j = 0; j <= d; ++j) {
+      e.preimage_local[j] = m.node_position[m.region_corners[e.region][region_corner_of<d>(e.reversed, j)]];
+      e.preimage_world[j] = map.domain().world_position(e.element, e.preimage_local[j]);
+    }
+  sort_entries_spatially();
   build_grids();
 }
 
 template <int d>
   requires SurfaceDimension<d>
 std::size_t InverseIndex<d>::memory_bytes() const {
-  return (begin_.capacity() + grid_of_.capacity() + cell_begin_.capacity() + cell_entry_.capacity()) * sizeof(Index) +
-         entry_.capacity() * sizeof(Entry) + grids_.capacity() * sizeof(Grid);
+  return (begin_.capacity() + grid_of_.capacity() + cell_entry_.capacity()) * sizeof(Index) + cells_.capacity() * sizeof(Cell) +
+         entry_.capacity() * sizeof(Entry) +
+         grids_.capacity() * sizeof(Grid);
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void InverseIndex<d>::sort_entries_spatially() {
+  const Index targets = static_cast<Index>(begin_.size()) - 1;
+  std::vector<std::pair<std::uint64_t, Entry>> keyed;
+  for (Index t = 0; t < targets; ++t) {
+    if (begin_[t + 1] - begin_[t] <= grid_threshold) continue;  // scanned whole: order is irrelevant
+    const auto first = entry_.begin() + begin_[t], last = entry_.begin() + begin_[t + 1];
+    keyed.clear();
+    for (auto it = first; it != last; ++it) {
+      LocalPoint<d> centroid = LocalPoint<d>::Zero();
+      for (const auto& c : it->image_corners) centroid += c / double(d + 1);
+      keyed.emplace_back(z_order_key<d>(centroid), *it);
+    }
+    // stable, with the region as the tie-break, so that the order does not depend on the sort
+    std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
+      return a.first != b.first ? a.first < b.first : a.second.region < b.second.region;
+    });
+    std::transform(keyed.begin(), keyed.end(), first, [](const auto& k) { return k.second; });
+  }
 }
 
 namespace {
@@ -150,16 +204,45 @@ inline Index grid_cell(double x, Index side) {
   return c >= side ? side - 1 : static_cast<Index>(c);
 }
 
+/// How many of a few sample points of grid cell `cell` (row-major, `side` cells per side) lie in
+/// the entry's closed image: the centre and four points halfway to the corners (d = 1: three
+/// points). Only orders the candidates; which image answers a query does not depend on it.
+template <class Entry, int d = static_cast<int>(std::tuple_size_v<decltype(Entry::image_corners)>) - 1>
+int cell_coverage(const Entry& e, Index cell, Index side) {
+  const double h = 1.0 / double(side);
+  int count = 0;
+  auto inside = [&](const LocalPoint<d>& p) {
+    const auto w = raw_weights(e, p);
+    bool in = true;
+    for (double x : w) in &= x >= 0.0;
+    count += in;
+  };
+  if constexpr (d == 1) {
+    for (double f : {0.25, 0.5, 0.75}) inside(LocalPoint<1>((double(cell) + f) * h));
+  } else {
+    const double x0 = double(cell % side) * h, y0 = double(cell / side) * h;
+    for (const auto& [fx, fy] : {std::pair{0.5, 0.5}, {0.25, 0.25}, {0.75, 0.25}, {0.25, 0.75}, {0.75, 0.75}})
+      inside(LocalPoint<2>(x0 + fx * h, y0 + fy * h));
+  }
+  return count;
+}
+
 }  // namespace
 
 template <int d>
   requires SurfaceDimension<d>
-std::span<const Index> InverseIndex<d>::cell_candidates(Index target_element, const LocalPoint<d>& local) const {
+Index InverseIndex<d>::cell_index(Index target_element, const LocalPoint<d>& local) const {
   const Grid& g = grids_[grid_of_[target_element]];
   Index cell = grid_cell(local(0), g.side);
   if constexpr (d == 2) cell += g.side * grid_cell(local(1), g.side);
-  const Index k = g.first_cell + cell;
-  return {cell_entry_.data() + cell_begin_[k], cell_entry_.data() + cell_begin_[k + 1]};
+  return g.first_cell + cell;
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+std::span<const Index> InverseIndex<d>::cell_candidates(Index target_element, const LocalPoint<d>& local) const {
+  const Index k = cell_index(target_element, local);
+  return {cell_entry_.data() + cells_[k].begin, cell_entry_.data() + cells_[k + 1].begin};
 }
 
 template <int d>
@@ -167,16 +250,18 @@ template <int d>
 void InverseIndex<d>::build_grids() {
   const Index targets = static_cast<Index>(begin_.size()) - 1;
   grid_of_.assign(static_cast<std::size_t>(targets), invalid_index);
-  cell_begin_.assign(1, 0);
+  cells_.clear();
   for (Index e = 0; e < targets; ++e) {
     const auto list = entries(e);
     const Index count = static_cast<Index>(list.size());
     if (count <= grid_threshold) continue;
-    // about one image per cell on the reference element (half of a square grid for d = 2)
-    const Index side = d == 1 ? count : std::max<Index>(2, static_cast<Index>(std::ceil(std::sqrt(2.0 * count))));
+    // about four cells per image on the reference element (half of a square grid for d = 2):
+    // then the image that covers most of a cell usually contains the whole cell, and most
+    // queries are answered by the cell's first candidate alone
+    const Index side = d == 1 ? 4 * count : std::max<Index>(2, static_cast<Index>(std::ceil(std::sqrt(8.0 * count))));
     const Index cells = d == 1 ? side : side * side;
     grid_of_[e] = static_cast<Index>(grids_.size());
-    grids_.push_back({side, static_cast<Index>(cell_begin_.size()) - 1});
+    grids_.push_back({side, static_cast<Index>(cells_.size())});
     std::vector<std::vector<Index>> cell_lists(static_cast<std::size_t>(cells));
     for (Index i = 0; i < count; ++i) {
       LocalPoint<d> lo = list[i].image_corners[0], hi = lo;
@@ -187,11 +272,21 @@ void InverseIndex<d>::build_grids() {
       for (Index y = y0; y <= y1; ++y)
         for (Index x = x0; x <= x1; ++x) cell_lists[static_cast<std::size_t>(y * side + x)].push_back(i);
     }
-    for (const auto& c : cell_lists) {
+    for (std::size_t k = 0; k < cell_lists.size(); ++k) {
+      auto& c = cell_lists[k];
+      // Most queries stop at the first image that contains them: list the images that cover
+      // most of the cell first (counted at a few sample points), so that they are tested first.
+      if (c.size() > 1) {
+        std::vector<std::pair<int, Index>> ranked;
+        for (Index i : c) ranked.emplace_back(-cell_coverage(list[i], static_cast<Index>(k), side), i);
+        std::sort(ranked.begin(), ranked.end());
+        for (std::size_t j = 0; j < c.size(); ++j) c[j] = ranked[j].second;
+      }
+      cells_.push_back({static_cast<Index>(cell_entry_.size()), c.empty() ? invalid_index : c.front()});
       cell_entry_.insert(cell_entry_.end(), c.begin(), c.end());
-      cell_begin_.push_back(static_cast<Index>(cell_entry_.size()));
     }
   }
+  cells_.push_back({static_cast<Index>(cell_entry_.size()), invalid_index});  // ends the last list
 }
 
 template <int d>
@@ -203,7 +298,7 @@ InverseEvaluation<d> inverse_evaluate(const InverseIndex<d>& index, const Surfac
   using Entry = typename InverseIndex<d>::Entry;
   std::array<double, d + 1> w;
   // The common case: an image in y's own element contains y.
-  if (const Entry* e = find_in_element(index, y.element, y.local, w)) return preimage_from_weights(index, *e, w);
+  if (const Entry* e = find_in_element(index, y.element, y.local, w)) return preimage_from_weights<d>(*e, w);
   // On an edge or vertex of S2: the images in the other incident elements.
   const double tolerance = index.options().tolerance;
   struct Candidate {
@@ -214,7 +309,7 @@ InverseEvaluation<d> inverse_evaluate(const InverseIndex<d>& index, const Surfac
   for (Index other : elements_sharing_boundary_point(s2, y, tolerance)) {
     const auto local = transfer_to_element(s2, y, other, tolerance);
     if (!local) continue;
-    if (const Entry* e = find_in_element(index, other, *local, w)) return preimage_from_weights(index, *e, w);
+    if (const Entry* e = find_in_element(index, other, *local, w)) return preimage_from_weights<d>(*e, w);
     candidates.push_back({other, *local});
   }
   // Rounding gaps between images: the image with the largest margin, if within the tolerance.
@@ -228,7 +323,7 @@ InverseEvaluation<d> inverse_evaluate(const InverseIndex<d>& index, const Surfac
       if (margin >= best_margin) best = &e, best_w = cw, best_margin = margin;
     }
   if (best == nullptr) return {};
-  return preimage_from_weights(index, *best, best_w);
+  return preimage_from_weights<d>(*best, best_w);
 }
 
 template <int d>

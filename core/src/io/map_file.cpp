@@ -33,7 +33,9 @@ constexpr std::string_view edge_kind_name(GraphEdgeKind kind) {
 /// representation.
 class MapFileWriter {
  public:
-  explicit MapFileWriter(std::ostream& out) : out_(out) {}
+  /// `records` is the number of end_line() calls the whole file makes, for progress.
+  MapFileWriter(std::ostream& out, const ProgressCallback& progress, std::uint64_t records)
+      : out_(out), progress_(progress), records_(records) {}
   MapFileWriter(const MapFileWriter&) = delete;
   MapFileWriter& operator=(const MapFileWriter&) = delete;
 
@@ -54,15 +56,19 @@ class MapFileWriter {
   void space() { buffer_.push_back(' '); }
   void end_line() {
     buffer_.push_back('\n');
+    ++records_done_;
     if (buffer_.size() > (1u << 20)) flush();
   }
   void flush() {
     out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
     buffer_.clear();
+    report_progress(progress_, "writing map", records_done_, records_);
   }
 
  private:
   std::ostream& out_;
+  ProgressCallback progress_;
+  std::uint64_t records_ = 0, records_done_ = 0;
   fmt::memory_buffer buffer_;
 };
 
@@ -176,8 +182,11 @@ struct Fields {
 /// file, the line and the section being read.
 class MapFileReader {
  public:
-  MapFileReader(std::string_view content, std::string file)
-      : content_(content), file_(std::move(file)) {}
+  MapFileReader(std::string_view content, std::string file, const ProgressCallback& progress = {})
+      : content_(content), file_(std::move(file)), progress_(progress) {}
+
+  /// Reports the bytes parsed so far, and all of them at the end of the file.
+  void report_done() const { report_progress(progress_, "reading map", position_, content_.size()); }
 
   [[noreturn]] void fail(const std::string& what) const {
     const std::string location =
@@ -281,12 +290,14 @@ class MapFileReader {
     std::string_view line = content_.substr(position_, end - position_);
     position_ = newline == std::string_view::npos ? content_.size() : newline + 1;
     ++line_number_;
+    if ((line_number_ & 0xffff) == 0) report_done();
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);  // files edited on Windows
     return line;
   }
 
   std::string_view content_;
   std::string file_;
+  ProgressCallback progress_;  // a copy: the reader may be built from a temporary
   std::size_t position_ = 0;
   long long line_number_ = 0;
   std::string_view section_;
@@ -441,6 +452,7 @@ PlMap<d> read_map_body(MapFileReader& r, int orientation) {
   }
   m.start_region = read_index_array(r, "start_region");
   r.expect_end();
+  r.report_done();
 
   // A file is untrusted input: beyond the constructor's index ranges, everything the queries
   // rely on is validated, so that a map that loads is safe for every command.
@@ -466,11 +478,23 @@ std::string read_whole_file(const std::filesystem::path& path) {
   return std::move(content).str();
 }
 
+/// The number of records (lines ended by end_line) write_map writes for `map`.
+template <int d>
+std::uint64_t record_count(const PlMap<d>& map) {
+  const MapData<d>& m = map.data();
+  std::uint64_t n = 0;
+  for (const Surface<d>* s : {&map.domain(), &map.target()}) n += s->vertices().size() + s->elements().size();
+  for (const std::vector<Index>* a : {&m.node_begin, &m.neighbor_begin, &m.edge_node_begin, &m.edge_node,
+                                      &m.region_begin, &m.start_region})
+    n += a->size();
+  return n + m.node_type.size() + m.neighbor.size() + m.region_target.size();
+}
+
 }  // namespace
 
 template <int d>
-void write_map(std::ostream& out, const PlMap<d>& map) {
-  MapFileWriter w(out);
+void write_map(std::ostream& out, const PlMap<d>& map, const ProgressCallback& progress) {
+  MapFileWriter w(out, progress, record_count(map));
   w.text(fmt::format("{} {}\ndimension {}\norientation {}\n", map_file_magic, map_file_version, d,
                      map.data().orientation));
   write_surface(w, map.domain(), "domain");
@@ -481,25 +505,25 @@ void write_map(std::ostream& out, const PlMap<d>& map) {
 }
 
 template <int d>
-void save_map(const std::filesystem::path& path, const PlMap<d>& map) {
-  write_file_atomically(path, [&](std::ostream& out) { write_map(out, map); }, true);
+void save_map(const std::filesystem::path& path, const PlMap<d>& map, const ProgressCallback& progress) {
+  write_file_atomically(path, [&](std::ostream& out) { write_map(out, map, progress); }, true);
 }
 
-AnyPlMap parse_map(std::string_view content, const std::string& source_name) {
-  MapFileReader r(content, source_name);
+AnyPlMap parse_map(std::string_view content, const std::string& source_name, const ProgressCallback& progress) {
+  MapFileReader r(content, source_name, progress);
   const Header h = read_header(r);
   if (h.dimension == 1) return read_map_body<1>(r, h.orientation);
   return read_map_body<2>(r, h.orientation);
 }
 
-AnyPlMap load_map(const std::filesystem::path& path) {
-  return parse_map(read_whole_file(path), path.string());
+AnyPlMap load_map(const std::filesystem::path& path, const ProgressCallback& progress) {
+  return parse_map(read_whole_file(path), path.string(), progress);
 }
 
 template <int d>
-PlMap<d> load_map(const std::filesystem::path& path) {
+PlMap<d> load_map(const std::filesystem::path& path, const ProgressCallback& progress) {
   const std::string content = read_whole_file(path);
-  MapFileReader r(content, path.string());
+  MapFileReader r(content, path.string(), progress);
   const Header h = read_header(r);
   if (h.dimension != d) {
     throw ParseError(path.string(), "line 2",
@@ -523,11 +547,11 @@ int map_file_dimension(const std::filesystem::path& path) {
   return read_header(r).dimension;
 }
 
-template void write_map<1>(std::ostream&, const PlMap<1>&);
-template void write_map<2>(std::ostream&, const PlMap<2>&);
-template void save_map<1>(const std::filesystem::path&, const PlMap<1>&);
-template void save_map<2>(const std::filesystem::path&, const PlMap<2>&);
-template PlMap<1> load_map<1>(const std::filesystem::path&);
-template PlMap<2> load_map<2>(const std::filesystem::path&);
+template void write_map<1>(std::ostream&, const PlMap<1>&, const ProgressCallback&);
+template void write_map<2>(std::ostream&, const PlMap<2>&, const ProgressCallback&);
+template void save_map<1>(const std::filesystem::path&, const PlMap<1>&, const ProgressCallback&);
+template void save_map<2>(const std::filesystem::path&, const PlMap<2>&, const ProgressCallback&);
+template PlMap<1> load_map<1>(const std::filesystem::path&, const ProgressCallback&);
+template PlMap<2> load_map<2>(const std::filesystem::path&, const ProgressCallback&);
 
 }  // namespace plmap

@@ -512,7 +512,8 @@ std::vector<RunResult> run_all(const ExperimentConfig& config, const std::filesy
   std::vector<RunResult> rows;
   for (const RunSpec& run : runs) {
     if (options.progress)
-      options.progress(fmt::format("run {}/{}: {}", run.index + 1, runs.size(), describe(config, run)));
+      report_progress(options.progress, "runs", static_cast<std::uint64_t>(run.index), runs.size(),
+                      fmt::format("run {}/{}: {}", run.index + 1, runs.size(), describe(config, run)));
     RunResult row;
     row.run = run.index;
     row.config = run.columns;
@@ -547,6 +548,7 @@ std::vector<RunResult> run_all(const ExperimentConfig& config, const std::filesy
     if (row.timings.is_null()) row.timings = Json::object();
     rows.push_back(std::move(row));
   }
+  report_progress(options.progress, "runs", runs.size(), runs.size());
   return rows;
 }
 
@@ -569,8 +571,9 @@ ExperimentOutcome run_experiment(const ExperimentConfig& config, const std::file
   write_jsonl(output_dir / "results.jsonl", outcome.rows, outcome.provenance);
   write_csv(output_dir / "results.csv", outcome.rows, outcome.provenance);
   if (options.make_plots && !config.plots.empty()) {
-    if (options.progress) options.progress("plots");
+    report_progress(options.progress, "plots", 0, 1);
     outcome.plots = write_plots(config, outcome.rows, output_dir, options.plots);
+    report_progress(options.progress, "plots", 1, 1);
   }
   const std::string summary = summary_markdown(config, outcome.rows, outcome.provenance, outcome.plots);
   write_file_atomically(output_dir / "summary.md", [&](std::ostream& out) { out << summary; }, false);

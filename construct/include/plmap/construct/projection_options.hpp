@@ -2,6 +2,8 @@
 /// \file
 /// ProjectionOptions: everything normal projection (project.hpp) can be told, with defaults.
 
+#include <plmap/core/progress.hpp>
+
 #include <limits>
 #include <string>
 #include <vector>
@@ -50,6 +52,10 @@ struct ProjectionOptions {
   /// is left out of D (ProjectionReport::occluded_faces), as a vertex preimage keeps the nearest
   /// solution. With false such maps are returned as they are, and fail verify's coverage check.
   bool keep_nearer_sheet = true;
+  /// Told the phase ("rays from S1 vertices", "S2 vertex preimages", "S2 edges", "finalize")
+  /// at its start and end, and every 4096 edges in "S2 edges"; called from the calling thread
+  /// only. Optional; a callback that throws cancels the projection.
+  ProgressCallback progress = {};
 };
 
 }  // namespace plmap

@@ -9,6 +9,7 @@
 ///   RefineResult r = refine_through_map(map, {.levels = 3});
 ///   write_surface("refined.off", r.surface);
 
+#include <plmap/core/progress.hpp>
 #include <plmap/core/pl_map.hpp>
 
 #include <vector>
@@ -19,6 +20,10 @@ struct RefineOptions {
   /// Levels of uniform refinement: each splits every triangle into four (0 keeps S1's
   /// triangles and only moves its vertices to their images).
   int levels = 1;
+  /// Phases "refining S1 elements" and "distance to S2", counting elements (S1's, then the
+  /// refined surface's), every few thousand and at the end. Optional; a callback that throws
+  /// cancels.
+  ProgressCallback progress = {};
 };
 
 /// Distribution of the aspect ratio (longest edge × perimeter / (4√3 × area), 1 = equilateral)

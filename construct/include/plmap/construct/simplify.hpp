@@ -19,6 +19,7 @@
 #include <plmap/core/editable_map.hpp>
 #include <plmap/core/map_builder.hpp>
 #include <plmap/core/pl_map.hpp>
+#include <plmap/core/progress.hpp>
 #include <plmap/strategies/simplification/weighted_oracles.hpp>
 
 #include <functional>
@@ -28,12 +29,6 @@
 #include <string>
 
 namespace plmap {
-
-struct SimplifyProgress {
-  Index removed_vertices = 0;
-  Index elements = 0;         ///< live S1 triangles now
-  Index target_elements = 0;  ///< the goal (0 if none)
-};
 
 struct SimplifyOptions {
   /// Stop once S1 has at most this many triangles (0: no element target).
@@ -56,8 +51,11 @@ struct SimplifyOptions {
   WeightedOracles oracles;
   EditOptions edit;
   BuilderOptions builder;
-  /// Called every `progress_every` steps and at the end; never required.
-  std::function<void(const SimplifyProgress&)> progress;
+  /// Optional. Phase "removing vertices", called every `progress_every` removals and at the
+  /// end: counts the triangles removed towards target_elements, else the vertices removed
+  /// towards target_vertices, else the vertices removed (total 0: unknown, the error bound
+  /// decides). Then phase "finalize" at its start and end. A callback that throws cancels.
+  ProgressCallback progress;
   Index progress_every = 100;
 };
 

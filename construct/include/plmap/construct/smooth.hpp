@@ -21,6 +21,7 @@
 ///   SmoothResult r = smooth(map, options); // r.map: the smoothed PlMap<2>
 
 #include <plmap/core/pl_map.hpp>
+#include <plmap/core/progress.hpp>
 
 #include <functional>
 #include <map>
@@ -61,6 +62,9 @@ struct SmoothOptions {
   /// Called after each sweep with its number (1-based) and the map so far; e.g. the CLI computes
   /// κ with verify/ there, which construct/ does not depend on. Optional.
   std::function<void(int sweep, const PlMap<2>&)> after_sweep;
+  /// Phase "smoothing sweeps", counting sweeps: at the start and end of each. Optional; a
+  /// callback that throws cancels.
+  ProgressCallback progress = {};
 };
 
 struct SmoothSweepReport {

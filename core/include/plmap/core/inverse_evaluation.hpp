@@ -55,11 +55,20 @@ class InverseIndex {
   /// One region whose image lies in the element, with the image's corners in local coordinates
   /// of the S2 element, ordered so that the image is positively oriented (d = 2) or increasing
   /// (d = 1); `reversed` says that this order is the region's corner order reversed.
-  struct Entry {
+  ///
+  /// An entry also holds its region's corners on S1, so that a query reads neither the map's
+  /// region and node arrays nor S1's elements and vertices: those are large and read at random
+  /// where S2 is much coarser than S1. The image corners fill the entry's first cache line (the
+  /// containment test of a candidate reads only that line), the S1 corners the next two.
+  struct alignas(64) Entry {
     std::array<LocalPoint<d>, d + 1> image_corners;
     Index region = invalid_index;
     Index element = invalid_index;  ///< the S1 element of the region
     bool reversed = false;
+    /// The region's corners in the local coordinates of `element`, in image_corners' order
+    /// (the reversal applied), and the same corners in space.
+    std::array<LocalPoint<d>, d + 1> preimage_local;
+    std::array<WorldPoint<d>, d + 1> preimage_world;
   };
 
   explicit InverseIndex(const PlMap<d>& map, InverseOptions options = {});
@@ -84,6 +93,13 @@ class InverseIndex {
   /// Where S2 is much coarser than S1 this keeps a query from scanning all of an element's images.
   std::span<const Index> cell_candidates(Index target_element, const LocalPoint<d>& local) const;
 
+  /// The first of cell_candidates(target_element, local), the image that covers most of the
+  /// cell, or invalid_index if the cell lists none. Stored with the cell, so that the common
+  /// query (that image contains the point) does not read the candidate list.
+  Index first_candidate(Index target_element, const LocalPoint<d>& local) const {
+    return cells_[cell_index(target_element, local)].first;
+  }
+
   /// Bytes held by the index's arrays.
   std::size_t memory_bytes() const;
 
@@ -93,15 +109,21 @@ class InverseIndex {
   std::vector<Index> begin_;  ///< size |T2| + 1
   std::vector<Entry> entry_;
   // Grids of the elements with more than grid_threshold regions: grid_of_[e] indexes grids_ or
-  // is invalid; a grid's cells are cell_begin_[first_cell ...], listing positions in entries(e).
+  // is invalid; a grid's cells are cells_[first_cell ...], listing positions in entries(e).
   struct Grid {
     Index side = 0;        ///< cells per side (d = 1: cells)
-    Index first_cell = 0;  ///< into cell_begin_
+    Index first_cell = 0;  ///< into cells_
   };
+  struct Cell {
+    Index begin = 0;                ///< into cell_entry_; the cell's list ends at the next cell's begin
+    Index first = invalid_index;    ///< cell_entry_[begin], if the list is not empty
+  };
+  Index cell_index(Index target_element, const LocalPoint<d>& local) const;
+  void sort_entries_spatially();
   void build_grids();
   std::vector<Index> grid_of_;
   std::vector<Grid> grids_;
-  std::vector<Index> cell_begin_;
+  std::vector<Cell> cells_;  ///< one more than there are cells: the last one ends the lists
   std::vector<Index> cell_entry_;
 };
 

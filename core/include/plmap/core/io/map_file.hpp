@@ -16,6 +16,7 @@
 /// map is a ParseError that says so.
 
 #include <plmap/core/pl_map.hpp>
+#include <plmap/core/progress.hpp>
 
 #include <filesystem>
 #include <iosfwd>
@@ -35,22 +36,27 @@ using AnyPlMap = std::variant<PlMap<1>, PlMap<2>>;
 
 /// Writes the map file to `out`. Throws InvalidMapError if the map holds a non-finite number
 /// (such a file could not be read back exactly).
+/// `progress` (optional) is called with phase "writing map", counting records (lines), about
+/// every megabyte of text and once at the end; if it throws, nothing more is written.
 template <int d>
-void write_map(std::ostream& out, const PlMap<d>& map);
+void write_map(std::ostream& out, const PlMap<d>& map, const ProgressCallback& progress = {});
 
 /// Writes the map file atomically: `path` is replaced only once the new file is complete.
+/// A callback that throws cancels the write, and `path` is left as it was.
 template <int d>
-void save_map(const std::filesystem::path& path, const PlMap<d>& map);
+void save_map(const std::filesystem::path& path, const PlMap<d>& map, const ProgressCallback& progress = {});
 
 /// Parses a map file held in memory. `source_name` is used in error messages (the file name).
-AnyPlMap parse_map(std::string_view content, const std::string& source_name);
+/// `progress` (optional) is called with phase "reading map", counting bytes parsed, every
+/// 64k lines and once at the end.
+AnyPlMap parse_map(std::string_view content, const std::string& source_name, const ProgressCallback& progress = {});
 
 /// Loads a map file of either dimension.
-AnyPlMap load_map(const std::filesystem::path& path);
+AnyPlMap load_map(const std::filesystem::path& path, const ProgressCallback& progress = {});
 
 /// Loads a map file that must have dimension d; a file of the other dimension is a ParseError.
 template <int d>
-PlMap<d> load_map(const std::filesystem::path& path);
+PlMap<d> load_map(const std::filesystem::path& path, const ProgressCallback& progress = {});
 
 /// Reads only the header and returns the dimension (1 or 2) declared there. Throws ParseError
 /// if the file is not a plmap map file of a supported version.

@@ -17,6 +17,8 @@
 #include <plmap/experiment/plots.hpp>
 #include <plmap/experiment/results.hpp>
 
+#include <plmap/core/progress.hpp>
+
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -25,8 +27,10 @@
 namespace plmap::experiment {
 
 struct RunOptions {
-  /// Called before each run and phase with a one-line message (the CLI prints it).
-  std::function<void(const std::string&)> progress;
+  /// Phase "runs" (counting runs; the detail names the run and its swept values: "run 3/12:
+  /// input sphere, evaluate.locator=..."), called before each run and at the end, then phase
+  /// "plots" at its start and end. Optional; a callback that throws cancels the experiment.
+  ProgressCallback progress;
   PlotOptions plots;
   bool make_plots = true;
   /// If set, replaces [experiment] repetitions (e.g. 1 for a quick look).
