@@ -20,6 +20,7 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/face_removal.hpp>
 #include <plmap/core/map_builder.hpp>
+#include <plmap/core/parallel_ranges.hpp>
 #include <plmap/core/regions.hpp>
 #include <plmap/core/snapping.hpp>
 #include <plmap/solvers/focal_points.hpp>
@@ -35,7 +36,6 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
-#include <thread>
 
 namespace plmap {
 
@@ -61,43 +61,6 @@ using projection::NearestElements;
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-/// Runs f(worker, begin, end) on `threads` threads, worker k taking the k-th of contiguous ranges
-/// that cover [0, n).
-template <class F>
-void parallel_for_ranges(Index n, unsigned threads, F&& f) {
-  if (threads <= 1 || n < 64) {
-    f(0u, Index{0}, n);
-    return;
-  }
-  std::vector<std::thread> pool;
-  const Index block = (n + static_cast<Index>(threads) - 1) / static_cast<Index>(threads);
-  for (unsigned k = 0; k < threads; ++k) {
-    const Index begin = static_cast<Index>(k) * block, end = std::min<Index>(n, begin + block);
-    if (begin >= end) break;
-    pool.emplace_back([&f, k, begin, end] { f(k, begin, end); });
-  }
-  for (auto& t : pool) t.join();
-}
-
-/// Runs f(i) for i in [0, n) on `threads` threads in contiguous blocks.
-template <class F>
-void parallel_for(Index n, unsigned threads, F&& f) {
-  parallel_for_ranges(n, threads, [&f](unsigned, Index begin, Index end) {
-    for (Index i = begin; i < end; ++i) f(i);
-  });
-}
-
-/// Runs f(begin, end) over [0, n) cut into chunks of a fixed size, the chunks spread over
-/// `threads` threads. Work inside a chunk is sequential, so a chunk may carry state from one
-/// item to the next (a search hint) and the result still does not depend on the thread count:
-/// the chunks are the same whatever it is.
-template <class F>
-void parallel_for_chunks(Index n, unsigned threads, Index chunk, F&& f) {
-  const Index chunks = (n + chunk - 1) / chunk;
-  auto run = [&](Index c) { f(c * chunk, std::min<Index>(n, (c + 1) * chunk)); };
-  parallel_for(chunks, threads, run);
 }
 
 enum class PlaceKind : std::uint8_t { vertex, edge, element };
@@ -194,7 +157,7 @@ class Projector {
     const Index n2v = s2_.vertex_count(), n1v = s1_.vertex_count();
     report_progress(opt_.progress, "rays from S1 vertices", 0, n1v);
     std::vector<std::optional<SurfacePoint<d>>> hit(n1v);
-    parallel_for_chunks(n1v, threads_, search_chunk, [&](Index begin, Index end) {
+    parallel_for_chunks(n1v, search_chunk, threads_, [&](Index begin, Index end) {
       std::optional<double> mu;  // ray parameter of the previous hit
       NearestElements<d> nearest(*index2_);
       for (Index v = begin; v < end; ++v) hit[v] = cast_ray(v, mu, nearest);
@@ -205,7 +168,7 @@ class Projector {
     t0 = Clock::now();
     report_progress(opt_.progress, "S2 vertex preimages", 0, n2v);
     std::vector<std::optional<SurfacePoint<d>>> preimage(n2v);
-    parallel_for_chunks(n2v, threads_, search_chunk, [&](Index begin, Index end) {
+    parallel_for_chunks(n2v, search_chunk, threads_, [&](Index begin, Index end) {
       SearchOffset offset;  // target minus preimage of the previous vertex found
       NearestElements<d> nearest(*index1_);
       for (Index q = begin; q < end; ++q) {
@@ -318,7 +281,7 @@ class Projector {
     PlMap<d> map = std::move(builder).finalize(&dropped);
     // The image measures give the covered measures and show where images overlap on S2: two
     // sheets of S1 whose rays reach the same part of S2, of which the farther one leaves D.
-    ImageMeasures images = image_measures(map);
+    ImageMeasures images = image_measures(map, threads_);
     if (opt_.keep_nearer_sheet) {
       const std::vector<Index> farther = projection::farther_overlapping_regions(map, images);
       if (!farther.empty()) {
@@ -326,7 +289,7 @@ class Projector {
         map = remove_faces(map, std::span<const Index>(farther), &removal);
         report.occluded_faces = removal.removed_faces;
         report.occluded_regions = removal.removed_regions;
-        images = image_measures(map);
+        images = image_measures(map, threads_);
       }
     }
     report.seconds.finalize = seconds_since(t0);
@@ -369,18 +332,20 @@ class Projector {
     limit_ = opt_.max_distance_is_relative ? opt_.max_distance * diagonal : opt_.max_distance;
     if (!(limit_ >= 0.0)) throw Error(fmt::format("max_distance {} is not >= 0", opt_.max_distance));
     seeds_ = std::clamp(opt_.search_seeds, 1, 32);
-    threads_ = opt_.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : opt_.threads;
+    threads_ = resolve_thread_count(opt_.threads);
     index1_ = std::make_unique<ElementIndex<d>>(s1_);
     index2_ = std::make_unique<ElementIndex<d>>(s2_);
     walk_limit_ = 2 * static_cast<int>(s1_.element_count()) + 16;
     focal_free_.resize(s1_.element_count());
-    parallel_for(s1_.element_count(), threads_, [&](Index t) {
-      std::array<WorldPoint<d>, d + 1> corners, directions;
-      for (int k = 0; k <= d; ++k) {
-        corners[k] = s1_.corner(t, k);
-        directions[k] = nu_[s1_.element(t)[k]];
+    parallel_ranges(s1_.element_count(), threads_, [&](std::size_t begin, std::size_t end) {
+      for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) {
+        std::array<WorldPoint<d>, d + 1> corners, directions;
+        for (int k = 0; k <= d; ++k) {
+          corners[k] = s1_.corner(t, k);
+          directions[k] = nu_[s1_.element(t)[k]];
+        }
+        focal_free_[t] = focal_free_distance<d>(corners, directions);
       }
-      focal_free_[t] = focal_free_distance<d>(corners, directions);
     });
   }
 
@@ -893,7 +858,7 @@ class Projector {
     }
     const projection::KdTree<d + 1> tree(d + 1, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
     std::vector<std::optional<SurfacePoint<d>>> found(missing.size());
-    parallel_for_chunks(static_cast<Index>(missing.size()), threads_, search_chunk, [&](Index begin, Index end) {
+    parallel_for_chunks(missing.size(), search_chunk, threads_, [&](Index begin, Index end) {
       constexpr int nearest_hits = 4;
       for (Index i = begin; i < end; ++i) {
         const Index q = missing[i];
@@ -1418,8 +1383,11 @@ class Projector {
       const Index block_end = std::min(n2e, block + plan_block);
       auto t0 = Clock::now();
       for (auto& buffer : buffers) buffer.clear();
-      parallel_for_ranges(block_end - block, threads_, [&](unsigned worker, Index begin, Index end) {
-        for (Index i = begin; i < end; ++i) planned[i] = plan_edge(block + i, worker, buffers[worker]);
+      // one piece (and buffer) per thread; a short block is not worth a second thread
+      const auto count = static_cast<std::size_t>(block_end - block);
+      parallel_for_pieces(count, count < 64 ? 1 : buffers.size(), threads_, [&](std::size_t worker, std::size_t begin, std::size_t end) {
+        for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i)
+          planned[i] = plan_edge(block + i, static_cast<unsigned>(worker), buffers[worker]);
       });
       report.seconds.edge_walks += seconds_since(t0);
       t0 = Clock::now();

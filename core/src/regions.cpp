@@ -1,10 +1,12 @@
 #include <plmap/core/element_transfer.hpp>
+#include <plmap/core/parallel_ranges.hpp>
 #include <plmap/core/regions.hpp>
 #include <plmap/core/scaled_geometry.hpp>
 
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace plmap {
@@ -71,29 +73,57 @@ double local_simplex_measure(const std::array<LocalPoint<d>, d + 1>& x) {
   }
 }
 
+/// d! times the measure of region r in its element's local coordinates.
+template <int d>
+double local_domain_measure(const PlMap<d>& map, Index r) {
+  const auto& m = map.data();
+  std::array<LocalPoint<d>, d + 1> x;
+  for (int i = 0; i <= d; ++i) x[i] = m.node_position[m.region_corners[r][i]];
+  return local_simplex_measure<d>(x);
+}
+
+/// d! times the measure of region r's image in its S2 element's local coordinates (the image
+/// corners moved onto that element exactly, as remote_intersection does).
+template <int d>
+double local_target_measure(const PlMap<d>& map, Index r) {
+  const auto& m = map.data();
+  const Index target = m.region_target[r];
+  std::array<LocalPoint<d>, d + 1> y;
+  for (int i = 0; i <= d; ++i) {
+    const Index n = m.region_corners[r][i];
+    y[i] = transfer_to_element(map.target(), m.node_image[n], target).value_or(apply<d>(m.region_map[r], m.node_position[n]));
+  }
+  return local_simplex_measure<d>(y);
+}
+
 // Elements are affine, so a region's measure is its measure in local coordinates times its
 // element's, on either side: no world position of a corner is needed. Local measures are summed
 // per element first (S1: consecutive regions; S2: one running sum per S2 element) and scaled once.
-// The image corners are moved onto the region's S2 element exactly, as remote_intersection does.
+// With several threads the regions' local measures are computed first, in parallel, and then
+// summed in region order, as one thread sums them.
 template <int d>
-ImageMeasures image_measures(const PlMap<d>& map) {
+ImageMeasures image_measures(const PlMap<d>& map, unsigned threads) {
   const auto& m = map.data();
   const Surface<d>& s2 = map.target();
+  const Index n1 = map.domain().element_count();
   ImageMeasures out;
   out.per_target.assign(static_cast<std::size_t>(s2.element_count()), 0.0);
-  std::array<LocalPoint<d>, d + 1> x, y;
-  for (Index t = 0; t < map.domain().element_count(); ++t) {
+  std::vector<double> region_target_measure;
+  if (resolve_thread_count(threads) > 1) {
+    region_target_measure.resize(static_cast<std::size_t>(map.region_count()));
+    parallel_for_chunks(static_cast<std::size_t>(map.region_count()), 4096, threads, [&](std::size_t begin, std::size_t end) {
+      for (auto r = static_cast<Index>(begin); r < static_cast<Index>(end); ++r)
+        region_target_measure[static_cast<std::size_t>(r)] = local_target_measure(map, r);
+    });
+  }
+  for (Index t = 0; t < n1; ++t) {
     if (map.regions_begin(t) == map.regions_end(t)) continue;
     double local = 0.0;
     for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) {
-      const Index target = m.region_target[r];
-      for (int i = 0; i <= d; ++i) {
-        const Index n = m.region_corners[r][i];
-        x[i] = m.node_position[n];
-        y[i] = transfer_to_element(s2, m.node_image[n], target).value_or(apply<d>(m.region_map[r], x[i]));
-      }
-      local += local_simplex_measure<d>(x);
-      out.per_target[static_cast<std::size_t>(target)] += local_simplex_measure<d>(y);
+      local += local_domain_measure(map, r);
+      const double on_target = region_target_measure.empty() ? local_target_measure(map, r)
+                                                             : region_target_measure[static_cast<std::size_t>(r)];
+      out.per_target[static_cast<std::size_t>(m.region_target[r])] += on_target;
     }
     out.covered.domain += local * map.domain().element_measure(t);
   }
@@ -116,7 +146,7 @@ template std::vector<RemoteIntersection<1>> remote_intersections(const PlMap<1>&
 template std::vector<RemoteIntersection<2>> remote_intersections(const PlMap<2>&);
 template CoveredMeasure covered_measure(const PlMap<1>&);
 template CoveredMeasure covered_measure(const PlMap<2>&);
-template ImageMeasures image_measures(const PlMap<1>&);
-template ImageMeasures image_measures(const PlMap<2>&);
+template ImageMeasures image_measures(const PlMap<1>&, unsigned);
+template ImageMeasures image_measures(const PlMap<2>&, unsigned);
 
 }  // namespace plmap

@@ -1,15 +1,27 @@
 #pragma once
 /// \file
-/// The one way plmap's query batches use threads: [0, n) cut into `threads` contiguous ranges,
-/// one std::jthread per range, no locking. Contiguous ranges keep each thread's queries in the
-/// caller's order (good for caches when the points are sorted) and make the result independent
-/// of the thread count for deterministic work. An exception thrown by a worker is rethrown in the
-/// caller once every worker has stopped (the first one, by range order).
+/// The one parallel mechanism of plmap: oneTBB tasks in a task arena whose concurrency is the
+/// thread count asked for. Work over [0, n) is cut into contiguous pieces that depend only on n
+/// and on what the caller asks (never on which thread is free), so work that is deterministic per
+/// piece gives the same result for every thread count; the pieces are scheduled dynamically
+/// (a thread that finishes early takes the next piece).
+///
+/// An exception thrown by the work reaches the caller: once a piece has thrown, the pieces after
+/// it that have not started are skipped, the pieces before it still run, and the exception of
+/// the first piece that threw (in piece order, hence the same for every thread count) is
+/// rethrown in the caller after every running piece has stopped.
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace plmap {
@@ -19,33 +31,70 @@ inline unsigned resolve_thread_count(unsigned threads) {
   return threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
 }
 
-/// Calls work(begin, end) on contiguous ranges covering [0, n), on up to `threads` threads
-/// (0: all hardware threads). With one thread, or n <= 1, the caller's thread does all of it.
+/// Calls work(piece, begin, end) for [0, n) cut into contiguous pieces of `size` items (piece k
+/// covers [k size, (k + 1) size) within [0, n)), on up to `threads` threads (0: all hardware
+/// threads). With one thread or one piece, the caller's thread does all of it, in piece order.
 template <class Work>
-void parallel_ranges(std::size_t n, unsigned threads, Work&& work) {
-  threads = static_cast<unsigned>(std::min<std::size_t>(resolve_thread_count(threads), std::max<std::size_t>(n, 1)));
-  if (threads <= 1) {
-    work(std::size_t{0}, n);
+void parallel_for_pieces_of_size(std::size_t n, std::size_t size, unsigned threads, Work&& work) {
+  size = std::max<std::size_t>(1, size);
+  const std::size_t pieces = (n + size - 1) / size;
+  threads = resolve_thread_count(threads);
+  if (threads == 1 || pieces <= 1) {
+    for (std::size_t k = 0; k < pieces; ++k) work(k, k * size, std::min(n, (k + 1) * size));
     return;
   }
-  std::vector<std::exception_ptr> failure(threads);
-  {
-    std::vector<std::jthread> pool;
-    pool.reserve(threads);
-    const std::size_t chunk = (n + threads - 1) / threads;
-    for (unsigned k = 0; k < threads; ++k) {
-      const std::size_t begin = std::min(n, k * chunk), end = std::min(n, begin + chunk);
-      pool.emplace_back([&work, &failure, k, begin, end] {
-        try {
-          work(begin, end);
-        } catch (...) {
-          failure[k] = std::current_exception();
-        }
-      });
+  std::vector<std::exception_ptr> failure(pieces);
+  std::atomic<std::size_t> first_failed{pieces};
+  auto run_piece = [&](std::size_t k) {
+    if (k > first_failed.load(std::memory_order_relaxed)) return;  // a piece before it failed
+    try {
+      work(k, k * size, std::min(n, (k + 1) * size));
+    } catch (...) {
+      failure[k] = std::current_exception();
+      std::size_t seen = first_failed.load();
+      while (k < seen && !first_failed.compare_exchange_weak(seen, k)) {
+      }
     }
-  }  // the jthreads join here
+  };
+  tbb::task_arena arena(static_cast<int>(std::min<std::size_t>(threads, pieces)));
+  arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, pieces, 1),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t k = r.begin(); k != r.end(); ++k) run_piece(k);
+        },
+        tbb::simple_partitioner());
+  });
   for (const auto& f : failure)
     if (f) std::rethrow_exception(f);
+}
+
+/// Calls work(piece, begin, end) for [0, n) cut into up to `pieces` contiguous pieces of
+/// ceil(n / pieces) items (the last ones shorter or absent), as parallel_for_pieces_of_size.
+template <class Work>
+void parallel_for_pieces(std::size_t n, std::size_t pieces, unsigned threads, Work&& work) {
+  pieces = std::max<std::size_t>(1, std::min(pieces, n));
+  parallel_for_pieces_of_size(n, (n + pieces - 1) / pieces, threads, std::forward<Work>(work));
+}
+
+/// Calls work(begin, end) on `threads` contiguous ranges covering [0, n) (0: all hardware
+/// threads). Contiguous ranges keep each thread's items in the caller's order (good for caches
+/// when the points are sorted); the ranges depend on the thread count, so use this for work that
+/// is independent per item (query batches).
+template <class Work>
+void parallel_ranges(std::size_t n, unsigned threads, Work&& work) {
+  parallel_for_pieces(n, resolve_thread_count(threads), threads,
+                              [&work](std::size_t, std::size_t begin, std::size_t end) { work(begin, end); });
+}
+
+/// Calls work(begin, end) on [0, n) cut into chunks of `chunk` items, the chunks spread over
+/// `threads` threads. Work inside a chunk is sequential, so a chunk may carry state from one item
+/// to the next (a search hint) and the result still does not depend on the thread count: the
+/// chunks are the same whatever it is.
+template <class Work>
+void parallel_for_chunks(std::size_t n, std::size_t chunk, unsigned threads, Work&& work) {
+  parallel_for_pieces_of_size(n, chunk, threads,
+                              [&work](std::size_t, std::size_t begin, std::size_t end) { work(begin, end); });
 }
 
 }  // namespace plmap

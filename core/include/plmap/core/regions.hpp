@@ -50,7 +50,9 @@ struct ImageMeasures {
   std::vector<double> per_target;  ///< one per S2 element
 };
 
+/// On `threads` threads (0: all) the regions' measures are computed in parallel and summed in the
+/// same order as on one thread: the result is bit-identical for every thread count.
 template <int d>
-ImageMeasures image_measures(const PlMap<d>& map);
+ImageMeasures image_measures(const PlMap<d>& map, unsigned threads = 1);
 
 }  // namespace plmap

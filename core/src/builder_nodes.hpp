@@ -1,0 +1,139 @@
+#pragma once
+// What MapBuilder collects before finalize(), as finalize's phases read it: nodes at their places
+// on S1 with their images as supports on S2, and the straight pieces of S2 edge preimages between
+// them. Private to the builder (core/src).
+//
+// Every node is entered once, at its place on S1: an S1 vertex, a point of an S1 edge (parameter
+// along the edge from its smaller-index vertex) or a point inside an S1 element. Its image is
+// kept as a "support": the S2 vertices with non-zero barycentric weight. Supports make the
+// question "which S2 elements contain this image?" exact and cheap, and they let an image be
+// re-expressed on any of those elements without rounding.
+
+#include <plmap/core/map_builder.hpp>
+#include <plmap/core/surface.hpp>
+#include <plmap/core/types.hpp>
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace plmap::detail {
+
+enum class PlaceKind : std::uint8_t { vertex, edge, element };
+
+/// A point of S1: a vertex, a point on an edge (d = 2; parameter from the smaller-index vertex),
+/// or a point inside an element. The builder holds one per node (millions), so the parameter
+/// and the local coordinates share storage, unaligned: a node takes 80 bytes instead of 96.
+template <int d>
+struct Place {
+  using Coordinates = Eigen::Matrix<double, d, 1, Eigen::DontAlign>;
+  Coordinates coords = Coordinates::Zero();  // kind == element: local; kind == edge: (t, 0)
+  Index index = invalid_index;
+  PlaceKind kind = PlaceKind::vertex;
+
+  double t() const { return coords(0); }          // kind == edge
+  LocalPoint<d> local() const { return coords; }  // kind == element
+};
+
+/// Image of a node on S2 as the S2 vertices carrying its barycentric weight.
+template <int d>
+struct Support {
+  std::array<double, d + 1> weight{};
+  std::array<Index, d + 1> vertex{};
+  Index element = invalid_index;  // an S2 element containing the image (for the stored form)
+  std::uint8_t count = 0;
+};
+
+enum class BuilderNodeKind : std::uint8_t { vertex_preimage, ghost, intersection };
+
+template <int d>
+struct BuilderNode {
+  Place<d> place;
+  Support<d> image;
+  Index target;  // S2 vertex / S2 edge / invalid
+  BuilderNodeKind kind;
+};
+static_assert(sizeof(BuilderNode<2>) <= 80 && sizeof(BuilderNode<1>) <= 64, "builder nodes are kept compact");
+
+/// A straight piece of an S2 edge's preimage between two nodes: inside element `where`, or (d = 2)
+/// along S1 edge `where`.
+struct Segment {
+  Index a, b;
+  Index target_edge;
+  bool along_edge;
+  Index where;
+};
+
+/// MapBuilder's record of an S2 edge (d = 2) or S2 element (d = 1) whose preimage is not in the
+/// map (the other values say how it was inserted).
+inline constexpr char edge_not_inserted = 0;
+
+/// What finalize() reads of the builder (and the little it changes: the segments are released
+/// early, and dropped S2 edges are marked as not inserted).
+template <int d>
+struct BuilderContents {
+  const Surface<d>& s1;
+  const Surface<d>& s2;
+  const BuilderOptions& options;
+  const std::vector<BuilderNode<d>>& nodes;
+  const std::vector<Index>& node_at_domain_vertex;  // per S1 vertex: its node, or invalid_index
+  std::vector<Segment>& segments;
+  std::vector<char>& edge_inserted;  // per S2 edge (d = 1: S2 element), 0: not inserted
+};
+
+/// The S2 edges finalize() leaves out because their preimages conflict with others
+/// (BuilderOptions::drop_conflicting_edges): their segments and the intersection nodes they
+/// created are not part of the map.
+class DroppedEdges {
+ public:
+  DroppedEdges(std::vector<char>& edge_inserted, FinalizeReport* report)
+      : dropped_(edge_inserted.size(), 0), edge_inserted_(edge_inserted), report_(report) {}
+  bool contains(Index e) const { return dropped_[static_cast<std::size_t>(e)] != 0; }
+  /// Drops S2 edge e, found in conflict on S1 element t, and reports it; false if it was dropped
+  /// already.
+  bool drop(Index e, Index t) {
+    if (contains(e)) return false;
+    dropped_[static_cast<std::size_t>(e)] = 1;
+    edge_inserted_[static_cast<std::size_t>(e)] = edge_not_inserted;
+    if (report_) {
+      report_->dropped_edges.push_back(e);
+      report_->dropped_edge_element.push_back(t);
+    }
+    return true;
+  }
+
+ private:
+  std::vector<char> dropped_;
+  std::vector<char>& edge_inserted_;
+  FinalizeReport* report_;
+};
+
+/// Whether S2 element t contains the image of a support (all its vertices are corners of t).
+template <int d>
+bool support_in_element(const Surface<d>& s2, const Support<d>& s, Index t) {
+  for (int i = 0; i < s.count; ++i)
+    if (s2.local_corner(t, s.vertex[i]) < 0) return false;
+  return true;
+}
+
+[[noreturn, gnu::cold]] void throw_not_in_element(Index t, Index vertex);
+
+/// Local coordinates of a support on an S2 element that contains it (exact transfer): the
+/// weights of the element's corners 1 .. d, copied. Called for every node and region corner.
+template <int d>
+LocalPoint<d> support_local(const Surface<d>& s2, const Support<d>& s, Index t) {
+  const auto& corners = s2.element(t);
+  LocalPoint<d> y = LocalPoint<d>::Zero();
+  for (int i = 0; i < s.count; ++i) {
+    const Index v = s.vertex[i];
+    if (v == corners[0]) continue;
+    int k = 1;
+    while (k <= d && corners[k] != v) ++k;
+    if (k > d) throw_not_in_element(t, v);
+    y(k - 1) = s.weight[i];
+  }
+  return y;
+}
+
+}  // namespace plmap::detail

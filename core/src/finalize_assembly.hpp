@@ -1,0 +1,41 @@
+#pragma once
+// finalize(), phase 3: assembly. Each S1 element is written into the flat arrays right after it
+// is closed, into the part of the map that belongs to its block of elements (numbered from 0 in
+// the block); joining (finalize_joining.hpp) adds the offsets. Only faces mapped with the map's
+// orientation become regions. Private to the builder.
+
+#include "builder_nodes.hpp"
+#include "finalize_buckets.hpp"
+#include "finalize_closure.hpp"
+
+#include <plmap/core/pl_map.hpp>
+
+#include <cstddef>
+#include <vector>
+
+namespace plmap::detail {
+
+/// Where the next element's values go in its block's part, and what the block counted.
+struct AssemblyCursor {
+  std::size_t elements = 0, nodes = 0, entries = 0, edge_nodes = 0, regions = 0;
+  Index reversed_faces = 0;  // faces with a target element but the other orientation
+  std::vector<Index> triangle_region;  // per closure triangle of the element: its region, or invalid
+};
+
+/// Sizes the arrays of the part for elements [begin, end) before it is assembled: nodes and edge
+/// arrays exactly (written in place: a push_back per value costs more than the store), the rest
+/// reserved by the size of each element's closure (a triangulation of n points, h of them on the
+/// element boundary, has 2n - h - 2 triangles and 3n - h - 3 sides), which is exact unless faces
+/// lie outside D. Growing by push_back instead would copy the map several times and first-touch
+/// up to twice its memory, and the final shrink_to_fit would copy it again.
+void size_part(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index begin, Index end,
+               MapData<2>& part);
+
+/// Writes the element closed in w into the part at the cursor, which it advances.
+void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, int orientation, MapData<2>& part,
+                      AssemblyCursor& at);
+
+/// Cuts the arrays sized ahead back to what was written.
+void trim_part(const AssemblyCursor& at, MapData<2>& part);
+
+}  // namespace plmap::detail

@@ -1,0 +1,114 @@
+// finalize(): S2 edges in conflict (finalize_conflicts.hpp).
+
+#include "finalize_conflicts.hpp"
+
+#include "finalize_closure.hpp"
+
+#include <plmap/core/parallel_ranges.hpp>
+#include <plmap/core/predicates.hpp>
+
+#include <algorithm>
+
+namespace plmap::detail {
+
+std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t) {
+  const Surface<2>& s1 = in.s1;
+  std::vector<Index> pieces(where.element_segments[t].begin(), where.element_segments[t].end());
+  for (int k = 0; k < 3; ++k) {
+    const auto& along = where.edge_segments[s1.element_edge(t, k)];
+    pieces.insert(pieces.end(), along.begin(), along.end());
+  }
+  std::vector<Index> nodes(where.interior_nodes[t].begin(), where.interior_nodes[t].end());
+  for (int k = 0; k < 3; ++k) {
+    const auto& on_edge = where.edge_nodes[s1.element_edge(t, k)];
+    nodes.insert(nodes.end(), on_edge.begin(), on_edge.end());
+    const Index corner = in.node_at_domain_vertex[s1.element(t)[k]];
+    if (corner != invalid_index) nodes.push_back(corner);
+  }
+  std::vector<Index> edges;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const auto& si = in.segments[pieces[i]];
+    const LocalPoint<2> p = node_local(in, si.a, t), q = node_local(in, si.b, t);
+    for (std::size_t j = i + 1; j < pieces.size(); ++j) {
+      const auto& sj = in.segments[pieces[j]];
+      if (segments_cross_properly(p, q, node_local(in, sj.a, t), node_local(in, sj.b, t))) {
+        edges.push_back(si.target_edge);
+        edges.push_back(sj.target_edge);
+      }
+    }
+    for (Index n : nodes) {
+      if (n == si.a || n == si.b) continue;
+      const LocalPoint<2> x = node_local(in, n, t);
+      if (orient2d(p, q, x) == 0 && x.x() >= std::min(p.x(), q.x()) && x.x() <= std::max(p.x(), q.x()) &&
+          x.y() >= std::min(p.y(), q.y()) && x.y() <= std::max(p.y(), q.y()))
+        edges.push_back(si.target_edge);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+namespace {
+
+using Piece = std::pair<Index, std::array<Index, 2>>;  // (S2 edge, end nodes)
+
+/// Whether the pieces [first, last) of one S2 edge on one element form one connected chain:
+/// grown from the first piece, every piece must come to share an end with what was reached.
+bool one_connected_piece(std::span<const Piece> pieces, std::vector<Index>& reached) {
+  reached.assign(pieces[0].second.begin(), pieces[0].second.end());
+  std::vector<char> in(pieces.size(), 0);
+  in[0] = 1;
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (std::size_t q = 1; q < pieces.size(); ++q) {
+      if (in[q]) continue;
+      const auto& [a, b] = pieces[q].second;
+      if (std::find(reached.begin(), reached.end(), a) == reached.end() &&
+          std::find(reached.begin(), reached.end(), b) == reached.end())
+        continue;
+      in[q] = 1;
+      reached.push_back(a);
+      reached.push_back(b);
+      grew = true;
+    }
+  }
+  return std::find(in.begin(), in.end(), 0) == in.end();
+}
+
+}  // namespace
+
+bool drop_split_preimages(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where,
+                          DroppedEdges& dropped) {
+  // Elements are checked in parallel, in fixed chunks, each chunk listing (element, S2 edge) in
+  // element order; the edges are then dropped in that order, as a sequential pass would.
+  constexpr std::size_t chunk = 4096;
+  const auto n1 = static_cast<std::size_t>(in.s1.element_count());
+  std::vector<std::vector<std::pair<Index, Index>>> split((n1 + chunk - 1) / chunk);
+  parallel_for_chunks(n1, chunk, in.options.threads, [&](std::size_t begin, std::size_t end) {
+    std::vector<Piece> pieces;
+    std::vector<Index> reached;
+    auto& found = split[begin / chunk];
+    for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) {
+      pieces.clear();
+      for (Index s : where.element_segments[t]) pieces.push_back({in.segments[s].target_edge, {in.segments[s].a, in.segments[s].b}});
+      for (int k = 0; k < 3; ++k)
+        for (Index s : where.edge_segments[in.s1.element_edge(t, k)])
+          pieces.push_back({in.segments[s].target_edge, {in.segments[s].a, in.segments[s].b}});
+      if (pieces.size() < 2) continue;
+      std::sort(pieces.begin(), pieces.end());
+      for (std::size_t i = 0, j = 0; i < pieces.size(); i = j) {
+        for (j = i + 1; j < pieces.size() && pieces[j].first == pieces[i].first;) ++j;
+        if (j - i < 2 || dropped.contains(pieces[i].first)) continue;
+        if (!one_connected_piece(std::span<const Piece>(pieces.data() + i, j - i), reached))
+          found.emplace_back(t, pieces[i].first);
+      }
+    }
+  });
+  bool any = false;
+  for (const auto& found : split)
+    for (const auto& [t, e] : found) any = dropped.drop(e, t) || any;
+  return any;
+}
+
+}  // namespace plmap::detail

@@ -1,0 +1,117 @@
+// finalize(), phase 4: joining (finalize_joining.hpp).
+
+#include "finalize_joining.hpp"
+
+#include <plmap/core/errors.hpp>
+#include <plmap/core/parallel_ranges.hpp>
+
+#include <type_traits>
+
+namespace plmap::detail {
+
+namespace {
+
+/// offsets[k]: where part k starts in the joined arrays, by what an array counts
+using Offsets = std::vector<std::size_t>;
+
+template <class Count>
+Offsets offsets_of(const std::vector<MapData<2>>& parts, Count count) {
+  Offsets at(parts.size() + 1, 0);
+  for (std::size_t k = 0; k < parts.size(); ++k) at[k + 1] = at[k] + count(parts[k]);
+  return at;
+}
+
+/// Joins the parts into one map, an array at a time (each array's parts copied on all threads).
+class PartJoiner {
+ public:
+  PartJoiner(std::vector<MapData<2>>& parts, unsigned threads, MapData<2>& m) : parts_(parts), threads_(threads), m_(m) {}
+
+  /// Joins array `field` of the parts at `at` (each part's values passed through shift(k,
+  /// value)), then releases the parts' copies.
+  template <class Field, class Shift>
+  void join(Field MapData<2>::*field, const Offsets& at, Shift shift) {
+    auto& out = m_.*field;
+    out.resize(at[parts_.size()]);
+    for_each_part([&](std::size_t k) {
+      auto& in = parts_[k].*field;
+      for (std::size_t i = 0; i < in.size(); ++i) out[at[k] + i] = shift(k, in[i]);
+      Field().swap(in);
+    });
+  }
+
+  /// The same for a CSR begin array: a leading 0, then each part's ends shifted by the values of
+  /// the parts before.
+  void join_begins(std::vector<Index> MapData<2>::*field, const Offsets& at, const Offsets& values) {
+    auto& out = m_.*field;
+    out.assign(at[parts_.size()] + 1, 0);
+    for_each_part([&](std::size_t k) {
+      auto& in = parts_[k].*field;
+      for (std::size_t i = 0; i + 1 < in.size(); ++i) out[at[k] + i + 1] = in[i + 1] + static_cast<Index>(values[k]);
+      std::vector<Index>().swap(in);
+    });
+  }
+
+ private:
+  template <class F>
+  void for_each_part(F&& f) {
+    parallel_for_pieces(parts_.size(), parts_.size(), threads_, [&](std::size_t k, std::size_t, std::size_t) { f(k); });
+  }
+
+  std::vector<MapData<2>>& parts_;
+  unsigned threads_;
+  MapData<2>& m_;
+};
+
+}  // namespace
+
+void join_parts(std::vector<MapData<2>>& parts, Index elements, unsigned threads, MapData<2>& m) {
+  if (parts.size() == 1) {  // one block: already numbered globally, and no second copy of the map
+    if (parts[0].start_region.size() != static_cast<std::size_t>(elements))
+      throw BuilderError("internal: the assembled block does not cover every element");
+    const int orientation = m.orientation;
+    m = std::move(parts[0]);
+    m.orientation = orientation;
+    return;
+  }
+  const Offsets node0 = offsets_of(parts, [](const MapData<2>& p) { return p.node_type.size(); });
+  const Offsets region0 = offsets_of(parts, [](const MapData<2>& p) { return p.region_target.size(); });
+  const Offsets entry0 = offsets_of(parts, [](const MapData<2>& p) { return p.neighbor.size(); });
+  const Offsets edge0 = offsets_of(parts, [](const MapData<2>& p) { return p.edge_node.size(); });
+  const Offsets element0 = offsets_of(parts, [](const MapData<2>& p) { return p.start_region.size(); });
+  if (element0.back() != static_cast<std::size_t>(elements))
+    throw BuilderError("internal: the assembled blocks do not cover every element");
+  Offsets edge_begin0 = element0;  // edge_node_begin has three entries per element
+  for (auto& e : edge_begin0) e *= 3;
+
+  const auto same = [](std::size_t, const auto& value) { return value; };
+  const auto node_index = [&](std::size_t k, Index n) { return n + static_cast<Index>(node0[k]); };
+  const auto region_index = [&](std::size_t k, Index r) {
+    return r == invalid_index ? invalid_index : r + static_cast<Index>(region0[k]);
+  };
+  PartJoiner joiner(parts, threads, m);
+  joiner.join(&MapData<2>::node_position, node0, same);
+  joiner.join(&MapData<2>::node_type, node0, same);
+  joiner.join(&MapData<2>::node_location, node0, same);
+  joiner.join(&MapData<2>::node_image, node0, same);
+  joiner.join(&MapData<2>::node_target, node0, same);
+  joiner.join_begins(&MapData<2>::neighbor_begin, node0, entry0);
+  joiner.join(&MapData<2>::neighbor, entry0, node_index);
+  joiner.join(&MapData<2>::neighbor_edge_kind, entry0, same);
+  joiner.join_begins(&MapData<2>::edge_node_begin, edge_begin0, edge0);
+  joiner.join(&MapData<2>::edge_node, edge0, node_index);
+  joiner.join(&MapData<2>::region_corners, region0, [&](std::size_t k, std::array<Index, 3> c) {
+    for (Index& n : c) n = node_index(k, n);
+    return c;
+  });
+  joiner.join(&MapData<2>::region_neighbors, region0, [&](std::size_t k, std::array<Index, 3> c) {
+    for (Index& r : c) r = region_index(k, r);
+    return c;
+  });
+  joiner.join(&MapData<2>::region_target, region0, same);
+  joiner.join(&MapData<2>::region_map, region0, same);
+  joiner.join_begins(&MapData<2>::node_begin, element0, node0);
+  joiner.join_begins(&MapData<2>::region_begin, element0, region0);
+  joiner.join(&MapData<2>::start_region, element0, region_index);
+}
+
+}  // namespace plmap::detail

@@ -1,0 +1,23 @@
+#pragma once
+// MapBuilder::finalize() for curves and for triangle surfaces: the builder's contents into the
+// compact map's arrays. Private to the builder. The phases, each in its own unit:
+//   1. bucketing (finalize_buckets): nodes and segments by their place on S1;
+//   2. closure (finalize_closure): per S1 element, the plane graph closed into triangles, and
+//      each face's S2 element and orientation;
+//   3. assembly (finalize_assembly): per block of elements, the closed elements written into
+//      that block's part of the flat arrays;
+//   4. joining (finalize_joining): the parts concatenated into one map.
+// Conflicts (finalize_conflicts) decide which S2 edges are dropped between rounds when
+// BuilderOptions::drop_conflicting_edges asks for it. Curves (d = 1) need no closure and no
+// parts (finalize_polylines.cpp).
+
+#include "builder_nodes.hpp"
+
+#include <plmap/core/pl_map.hpp>
+
+namespace plmap::detail {
+
+MapData<1> finalize_polylines(BuilderContents<1>& in, FinalizeReport* report);
+MapData<2> finalize_triangles(BuilderContents<2>& in, FinalizeReport* report);
+
+}  // namespace plmap::detail

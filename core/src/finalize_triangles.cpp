@@ -1,0 +1,154 @@
+// finalize() for triangle surfaces (d = 2): the phases of finalize_phases.hpp in order, with the
+// rounds that drop conflicting S2 edges (BuilderOptions::drop_conflicting_edges) and the vote on
+// the map's orientation.
+
+#include "finalize_assembly.hpp"
+#include "finalize_buckets.hpp"
+#include "finalize_closure.hpp"
+#include "finalize_conflicts.hpp"
+#include "finalize_joining.hpp"
+#include "finalize_phases.hpp"
+
+#include <plmap/core/parallel_ranges.hpp>
+
+#include <exception>
+#include <utility>
+
+namespace plmap::detail {
+
+namespace {
+
+using ElementFailures = std::vector<std::pair<Index, std::exception_ptr>>;
+
+/// Closes and assembles every element, in blocks of consecutive elements, one part of the map
+/// per block. Elements are independent, so the blocks run on all threads; errors are reported
+/// for the smallest element that has one, whatever the thread count.
+class ClosingPass {
+ public:
+  ClosingPass(BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, unsigned threads)
+      : in_(in), where_(where), threads_(threads), blocks_(block_count(in.s1.element_count(), threads)) {}
+
+  /// Closes and assembles every element with the given orientation. Returns the elements that
+  /// could not be closed, in element order. Without drop_conflicting_edges it stops a block at
+  /// its first failure (finalize then throws).
+  ElementFailures run(int orientation) {
+    const Index n1 = in_.s1.element_count();
+    const Index block = (n1 + static_cast<Index>(blocks_) - 1) / static_cast<Index>(blocks_);
+    const bool drop = in_.options.drop_conflicting_edges;
+    workspaces_.clear();
+    workspaces_.resize(blocks_);
+    parts_.assign(blocks_, MapData<2>{});
+    reversed_faces_.assign(blocks_, 0);
+    std::vector<ElementFailures> failures(blocks_);
+    parallel_for_pieces(blocks_, blocks_, threads_, [&](std::size_t k, std::size_t, std::size_t) {
+      const Index begin = std::min<Index>(n1, static_cast<Index>(k) * block);
+      const Index end = std::min<Index>(n1, begin + block);
+      size_part(in_, where_, begin, end, parts_[k]);
+      AssemblyCursor cursor;
+      for (Index t = begin; t < end; ++t) {
+        try {
+          close_element(in_, where_, t, workspaces_[k]);
+          // after a failure the part is discarded: only the failures are still collected
+          if (failures[k].empty()) assemble_element(in_, workspaces_[k], orientation, parts_[k], cursor);
+        } catch (...) {
+          failures[k].emplace_back(t, std::current_exception());
+          if (!drop) return;  // finalize throws: the part and its count are not used
+        }
+      }
+      reversed_faces_[k] = cursor.reversed_faces;
+      trim_part(cursor, parts_[k]);
+    });
+    ElementFailures failed;
+    for (auto& list : failures) failed.insert(failed.end(), list.begin(), list.end());
+    return failed;
+  }
+
+  /// The orientation the closed elements vote for (triangles along minus against).
+  int voted_orientation() const {
+    long long votes = 0;
+    for (const auto& w : workspaces_) votes += w.votes;
+    return votes >= 0 ? 1 : -1;
+  }
+  Index reversed_faces() const {
+    Index sum = 0;
+    for (Index r : reversed_faces_) sum += r;
+    return sum;
+  }
+  std::vector<MapData<2>>& parts() { return parts_; }
+  unsigned threads() const { return threads_; }
+
+ private:
+  /// One block per thread, and at least 64 elements per block.
+  static unsigned block_count(Index elements, unsigned threads) {
+    return std::max(1u, std::min<unsigned>(resolve_thread_count(threads),
+                                           static_cast<unsigned>(std::max<Index>(1, elements / 64))));
+  }
+
+  BuilderContents<2>& in_;
+  const NodesAndSegmentsByPlace<2>& where_;
+  unsigned threads_;
+  unsigned blocks_;
+  std::vector<ClosureWorkspace> workspaces_;
+  std::vector<MapData<2>> parts_;
+  std::vector<Index> reversed_faces_;  // per block, FinalizeReport::reversed_faces
+};
+
+/// The orientation guess: the vote of up to 64 elements spread over S1.
+int sampled_orientation(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where) {
+  ClosureWorkspace w;
+  const Index n1 = in.s1.element_count();
+  const Index stride = std::max<Index>(1, n1 / 64);
+  for (Index t = 0; t < n1; t += stride) {
+    try {
+      close_element(in, where, t, w);
+    } catch (...) {
+      // an element that cannot be closed does not vote; the full pass reports it
+    }
+  }
+  return w.votes >= 0 ? 1 : -1;
+}
+
+}  // namespace
+
+MapData<2> finalize_triangles(BuilderContents<2>& in, FinalizeReport* report) {
+  const Index n1 = in.s1.element_count();
+  DroppedEdges dropped(in.edge_inserted, report);
+  NodesAndSegmentsByPlace<2> where;
+  where.build(in, dropped);
+  if (report) *report = FinalizeReport{};
+  // An element whose graph has crossing edges (or an edge through another node) cannot be
+  // closed. Unless asked to drop the S2 edges involved, that is an error; otherwise they are
+  // dropped everywhere and the elements are closed again (each round removes at least one).
+  const bool drop = in.options.drop_conflicting_edges;
+  // Minimal embedding (DESIGN §4.3): the preimage of an S2 edge meets an S1 element in at most
+  // one connected piece; with drop_conflicting_edges an edge that does not is dropped, like one
+  // that crosses another.
+  if (drop && drop_split_preimages(in, where, dropped)) where.build(in, dropped);
+  // Only faces mapped with the map's orientation become regions, and that orientation is voted
+  // on by all elements: the pass assembles with a guess (the vote of a sample of elements, or
+  // the orientation given in the options) and runs again in the rare case the full vote differs.
+  const int guess = in.options.orientation != 0 ? in.options.orientation : sampled_orientation(in, where);
+  ClosingPass pass(in, where, in.options.threads);
+  for (int round = 0;; ++round) {
+    const ElementFailures failed = pass.run(guess);
+    if (failed.empty()) break;
+    // failed.front() is the smallest element that failed
+    if (!drop || round == 16) std::rethrow_exception(failed.front().second);
+    bool any = false;
+    for (const auto& [t, error] : failed)
+      for (Index e : conflicting_edges(in, where, t)) any = dropped.drop(e, t) || any;
+    if (!any) std::rethrow_exception(failed.front().second);
+    where.build(in, dropped);
+  }
+  MapData<2> m;
+  m.orientation = in.options.orientation != 0 ? in.options.orientation : pass.voted_orientation();
+  if (m.orientation != guess) {
+    const ElementFailures failed = pass.run(m.orientation);  // the same graphs: they close again
+    if (!failed.empty()) std::rethrow_exception(failed.front().second);
+  }
+  if (report) report->reversed_faces += pass.reversed_faces();
+  join_parts(pass.parts(), n1, pass.threads(), m);
+  return m;
+}
+
+}  // namespace plmap::detail

@@ -1,0 +1,35 @@
+#pragma once
+// Sizing the flat arrays of a map (MapData) while finalize() writes them. Private to the builder.
+
+#include <plmap/core/pl_map.hpp>
+
+#include <cstddef>
+
+namespace plmap::detail {
+
+/// Sizes the per-node arrays of a map (or of a part of one) for `nodes` nodes.
+template <int d>
+void size_node_arrays(MapData<d>& m, std::size_t nodes) {
+  m.node_position.resize(nodes);
+  m.node_type.resize(nodes);
+  m.node_location.resize(nodes);
+  m.node_image.resize(nodes);
+  m.node_target.resize(nodes);
+  m.neighbor_begin.resize(nodes + 1);
+}
+
+/// Gives back the slack of arrays that were reserved by an upper bound, so the map holds about
+/// what it needs; slack under 1/16 of an array is kept, as copying the array to save it would
+/// cost more time (and first-touched memory) than the slack is worth.
+template <int d>
+void shrink_to_fit(MapData<d>& m) {
+  auto shrink = [](auto&... v) {
+    ((v.capacity() - v.size() > v.size() / 16 ? v.shrink_to_fit() : void()), ...);
+  };
+  shrink(m.node_begin, m.node_position, m.node_type, m.node_location, m.node_image, m.node_target,
+         m.neighbor_begin, m.neighbor, m.neighbor_edge_kind, m.edge_node_begin, m.edge_node,
+         m.region_begin, m.region_corners, m.region_neighbors, m.region_target, m.region_map,
+         m.start_region);
+}
+
+}  // namespace plmap::detail
