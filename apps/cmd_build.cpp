@@ -30,6 +30,7 @@ struct BuildOptions {
 template <int d>
 int save_and_report(const generators::MapCase<d>& built, const BuildOptions& o) {
   save_map(o.output, *built.map);
+  hint_if_large_text_map(o.output);
   Json j;
   j["output"] = o.output;
   j["description"] = built.description;

@@ -82,6 +82,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
 
   const ProjectionResult<d> result = project<d>(s1, s2, options);
   save_map(o.output, result.map);
+  hint_if_large_text_map(o.output);
 
   const auto& r = result.report;
   Json j;

@@ -86,6 +86,7 @@ int run_simplify(const SimplifyCommand& o) {
 
   if (!o.coarse.empty()) write_surface(o.coarse, result.map.domain());
   save_map(o.output, result.map);
+  hint_if_large_text_map(o.output);
 
   const SimplifyReport& r = result.report;
   Json j;

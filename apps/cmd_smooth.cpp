@@ -60,6 +60,7 @@ int run_smooth(const SmoothCommand& o) {
   options.after_sweep = [&sweeps](int, const PlMap<2>& m) { sweeps.push_back(kappa_json(m)); };
   const SmoothResult result = smooth(map, options);
   save_map(o.output, result.map);
+  hint_if_large_text_map(o.output);
 
   const SmoothReport& r = result.report;
   j["after"] = sweeps.back();
