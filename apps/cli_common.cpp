@@ -171,7 +171,7 @@ void hint_if_large_text_map(const std::filesystem::path& output) {
   std::filesystem::path binary = output;
   binary.replace_extension(binary_map_extension);
   std::cerr << "hint: " << output.string() << " is a " << size / 1'000'000 << " MB text map; as "
-            << binary.string() << " (binary) it would take about a fifth of that and load many times "
+            << binary.string() << " (binary) it would take under a quarter of that and load several times "
             << "faster (plmap convert " << output.string() << " " << binary.string() << ")\n";
 }
 

@@ -55,7 +55,7 @@ bool looks_like_map_file(const std::filesystem::path& path);
 inline constexpr std::uintmax_t large_text_map_bytes = 64'000'000;
 
 /// After a map was written to `output`: prints a one-line hint on stderr if it is a large text
-/// file, which the binary format (.plmapb) would store in about a fifth of the space.
+/// file, which the binary format (.plmapb) would store in under a quarter of the space.
 void hint_if_large_text_map(const std::filesystem::path& output);
 
 /// Fails with plmap::Error naming the file if it does not exist or is not a regular file, so
