@@ -44,7 +44,7 @@ def test_numpy_snippet_reads_the_regions_of_a_triangle_map(tmp_path):
 
 def test_numpy_snippet_reads_the_regions_of_a_curve_map(tmp_path):
     s1 = plmap.Surface(*polyline(0.0, 1.0, 9, 0.0))
-    s2 = plmap.Surface(*polyline(-0.1, 1.1, 7, 0.3))
+    s2 = plmap.Surface(*polyline(-0.1, 1.1, 7, -0.3))
     check_snippet_matches(plmap.project(s1, s2), tmp_path / "curves.plmapb")
 
 
