@@ -37,6 +37,17 @@ constexpr bool layouts_are_packed =
 static_assert(layouts_are_packed<1> && layouts_are_packed<2>);
 static_assert(sizeof(NodeType) == 1 && sizeof(GraphEdgeKind) == 1);
 
+/// The scalars of a vector of fixed-size arrays (Eigen vectors, std::array), as one flat array.
+/// Through the vector's data(), never through its first element: an empty vector has none.
+template <class Scalar, class T>
+Scalar* scalars(std::vector<T>& v) {
+  return reinterpret_cast<Scalar*>(v.data());
+}
+template <class Scalar, class T>
+const Scalar* scalars(const std::vector<T>& v) {
+  return reinterpret_cast<const Scalar*>(v.data());
+}
+
 // ================================================================================================
 // Groups of local indices
 // ================================================================================================
@@ -262,11 +273,11 @@ std::vector<OutArray> map_arrays(const PlMap<d>& map, nlohmann::json& toc) {
   const auto T = static_cast<std::uint64_t>(map.domain().element_count());
   const std::uint64_t N = m.node_type.size(), R = m.region_target.size();
   const std::uint64_t D = d;
-  require_finite(m.node_position.data()->data(), N * d, "node_position");
-  require_finite(map.domain().vertices().data()->data(), map.domain().vertices().size() * (d + 1), "domain vertices");
-  require_finite(map.target().vertices().data()->data(), map.target().vertices().size() * (d + 1), "target vertices");
+  require_finite(scalars<double>(m.node_position), N * d, "node_position");
+  require_finite(scalars<double>(map.domain().vertices()), map.domain().vertices().size() * (d + 1), "domain vertices");
+  require_finite(scalars<double>(map.target().vertices()), map.target().vertices().size() * (d + 1), "target vertices");
   for (std::size_t n = 0; n < N; ++n) require_finite(m.node_image[n].local.data(), d, "node_image");
-  require_finite(m.region_map.data()->data(), R * d * (d + 1), "region_map");
+  require_finite(scalars<double>(m.region_map), R * d * (d + 1), "region_map");
 
   std::vector<OutArray> a;
   auto surface = [&](const Surface<d>& s, const char* prefix) {
@@ -318,9 +329,9 @@ std::vector<OutArray> map_arrays(const PlMap<d>& map, nlohmann::json& toc) {
   }
 
   a.push_back(counts_array("region_begin", m.region_begin));
-  a.push_back(local_array("region_corners", "node_begin", {R, D + 1}, m.region_corners.data()->data(), R * (d + 1),
+  a.push_back(local_array("region_corners", "node_begin", {R, D + 1}, scalars<Index>(m.region_corners), R * (d + 1),
                           [&](auto&& f) { groups.region_corners(f); }));
-  a.push_back(local_array("region_neighbors", "region_begin", {R, D + 1}, m.region_neighbors.data()->data(),
+  a.push_back(local_array("region_neighbors", "region_begin", {R, D + 1}, scalars<Index>(m.region_neighbors),
                           R * (d + 1), [&](auto&& f) { groups.region_neighbors(f); }));
   a.push_back(raw_array("region_target", "<i4", {R}, m.region_target));
   // Eigen stores [A | b] column by column: the file's shape (R, d+1, d) is its columns.
@@ -614,9 +625,9 @@ PlMap<d> read_map(const Container& c, int orientation, const MapReadOptions& opt
   const std::uint64_t R = r.rows("region_target");
   m.region_corners.resize(R);
   m.region_neighbors.resize(R);
-  r.indices(r.get("region_corners", {D + 1}, R), "node_begin", m.region_corners.data()->data(),
+  r.indices(r.get("region_corners", {D + 1}, R), "node_begin", scalars<Index>(m.region_corners),
             [&](auto&& f) { groups.region_corners(f); });
-  r.indices(r.get("region_neighbors", {D + 1}, R), "region_begin", m.region_neighbors.data()->data(),
+  r.indices(r.get("region_neighbors", {D + 1}, R), "region_begin", scalars<Index>(m.region_neighbors),
             [&](auto&& f) { groups.region_neighbors(f); });
   r.raw(r.get("region_target", {}, R), "<i4", m.region_target);
   if (c.has("region_map")) {
