@@ -67,9 +67,10 @@ struct InArray {
 /// naming `file`.
 class Container {
  public:
-  /// Checks the header, the table's checksum and syntax, and each array's dtype, shape, offset,
-  /// alignment and extent (within the file, after the table, not overlapping the next one).
-  Container(std::string_view content, std::string file);
+  /// Checks the header, the table's checksum (unless `verify_table_checksum` is false: the
+  /// fuzzer's mode) and syntax, and each array's dtype, shape, offset, alignment and extent
+  /// (within the file, after the table, not overlapping the next one).
+  Container(std::string_view content, std::string file, bool verify_table_checksum = true);
 
   const nlohmann::json& toc() const { return toc_; }
   const std::string& file() const { return file_; }

@@ -695,7 +695,7 @@ void write_binary_map(std::ostream& out, const PlMap<d>& map, const MapWriteOpti
 }
 
 AnyPlMap parse_binary_map(std::string_view content, const std::string& source_name, const MapReadOptions& options) {
-  const Container c(content, source_name);
+  const Container c(content, source_name, options.verify_checksums);
   const TableHeader h = read_table_header(c.toc(), source_name);
   if (h.dimension == 1) return read_map<1>(c, h.orientation, options);
   return read_map<2>(c, h.orientation, options);
