@@ -128,7 +128,7 @@ void register_simplify(CLI::App& app, Action& action) {
       "fine surface over S1 (paper 3.3.1): vertices are removed one at a time, cheapest first by "
       "the error oracles; feature lines (boundary, non-manifold, sharp edges) are kept.");
   cmd->add_option("FINE", o->fine, "The fine triangle surface S2")->required();
-  cmd->add_option("-o,--output", o->output, "Map file to write (.plmap, S1 -> S2), replaced atomically")->required();
+  cmd->add_option("-o,--output", o->output, "Map file to write (S1 -> S2): .plmapb binary (large maps) or .plmap text; replaced atomically")->required();
   cmd->add_option("--coarse", o->coarse, "Also write the coarse surface S1 to this file (any surface format)");
   cmd->add_option("--target-elements", o->target_elements, "Stop at this many triangles")
       ->check(CLI::PositiveNumber);

@@ -90,7 +90,7 @@ void register_smooth(CLI::App& app, Action& action) {
       "vertices by a convex-combination parametrization with the element's boundary fixed, so "
       "that the map gets closer to an isometry. Prints kappa (max, mean, p99) before and after.");
   cmd->add_option("MAP", o->map, "The map file to smooth (.plmap, d = 2)")->required();
-  cmd->add_option("-o,--output", o->output, "Map file to write (.plmap), replaced atomically")->required();
+  cmd->add_option("-o,--output", o->output, "Map file to write: .plmapb binary (large maps) or .plmap text; replaced atomically")->required();
   cmd->add_option("--sweeps", o->sweeps, "Passes over all elements (per-element smoothing reaches its fixed point in one)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
