@@ -1,6 +1,7 @@
 #include "cli_common.hpp"
 
 #include <plmap/core/errors.hpp>
+#include <plmap/core/io/map_file_binary.hpp>
 #include <plmap/core/io/surface_format.hpp>
 #include <plmap/core/io/surface_reader.hpp>
 
@@ -29,6 +30,7 @@ bool looks_like_map_file(const std::filesystem::path& path) {
   std::string head(64, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
+  if (looks_like_binary_map(head)) return true;
   const std::size_t first = head.find_first_not_of(" \t\r\n");
   return first != std::string::npos && head.compare(first, map_file_magic.size(), map_file_magic) == 0;
 }
@@ -161,11 +163,23 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
   return !ea && !eb && ca == cb;
 }
 
+void hint_if_large_text_map(const std::filesystem::path& output) {
+  if (has_binary_map_extension(output)) return;
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(output, error);
+  if (error || size < large_text_map_bytes) return;
+  std::filesystem::path binary = output;
+  binary.replace_extension(binary_map_extension);
+  std::cerr << "hint: " << output.string() << " is a " << size / 1'000'000 << " MB text map; as "
+            << binary.string() << " (binary) it would take under a quarter of that and load several times "
+            << "faster (plmap convert " << output.string() << " " << binary.string() << ")\n";
+}
+
 namespace {
 
 /// What kind of file an extension names, for the message when it is used for another kind.
 std::string kind_of_extension(const std::string& ext) {
-  if (ext == ".plmap") return "a map file";
+  if (ext == ".plmap" || ext == binary_map_extension) return "a map file";
   if (format_from_extension("x" + ext)) return "a surface file";
   if (ext == ".csv") return "a table";
   if (ext == ".vtu" || ext == ".pvd") return "a VTK file";
@@ -181,7 +195,7 @@ struct OutputRule {
 
 OutputRule output_rule(OutputKind kind) {
   switch (kind) {
-    case OutputKind::map: return {"a map", {".plmap"}};
+    case OutputKind::map: return {"a map", {".plmap", std::string(binary_map_extension)}};
     case OutputKind::surface:
       return {"a surface", {".off", ".obj", ".stl", ".ply", ".msh", ".curve"}};
     case OutputKind::regions: return {"the regions", {".csv", ".vtu"}};

@@ -50,6 +50,14 @@ AnySurface read_any_surface(const std::filesystem::path& path,
 /// True if the file starts with the map-file magic word (it is a `.plmap` map, not a surface).
 bool looks_like_map_file(const std::filesystem::path& path);
 
+/// Text map files above this size get a hint to use the binary format (docs/map-format.md,
+/// "Which format is written").
+inline constexpr std::uintmax_t large_text_map_bytes = 64'000'000;
+
+/// After a map was written to `output`: prints a one-line hint on stderr if it is a large text
+/// file, which the binary format (.plmapb) would store in under a quarter of the space.
+void hint_if_large_text_map(const std::filesystem::path& output);
+
 /// Fails with plmap::Error naming the file if it does not exist or is not a regular file, so
 /// that the message is the same for every reader.
 void require_readable_file(const std::filesystem::path& path);

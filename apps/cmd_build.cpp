@@ -30,6 +30,7 @@ struct BuildOptions {
 template <int d>
 int save_and_report(const generators::MapCase<d>& built, const BuildOptions& o) {
   save_map(o.output, *built.map);
+  hint_if_large_text_map(o.output);
   Json j;
   j["output"] = o.output;
   j["description"] = built.description;
@@ -105,7 +106,7 @@ int run_overlay(const BuildOptions& o) {
 CLI::App* add_build_command(CLI::App& build, const char* name, const char* help,
                             const std::shared_ptr<BuildOptions>& o) {
   CLI::App* cmd = build.add_subcommand(name, help);
-  cmd->add_option("-o,--output", o->output, "Map file to write (.plmap), replaced atomically")
+  cmd->add_option("-o,--output", o->output, "Map file to write: .plmapb binary (large maps) or .plmap text; replaced atomically")
       ->required();
   cmd->add_flag("--json", o->json, "Print the summary as JSON");
   return cmd;

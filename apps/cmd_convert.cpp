@@ -1,9 +1,11 @@
 // `plmap convert IN OUT`: reads a surface in any readable format and writes it in the format
-// named by OUT's extension.
+// named by OUT's extension; a map file (text .plmap or binary .plmapb) is rewritten in the map
+// format OUT's extension names.
 
 #include "cli_common.hpp"
 
 #include <plmap/core/errors.hpp>
+#include <plmap/core/io/map_file.hpp>
 #include <plmap/core/io/surface_writer.hpp>
 
 #include <iostream>
@@ -21,7 +23,22 @@ struct ConvertOptions {
   std::string gmsh_version = "4.1";
 };
 
+int convert_map(const ConvertOptions& o) {
+  check_output_file(o.output, OutputKind::map, {{"IN", o.input}});
+  std::visit(
+      [&](const auto& map) {
+        save_map(o.output, map);
+        std::cout << "wrote " << o.output << ": map of " << map.node_count() << " nodes, "
+                  << map.region_count() << " regions\n";
+      },
+      load_map(o.input));
+  hint_if_large_text_map(o.output);
+  return exit_code::success;
+}
+
 int run_convert(const ConvertOptions& o) {
+  require_readable_file(o.input);
+  if (looks_like_map_file(o.input)) return convert_map(o);
   SurfaceWriteOptions options;
   static const std::map<std::string, Encoding> encodings = {
       {"default", Encoding::format_default},
@@ -51,7 +68,8 @@ void register_convert(CLI::App& app, Action& action) {
       "convert",
       "Convert a surface between file formats: reads .off .obj .stl .ply .msh .curve (format "
       "from the extension, else from the content) and writes the format named by OUT's "
-      "extension. OUT is replaced only once it is completely written.");
+      "extension. A map file is converted between text (.plmap) and binary (.plmapb) the same "
+      "way. OUT is replaced only once it is completely written.");
   cmd->add_option("IN", o->input, "Input surface")->required();
   cmd->add_option("OUT", o->output, "Output surface")->required();
   add_dimension_option(*cmd, o->dimension);

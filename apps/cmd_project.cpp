@@ -87,6 +87,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   const ProjectionResult<d> result = project<d>(s1, s2, options);
   save_map(o.output, result.map, bar.callback());
   bar.finish();
+  hint_if_large_text_map(o.output);
 
   const auto& r = result.report;
   Json j;
@@ -157,7 +158,7 @@ void register_project(CLI::App& app, Action& action) {
       "boundary; edges that cannot be inserted are listed with the reason.");
   cmd->add_option("S1", o->s1, "Domain surface (the map is stored on it)")->required();
   cmd->add_option("S2", o->s2, "Target surface")->required();
-  cmd->add_option("-o,--output", o->output, "Map file to write (.plmap), replaced atomically")->required();
+  cmd->add_option("-o,--output", o->output, "Map file to write: .plmapb binary (large maps) or .plmap text; replaced atomically")->required();
   cmd->add_option("--directions", o->directions_file,
                   "Text file with one projection direction per S1 vertex (d+1 numbers a line)");
   cmd->add_option("--solver", o->solver, "Solver of the projection equations: newton or ceres")

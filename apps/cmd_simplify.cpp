@@ -93,6 +93,7 @@ int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const S
   if (!o.coarse.empty()) write_surface(o.coarse, map.domain());
   save_map(o.output, map, bar.callback());
   bar.finish();
+  hint_if_large_text_map(o.output);
 
   Json j;
   j["map"] = o.output;
@@ -137,7 +138,7 @@ void register_simplify(CLI::App& app, Action& action) {
       "the error oracles; feature lines (boundary, non-manifold, sharp edges) are kept, vertices on "
       "them are removed only along them, feature corners never.");
   cmd->add_option("FINE", o->fine, "The fine triangle surface or curve S2")->required();
-  cmd->add_option("-o,--output", o->output, "Map file to write (.plmap, S1 -> S2), replaced atomically")->required();
+  cmd->add_option("-o,--output", o->output, "Map file to write (S1 -> S2): .plmapb binary (large maps) or .plmap text; replaced atomically")->required();
   cmd->add_option("--coarse", o->coarse, "Also write the coarse surface S1 to this file (any surface format)");
   cmd->add_option("--target-elements", o->target_elements, "Stop at this many triangles (segments for a curve)")
       ->check(CLI::PositiveNumber);

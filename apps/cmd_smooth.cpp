@@ -76,6 +76,7 @@ int run_smooth(const SmoothCommand& o) {
   const SmoothResult result = smooth(map, options);
   save_map(o.output, result.map, bar.callback());
   bar.finish();
+  hint_if_large_text_map(o.output);
 
   const SmoothReport& r = result.report;
   j["before"] = kappa_json(*r.kappa_before);
@@ -121,7 +122,7 @@ void register_smooth(CLI::App& app, Action& action) {
       "S2's vertices by a convex-combination parametrization, so that the map gets closer to an "
       "isometry. Prints kappa (max, mean, quantiles, histogram) before and after each sweep.");
   cmd->add_option("MAP", o->map, "The map file to smooth (.plmap, d = 2)")->required();
-  cmd->add_option("-o,--output", o->output, "Map file to write (.plmap), replaced atomically")->required();
+  cmd->add_option("-o,--output", o->output, "Map file to write: .plmapb binary (large maps) or .plmap text; replaced atomically")->required();
   cmd->add_option("--sweeps", o->sweeps, "Passes over all elements and edges (the paper: fewer than ten suffice)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

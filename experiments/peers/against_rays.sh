@@ -19,8 +19,8 @@ run_pair() {  # NAME BENCH-ARGS...
   local name=$1; shift
   "$bench" --tool plmap "$@" --write-inputs "$out/$name" > "$out/$name.bench.json"
   local ext=off; [[ -f $out/${name}_s1.curve ]] && ext=curve
-  "$plmap" project "$out/${name}_s1.$ext" "$out/${name}_s2.$ext" -o "$out/$name.plmap" --json > "$out/$name.project.json"
-  "$plmap" check "$out/$name.plmap" --against-rays "$samples" --json > "$out/$name.check.json" || true
+  "$plmap" project "$out/${name}_s1.$ext" "$out/${name}_s2.$ext" -o "$out/$name.plmapb" --json > "$out/$name.project.json"
+  "$plmap" check "$out/$name.plmapb" --against-rays "$samples" --json > "$out/$name.check.json" || true
   python3 - "$name" "$out/$name.project.json" "$out/$name.check.json" <<'PY'
 import json, sys
 name, p, c = sys.argv[1], json.load(open(sys.argv[2])), json.load(open(sys.argv[3]))

@@ -352,7 +352,7 @@ void bind_map(py::module_& m) {
       .def("save", [](const PyMap& pm, const std::filesystem::path& path) {
         py::gil_scoped_release unlocked;
         visit_map(pm, [&](const auto& map) { save_map(path, map); });
-      }, py::arg("path"), "Writes the map file (.plmap), replacing `path` atomically.")
+      }, py::arg("path"), "Writes the map file, replacing `path` atomically: binary for a .plmapb path, text (.plmap) otherwise.")
       .def("check", [](const PyMap& pm, const py::kwargs& kwargs) {
         VerifyOptions options;
         apply_keyword_options("check", kwargs, verify_fields(), options);
@@ -406,7 +406,7 @@ void bind_map(py::module_& m) {
         });
       });
 
-  m.def("load", &load_any_map, py::arg("path"), "Loads a map file (.plmap) of either dimension.");
+  m.def("load", &load_any_map, py::arg("path"), "Loads a map file (.plmap text or .plmapb binary) of either dimension.");
 }
 
 }  // namespace plmap::python

@@ -2,6 +2,8 @@
 
 #include "plmap/core/errors.hpp"
 #include "plmap/core/io/atomic_file.hpp"
+#include "plmap/core/io/map_file_binary.hpp"
+#include "plmap/core/surface_fingerprint.hpp"
 #include "plmap/core/io/surface_format.hpp"
 #include "plmap/core/map_validation.hpp"
 
@@ -11,6 +13,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <limits>
 #include <ostream>
 #include <sstream>
@@ -465,17 +468,37 @@ PlMap<d> read_map_body(MapFileReader& r, int orientation) {
   }
 }
 
-std::string read_whole_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
+/// The whole file in one read: a binary map is a few large arrays, and a text map is parsed
+/// from memory; either way this is the one copy of the bytes (no zero-filling, no stream
+/// buffering).
+struct FileBytes {
+  std::unique_ptr<char[]> data;
+  std::size_t size = 0;
+  std::string_view view() const { return {data.get(), size}; }
+};
+
+FileBytes read_whole_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) {
     throw ParseError(path.string(), "",
                      fmt::format("cannot open: {}",
                                  std::error_code(errno, std::generic_category()).message()));
   }
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) throw ParseError(path.string(), "", "read error");
-  return std::move(content).str();
+  const std::streamoff size = in.tellg();
+  if (size < 0) throw ParseError(path.string(), "", "cannot determine the file's size");
+  in.seekg(0);
+  FileBytes bytes;
+  bytes.size = static_cast<std::size_t>(size);
+  bytes.data = std::make_unique_for_overwrite<char[]>(bytes.size);
+  in.read(bytes.data.get(), size);
+  if (in.gcount() != size) throw ParseError(path.string(), "", "read error (the file changed while being read?)");
+  return bytes;
+}
+
+template <int d>
+PlMap<d> of_dimension(AnyPlMap&& any, const std::string& file) {
+  if (auto* map = std::get_if<PlMap<d>>(&any)) return std::move(*map);
+  throw ParseError(file, "", fmt::format("the map has dimension {}, expected {}", 3 - d, d));
 }
 
 /// The number of records (lines ended by end_line) write_map writes for `map`.
@@ -505,31 +528,79 @@ void write_map(std::ostream& out, const PlMap<d>& map, const ProgressCallback& p
 }
 
 template <int d>
-void save_map(const std::filesystem::path& path, const PlMap<d>& map, const ProgressCallback& progress) {
-  write_file_atomically(path, [&](std::ostream& out) { write_map(out, map, progress); }, true);
+template <int d>
+void save_map(const std::filesystem::path& path, const PlMap<d>& map, const MapWriteOptions& options) {
+  if (has_binary_map_extension(path)) {
+    write_file_atomically(path, [&](std::ostream& out) { write_binary_map(out, map, options); }, true);
+    return;
+  }
+  write_file_atomically(path, [&](std::ostream& out) { write_map(out, map, options.progress); }, true);
 }
 
-AnyPlMap parse_map(std::string_view content, const std::string& source_name, const ProgressCallback& progress) {
-  MapFileReader r(content, source_name, progress);
+template <int d>
+void save_map(const std::filesystem::path& path, const PlMap<d>& map, const ProgressCallback& progress) {
+  save_map(path, map, MapWriteOptions{progress});
+}
+
+AnyPlMap parse_map(std::string_view content, const std::string& source_name) {
+  return parse_map(content, source_name, MapReadOptions{});
+}
+
+AnyPlMap parse_map(std::string_view content, const std::string& source_name, const MapReadOptions& options) {
+  if (looks_like_binary_map(content)) return parse_binary_map(content, source_name, options);
+  MapFileReader r(content, source_name, options.progress);
   const Header h = read_header(r);
   if (h.dimension == 1) return read_map_body<1>(r, h.orientation);
   return read_map_body<2>(r, h.orientation);
 }
 
+AnyPlMap load_map(const std::filesystem::path& path, const MapReadOptions& options) {
+  const FileBytes bytes = read_whole_file(path);
+  return parse_map(bytes.view(), path.string(), options);
+}
+
 AnyPlMap load_map(const std::filesystem::path& path, const ProgressCallback& progress) {
-  return parse_map(read_whole_file(path), path.string(), progress);
+  return load_map(path, MapReadOptions{.progress = progress});
 }
 
 template <int d>
 PlMap<d> load_map(const std::filesystem::path& path, const ProgressCallback& progress) {
-  const std::string content = read_whole_file(path);
-  MapFileReader r(content, path.string(), progress);
+  return load_map<d>(path, MapReadOptions{.progress = progress});
+}
+
+template <int d>
+PlMap<d> load_map(const std::filesystem::path& path, const MapReadOptions& options) {
+  const FileBytes bytes = read_whole_file(path);
+  if (looks_like_binary_map(bytes.view())) {
+    return of_dimension<d>(parse_binary_map(bytes.view(), path.string(), options), path.string());
+  }
+  MapFileReader r(bytes.view(), path.string(), options.progress);
   const Header h = read_header(r);
   if (h.dimension != d) {
     throw ParseError(path.string(), "line 2",
                      fmt::format("the map has dimension {}, expected {}", h.dimension, d));
   }
   return read_map_body<d>(r, h.orientation);
+}
+
+template <int d>
+PlMap<d> load_map(const std::filesystem::path& path, std::shared_ptr<const Surface<d>> domain,
+                  std::shared_ptr<const Surface<d>> target, const MapReadOptions& options) {
+  PlMap<d> map = load_map<d>(path, options);
+  auto refuse_if_other = [&](const Surface<d>& stored, const Surface<d>& given, const char* which) {
+    const std::uint64_t a = surface_fingerprint(stored), b = surface_fingerprint(given);
+    if (a != b) {
+      throw ParseError(path.string(), "",
+                       fmt::format("the map was built for another {} surface (fingerprint {}, the given "
+                                   "surface has {}: {} vs {} vertices, {} vs {} elements)",
+                                   which, fingerprint_hex(a), fingerprint_hex(b), stored.vertices().size(),
+                                   given.vertices().size(), stored.elements().size(),
+                                   given.elements().size()));
+    }
+  };
+  refuse_if_other(map.domain(), *domain, "domain (S1)");
+  refuse_if_other(map.target(), *target, "target (S2)");
+  return PlMap<d>(std::move(domain), std::move(target), std::move(map).release_data());
 }
 
 int map_file_dimension(const std::filesystem::path& path) {
@@ -543,15 +614,24 @@ int map_file_dimension(const std::filesystem::path& path) {
   std::string head(256, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
+  if (looks_like_binary_map(head)) return binary_map_file_dimension(path);
   MapFileReader r(head, path.string());
   return read_header(r).dimension;
 }
 
 template void write_map<1>(std::ostream&, const PlMap<1>&, const ProgressCallback&);
 template void write_map<2>(std::ostream&, const PlMap<2>&, const ProgressCallback&);
+template void save_map<1>(const std::filesystem::path&, const PlMap<1>&, const MapWriteOptions&);
+template void save_map<2>(const std::filesystem::path&, const PlMap<2>&, const MapWriteOptions&);
 template void save_map<1>(const std::filesystem::path&, const PlMap<1>&, const ProgressCallback&);
 template void save_map<2>(const std::filesystem::path&, const PlMap<2>&, const ProgressCallback&);
+template PlMap<1> load_map<1>(const std::filesystem::path&, const MapReadOptions&);
+template PlMap<2> load_map<2>(const std::filesystem::path&, const MapReadOptions&);
 template PlMap<1> load_map<1>(const std::filesystem::path&, const ProgressCallback&);
 template PlMap<2> load_map<2>(const std::filesystem::path&, const ProgressCallback&);
+template PlMap<1> load_map<1>(const std::filesystem::path&, std::shared_ptr<const Surface<1>>,
+                              std::shared_ptr<const Surface<1>>, const MapReadOptions&);
+template PlMap<2> load_map<2>(const std::filesystem::path&, std::shared_ptr<const Surface<2>>,
+                              std::shared_ptr<const Surface<2>>, const MapReadOptions&);
 
 }  // namespace plmap

@@ -34,6 +34,22 @@ inline constexpr int map_file_version = 1;
 /// A map of either dimension, as returned by the dimension-agnostic loader.
 using AnyPlMap = std::variant<PlMap<1>, PlMap<2>>;
 
+/// Options of writing a map file (either format).
+struct MapWriteOptions {
+  /// Called now and then with the bytes written so far (phase "writing map").
+  ProgressCallback progress;
+};
+
+/// Options of reading a map file (either format).
+struct MapReadOptions {
+  /// Called now and then with the bytes read and decoded so far (phase "reading map").
+  ProgressCallback progress;
+  /// Binary files: check every array's CRC-32 and the surfaces' fingerprints. Only the fuzzer
+  /// turns this off, so that its mutations reach the decoders behind the checksums (which must
+  /// be safe on their own).
+  bool verify_checksums = true;
+};
+
 /// Writes the map file to `out`. Throws InvalidMapError if the map holds a non-finite number
 /// (such a file could not be read back exactly).
 /// `progress` (optional) is called with phase "writing map", counting records (lines), about
@@ -41,25 +57,43 @@ using AnyPlMap = std::variant<PlMap<1>, PlMap<2>>;
 template <int d>
 void write_map(std::ostream& out, const PlMap<d>& map, const ProgressCallback& progress = {});
 
-/// Writes the map file atomically: `path` is replaced only once the new file is complete.
-/// A callback that throws cancels the write, and `path` is left as it was.
+/// Writes the map file atomically: `path` is replaced only once the new file is complete. The
+/// extension chooses the format: `.plmapb` binary (io/map_file_binary.hpp), anything else text.
+/// A progress callback that throws cancels the write, and `path` is left as it was.
 template <int d>
-void save_map(const std::filesystem::path& path, const PlMap<d>& map, const ProgressCallback& progress = {});
+void save_map(const std::filesystem::path& path, const PlMap<d>& map,
+              const MapWriteOptions& options = {});
+/// The same with only a progress callback.
+template <int d>
+void save_map(const std::filesystem::path& path, const PlMap<d>& map, const ProgressCallback& progress);
 
-/// Parses a map file held in memory. `source_name` is used in error messages (the file name).
-/// `progress` (optional) is called with phase "reading map", counting bytes parsed, every
-/// 64k lines and once at the end.
-AnyPlMap parse_map(std::string_view content, const std::string& source_name, const ProgressCallback& progress = {});
+/// Parses a map file held in memory, text or binary (the first bytes decide). `source_name` is
+/// used in error messages (the file name). The text reader reports phase "reading map", counting
+/// bytes parsed, every 64k lines and once at the end.
+AnyPlMap parse_map(std::string_view content, const std::string& source_name);
+AnyPlMap parse_map(std::string_view content, const std::string& source_name, const MapReadOptions& options);
 
-/// Loads a map file of either dimension.
-AnyPlMap load_map(const std::filesystem::path& path, const ProgressCallback& progress = {});
+/// Loads a map file of either dimension and either format (the file's first bytes decide).
+AnyPlMap load_map(const std::filesystem::path& path, const MapReadOptions& options = {});
+/// The same with only a progress callback.
+AnyPlMap load_map(const std::filesystem::path& path, const ProgressCallback& progress);
 
 /// Loads a map file that must have dimension d; a file of the other dimension is a ParseError.
 template <int d>
-PlMap<d> load_map(const std::filesystem::path& path, const ProgressCallback& progress = {});
+PlMap<d> load_map(const std::filesystem::path& path, const MapReadOptions& options = {});
+/// The same with only a progress callback.
+template <int d>
+PlMap<d> load_map(const std::filesystem::path& path, const ProgressCallback& progress);
 
-/// Reads only the header and returns the dimension (1 or 2) declared there. Throws ParseError
-/// if the file is not a plmap map file of a supported version.
+/// Loads a map file that must have been built for the surfaces `domain` (S1) and `target` (S2):
+/// a map whose stored surfaces differ from them (by surface_fingerprint) is refused with a
+/// ParseError that names the file and the surface. The returned map holds the given surfaces.
+template <int d>
+PlMap<d> load_map(const std::filesystem::path& path, std::shared_ptr<const Surface<d>> domain,
+                  std::shared_ptr<const Surface<d>> target, const MapReadOptions& options = {});
+
+/// Reads only the header and returns the dimension (1 or 2) declared there, for either format.
+/// Throws ParseError if the file is not a plmap map file of a supported version.
 int map_file_dimension(const std::filesystem::path& path);
 
 }  // namespace plmap
