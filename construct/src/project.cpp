@@ -365,7 +365,19 @@ class Projector {
     threads_ = opt_.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : opt_.threads;
     index1_ = std::make_unique<ElementIndex<d>>(s1_);
     index2_ = std::make_unique<ElementIndex<d>>(s2_);
-    walk_limit_ = 2 * static_cast<int>(s1_.element_count()) + 16;
+    const ProjectionSearchLimits& limits = opt_.search_limits;
+    if (!(limits.seed_walk_steps > 0) || !(limits.edge_walk_steps >= 0) || !(limits.inside_tolerance >= 0.0) ||
+        !(limits.inside_tolerance < 0.5) || !(limits.edge_parameter_slack >= 0.0) ||
+        !(limits.edge_parameter_slack < 0.5) || !(limits.second_search_hits > 0) ||
+        !(limits.second_search_hits <= 32) || !(limits.second_search_reach >= 0.0) ||
+        !(limits.farther_hit_retry >= 0.0))
+      throw Error(fmt::format(
+          "projection search limits out of range (seed_walk_steps {} > 0, edge_walk_steps {} >= 0, "
+          "inside_tolerance {} and edge_parameter_slack {} in [0, 0.5), second_search_hits {} in 1..32, "
+          "second_search_reach {} and farther_hit_retry {} >= 0)",
+          limits.seed_walk_steps, limits.edge_walk_steps, limits.inside_tolerance, limits.edge_parameter_slack,
+          limits.second_search_hits, limits.second_search_reach, limits.farther_hit_retry));
+    walk_limit_ = limits.edge_walk_steps > 0 ? limits.edge_walk_steps : 2 * static_cast<int>(s1_.element_count()) + 16;
     focal_free_.resize(s1_.element_count());
     parallel_for(s1_.element_count(), threads_, [&](Index t) {
       std::array<WorldPoint<d>, d + 1> corners, directions;
@@ -480,6 +492,22 @@ class Projector {
       directions[k] = nu_[s1_.element(t)[k]];
     }
     return reaches_without_focal_point<d>(corners, directions, xi, mu);
+  }
+
+  /// The focal test for the ray from place p (a vertex, edge or interior point of S1) as a
+  /// point of element t, which contains it.
+  bool unfolded_in_at(Index t, const Place<d>& p, double mu) const {
+    if (std::abs(mu) <= focal_free_[t]) return true;
+    if (p.kind == PlaceKind::element) return reaches_without_focal_point_in(t, p.local, mu);
+    if (p.kind == PlaceKind::vertex) return reaches_without_focal_point_in(t, local_of_corner(s1_, t, p.index), mu);
+    if constexpr (d == 2) {
+      const auto ev = s1_.edge_vertices(p.index);
+      Barycentric<2> b = Barycentric<2>::Zero();
+      b(s1_.local_corner(t, ev[0])) = 1.0 - p.t;
+      b(s1_.local_corner(t, ev[1])) = p.t;
+      return reaches_without_focal_point_in(t, local_from_barycentric<2>(b), mu);
+    }
+    return true;
   }
 
   /// The same for a ray from an S1 vertex or edge point: it must be unfolded in every element
@@ -777,7 +805,7 @@ class Projector {
     long long calls = 0, failures = 0;
     for (int s = 0; s < count; ++s) {
       Index t = static_cast<Index>(seeds[s]);
-      for (int step = 0; step < 48 && t != invalid_index; ++step) {
+      for (int step = 0; step < opt_.search_limits.seed_walk_steps && t != invalid_index; ++step) {
         if (std::find(visited.begin(), visited.begin() + nvisited, t) != visited.begin() + nvisited) break;
         if (nvisited < 64) visited[nvisited++] = t;
         VertexProjectionSystem<d> sys;
@@ -797,7 +825,7 @@ class Projector {
         int worst = 0;
         for (int k = 1; k <= d; ++k)
           if (b(k) < b(worst)) worst = k;
-        if (b(worst) >= -1e-9) {
+        if (b(worst) >= -opt_.search_limits.inside_tolerance) {
           const double mu = r.x(d);
           WorldPoint<d> direction = sys.directions[0];
           for (int k = 0; k < d; ++k) direction += xi(k) * (sys.directions[k + 1] - sys.directions[0]);
@@ -882,16 +910,17 @@ class Projector {
             diameter = std::max(diameter, (cloud.points[ia] - cloud.points[ib]).norm());
         }
       for (Index v : corners)
-        if (cloud_id[v] != invalid_index) reach[cloud_id[v]] = std::max(reach[cloud_id[v]], 1.5 * diameter);
+        if (cloud_id[v] != invalid_index)
+          reach[cloud_id[v]] = std::max(reach[cloud_id[v]], opt_.search_limits.second_search_reach * diameter);
     }
     const projection::KdTree<d + 1> tree(d + 1, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
     std::vector<std::optional<SurfacePoint<d>>> found(missing.size());
     parallel_for_chunks(static_cast<Index>(missing.size()), threads_, search_chunk, [&](Index begin, Index end) {
-      constexpr int nearest_hits = 4;
+      const int nearest_hits = opt_.search_limits.second_search_hits;
       for (Index i = begin; i < end; ++i) {
         const Index q = missing[i];
-        std::array<std::uint32_t, nearest_hits> ids;
-        std::array<double, nearest_hits> squared;
+        std::array<std::uint32_t, 32> ids;
+        std::array<double, 32> squared;
         const int n = static_cast<int>(tree.knnSearch(s2_.vertex(q).data(), nearest_hits, ids.data(), squared.data()));
         std::array<std::uint32_t, 32> seeds;
         int count = 0;
@@ -922,10 +951,36 @@ class Projector {
   std::optional<SurfacePoint<d>> cast_ray(Index v, std::optional<double>& mu, NearestElements<d>& nearest) {
     const WorldPoint<d>& direction = nu_[v];
     std::optional<SurfacePoint<d>> hit;
-    if (mu) hit = cast_ray(v, s1_.vertex(v) + *mu * direction, *mu, &nearest);
+    if (mu) {
+      const double previous_mu = *mu;
+      hit = cast_ray(v, s1_.vertex(v) + previous_mu * direction, *mu, &nearest);
+      // The seeds next to the previous vertex's hit lie on the sheet of S2 that it reached, and
+      // a nearer sheet that this ray meets first is found only from the elements nearest to v
+      // (the bones of a joint, whose gap is smaller than an edge; the previous ray may have
+      // passed beside that sheet). That search is cheap when S2 lies within a few edge lengths
+      // of v, and there it runs too; farther away it runs only if the hit jumped away from the
+      // previous one (the moved seeds exist for S2 many element sizes away, where a search
+      // from v visits O(gap / h) kd-tree leaves). The nearer admissible hit wins.
+      const double margin = opt_.search_limits.farther_hit_retry * longest_edge_at(v);
+      if (hit && (rank(*mu) <= margin || rank(*mu) > rank(previous_mu) + margin)) {
+        double near_mu = 0.0;
+        if (auto near = cast_ray(v, s1_.vertex(v), near_mu, nullptr); near && rank(near_mu) < rank(*mu)) {
+          hit = near;
+          *mu = near_mu;
+        }
+      }
+    }
     if (!hit) hit = cast_ray(v, s1_.vertex(v), mu.emplace(), nullptr);
     if (!hit) mu.reset();
     return hit;
+  }
+
+  /// The longest S1 edge at vertex v (d = 1: segment).
+  double longest_edge_at(Index v) const {
+    double longest = 0.0;
+    for (Index t : s1_.vertex_elements(v))
+      for (int k = 0; k <= d; ++k) longest = std::max(longest, (s1_.corner(t, k) - s1_.vertex(v)).norm());
+    return longest;
   }
 
   /// The ray from S1 vertex v against S2, walking from the elements of S2 nearest to
@@ -944,7 +999,7 @@ class Projector {
     int nvisited = 0;
     for (int s = 0; s < count; ++s) {
       Index t = static_cast<Index>(seeds[s]);
-      for (int step = 0; step < 48 && t != invalid_index; ++step) {
+      for (int step = 0; step < opt_.search_limits.seed_walk_steps && t != invalid_index; ++step) {
         if (std::find(visited.begin(), visited.begin() + nvisited, t) != visited.begin() + nvisited) break;
         if (nvisited < 64) visited[nvisited++] = t;
         // origin + mu direction = c0 + sum_i y_i (c_{i+1} - c0): linear in (y, mu)
@@ -963,7 +1018,7 @@ class Projector {
         int worst = 0;
         for (int k = 1; k <= d; ++k)
           if (b(k) < b(worst)) worst = k;
-        if (b(worst) >= -1e-9) {
+        if (b(worst) >= -opt_.search_limits.inside_tolerance) {
           const double mu = x(d);
           WorldPoint<d> target_normal = s2_.element_normal(t);
           if (distance_ok(mu, scale) && normal_ok(direction, target_normal) && rank(mu) < best_rank &&
@@ -1021,8 +1076,6 @@ class Projector {
     }
   };
 
-  /// How far outside [0, 1] the S1 edge parameter of a solution of eq. (4) may lie (rounding).
-  static constexpr double crossing_lambda_slack = 1e-9;
 
   /// Eq. (4): where the projection of S2 edge (qa, qb) crosses S1 edge `edge` (d = 2).
   CrossingCandidate solve_crossing(Index edge, const WorldPoint<d>& qa, const WorldPoint<d>& qb,
@@ -1035,7 +1088,8 @@ class Projector {
     sys.edge = {s1_.vertex(ev[0]), s1_.vertex(ev[1])};
     sys.directions = {nu_[ev[0]], nu_[ev[1]]};
     sys.target = {qa, qb};
-    // A crossing outside [-1e-9, 1 + 1e-9] is rejected below whatever the solver returns.
+    // A crossing outside [-slack, 1 + slack] is rejected below whatever the solver returns.
+    const double crossing_lambda_slack = opt_.search_limits.edge_parameter_slack;
     if (sys.misses_the_edge(opt_.solver_tolerance, crossing_lambda_slack)) return c;
     ++calls;
     const auto r = solver_.solve(sys, sys.initial_guess());
@@ -1095,7 +1149,7 @@ class Projector {
     auto tv = target_edge_vertices(e);
     if (reversed) std::swap(tv[0], tv[1]);
     const WorldPoint<d> qa = s2_.vertex(tv[0]), qb = s2_.vertex(tv[1]);
-    const double eta_slack = 1e-9;
+    const double eta_slack = opt_.search_limits.edge_parameter_slack;
     Place<d> cur = start;
     double eta = eta0;
     std::vector<Index>& cand = buffer.candidates;
@@ -1103,11 +1157,20 @@ class Projector {
     if (end) elements_of(*end, end_elements);
     CrossingMemo memo;
     long long calls = 0, failures = 0;
+    // The distance along the ray at the current point, once the walk has made a crossing. A
+    // crossing is taken if its ray is unfolded in the element the walk crosses to reach it; the
+    // walk then goes on only into elements where that ray is unfolded as well. So a walk that
+    // meets a fold stops at the last crossing before it, which becomes the end of a piece
+    // (partial insertion), instead of stopping one element earlier.
+    std::optional<double> cur_mu;
+    auto unfolded_here = [&](Index t) { return !cur_mu || unfolded_in_at(t, cur, *cur_mu); };
+    bool start_folded = false;
     for (w.steps = 0; w.steps < walk_limit_; ++w.steps) {
       elements_of(cur, cand);
+      start_folded = false;
       if (end) {
         for (Index t : cand)
-          if (std::find(end_elements.begin(), end_elements.end(), t) != end_elements.end()) {
+          if (std::find(end_elements.begin(), end_elements.end(), t) != end_elements.end() && unfolded_here(t)) {
             w.end = WalkEnd::reached;
             solver_calls_ += calls;
             solver_failures_ += failures;
@@ -1115,7 +1178,7 @@ class Projector {
           }
       }
       bool solver_failed = false, beyond_limit = false, folded = false;
-      double best_eta = std::numeric_limits<double>::infinity();
+      double best_eta = std::numeric_limits<double>::infinity(), best_mu = 0.0;
       Place<d> best_place;
       Crossing<d> best_crossing{};
       // From a point shared by several S1 elements (an S1 vertex; an edge of a non-manifold S1)
@@ -1127,6 +1190,10 @@ class Projector {
       double best_rank = std::numeric_limits<double>::infinity();
       const double rank_tie = 1e-9 * s1_.max_edge_length();
       for (Index t : cand) {
+        if (!unfolded_here(t)) {
+          start_folded = true;
+          continue;
+        }
         double element_eta = std::numeric_limits<double>::infinity(), element_mu = 0.0;
         Place<d> element_place;
         Crossing<d> element_crossing{};
@@ -1159,7 +1226,7 @@ class Projector {
           }
           if (!(c.eta > eta + eta_slack) || c.eta > 1.0 + eta_slack || c.eta >= element_eta || place == cur) continue;
           // beyond a focal point the continuation belongs to a folded sheet of the projection
-          if (!unfolded_at(place, c.mu)) {
+          if (!unfolded_in_at(t, place, c.mu)) {
             folded = true;
             continue;
           }
@@ -1174,6 +1241,7 @@ class Projector {
         const bool tie = !nearer && r <= best_rank + rank_tie;
         if (!nearer && !(tie && element_eta < best_eta)) continue;
         best_rank = std::min(best_rank, r);
+        best_mu = element_mu;
         best_eta = element_eta;
         best_place = element_place;
         best_crossing = element_crossing;
@@ -1189,7 +1257,7 @@ class Projector {
           return w;
         }
         w.end = WalkEnd::failed;
-        w.reason = folded          ? EdgeFailureReason::fold
+        w.reason = folded || start_folded ? EdgeFailureReason::fold
                    : solver_failed ? EdgeFailureReason::solver_failure
                    : beyond_limit  ? EdgeFailureReason::distance_limit
                                    : EdgeFailureReason::discontinuity;
@@ -1214,6 +1282,7 @@ class Projector {
       buffer.crossings.push_back(best_crossing);
       ++w.crossing_count;
       cur = best_place;
+      cur_mu = best_mu;
       eta = best_eta;
       if constexpr (d == 2) {
         if (cur.kind == PlaceKind::edge && s1_.edge_elements(cur.index).size() == 1) {
@@ -1301,8 +1370,14 @@ class Projector {
       const std::size_t begin = crossings.size();
       const WalkResult<d> w = walk(e, *pa, 0.0, pb, false, buffer);
       if (w.end == WalkEnd::failed) {
-        crossings.resize(begin);
+        // What was walked before the failure is inserted as a piece ending at the last crossing
+        // (partial insertion): the S2 elements on both sides of e then keep their regions away
+        // from the failure, and only the faces around its far end stay outside D.
         buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+        if (w.crossing_count > 0)
+          add_piece(begin, true, false);
+        else
+          crossings.resize(begin);
         covered_until = w.eta;
         first_walk_failed = true;
       } else {
@@ -1323,6 +1398,11 @@ class Projector {
       const double walked_until = covered_until;  // before this entry
       covered_until = w.end == WalkEnd::reached ? 1.0 : w.eta;
       if (w.end == WalkEnd::failed) {
+        if (w.crossing_count > 0) {  // partial insertion, as for the walk from the first vertex
+          buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+          add_piece(begin, false, false);
+          continue;
+        }
         crossings.resize(begin);
         if (w.steps == 0 && w.reason != EdgeFailureReason::solver_failure) {
           // An exit: the edge leaves S1 here. If no walk has come this far, the stretch before
@@ -1352,10 +1432,32 @@ class Projector {
     // It also runs when the second vertex was reached only from an entry: if it leaves S1
     // before that entry, the entry was a touch of the boundary from inside, and its piece is
     // replaced by the longer one (whose crossings follow it in the buffer).
-    if (pb && (!reached_second || second_reached_from_entry) && !first_walk_failed) {
+    // After a failed walk from the first vertex, it also inserts the stretch from the second
+    // vertex back to where its own walk fails (partial insertion), if the two stretches are
+    // disjoint along the edge.
+    if (pb && (!reached_second || second_reached_from_entry)) {
       const std::size_t begin = crossings.size();
       const WalkResult<d> w = walk(e, *pb, 0.0, std::nullopt, true, buffer);
-      if (w.end == WalkEnd::left_boundary && w.crossing_count > 0) {
+      auto reverse_into_piece = [&](std::size_t piece_begin) {
+        std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin), crossings.end());
+        for (std::size_t i = piece_begin; i < crossings.size(); ++i)
+          crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
+        add_piece(piece_begin, false, true);
+        reached_second = true;
+      };
+      // where the backward walk's last crossing lies, measured from the first vertex
+      const double walked_back_to = w.crossing_count > 0 ? 1.0 - crossings.back().target_parameter : 1.0;
+      const bool partial = w.crossing_count > 0 && !second_reached_from_entry &&
+                           (w.end == WalkEnd::failed || (first_walk_failed && w.end == WalkEnd::left_boundary));
+      if (partial) {
+        if (walked_back_to > covered_until + 1e-9) {
+          reverse_into_piece(begin);
+        } else {
+          crossings.resize(begin);
+        }
+        if (w.end == WalkEnd::failed && !first_walk_failed && w.reason != EdgeFailureReason::endpoint_without_preimage)
+          buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
+      } else if (w.end == WalkEnd::left_boundary && w.crossing_count > 0) {
         // measured from the first vertex again, in the edge's direction
         if (second_reached_from_entry && !(1.0 - w.eta < *second_reached_from_entry - 1e-9)) {
           crossings.resize(begin);  // no farther back than the entry: the entry's piece stands
@@ -1367,16 +1469,13 @@ class Projector {
                             crossings.begin() + static_cast<std::ptrdiff_t>(begin));
             buffer.pieces.pop_back();
           }
-          std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin), crossings.end());
-          for (std::size_t i = piece_begin; i < crossings.size(); ++i)
-            crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
-          add_piece(piece_begin, false, true);
-          reached_second = true;
+          reverse_into_piece(piece_begin);
         }
       } else {
         crossings.resize(begin);
-        // after an entry's piece, a failure may lie where that piece's walk passed: not reported
-        if (w.end == WalkEnd::failed && !second_reached_from_entry &&
+        // after an entry's piece, a failure may lie where that piece's walk passed: not reported;
+        // after a failed walk from the first vertex, that walk's failure names the missing stretch
+        if (w.end == WalkEnd::failed && !second_reached_from_entry && !first_walk_failed &&
             w.reason != EdgeFailureReason::endpoint_without_preimage)
           buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
       }
@@ -1451,7 +1550,8 @@ class Projector {
           builder.add_edge(e, crossings);
           whole = true;
         } else {
-          builder.add_edge_piece(e, crossings, piece.from_first, piece.to_second);
+          builder.add_edge_piece(e, crossings, piece.from_first ? PieceStart::first_vertex : PieceStart::first_crossing,
+                                 piece.to_second ? PieceEnd::second_vertex : PieceEnd::last_crossing);
           ++pieces;
         }
         mark_used_points(crossings, e);
@@ -1463,6 +1563,11 @@ class Projector {
         rejected.push_back(std::move(f));
       }
     }
+    // An edge of which no stretch could be inserted (its walks fail at once from both ends)
+    // still closes its S2 triangles' regions, as one beyond S1's boundary does: the faces it
+    // would split have nodes on both of its sides, so no single S2 element holds their images
+    // and they stay outside D, while the triangles' other faces keep their regions.
+    if (!whole && pieces == 0 && !plan.outside && !builder.has_edge(e)) builder.add_edge_outside_domain(e);
     if (whole) ++report.edges_inserted;
     if (pieces > 0) ++report.edges_partly_inserted;
     report.edge_pieces += static_cast<Index>(pieces);
