@@ -951,18 +951,20 @@ class Projector {
   std::optional<SurfacePoint<d>> cast_ray(Index v, std::optional<double>& mu, NearestElements<d>& nearest) {
     const WorldPoint<d>& direction = nu_[v];
     std::optional<SurfacePoint<d>> hit;
-    if (mu) {
+    // Seeds next to the previous vertex's hit (v moved by its ray parameter) are for S2 many
+    // element sizes away, where a search from v visits O(gap / h) kd-tree leaves. They lie on
+    // the sheet of S2 that the previous ray reached, and a nearer sheet that this ray meets
+    // first is found only from the elements nearest to v (the bones of a joint, whose gap is
+    // smaller than an edge; the previous ray may have passed beside that sheet). So within
+    // `farther_hit_retry` longest edges of v the search starts from v (as cheap there), and
+    // beyond, a hit that jumped away from the previous one is searched for from v too; the
+    // nearer admissible hit wins.
+    const double margin = opt_.search_limits.farther_hit_retry * longest_edge_at(v);
+    const std::optional<double> previous = mu;
+    if (mu && rank(*mu) > margin) {
       const double previous_mu = *mu;
       hit = cast_ray(v, s1_.vertex(v) + previous_mu * direction, *mu, &nearest);
-      // The seeds next to the previous vertex's hit lie on the sheet of S2 that it reached, and
-      // a nearer sheet that this ray meets first is found only from the elements nearest to v
-      // (the bones of a joint, whose gap is smaller than an edge; the previous ray may have
-      // passed beside that sheet). That search is cheap when S2 lies within a few edge lengths
-      // of v, and there it runs too; farther away it runs only if the hit jumped away from the
-      // previous one (the moved seeds exist for S2 many element sizes away, where a search
-      // from v visits O(gap / h) kd-tree leaves). The nearer admissible hit wins.
-      const double margin = opt_.search_limits.farther_hit_retry * longest_edge_at(v);
-      if (hit && (rank(*mu) <= margin || rank(*mu) > rank(previous_mu) + margin)) {
+      if (hit && rank(*mu) > rank(previous_mu) + margin) {
         double near_mu = 0.0;
         if (auto near = cast_ray(v, s1_.vertex(v), near_mu, nullptr); near && rank(near_mu) < rank(*mu)) {
           hit = near;
@@ -971,6 +973,10 @@ class Projector {
       }
     }
     if (!hit) hit = cast_ray(v, s1_.vertex(v), mu.emplace(), nullptr);
+    // near S2, the seeds from v came first; the previous hit's may still reach a hit they miss
+    // (the elements nearest to v lie on another part of S2 whose walks end at its boundary)
+    if (!hit && previous && rank(*previous) <= margin)
+      hit = cast_ray(v, s1_.vertex(v) + *previous * direction, *mu, &nearest);
     if (!hit) mu.reset();
     return hit;
   }
