@@ -335,7 +335,19 @@ class Projector {
     threads_ = resolve_thread_count(opt_.threads);
     index1_ = std::make_unique<ElementIndex<d>>(s1_);
     index2_ = std::make_unique<ElementIndex<d>>(s2_);
-    walk_limit_ = 2 * static_cast<int>(s1_.element_count()) + 16;
+    const ProjectionSearchLimits& limits = opt_.search_limits;
+    if (!(limits.seed_walk_steps > 0) || !(limits.edge_walk_steps >= 0) || !(limits.inside_tolerance >= 0.0) ||
+        !(limits.inside_tolerance < 0.5) || !(limits.edge_parameter_slack >= 0.0) ||
+        !(limits.edge_parameter_slack < 0.5) || !(limits.second_search_hits > 0) ||
+        !(limits.second_search_hits <= 32) || !(limits.second_search_reach >= 0.0) ||
+        !(limits.farther_hit_retry >= 0.0))
+      throw Error(fmt::format(
+          "projection search limits out of range (seed_walk_steps {} > 0, edge_walk_steps {} >= 0, "
+          "inside_tolerance {} and edge_parameter_slack {} in [0, 0.5), second_search_hits {} in 1..32, "
+          "second_search_reach {} and farther_hit_retry {} >= 0)",
+          limits.seed_walk_steps, limits.edge_walk_steps, limits.inside_tolerance, limits.edge_parameter_slack,
+          limits.second_search_hits, limits.second_search_reach, limits.farther_hit_retry));
+    walk_limit_ = limits.edge_walk_steps > 0 ? limits.edge_walk_steps : 2 * static_cast<int>(s1_.element_count()) + 16;
     focal_free_.resize(s1_.element_count());
     parallel_ranges(s1_.element_count(), threads_, [&](std::size_t begin, std::size_t end) {
       for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) {
@@ -452,6 +464,22 @@ class Projector {
       directions[k] = nu_[s1_.element(t)[k]];
     }
     return reaches_without_focal_point<d>(corners, directions, xi, mu);
+  }
+
+  /// The focal test for the ray from place p (a vertex, edge or interior point of S1) as a
+  /// point of element t, which contains it.
+  bool unfolded_in_at(Index t, const Place<d>& p, double mu) const {
+    if (std::abs(mu) <= focal_free_[t]) return true;
+    if (p.kind == PlaceKind::element) return reaches_without_focal_point_in(t, p.local, mu);
+    if (p.kind == PlaceKind::vertex) return reaches_without_focal_point_in(t, local_of_corner(s1_, t, p.index), mu);
+    if constexpr (d == 2) {
+      const auto ev = s1_.edge_vertices(p.index);
+      Barycentric<2> b = Barycentric<2>::Zero();
+      b(s1_.local_corner(t, ev[0])) = 1.0 - p.t;
+      b(s1_.local_corner(t, ev[1])) = p.t;
+      return reaches_without_focal_point_in(t, local_from_barycentric<2>(b), mu);
+    }
+    return true;
   }
 
   /// The same for a ray from an S1 vertex or edge point: it must be unfolded in every element
@@ -749,7 +777,7 @@ class Projector {
     long long calls = 0, failures = 0;
     for (int s = 0; s < count; ++s) {
       Index t = static_cast<Index>(seeds[s]);
-      for (int step = 0; step < 48 && t != invalid_index; ++step) {
+      for (int step = 0; step < opt_.search_limits.seed_walk_steps && t != invalid_index; ++step) {
         if (std::find(visited.begin(), visited.begin() + nvisited, t) != visited.begin() + nvisited) break;
         if (nvisited < 64) visited[nvisited++] = t;
         VertexProjectionSystem<d> sys;
@@ -769,7 +797,7 @@ class Projector {
         int worst = 0;
         for (int k = 1; k <= d; ++k)
           if (b(k) < b(worst)) worst = k;
-        if (b(worst) >= -1e-9) {
+        if (b(worst) >= -opt_.search_limits.inside_tolerance) {
           const double mu = r.x(d);
           WorldPoint<d> direction = sys.directions[0];
           for (int k = 0; k < d; ++k) direction += xi(k) * (sys.directions[k + 1] - sys.directions[0]);
@@ -854,16 +882,17 @@ class Projector {
             diameter = std::max(diameter, (cloud.points[ia] - cloud.points[ib]).norm());
         }
       for (Index v : corners)
-        if (cloud_id[v] != invalid_index) reach[cloud_id[v]] = std::max(reach[cloud_id[v]], 1.5 * diameter);
+        if (cloud_id[v] != invalid_index)
+          reach[cloud_id[v]] = std::max(reach[cloud_id[v]], opt_.search_limits.second_search_reach * diameter);
     }
     const projection::KdTree<d + 1> tree(d + 1, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
     std::vector<std::optional<SurfacePoint<d>>> found(missing.size());
     parallel_for_chunks(missing.size(), search_chunk, threads_, [&](Index begin, Index end) {
-      constexpr int nearest_hits = 4;
+      const int nearest_hits = opt_.search_limits.second_search_hits;
       for (Index i = begin; i < end; ++i) {
         const Index q = missing[i];
-        std::array<std::uint32_t, nearest_hits> ids;
-        std::array<double, nearest_hits> squared;
+        std::array<std::uint32_t, 32> ids;
+        std::array<double, 32> squared;
         const int n = static_cast<int>(tree.knnSearch(s2_.vertex(q).data(), nearest_hits, ids.data(), squared.data()));
         std::array<std::uint32_t, 32> seeds;
         int count = 0;
@@ -894,10 +923,42 @@ class Projector {
   std::optional<SurfacePoint<d>> cast_ray(Index v, std::optional<double>& mu, NearestElements<d>& nearest) {
     const WorldPoint<d>& direction = nu_[v];
     std::optional<SurfacePoint<d>> hit;
-    if (mu) hit = cast_ray(v, s1_.vertex(v) + *mu * direction, *mu, &nearest);
+    // Seeds next to the previous vertex's hit (v moved by its ray parameter) are for S2 many
+    // element sizes away, where a search from v visits O(gap / h) kd-tree leaves. They lie on
+    // the sheet of S2 that the previous ray reached, and a nearer sheet that this ray meets
+    // first is found only from the elements nearest to v (the bones of a joint, whose gap is
+    // smaller than an edge; the previous ray may have passed beside that sheet). So within
+    // `farther_hit_retry` longest edges of v the search starts from v (as cheap there), and
+    // beyond, a hit that jumped away from the previous one is searched for from v too; the
+    // nearer admissible hit wins.
+    const double margin = opt_.search_limits.farther_hit_retry * longest_edge_at(v);
+    const std::optional<double> previous = mu;
+    if (mu && rank(*mu) > margin) {
+      const double previous_mu = *mu;
+      hit = cast_ray(v, s1_.vertex(v) + previous_mu * direction, *mu, &nearest);
+      if (hit && rank(*mu) > rank(previous_mu) + margin) {
+        double near_mu = 0.0;
+        if (auto near = cast_ray(v, s1_.vertex(v), near_mu, nullptr); near && rank(near_mu) < rank(*mu)) {
+          hit = near;
+          *mu = near_mu;
+        }
+      }
+    }
     if (!hit) hit = cast_ray(v, s1_.vertex(v), mu.emplace(), nullptr);
+    // near S2, the seeds from v came first; the previous hit's may still reach a hit they miss
+    // (the elements nearest to v lie on another part of S2 whose walks end at its boundary)
+    if (!hit && previous && rank(*previous) <= margin)
+      hit = cast_ray(v, s1_.vertex(v) + *previous * direction, *mu, &nearest);
     if (!hit) mu.reset();
     return hit;
+  }
+
+  /// The longest S1 edge at vertex v (d = 1: segment).
+  double longest_edge_at(Index v) const {
+    double longest = 0.0;
+    for (Index t : s1_.vertex_elements(v))
+      for (int k = 0; k <= d; ++k) longest = std::max(longest, (s1_.corner(t, k) - s1_.vertex(v)).norm());
+    return longest;
   }
 
   /// The ray from S1 vertex v against S2, walking from the elements of S2 nearest to
@@ -916,7 +977,7 @@ class Projector {
     int nvisited = 0;
     for (int s = 0; s < count; ++s) {
       Index t = static_cast<Index>(seeds[s]);
-      for (int step = 0; step < 48 && t != invalid_index; ++step) {
+      for (int step = 0; step < opt_.search_limits.seed_walk_steps && t != invalid_index; ++step) {
         if (std::find(visited.begin(), visited.begin() + nvisited, t) != visited.begin() + nvisited) break;
         if (nvisited < 64) visited[nvisited++] = t;
         // origin + mu direction = c0 + sum_i y_i (c_{i+1} - c0): linear in (y, mu)
@@ -935,7 +996,7 @@ class Projector {
         int worst = 0;
         for (int k = 1; k <= d; ++k)
           if (b(k) < b(worst)) worst = k;
-        if (b(worst) >= -1e-9) {
+        if (b(worst) >= -opt_.search_limits.inside_tolerance) {
           const double mu = x(d);
           WorldPoint<d> target_normal = s2_.element_normal(t);
           if (distance_ok(mu, scale) && normal_ok(direction, target_normal) && rank(mu) < best_rank &&
@@ -993,8 +1054,6 @@ class Projector {
     }
   };
 
-  /// How far outside [0, 1] the S1 edge parameter of a solution of eq. (4) may lie (rounding).
-  static constexpr double crossing_lambda_slack = 1e-9;
 
   /// Eq. (4): where the projection of S2 edge (qa, qb) crosses S1 edge `edge` (d = 2).
   CrossingCandidate solve_crossing(Index edge, const WorldPoint<d>& qa, const WorldPoint<d>& qb,
@@ -1007,7 +1066,8 @@ class Projector {
     sys.edge = {s1_.vertex(ev[0]), s1_.vertex(ev[1])};
     sys.directions = {nu_[ev[0]], nu_[ev[1]]};
     sys.target = {qa, qb};
-    // A crossing outside [-1e-9, 1 + 1e-9] is rejected below whatever the solver returns.
+    // A crossing outside [-slack, 1 + slack] is rejected below whatever the solver returns.
+    const double crossing_lambda_slack = opt_.search_limits.edge_parameter_slack;
     if (sys.misses_the_edge(opt_.solver_tolerance, crossing_lambda_slack)) return c;
     ++calls;
     const auto r = solver_.solve(sys, sys.initial_guess());
@@ -1067,7 +1127,7 @@ class Projector {
     auto tv = target_edge_vertices(e);
     if (reversed) std::swap(tv[0], tv[1]);
     const WorldPoint<d> qa = s2_.vertex(tv[0]), qb = s2_.vertex(tv[1]);
-    const double eta_slack = 1e-9;
+    const double eta_slack = opt_.search_limits.edge_parameter_slack;
     Place<d> cur = start;
     double eta = eta0;
     std::vector<Index>& cand = buffer.candidates;
@@ -1075,11 +1135,20 @@ class Projector {
     if (end) elements_of(*end, end_elements);
     CrossingMemo memo;
     long long calls = 0, failures = 0;
+    // The distance along the ray at the current point, once the walk has made a crossing. A
+    // crossing is taken if its ray is unfolded in the element the walk crosses to reach it; the
+    // walk then goes on only into elements where that ray is unfolded as well. So a walk that
+    // meets a fold stops at the last crossing before it, which becomes the end of a piece
+    // (partial insertion), instead of stopping one element earlier.
+    std::optional<double> cur_mu;
+    auto unfolded_here = [&](Index t) { return !cur_mu || unfolded_in_at(t, cur, *cur_mu); };
+    bool start_folded = false;
     for (w.steps = 0; w.steps < walk_limit_; ++w.steps) {
       elements_of(cur, cand);
+      start_folded = false;
       if (end) {
         for (Index t : cand)
-          if (std::find(end_elements.begin(), end_elements.end(), t) != end_elements.end()) {
+          if (std::find(end_elements.begin(), end_elements.end(), t) != end_elements.end() && unfolded_here(t)) {
             w.end = WalkEnd::reached;
             solver_calls_ += calls;
             solver_failures_ += failures;
@@ -1087,7 +1156,7 @@ class Projector {
           }
       }
       bool solver_failed = false, beyond_limit = false, folded = false;
-      double best_eta = std::numeric_limits<double>::infinity();
+      double best_eta = std::numeric_limits<double>::infinity(), best_mu = 0.0;
       Place<d> best_place;
       Crossing<d> best_crossing{};
       // From a point shared by several S1 elements (an S1 vertex; an edge of a non-manifold S1)
@@ -1099,6 +1168,10 @@ class Projector {
       double best_rank = std::numeric_limits<double>::infinity();
       const double rank_tie = 1e-9 * s1_.max_edge_length();
       for (Index t : cand) {
+        if (!unfolded_here(t)) {
+          start_folded = true;
+          continue;
+        }
         double element_eta = std::numeric_limits<double>::infinity(), element_mu = 0.0;
         Place<d> element_place;
         Crossing<d> element_crossing{};
@@ -1131,7 +1204,7 @@ class Projector {
           }
           if (!(c.eta > eta + eta_slack) || c.eta > 1.0 + eta_slack || c.eta >= element_eta || place == cur) continue;
           // beyond a focal point the continuation belongs to a folded sheet of the projection
-          if (!unfolded_at(place, c.mu)) {
+          if (!unfolded_in_at(t, place, c.mu)) {
             folded = true;
             continue;
           }
@@ -1146,6 +1219,7 @@ class Projector {
         const bool tie = !nearer && r <= best_rank + rank_tie;
         if (!nearer && !(tie && element_eta < best_eta)) continue;
         best_rank = std::min(best_rank, r);
+        best_mu = element_mu;
         best_eta = element_eta;
         best_place = element_place;
         best_crossing = element_crossing;
@@ -1161,7 +1235,7 @@ class Projector {
           return w;
         }
         w.end = WalkEnd::failed;
-        w.reason = folded          ? EdgeFailureReason::fold
+        w.reason = folded || start_folded ? EdgeFailureReason::fold
                    : solver_failed ? EdgeFailureReason::solver_failure
                    : beyond_limit  ? EdgeFailureReason::distance_limit
                                    : EdgeFailureReason::discontinuity;
@@ -1186,6 +1260,7 @@ class Projector {
       buffer.crossings.push_back(best_crossing);
       ++w.crossing_count;
       cur = best_place;
+      cur_mu = best_mu;
       eta = best_eta;
       if constexpr (d == 2) {
         if (cur.kind == PlaceKind::edge && s1_.edge_elements(cur.index).size() == 1) {
@@ -1273,8 +1348,14 @@ class Projector {
       const std::size_t begin = crossings.size();
       const WalkResult<d> w = walk(e, *pa, 0.0, pb, false, buffer);
       if (w.end == WalkEnd::failed) {
-        crossings.resize(begin);
+        // What was walked before the failure is inserted as a piece ending at the last crossing
+        // (partial insertion): the S2 elements on both sides of e then keep their regions away
+        // from the failure, and only the faces around its far end stay outside D.
         buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+        if (w.crossing_count > 0)
+          add_piece(begin, true, false);
+        else
+          crossings.resize(begin);
         covered_until = w.eta;
         first_walk_failed = true;
       } else {
@@ -1295,6 +1376,11 @@ class Projector {
       const double walked_until = covered_until;  // before this entry
       covered_until = w.end == WalkEnd::reached ? 1.0 : w.eta;
       if (w.end == WalkEnd::failed) {
+        if (w.crossing_count > 0) {  // partial insertion, as for the walk from the first vertex
+          buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+          add_piece(begin, false, false);
+          continue;
+        }
         crossings.resize(begin);
         if (w.steps == 0 && w.reason != EdgeFailureReason::solver_failure) {
           // An exit: the edge leaves S1 here. If no walk has come this far, the stretch before
@@ -1324,10 +1410,32 @@ class Projector {
     // It also runs when the second vertex was reached only from an entry: if it leaves S1
     // before that entry, the entry was a touch of the boundary from inside, and its piece is
     // replaced by the longer one (whose crossings follow it in the buffer).
-    if (pb && (!reached_second || second_reached_from_entry) && !first_walk_failed) {
+    // After a failed walk from the first vertex, it also inserts the stretch from the second
+    // vertex back to where its own walk fails (partial insertion), if the two stretches are
+    // disjoint along the edge.
+    if (pb && (!reached_second || second_reached_from_entry)) {
       const std::size_t begin = crossings.size();
       const WalkResult<d> w = walk(e, *pb, 0.0, std::nullopt, true, buffer);
-      if (w.end == WalkEnd::left_boundary && w.crossing_count > 0) {
+      auto reverse_into_piece = [&](std::size_t piece_begin) {
+        std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin), crossings.end());
+        for (std::size_t i = piece_begin; i < crossings.size(); ++i)
+          crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
+        add_piece(piece_begin, false, true);
+        reached_second = true;
+      };
+      // where the backward walk's last crossing lies, measured from the first vertex
+      const double walked_back_to = w.crossing_count > 0 ? 1.0 - crossings.back().target_parameter : 1.0;
+      const bool partial = w.crossing_count > 0 && !second_reached_from_entry &&
+                           (w.end == WalkEnd::failed || (first_walk_failed && w.end == WalkEnd::left_boundary));
+      if (partial) {
+        if (walked_back_to > covered_until + 1e-9) {
+          reverse_into_piece(begin);
+        } else {
+          crossings.resize(begin);
+        }
+        if (w.end == WalkEnd::failed && !first_walk_failed && w.reason != EdgeFailureReason::endpoint_without_preimage)
+          buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
+      } else if (w.end == WalkEnd::left_boundary && w.crossing_count > 0) {
         // measured from the first vertex again, in the edge's direction
         if (second_reached_from_entry && !(1.0 - w.eta < *second_reached_from_entry - 1e-9)) {
           crossings.resize(begin);  // no farther back than the entry: the entry's piece stands
@@ -1339,16 +1447,13 @@ class Projector {
                             crossings.begin() + static_cast<std::ptrdiff_t>(begin));
             buffer.pieces.pop_back();
           }
-          std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin), crossings.end());
-          for (std::size_t i = piece_begin; i < crossings.size(); ++i)
-            crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
-          add_piece(piece_begin, false, true);
-          reached_second = true;
+          reverse_into_piece(piece_begin);
         }
       } else {
         crossings.resize(begin);
-        // after an entry's piece, a failure may lie where that piece's walk passed: not reported
-        if (w.end == WalkEnd::failed && !second_reached_from_entry &&
+        // after an entry's piece, a failure may lie where that piece's walk passed: not reported;
+        // after a failed walk from the first vertex, that walk's failure names the missing stretch
+        if (w.end == WalkEnd::failed && !second_reached_from_entry && !first_walk_failed &&
             w.reason != EdgeFailureReason::endpoint_without_preimage)
           buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
       }
@@ -1427,7 +1532,8 @@ class Projector {
           builder.add_edge(e, crossings);
           whole = true;
         } else {
-          builder.add_edge_piece(e, crossings, piece.from_first, piece.to_second);
+          builder.add_edge_piece(e, crossings, piece.from_first ? PieceStart::first_vertex : PieceStart::first_crossing,
+                                 piece.to_second ? PieceEnd::second_vertex : PieceEnd::last_crossing);
           ++pieces;
         }
         mark_used_points(crossings, e);
@@ -1439,6 +1545,11 @@ class Projector {
         rejected.push_back(std::move(f));
       }
     }
+    // An edge of which no stretch could be inserted (its walks fail at once from both ends)
+    // still closes its S2 triangles' regions, as one beyond S1's boundary does: the faces it
+    // would split have nodes on both of its sides, so no single S2 element holds their images
+    // and they stay outside D, while the triangles' other faces keep their regions.
+    if (!whole && pieces == 0 && !plan.outside && !builder.has_edge(e)) builder.add_edge_outside_domain(e);
     if (whole) ++report.edges_inserted;
     if (pieces > 0) ++report.edges_partly_inserted;
     report.edge_pieces += static_cast<Index>(pieces);

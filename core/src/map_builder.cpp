@@ -590,14 +590,14 @@ void MapBuilder<d>::add_edge(Index target_edge, std::span<const EdgeCrossing> cr
   requires(d == 2)
 {
   if constexpr (d == 2) {
-    add_edge_piece(target_edge, crossings, true, true);
+    add_edge_piece(target_edge, crossings, PieceStart::first_vertex, PieceEnd::second_vertex);
   }
 }
 
 template <int d>
   requires SurfaceDimension<d>
-void MapBuilder<d>::add_edge_piece(Index target_edge, std::span<const EdgeCrossing> crossings,
-                                   bool starts_at_first_vertex, bool ends_at_second_vertex)
+void MapBuilder<d>::add_edge_piece(Index target_edge, std::span<const EdgeCrossing> crossings, PieceStart start,
+                                   PieceEnd end)
   requires(d == 2)
 {
   if constexpr (d == 2) {
@@ -605,7 +605,7 @@ void MapBuilder<d>::add_edge_piece(Index target_edge, std::span<const EdgeCrossi
     im.check_s2_edge(target_edge);
     const auto ev = im.s2->edge_vertices(target_edge);
     im.insert_edge_preimage(target_edge, ev[0], ev[1], crossing_places<d>(im, target_edge, crossings),
-                            starts_at_first_vertex, ends_at_second_vertex);
+                            start == PieceStart::first_vertex, end == PieceEnd::second_vertex);
   }
 }
 
@@ -615,14 +615,14 @@ void MapBuilder<d>::add_edge(Index target_element, std::span<const VertexCrossin
   requires(d == 1)
 {
   if constexpr (d == 1) {
-    add_edge_piece(target_element, crossings, true, true);
+    add_edge_piece(target_element, crossings, PieceStart::first_vertex, PieceEnd::second_vertex);
   }
 }
 
 template <int d>
   requires SurfaceDimension<d>
 void MapBuilder<d>::add_edge_piece(Index target_element, std::span<const VertexCrossing> crossings,
-                                   bool starts_at_first_vertex, bool ends_at_second_vertex)
+                                   PieceStart start, PieceEnd end)
   requires(d == 1)
 {
   if constexpr (d == 1) {
@@ -630,7 +630,7 @@ void MapBuilder<d>::add_edge_piece(Index target_element, std::span<const VertexC
     im.check_s2_element(target_element);
     const auto& c = im.s2->element(target_element);
     im.insert_edge_preimage(target_element, c[0], c[1], crossing_places<d>(im, crossings),
-                            starts_at_first_vertex, ends_at_second_vertex);
+                            start == PieceStart::first_vertex, end == PieceEnd::second_vertex);
   }
 }
 

@@ -48,8 +48,8 @@ PlMap<1> stacked_segments() {
   for (Index v = 0; v < 4; ++v) b.add_ghost_node(v, {0, LocalPoint<1>(at[v])});
   const std::array<VertexCrossing, 2> upper = {VertexCrossing{0, 0.1}, VertexCrossing{1, 0.9}};
   const std::array<VertexCrossing, 2> lower = {VertexCrossing{2, 0.3}, VertexCrossing{3, 0.6}};
-  b.add_edge_piece(0, upper, false, false);
-  b.add_edge_piece(0, lower, false, false);
+  b.add_edge_piece(0, upper, PieceStart::first_crossing, PieceEnd::last_crossing);
+  b.add_edge_piece(0, lower, PieceStart::first_crossing, PieceEnd::last_crossing);
   return std::move(b).finalize();
 }
 

@@ -103,7 +103,7 @@ TEST(FaceRemoval, AFaceOfSeveralRegionsGoesWhole) {
   // D-C from C (the smaller index): it crosses S1 edge 1-2 at (1/2, 1/2), then edge 0-2 at (0, 1/2)
   const std::array<EdgeCrossing, 2> crossings = {EdgeCrossing{s1->find_edge(1, 2), 0.5, 0.625},
                                                  EdgeCrossing{s1->find_edge(0, 2), 0.5, 0.75}};
-  b.add_edge_piece(dc, crossings, false, false);
+  b.add_edge_piece(dc, crossings, PieceStart::first_crossing, PieceEnd::last_crossing);
   const PlMap<2> map = std::move(b).finalize();
   ASSERT_EQ(violations(map), "");
   ASSERT_EQ(map.region_count(), 3);

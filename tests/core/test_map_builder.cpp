@@ -223,12 +223,12 @@ TEST(MapBuilder, EdgePiecesCoverUpToTheDomainBoundary) {
   const double x_diag = 1.5 - 1.2 * s_x;
   {
     const EdgeCrossing exit{right, 0.2, (1.0 - 0.3) / 1.2};
-    b.add_edge_piece(s2->find_edge(0, 1), std::span(&exit, 1), true, false);
+    b.add_edge_piece(s2->find_edge(0, 1), std::span(&exit, 1), PieceStart::first_vertex, PieceEnd::last_crossing);
   }
   {
     const std::array<EdgeCrossing, 2> path{EdgeCrossing{right, 0.2 + 0.5 * s_bc, s_bc},
                                            EdgeCrossing{diag, x_diag, s_x}};
-    b.add_edge_piece(s2->find_edge(1, 2), path, false, true);
+    b.add_edge_piece(s2->find_edge(1, 2), path, PieceStart::first_crossing, PieceEnd::second_vertex);
   }
   {
     const EdgeCrossing through{diag, 0.3};

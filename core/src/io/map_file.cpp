@@ -528,7 +528,6 @@ void write_map(std::ostream& out, const PlMap<d>& map, const ProgressCallback& p
 }
 
 template <int d>
-template <int d>
 void save_map(const std::filesystem::path& path, const PlMap<d>& map, const MapWriteOptions& options) {
   if (has_binary_map_extension(path)) {
     write_file_atomically(path, [&](std::ostream& out) { write_binary_map(out, map, options); }, true);

@@ -20,6 +20,34 @@ enum class TargetNormalCheck {
   aligned,  ///< <nu, n2> > 0: both surfaces oriented the same way (offset or remeshed copies)
 };
 
+/// The limits and slacks of the projection's searches (docs/algorithms/normal-projection.md,
+/// "Search limits"). The defaults suit every input tried; they are options so that a search
+/// that gives up can be widened without a rebuild. Slacks are in local or edge parameters,
+/// hence relative to the element size; lengths are derived from the input's scale.
+struct ProjectionSearchLimits {
+  /// Elements one seeded walk visits (across S1 for a vertex preimage, across S2 for a ray) before
+  /// it gives up; the walk moves towards the most negative barycentric coordinate.
+  int seed_walk_steps = 48;
+  /// Crossings one walk along an S2 edge may make; 0 (default): 2 |T1| + 16, more than any
+  /// preimage of one edge can cross.
+  int edge_walk_steps = 0;
+  /// A solution counts as inside an element if no barycentric coordinate is below
+  /// -inside_tolerance (then it is clamped onto the element).
+  double inside_tolerance = 1e-9;
+  /// How far outside [0, 1] the S1 edge parameter of a crossing (eq. 4) may lie, and by how
+  /// much the S2 edge parameter must grow from one crossing to the next.
+  double edge_parameter_slack = 1e-9;
+  /// Second search for S2 vertices without a preimage: how many of the nearest ray hits seed it,
+  /// and how far (times the largest distance between the hits of two corners of an S1 element
+  /// around the hit's vertex) a hit may lie from the vertex.
+  int second_search_hits = 4;
+  double second_search_reach = 1.5;
+  /// A ray whose hit, seeded next to the previous vertex's hit, lies farther along it than that
+  /// hit by more than this many times the longest S1 edge at its vertex is cast again from the
+  /// elements nearest to the vertex, and the nearer admissible hit is kept.
+  double farther_hit_retry = 4.0;
+};
+
 struct ProjectionOptions {
   /// Projection directions at the S1 vertices, d+1 numbers per vertex (vertex-major); they are
   /// normalised, so the distance mu along them is a length. Empty (default): averaged vertex
@@ -56,6 +84,8 @@ struct ProjectionOptions {
   /// at its start and end, and every 4096 edges in "S2 edges"; called from the calling thread
   /// only. Optional; a callback that throws cancels the projection.
   ProgressCallback progress = {};
+  /// Limits and slacks of the searches; see ProjectionSearchLimits.
+  ProjectionSearchLimits search_limits = {};
 };
 
 }  // namespace plmap

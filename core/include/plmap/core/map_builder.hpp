@@ -27,6 +27,7 @@
 
 #include <plmap/core/pl_map.hpp>
 
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -81,6 +82,18 @@ struct VertexCrossing {
   double target_parameter = std::numeric_limits<double>::quiet_NaN();
 };
 
+/// Where a piece of an S2 edge's preimage starts (MapBuilder::add_edge_piece).
+enum class PieceStart : std::uint8_t {
+  first_vertex,    ///< at the preimage of the edge's first vertex
+  first_crossing,  ///< at the first crossing given (e.g. where the edge enters S1 across ∂S1)
+};
+
+/// Where a piece of an S2 edge's preimage ends (MapBuilder::add_edge_piece).
+enum class PieceEnd : std::uint8_t {
+  second_vertex,  ///< at the preimage of the edge's second vertex
+  last_crossing,  ///< at the last crossing given (∂S1, or where the projection stops being defined)
+};
+
 template <int d>
   requires SurfaceDimension<d>
 class MapBuilder {
@@ -125,16 +138,17 @@ class MapBuilder {
     requires(d == 1);
 
   /// Inserts a piece of an S2 edge's preimage where the map is defined on only part of the edge
-  /// (it leaves S1 through S1's boundary, or D ends): the piece starts at the preimage of the
-  /// edge's first vertex if `starts_at_first_vertex`, else at crossings.front(), and ends at the
-  /// preimage of the second vertex if `ends_at_second_vertex`, else at crossings.back().
-  /// Crossings are in order from the first vertex's side, and every crossing must give its
-  /// target_parameter. An S2 edge may consist of several disjoint pieces.
-  void add_edge_piece(Index target_edge, std::span<const EdgeCrossing> crossings,
-                      bool starts_at_first_vertex, bool ends_at_second_vertex)
+  /// (it leaves S1 through S1's boundary, or D ends inside S1, e.g. where a projection folds):
+  /// the piece starts at the preimage of the edge's first vertex or at crossings.front(), and
+  /// ends at the preimage of the second vertex or at crossings.back(). A piece that ends at a
+  /// crossing inside S1 leaves the faces beyond that crossing without one common S2 element, so
+  /// they are not regions: D ends there. Crossings are in order from the first vertex's side,
+  /// and every crossing must give its target_parameter. An S2 edge may consist of several
+  /// disjoint pieces.
+  void add_edge_piece(Index target_edge, std::span<const EdgeCrossing> crossings, PieceStart start, PieceEnd end)
     requires(d == 2);
-  void add_edge_piece(Index target_element, std::span<const VertexCrossing> crossings,
-                      bool starts_at_first_vertex, bool ends_at_second_vertex)
+  void add_edge_piece(Index target_element, std::span<const VertexCrossing> crossings, PieceStart start,
+                      PieceEnd end)
     requires(d == 1);
   /// Declares that no part of S2 edge `target_edge` (d = 2) / segment (d = 1) lies over D (e.g.
   /// it lies beyond S1's boundary), so that the regions of S2 elements having such an edge are
