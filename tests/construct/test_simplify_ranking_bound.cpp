@@ -55,7 +55,8 @@ std::string bound_violation(const PlanPair& p) {
 TEST(SimplifyRankingBound, IsALowerBoundOfTheFullPlanThroughoutASimplification) {
   const AnyStarFlattening flatten = make_star_flattening("polar-map");
   const AnyHoleTriangulation triangulate = make_hole_triangulation("constrained-delaunay");
-  rc::check([&](std::uint32_t seed) {
+  // rc::check reports a counterexample but does not fail the test by itself.
+  EXPECT_TRUE(rc::check([&](std::uint32_t seed) {
     const int subdivisions = *rc::gen::inRange(1, 3);
     const double jitter = *rc::gen::inRange(0, 25) / 100.0;
     generators::Rng rng(seed);
@@ -83,7 +84,7 @@ TEST(SimplifyRankingBound, IsALowerBoundOfTheFullPlanThroughoutASimplification) 
       if (!step) break;
       map.apply(*step);
     }
-  });
+  }));
 }
 
 TEST(SimplifyRankingBound, MissesTheCrossingsOfALateCoarseStar) {
