@@ -78,7 +78,9 @@ TEST(SimplifyRankingBound, IsALowerBoundOfTheFullPlanThroughoutASimplification) 
         if (!pair) continue;
         ++checked;
         RC_ASSERT(bound_violation(*pair) == "");
-        if (pair->bound.accepted()) RC_ASSERT_THROWS_AS(map.apply(pair->bound), Error);
+        if (pair->bound.accepted()) {
+          RC_ASSERT_THROWS_AS(map.apply(pair->bound), Error);
+        }
         if (!step && pair->full.accepted()) step = pair->full;
       }
       if (!step) break;
