@@ -114,8 +114,9 @@ class Simplifier {
   bool is_feature(Index v) const { return feature_vertex_[v] != 0; }
   EditableMap& map() { return map_; }
 
-  Attempt attempt(Index v) const {
-    if (line_neighbours_[v][0] != invalid_index && !is_corner(v)) return attempt_along_line(v);
+  /// Plans the removal of v (fully, or only its ranking bound) and judges it.
+  Attempt attempt(Index v, PlanExtent extent) const {
+    if (line_neighbours_[v][0] != invalid_index && !is_corner(v)) return attempt_along_line(v, extent);
     Attempt a;
     a.plan.vertex = v;
     const std::vector<Index> ring = map_.closed_ring(v);
@@ -144,7 +145,7 @@ class Simplifier {
         a.refusal = to_string(RemovalRefusal::no_triangulation);
         return a;
       }
-      a.plan = map_.plan_vertex_removal(v, *flat, *triangles);
+      a.plan = map_.plan_vertex_removal(v, *flat, *triangles, extent);
       if (a.plan.refusal != RemovalRefusal::node_on_new_edge || a.plan.blocking_diagonal[0] < 0) break;
       avoided.push_back(a.plan.blocking_diagonal);
     }
@@ -153,7 +154,7 @@ class Simplifier {
 
   /// The removal of v along its feature line: each side of the line (half-star) is flattened
   /// onto a half-disk and re-triangulated on its own; the new edge joins the line neighbours.
-  Attempt attempt_along_line(Index v) const {
+  Attempt attempt_along_line(Index v, PlanExtent extent) const {
     Attempt a;
     a.plan.vertex = v;
     const auto [left, right] = line_neighbours_[v];
@@ -197,7 +198,7 @@ class Simplifier {
         }
         triangles[g] = std::move(*t);
       }
-      a.plan = map_.plan_vertex_removal(v, sheets, flat, triangles);
+      a.plan = map_.plan_vertex_removal(v, sheets, flat, triangles, extent);
       if (a.plan.refusal != RemovalRefusal::node_on_new_edge || a.plan.blocking_diagonal[0] < 0) break;
       avoided.push_back({a.plan.blocking_sheet, a.plan.blocking_diagonal[0], a.plan.blocking_diagonal[1]});
     }
@@ -228,11 +229,14 @@ class Simplifier {
         if (n == v) n = other;
   }
 
-  /// Ranks v (if removable) and queues it; an older queue entry of v becomes stale.
+  /// Ranks v (if removable) and queues it; an older queue entry of v becomes stale. The rank is
+  /// the oracles' cost of the plan's ranking bound (PlanExtent): a lower bound of the full
+  /// plan's cost, since only the Hausdorff oracle looks at the nodes and it grows with them.
+  /// Ranking fully would cost one full plan per ring vertex of every removal (about six).
   void rank(Index v) {
     ++stamp_[v];
     if (!map_.is_live_vertex(v) || is_corner(v)) return;
-    const Attempt a = attempt(v);
+    const Attempt a = attempt(v, PlanExtent::ranking_bound);
     last_refusal_[v] = a.refusal;
     if (a.refusal.empty()) queue_.push({a.verdict.cost, v, stamp_[v]});
   }
@@ -248,16 +252,24 @@ class Simplifier {
       const Entry top = queue_.top();
       queue_.pop();
       if (top.stamp != stamp_[top.vertex] || !map_.is_live_vertex(top.vertex)) continue;
-      // The star may have changed around it (a new edge between two ring vertices), so the step
-      // is planned again on the current state before it is carried out.
-      Attempt a = attempt(top.vertex);
+      // The star may have changed around it (a new edge between two ring vertices), and it was
+      // ranked by a lower bound, so the step is planned fully on the current state. Every queued
+      // cost is a lower bound of its vertex's full cost, so a vertex whose full cost is not
+      // above its queued cost is the cheapest of all (the order of ranking every candidate
+      // fully); otherwise it goes back with its full cost.
+      Attempt a = attempt(top.vertex, PlanExtent::full);
       last_refusal_[top.vertex] = a.refusal;
       if (!a.refusal.empty()) {
         ++stamp_[top.vertex];
         continue;
       }
-      if (a.verdict.cost > top.cost + 1e-12 * (1.0 + std::abs(top.cost))) {
-        // Its cost went up since it was ranked: queue it again at the right place.
+      if (a.verdict.cost > top.cost) {
+        // Its full cost is above its queued cost: queue it again at the right place. Exactly,
+        // without a tolerance: on flat pieces (a cube's faces) costs tie within rounding, and
+        // removing a vertex whose full cost is a rounding error above the next one's changes the
+        // greedy order and can leave the run stuck above its target. Planning is
+        // deterministic, so a vertex queued with its full cost passes this test when popped
+        // on an unchanged map.
         ++stamp_[top.vertex];
         queue_.push({a.verdict.cost, top.vertex, stamp_[top.vertex]});
         continue;

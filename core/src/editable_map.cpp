@@ -154,6 +154,8 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
   Impl& s = *impl_;
   if (!plan.accepted()) throw Error(fmt::format("EditableMap::apply: the removal of vertex {} was refused ({})",
                                                 plan.vertex, to_string(plan.refusal)));
+  if (plan.extent != PlanExtent::full)
+    throw Error(fmt::format("EditableMap::apply: the plan for vertex {} is a ranking bound, not a full plan", plan.vertex));
   if (plan.triangle_count_at_planning != static_cast<Index>(s.triangles.size()) || !s.vertex_live[plan.vertex])
     throw Error(fmt::format("EditableMap::apply: the plan for vertex {} was made on another state", plan.vertex));
 

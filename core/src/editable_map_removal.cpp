@@ -10,7 +10,8 @@
 // polyline that runs through the star is cut along the new triangles' interior edges (its old
 // crossings on the removed spokes disappear, so inside each new triangle it becomes the
 // straight segment between its new crossings). Finally each new triangle's segments are checked
-// not to cross, with exact predicates on the shared planar coordinates.
+// not to cross, with exact predicates on the shared planar coordinates (only pairs whose bounding
+// boxes overlap, found by a sweep along x).
 
 #include "editable_map_state.hpp"
 
@@ -88,20 +89,23 @@ struct SheetPlan {
 }  // namespace
 
 VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2> flattened_ring,
-                                                   std::span<const std::array<int, 3>> triangulation) const {
+                                                   std::span<const std::array<int, 3>> triangulation,
+                                                   PlanExtent extent) const {
   const StarSheet sheet{closed_ring(v), true};
   const std::vector<Vec2> flat(flattened_ring.begin(), flattened_ring.end());
   const std::vector<std::array<int, 3>> triangles(triangulation.begin(), triangulation.end());
-  return plan_vertex_removal(v, std::span(&sheet, 1), std::span(&flat, 1), std::span(&triangles, 1));
+  return plan_vertex_removal(v, std::span(&sheet, 1), std::span(&flat, 1), std::span(&triangles, 1), extent);
 }
 
 VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const StarSheet> sheets,
                                                    std::span<const std::vector<Vec2>> flattened,
-                                                   std::span<const std::vector<std::array<int, 3>>> triangulations) const {
+                                                   std::span<const std::vector<std::array<int, 3>>> triangulations,
+                                                   PlanExtent extent) const {
   const Impl& s = *impl_;
   const double clearance = s.options.edge_clearance;
   VertexRemovalPlan plan;
   plan.vertex = v;
+  plan.extent = extent;
   plan.triangle_count_at_planning = static_cast<Index>(s.triangles.size());
   auto refuse = [&plan](RemovalRefusal why) {
     plan.refusal = why;
@@ -324,6 +328,9 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
     }
   }
 
+  // A ranking bound ends here: the cut below only adds nodes (crossings) and refusals.
+  if (extent == PlanExtent::ranking_bound) return plan;
+
   // The planar point of S2 vertex w in sheet g, as it lies after the step; false if w is not in
   // that sheet (an inconsistent state; never expected).
   auto vertex_point = [&](int g, Index w, PlanarPoint& q) {
@@ -379,6 +386,14 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
 
+  // Buffers of the cut, reused for every polyline (a plan runs many thousands of times).
+  struct Cut {
+    double along;      // parameter on the segment
+    int diagonal;
+    double parameter;  // on the diagonal, from its first ring vertex
+  };
+  std::vector<Cut> cuts;
+  std::vector<PlanarPoint> points;
   std::vector<Piece> pieces;
   for (Index e : edges) {
     const EdgePolyline& p = s.polylines[e];
@@ -434,7 +449,7 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       const std::vector<Index>& ring = *sh.ring;
 
       // Planar points of the run, each from the first star triangle that holds it.
-      std::vector<PlanarPoint> points;
+      points.clear();
       for (int j = i; j <= run_end + 1; ++j) {
         const Index t = p.segment_triangle[std::min(j, run_end)];
         const auto& c = s.triangles[t];
@@ -469,12 +484,7 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       for (int j = 0; j + 1 < static_cast<int>(points.size()); ++j) {
         const Vec2& from = points[j].position;
         const Vec2& to = points[j + 1].position;
-        struct Cut {
-          double along;      // parameter on the segment
-          int diagonal;
-          double parameter;  // on the diagonal, from its first ring vertex
-        };
-        std::vector<Cut> cuts;
+        cuts.clear();
         for (int d = 0; d < static_cast<int>(sh.diagonals.size()); ++d) {
           const Index da = ring[sh.diagonals[d][0]], db = ring[sh.diagonals[d][1]];
           // A point that is a diagonal's own end never crosses it.
@@ -527,11 +537,26 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
   }
 
   // ---- check: straightened pieces in one new triangle must not meet except at shared ends ----
-  std::sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) { return a.triangle < b.triangle; });
-  for (std::size_t a = 0; a < pieces.size(); ++a)
-    for (std::size_t b = a + 1; b < pieces.size() && pieces[b].triangle == pieces[a].triangle; ++b)
+  // Sorted by triangle, then by the left end of the piece's x-range: two pieces that cross
+  // properly share an interior point, so their x-ranges overlap, and the scan over the later
+  // pieces of a triangle stops at the first one that starts right of the current piece's end
+  // (a sweep along x instead of all pairs: late coarse triangles carry many pieces).
+  auto min_x = [](const Piece& p) { return std::min(p.from.x(), p.to.x()); };
+  std::sort(pieces.begin(), pieces.end(), [&min_x](const Piece& a, const Piece& b) {
+    return a.triangle != b.triangle ? a.triangle < b.triangle : min_x(a) < min_x(b);
+  });
+  for (std::size_t a = 0; a < pieces.size(); ++a) {
+    const double max_x = std::max(pieces[a].from.x(), pieces[a].to.x());
+    const double low_y = std::min(pieces[a].from.y(), pieces[a].to.y());
+    const double high_y = std::max(pieces[a].from.y(), pieces[a].to.y());
+    for (std::size_t b = a + 1; b < pieces.size() && pieces[b].triangle == pieces[a].triangle; ++b) {
+      if (min_x(pieces[b]) > max_x) break;
+      if (std::max(pieces[b].from.y(), pieces[b].to.y()) < low_y || std::min(pieces[b].from.y(), pieces[b].to.y()) > high_y)
+        continue;
       if (segments_cross_properly(pieces[a].from, pieces[a].to, pieces[b].from, pieces[b].to))
         return refuse(RemovalRefusal::crossing_edges);
+    }
+  }
   return plan;
 }
 

@@ -82,6 +82,14 @@ struct StarSheet {
   bool closed = true;
 };
 
+/// How far EditableMap::plan_vertex_removal goes. `ranking_bound` stops after the new triangles
+/// and the relocated vertex preimages: no S2 edge polyline is cut and no crossing is checked.
+/// It costs a fraction of the full plan, refuses a subset of what the full plan refuses (the
+/// same triangulation choices), and its max_node_distance is a lower bound of the full plan's
+/// (the nodes of the new crossings are missing), so a simplifier can rank candidates by it and
+/// plan fully only the vertex it is about to remove. Such a plan cannot be applied.
+enum class PlanExtent { full, ranking_bound };
+
 /// One planned removal of an S1 vertex: the new triangles and where every node of the star goes.
 /// Produced by EditableMap::plan_vertex_removal and consumed by EditableMap::apply (or thrown
 /// away: planning changes nothing).
@@ -129,6 +137,7 @@ struct VertexRemovalPlan {
   std::vector<Relocation> relocations;
   std::vector<PolylineEdit> polyline_edits;
   Index triangle_count_at_planning = 0;
+  PlanExtent extent = PlanExtent::full;
 
   /// For node_on_new_edge: the diagonal (ring indices of sheet blocking_sheet) the node would
   /// lie on, if it is one; a caller may re-triangulate that sheet without it.
@@ -176,7 +185,8 @@ class EditableMap {
   /// vertex, counter-clockwise around v at the origin; ring order as closed_ring(v)) and the
   /// triangulation of that polygon (triples of ring indices). Never changes the map.
   VertexRemovalPlan plan_vertex_removal(Index v, std::span<const Eigen::Vector2d> flattened_ring,
-                                        std::span<const std::array<int, 3>> triangulation) const;
+                                        std::span<const std::array<int, 3>> triangulation,
+                                        PlanExtent extent = PlanExtent::full) const;
   /// The general form: plans the removal of v given its sheets (one closed sheet, or the open
   /// sheets of a vertex on a feature line), the flattening of each sheet and its triangulation.
   /// An open sheet's flattening puts its first ring vertex on the positive x axis, its last on
@@ -187,7 +197,8 @@ class EditableMap {
   /// move onto the new edge.
   VertexRemovalPlan plan_vertex_removal(Index v, std::span<const StarSheet> sheets,
                                         std::span<const std::vector<Eigen::Vector2d>> flattened,
-                                        std::span<const std::vector<std::array<int, 3>>> triangulations) const;
+                                        std::span<const std::vector<std::array<int, 3>>> triangulations,
+                                        PlanExtent extent = PlanExtent::full) const;
   /// Carries out an accepted plan made on the current state.
   void apply(const VertexRemovalPlan& plan);
 
