@@ -238,9 +238,11 @@ std::vector<double> neighbourhood_max(const Surface<2>& s1, const std::vector<do
 /// redone without them, a few times at most; then the pass is refused.
 void smooth_quadrilaterals(PlMap<2>& current, const AnySmoothingWeights& weights, SmoothReport& report,
                            SmoothSweepReport& sweep) {
-  constexpr int max_attempts = 4;
+  constexpr int max_attempts = 8;
   const Surface<2>& s1 = current.domain();
-  const std::vector<double> allowed = neighbourhood_max(s1, smoothing::worst_condition_per_element(current));
+  const std::vector<double> worst_before = smoothing::worst_condition_per_element(current);
+  const std::vector<double> allowed = neighbourhood_max(s1, worst_before);
+  const double global_allowed = *std::max_element(worst_before.begin(), worst_before.end());
   const double area = image_area(current);
   std::vector<char> frozen(static_cast<std::size_t>(s1.edge_count()), 0);
   for (int attempt = 0; attempt < max_attempts; ++attempt) {
@@ -283,13 +285,22 @@ void smooth_quadrilaterals(PlMap<2>& current, const AnySmoothingWeights& weights
     }
     if (!rebuilt) break;
     const std::vector<double> worst = smoothing::worst_condition_per_element(*rebuilt);
-    bool raised = false;
+    bool raised = false, beyond_repair = false;
     for (Index t = 0; t < s1.element_count(); ++t) {
       const std::size_t i = static_cast<std::size_t>(t);
       if (!(worst[i] > std::max(allowed[i], smoothing::free_condition))) continue;
-      raised = true;
-      for (int k = 0; k < 3; ++k) frozen[static_cast<std::size_t>(s1.element_edge(t, k))] = 1;
+      bool all_frozen = true;
+      for (int k = 0; k < 3; ++k) {
+        auto& f = frozen[static_cast<std::size_t>(s1.element_edge(t, k))];
+        all_frozen = all_frozen && f;
+        f = 1;
+      }
+      raised = raised || !all_frozen;
+      // No step touched t: MapBuilder triangulated its faces differently from the element pass's
+      // regions. Freezing more cannot help; tolerated up to the map's worst κ before the pass.
+      if (all_frozen && worst[i] > std::max(global_allowed, smoothing::free_condition)) beyond_repair = true;
     }
+    if (beyond_repair) break;
     if (raised) continue;
     sweep.quadrilaterals_smoothed = pass.quadrilaterals_smoothed;
     sweep.quad_nodes_moved = pass.quad_nodes_moved;
