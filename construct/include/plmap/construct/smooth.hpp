@@ -7,6 +7,8 @@
 /// the node's star on S2, so that the map gets closer to an isometry. T is convex and the weights
 /// positive, so Tutte's/Floater's theorem gives an embedding; the result is still checked with
 /// the exact orientation predicate, and an element whose solve would fold keeps its old nodes.
+/// Every step is also guarded by κ_Ξ of the regions it changes, so that after a sweep
+/// κ max ≤ max(κ max before, 3) (docs/algorithms/smoothing.md, "Guarantee").
 ///
 /// The element pass changes node positions and region maps only. Then (SmoothOptions::
 /// quadrilaterals) every S1 edge with two triangles is smoothed over their quadrilateral
