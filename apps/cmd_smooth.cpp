@@ -90,6 +90,7 @@ int run_smooth(const SmoothCommand& o) {
     sj["quadrilaterals_skipped_by_reason"] = qs;
     sj["quadrilateral_pass_rejected"] = s.quadrilateral_pass_rejected;
     sj["quadrilateral_attempts"] = s.quadrilateral_attempts;
+    sj["quadrilateral_pass_refused_by_kappa"] = s.quadrilateral_pass_refused_by_kappa;
     sj["elements_shortened"] = s.elements_shortened;
     sweeps.push_back(sj);
   }

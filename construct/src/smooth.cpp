@@ -236,13 +236,15 @@ std::vector<double> neighbourhood_max(const Surface<2>& s1, const std::vector<do
 /// map is measured, the edges of every element whose worst region got worse than
 /// max(the worst before in it and its neighbours, free_condition) are frozen, and the pass is
 /// redone without them, a few times at most; then the pass is refused.
-void smooth_quadrilaterals(PlMap<2>& current, const AnySmoothingWeights& weights, SmoothReport& report,
-                           SmoothSweepReport& sweep) {
+void smooth_quadrilaterals(PlMap<2>& current, double worst_at_sweep_start, const AnySmoothingWeights& weights,
+                           SmoothReport& report, SmoothSweepReport& sweep) {
   constexpr int max_attempts = 8;
   const Surface<2>& s1 = current.domain();
   const std::vector<double> worst_before = smoothing::worst_condition_per_element(current);
   const std::vector<double> allowed = neighbourhood_max(s1, worst_before);
-  const double global_allowed = *std::max_element(worst_before.begin(), worst_before.end());
+  // the sweep's guarantee is against the map before its element pass, which only lowers κ
+  const double global_allowed =
+      std::max(worst_at_sweep_start, *std::max_element(worst_before.begin(), worst_before.end()));
   const double area = image_area(current);
   std::vector<char> frozen(static_cast<std::size_t>(s1.edge_count()), 0);
   for (int attempt = 0; attempt < max_attempts; ++attempt) {
@@ -283,7 +285,10 @@ void smooth_quadrilaterals(PlMap<2>& current, const AnySmoothingWeights& weights
     } catch (const Error&) {
       // the step checks missed an inconsistency: keep the element pass's map
     }
-    if (!rebuilt) break;
+    if (!rebuilt) {
+      sweep.quadrilateral_pass_rejected = true;
+      return;
+    }
     const std::vector<double> worst = smoothing::worst_condition_per_element(*rebuilt);
     bool raised = false, beyond_repair = false;
     for (Index t = 0; t < s1.element_count(); ++t) {
@@ -297,7 +302,7 @@ void smooth_quadrilaterals(PlMap<2>& current, const AnySmoothingWeights& weights
       }
       raised = raised || !all_frozen;
       // No step touched t: MapBuilder triangulated its faces differently from the element pass's
-      // regions. Freezing more cannot help; tolerated up to the map's worst κ before the pass.
+      // regions. Freezing more cannot help; tolerated up to the map's worst κ before the sweep.
       if (all_frozen && worst[i] > std::max(global_allowed, smoothing::free_condition)) beyond_repair = true;
     }
     if (beyond_repair) break;
@@ -312,7 +317,7 @@ void smooth_quadrilaterals(PlMap<2>& current, const AnySmoothingWeights& weights
     current = std::move(*rebuilt);
     return;
   }
-  sweep.quadrilateral_pass_rejected = true;
+  sweep.quadrilateral_pass_refused_by_kappa = true;
 }
 
 }  // namespace
@@ -329,6 +334,8 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
   const Index elements = map.domain().element_count();
   for (int s = 1; s <= options.sweeps; ++s) {
     SmoothSweepReport sweep;
+    const double worst_at_sweep_start =
+        options.quadrilaterals ? std::ranges::max(smoothing::worst_condition_per_element(current)) : 1.0;
     MapData<2> next = current.data();
     ElementSmoother smoother(current, current.data(), weights, report);
     report.skipped_elements.clear();
@@ -343,7 +350,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
       if (!outcome.positions.empty()) apply_outcome(current, t, outcome.positions, next, sweep);
     }
     current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next));
-    if (options.quadrilaterals) smooth_quadrilaterals(current, weights, report, sweep);
+    if (options.quadrilaterals) smooth_quadrilaterals(current, worst_at_sweep_start, weights, report, sweep);
     if (options.measure_kappa) sweep.kappa = options.measure_kappa(current);
     report.sweeps.push_back(sweep);
     if (options.after_sweep) options.after_sweep(s, current);

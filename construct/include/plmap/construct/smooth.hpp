@@ -91,12 +91,14 @@ struct SmoothSweepReport {
   /// Times the pass ran: after each run the rebuilt map is measured, and where an element's worst
   /// κ_Ξ rose above max(the worst before in it and its edge neighbours, 3) the element's edges
   /// are frozen (counted in quadrilaterals_skipped_by_reason as "would raise the worst condition
-  /// number of the rebuilt map") and the pass runs again; at most 4 times.
+  /// number of the rebuilt map") and the pass runs again; at most 8 times.
   int quadrilateral_attempts = 0;
   /// True if the rebuilt map was refused (MapBuilder found a crossing or a reversed face, which
-  /// the step's checks should have prevented, or the 4th run still raised κ somewhere): the
-  /// sweep then keeps the element pass only.
+  /// the step's checks should have prevented): the sweep then keeps the element pass only.
   bool quadrilateral_pass_rejected = false;
+  /// True if the last run still raised κ (or an element no step touched rose above the map's
+  /// worst κ before the sweep): the sweep then keeps the element pass only.
+  bool quadrilateral_pass_refused_by_kappa = false;
 };
 
 struct SmoothReport {
