@@ -95,6 +95,9 @@ int run_smooth(const SmoothCommand& o) {
     for (const auto& [why, count] : s.quadrilaterals_skipped_by_reason) qs[why] = count;
     sj["quadrilaterals_skipped_by_reason"] = qs;
     sj["quadrilateral_pass_rejected"] = s.quadrilateral_pass_rejected;
+    sj["quadrilateral_attempts"] = s.quadrilateral_attempts;
+    sj["quadrilateral_pass_refused_by_kappa"] = s.quadrilateral_pass_refused_by_kappa;
+    sj["elements_shortened"] = s.elements_shortened;
     sweeps.push_back(sj);
   }
   j["after"] = sweeps.back();

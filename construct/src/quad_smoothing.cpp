@@ -1,6 +1,7 @@
 // One quadrilateral smoothing step; see quad_smoothing.hpp for the method.
 
 #include "quad_smoothing.hpp"
+#include "region_condition.hpp"
 
 #include <plmap/core/predicates.hpp>
 #include <plmap/strategies/smoothing/uniform_weights.hpp>
@@ -25,10 +26,6 @@ using Vec2 = Eigen::Vector2d;
 /// makes the step refused. Far above MapBuilder's snap tolerance (1e-10), so the builder never
 /// snaps what the step kept apart; relative to the element, hence scale free.
 constexpr double clearance = 1e-8;
-
-/// Spoke triangles this well conditioned (κ, dimensionless) may get worse in a step: near an
-/// isometry the guard below would only stop the weights from trading one good piece for another.
-constexpr double free_condition = 3.0;
 
 /// The quadrilateral laid into the plane: A at the origin, B on the positive x axis, C1 above,
 /// C2 below; and the affine maps between each triangle's local coordinates and the plane.

@@ -4,6 +4,7 @@
 
 #include "preimage_graph.hpp"
 #include "quad_smoothing.hpp"
+#include "region_condition.hpp"
 
 #include <plmap/core/affine_through.hpp>
 #include <plmap/core/element_transfer.hpp>
@@ -29,6 +30,7 @@ namespace {
 struct ElementOutcome {
   std::vector<LocalPoint<2>> positions;  ///< indexed by node - node_begin[T]; empty if skipped
   const char* skipped = nullptr;
+  bool shortened = false;  ///< the κ guard kept only part of the solve's move
 };
 
 class ElementSmoother {
@@ -97,31 +99,70 @@ class ElementSmoother {
       out.skipped = "solver";
       return out;
     }
-    out.positions.assign(m_.node_position.begin() + nb, m_.node_position.begin() + ne);
-    for (Index n = nb; n < ne; ++n) {
-      const int i = unknown_[local(n)];
-      if (i < 0) continue;
-      const LocalPoint<2> p = x.row(i).transpose();
-      // strictly inside the reference triangle, or the node would leave its element
-      if (!(p.x() > 0.0 && p.y() > 0.0 && p.x() + p.y() < 1.0)) {
-        out.positions.clear();
-        out.skipped = "fold-over";
+    // The solve's positions, then, if they would raise the element's worst κ (below), the
+    // positions part of the way there: 1/2, 1/4, ... of the move.
+    std::vector<LocalPoint<2>> solved(m_.node_position.begin() + nb, m_.node_position.begin() + ne);
+    for (Index n = nb; n < ne; ++n)
+      if (unknown_[local(n)] >= 0) solved[local(n)] = x.row(unknown_[local(n)]).transpose();
+    const double worst_before = worst_condition(t, {m_.node_position.begin() + nb, m_.node_position.begin() + ne});
+    const double allowed = std::max(worst_before, smoothing::free_condition);
+    std::vector<LocalPoint<2>> candidate(solved.size());
+    bool embeds = false;
+    for (int halvings = 0; halvings <= max_halvings; ++halvings) {
+      const double step = std::ldexp(1.0, -halvings);
+      for (std::size_t i = 0; i < solved.size(); ++i)
+        candidate[i] = m_.node_position[nb + static_cast<Index>(i)] + step * (solved[i] - m_.node_position[nb + static_cast<Index>(i)]);
+      if (!embeds_in_element(t, candidate)) continue;
+      embeds = true;
+      if (worst_condition(t, candidate) <= allowed) {
+        out.positions = candidate;
+        out.shortened = halvings > 0;
         return out;
       }
-      out.positions[local(n)] = p;
     }
-    for (Index r = rb; r < re; ++r) {
-      const auto& c = m_.region_corners[r];
-      if (orient2d(out.positions[local(c[0])], out.positions[local(c[1])], out.positions[local(c[2])]) <= 0) {
-        out.positions.clear();
-        out.skipped = "fold-over";
-        return out;
-      }
-    }
+    // Tutte/Floater guarantee the full step embeds; a refusal by the orientation test means the
+    // solve was inaccurate, one by the κ guard that no part of the move keeps κ in bounds.
+    out.skipped = embeds ? "would raise the worst condition number" : "fold-over";
     return out;
   }
 
  private:
+  /// Halvings of a move the κ guard tries before it leaves the element as it was.
+  static constexpr int max_halvings = 6;
+
+  /// Every free node strictly inside the reference triangle (else it would leave its element)
+  /// and every region of t positively oriented (exact predicate): no fold-over.
+  bool embeds_in_element(Index t, const std::vector<LocalPoint<2>>& positions) const {
+    const Index nb = m_.node_begin[t];
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      if (m_.node_type[nb + static_cast<Index>(i)] != NodeType::interior) continue;
+      const LocalPoint<2>& p = positions[i];
+      if (!(p.x() > 0.0 && p.y() > 0.0 && p.x() + p.y() < 1.0)) return false;
+    }
+    for (Index r = m_.region_begin[t]; r < m_.region_begin[t + 1]; ++r) {
+      const auto& c = m_.region_corners[r];
+      if (orient2d(positions[c[0] - nb], positions[c[1] - nb], positions[c[2] - nb]) <= 0) return false;
+    }
+    return true;
+  }
+
+  /// The largest κ_Ξ of t's regions with t's nodes at `positions` (their images unchanged):
+  /// exactly what the quality report measures on these regions.
+  double worst_condition(Index t, const std::vector<LocalPoint<2>>& positions) const {
+    const Index nb = m_.node_begin[t];
+    double worst = 1.0;
+    for (Index r = m_.region_begin[t]; r < m_.region_begin[t + 1]; ++r) {
+      const auto& c = m_.region_corners[r];
+      std::array<Eigen::Vector3d, 3> from, to;
+      for (int k = 0; k < 3; ++k) {
+        from[k] = map_.domain().world_position(t, positions[c[k] - nb]);
+        to[k] = smoothing::region_corner_target_world(map_, r, k);
+      }
+      worst = std::max(worst, smoothing::triangle_condition(from, to));
+    }
+    return worst;
+  }
+
   const PlMap<2>& map_;
   const MapData<2>& m_;
   const AnySmoothingWeights& weights_;
@@ -173,45 +214,110 @@ double image_area(const PlMap<2>& map) {
   return total;
 }
 
-/// The quadrilateral pass of one sweep: every S1 edge with two triangles, in index order, each
-/// step seeing the previous ones; then the map is rebuilt from the edited graph.
-void smooth_quadrilaterals(PlMap<2>& current, const AnySmoothingWeights& weights, SmoothReport& report,
-                           SmoothSweepReport& sweep) {
-  std::string why;
-  std::optional<smoothing::PreimageGraph> graph = smoothing::PreimageGraph::from_map(current, &why);
-  if (!graph) {
-    report.quadrilaterals_not_applicable = why;
-    return;
-  }
-  smoothing::QuadSmoother smoother(*graph, current.domain(), current.target(), weights);
-  for (Index e = 0; e < current.domain().edge_count(); ++e) {
-    if (!smoother.has_quadrilateral(e)) continue;
-    const smoothing::QuadOutcome o = smoother.smooth(e);
-    if (o.skipped != nullptr) {
-      ++sweep.quadrilaterals_skipped_by_reason[o.skipped];
-      continue;
+/// Per S1 element, the largest of its own and its edge neighbours' values: a quadrilateral step
+/// moves regions only between the two triangles of its edge.
+std::vector<double> neighbourhood_max(const Surface<2>& s1, const std::vector<double>& value) {
+  std::vector<double> out = value;
+  for (Index e = 0; e < s1.edge_count(); ++e) {
+    double worst = 1.0;
+    for (const auto& inc : s1.edge_elements(e)) worst = std::max(worst, value[static_cast<std::size_t>(inc.element)]);
+    for (const auto& inc : s1.edge_elements(e)) {
+      auto& o = out[static_cast<std::size_t>(inc.element)];
+      o = std::max(o, worst);
     }
-    ++sweep.quadrilaterals_smoothed;
-    sweep.quad_nodes_moved += o.nodes_moved;
-    sweep.nodes_crossed += o.nodes_crossed;
-    sweep.quad_max_displacement = std::max(sweep.quad_max_displacement, o.max_displacement);
   }
-  sweep.quad_uniform_fallbacks = smoother.uniform_fallbacks();
-  try {
-    FinalizeReport built;
-    PlMap<2> rebuilt = graph->to_map(current.domain_ptr(), current.target_ptr(), &built);
-    // The same coverage of S2, up to rounding: guards against a map the graph form cannot hold
-    // (e.g. an S2 edge whose preimage leaves D between two vertex preimages).
-    const double area = image_area(current);
-    if (built.reversed_faces == 0 && built.dropped_edges.empty() && rebuilt.region_count() > 0 &&
-        std::abs(image_area(rebuilt) - area) <= 1e-9 * area) {
-      current = std::move(rebuilt);
+  return out;
+}
+
+/// The quadrilateral pass of one sweep: every S1 edge with two triangles, in index order, each
+/// step seeing the previous ones; then the map is rebuilt from the edited graph. Each step's own
+/// κ guard sees the spoke triangles, not the regions MapBuilder makes of the edited graph (it
+/// triangulates faces that include fixed points on the quadrilateral's boundary); so the rebuilt
+/// map is measured, the edges of every element whose worst region got worse than
+/// max(the worst before in it and its neighbours, free_condition) are frozen, and the pass is
+/// redone without them, a few times at most; then the pass is refused.
+void smooth_quadrilaterals(PlMap<2>& current, double worst_at_sweep_start, const AnySmoothingWeights& weights,
+                           SmoothReport& report, SmoothSweepReport& sweep) {
+  constexpr int max_attempts = 8;
+  const Surface<2>& s1 = current.domain();
+  const std::vector<double> worst_before = smoothing::worst_condition_per_element(current);
+  const std::vector<double> allowed = neighbourhood_max(s1, worst_before);
+  // the sweep's guarantee is against the map before its element pass, which only lowers κ
+  const double global_allowed =
+      std::max(worst_at_sweep_start, *std::max_element(worst_before.begin(), worst_before.end()));
+  const double area = image_area(current);
+  std::vector<char> frozen(static_cast<std::size_t>(s1.edge_count()), 0);
+  for (int attempt = 0; attempt < max_attempts; ++attempt) {
+    SmoothSweepReport pass;
+    std::string why;
+    std::optional<smoothing::PreimageGraph> graph = smoothing::PreimageGraph::from_map(current, &why);
+    if (!graph) {
+      report.quadrilaterals_not_applicable = why;
       return;
     }
-  } catch (const Error&) {
-    // falls through: the step checks missed an inconsistency; keep the element pass's map
+    smoothing::QuadSmoother smoother(*graph, s1, current.target(), weights);
+    for (Index e = 0; e < s1.edge_count(); ++e) {
+      if (!smoother.has_quadrilateral(e)) continue;
+      if (frozen[static_cast<std::size_t>(e)]) {
+        ++pass.quadrilaterals_skipped_by_reason["would raise the worst condition number of the rebuilt map"];
+        continue;
+      }
+      const smoothing::QuadOutcome o = smoother.smooth(e);
+      if (o.skipped != nullptr) {
+        ++pass.quadrilaterals_skipped_by_reason[o.skipped];
+        continue;
+      }
+      ++pass.quadrilaterals_smoothed;
+      pass.quad_nodes_moved += o.nodes_moved;
+      pass.nodes_crossed += o.nodes_crossed;
+      pass.quad_max_displacement = std::max(pass.quad_max_displacement, o.max_displacement);
+    }
+    pass.quad_uniform_fallbacks = smoother.uniform_fallbacks();
+    std::optional<PlMap<2>> rebuilt;
+    try {
+      FinalizeReport built;
+      PlMap<2> map = graph->to_map(current.domain_ptr(), current.target_ptr(), &built);
+      // The same coverage of S2, up to rounding: guards against a map the graph form cannot hold
+      // (e.g. an S2 edge whose preimage leaves D between two vertex preimages).
+      if (built.reversed_faces == 0 && built.dropped_edges.empty() && map.region_count() > 0 &&
+          std::abs(image_area(map) - area) <= 1e-9 * area)
+        rebuilt = std::move(map);
+    } catch (const Error&) {
+      // the step checks missed an inconsistency: keep the element pass's map
+    }
+    if (!rebuilt) {
+      sweep.quadrilateral_pass_rejected = true;
+      return;
+    }
+    const std::vector<double> worst = smoothing::worst_condition_per_element(*rebuilt);
+    bool raised = false, beyond_repair = false;
+    for (Index t = 0; t < s1.element_count(); ++t) {
+      const std::size_t i = static_cast<std::size_t>(t);
+      if (!(worst[i] > std::max(allowed[i], smoothing::free_condition))) continue;
+      bool all_frozen = true;
+      for (int k = 0; k < 3; ++k) {
+        auto& f = frozen[static_cast<std::size_t>(s1.element_edge(t, k))];
+        all_frozen = all_frozen && f;
+        f = 1;
+      }
+      raised = raised || !all_frozen;
+      // No step touched t: MapBuilder triangulated its faces differently from the element pass's
+      // regions. Freezing more cannot help; tolerated up to the map's worst κ before the sweep.
+      if (all_frozen && worst[i] > std::max(global_allowed, smoothing::free_condition)) beyond_repair = true;
+    }
+    if (beyond_repair) break;
+    if (raised) continue;
+    sweep.quadrilaterals_smoothed = pass.quadrilaterals_smoothed;
+    sweep.quad_nodes_moved = pass.quad_nodes_moved;
+    sweep.nodes_crossed = pass.nodes_crossed;
+    sweep.quad_max_displacement = pass.quad_max_displacement;
+    sweep.quad_uniform_fallbacks = pass.quad_uniform_fallbacks;
+    sweep.quadrilaterals_skipped_by_reason = pass.quadrilaterals_skipped_by_reason;
+    sweep.quadrilateral_attempts = attempt + 1;
+    current = std::move(*rebuilt);
+    return;
   }
-  sweep.quadrilateral_pass_rejected = true;
+  sweep.quadrilateral_pass_refused_by_kappa = true;
 }
 
 }  // namespace
@@ -229,6 +335,8 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
   for (int s = 1; s <= options.sweeps; ++s) {
     report_progress(options.progress, "smoothing sweeps", static_cast<std::uint64_t>(s - 1), static_cast<std::uint64_t>(options.sweeps));
     SmoothSweepReport sweep;
+    const double worst_at_sweep_start =
+        options.quadrilaterals ? std::ranges::max(smoothing::worst_condition_per_element(current)) : 1.0;
     MapData<2> next = current.data();
     ElementSmoother smoother(current, current.data(), weights, report);
     report.skipped_elements.clear();
@@ -239,10 +347,11 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
         report.skipped_elements.push_back(t);
         continue;
       }
+      if (outcome.shortened) ++sweep.elements_shortened;
       if (!outcome.positions.empty()) apply_outcome(current, t, outcome.positions, next, sweep);
     }
     current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next));
-    if (options.quadrilaterals) smooth_quadrilaterals(current, weights, report, sweep);
+    if (options.quadrilaterals) smooth_quadrilaterals(current, worst_at_sweep_start, weights, report, sweep);
     if (options.measure_kappa) sweep.kappa = options.measure_kappa(current);
     report.sweeps.push_back(sweep);
     if (options.after_sweep) options.after_sweep(s, current);

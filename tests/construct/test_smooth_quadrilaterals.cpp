@@ -212,9 +212,10 @@ RC_GTEST_PROP(QuadSmoothingProperties, SweepsKeepSimplifiedSpheresValid, ()) {
 }
 
 // Paper Fig. 10: a sphere simplified hard (5,120 -> 152 triangles; κ max 19, mean 1.66) gets a
-// better map. Floater's and mean-value weights lower κ max and mean; uniform weights (Tutte)
-// ignore the geometry and raise both (to about 170 / 3.05), so for them only validity is
-// asserted (numbers in docs/algorithms/smoothing.md).
+// better map. Floater's and mean-value weights lower κ max and mean (to 4.27 and 4.87); uniform
+// weights (Tutte) ignore the geometry: unguarded they raised κ max to about 170, now the κ
+// guards keep it below the start (13.7) but refuse the steps that would cross edges, so for
+// them only validity and the guard are asserted (numbers in docs/algorithms/smoothing.md).
 // Simplified surfaces with boundary or non-manifold edges (feature lines kept by simplify):
 // quadrilaterals next to the boundary or a non-manifold edge must be refused or handled, never
 // break the map.
@@ -254,8 +255,9 @@ TEST(QuadSmoothing, KappaFallsOnAHardSimplifiedSphere) {
     for (const auto& sweep : r.report.sweeps) crossed += sweep.nodes_crossed;
     std::cout << weights << ": kappa max " << before.kappa_max << " -> " << after.kappa_max << ", mean "
               << before.kappa_mean << " -> " << after.kappa_mean << ", crossed " << crossed << "\n";
-    EXPECT_GT(crossed, 0);
+    EXPECT_LE(after.kappa_max, before.kappa_max);  // the κ guards, for every model
     if (weights != "uniform") {
+      EXPECT_GT(crossed, 0);
       EXPECT_LT(after.kappa_max, 0.8 * before.kappa_max);
       EXPECT_LT(after.kappa_mean, before.kappa_mean);
     }

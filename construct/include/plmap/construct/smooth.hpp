@@ -7,6 +7,8 @@
 /// the node's star on S2, so that the map gets closer to an isometry. T is convex and the weights
 /// positive, so Tutte's/Floater's theorem gives an embedding; the result is still checked with
 /// the exact orientation predicate, and an element whose solve would fold keeps its old nodes.
+/// Every step is also guarded by κ_Ξ of the regions it changes, so that after a sweep
+/// κ max ≤ max(κ max before, 3) (docs/algorithms/smoothing.md, "Guarantee").
 ///
 /// The element pass changes node positions and region maps only. Then (SmoothOptions::
 /// quadrilaterals) every S1 edge with two triangles is smoothed over their quadrilateral
@@ -72,6 +74,10 @@ struct SmoothSweepReport {
   Index nodes_moved = 0;        ///< free nodes whose position changed
   /// Largest node displacement, in the element's local coordinates (the reference triangle).
   double max_displacement = 0.0;
+  /// Elements whose solve would have raised their worst κ_Ξ above max(old, 3), so that only a
+  /// part of the move (1/2, 1/4, ... 1/64) was kept (elements refused outright are counted in
+  /// SmoothReport::skipped_by_reason["would raise the worst condition number"]).
+  Index elements_shortened = 0;
   /// κ_Ξ after this sweep (when SmoothOptions::measure_kappa is given).
   std::optional<KappaSummary> kappa;
 
@@ -86,9 +92,17 @@ struct SmoothSweepReport {
   /// Steps refused (the quadrilateral left as it was), by reason: "non-convex quadrilateral",
   /// "fold-over", "node leaves the quadrilateral", "crossing next to a vertex", ...
   std::map<std::string, Index> quadrilaterals_skipped_by_reason;
+  /// Times the pass ran: after each run the rebuilt map is measured, and where an element's worst
+  /// κ_Ξ rose above max(the worst before in it and its edge neighbours, 3) the element's edges
+  /// are frozen (counted in quadrilaterals_skipped_by_reason as "would raise the worst condition
+  /// number of the rebuilt map") and the pass runs again; at most 8 times.
+  int quadrilateral_attempts = 0;
   /// True if the rebuilt map was refused (MapBuilder found a crossing or a reversed face, which
   /// the step's checks should have prevented): the sweep then keeps the element pass only.
   bool quadrilateral_pass_rejected = false;
+  /// True if the last run still raised κ (or an element no step touched rose above the map's
+  /// worst κ before the sweep): the sweep then keeps the element pass only.
+  bool quadrilateral_pass_refused_by_kappa = false;
 };
 
 struct SmoothReport {

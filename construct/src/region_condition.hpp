@@ -1,0 +1,87 @@
+#pragma once
+/// κ_Ξ of a region as smoothing sees it: the condition number of the linear map from the region's
+/// triangle on S1 (world coordinates) to its image triangle on S2, the same quantity verify's
+/// quality report measures (DESIGN.md §4.7). construct/ does not depend on verify/, so the
+/// smoothing guards compute it here; both use the closed form of a 2 × 2 problem.
+
+#include <plmap/core/element_transfer.hpp>
+#include <plmap/core/pl_map.hpp>
+#include <plmap/core/scaled_geometry.hpp>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace plmap::smoothing {
+
+/// Pieces this well conditioned (κ, dimensionless) may get worse in a smoothing step: near an
+/// isometry a guard would only stop the weights from trading one good piece for another. So
+/// every guard allows κ up to max(its old value, free_condition).
+constexpr double free_condition = 3.0;
+
+/// The edge vectors p1 - p0, p2 - p0 of a triangle in an orthonormal frame of its plane (first
+/// axis along p1 - p0, second towards p2): upper triangular. Scaled by a power of two first, so
+/// that the squares inside the norms stay in range. The same frame as verify's quality report,
+/// so that a guard here and the reported κ agree even on slivers, where rounding dominates.
+inline Eigen::Matrix2d frame_coordinates(const std::array<Eigen::Vector3d, 3>& p) {
+  const double scale = power_of_two_scale<2>({p[1] - p[0], p[2] - p[0]});
+  const Eigen::Vector3d u = (p[1] - p[0]) / scale, v = (p[2] - p[0]) / scale;
+  Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
+  const double lu = u.norm();
+  if (lu == 0.0) return m;
+  const Eigen::Vector3d e1 = u / lu;
+  m(0, 0) = lu;
+  m(0, 1) = v.dot(e1);
+  m(1, 1) = (v - m(0, 1) * e1).norm();
+  return scale * m;
+}
+
+/// Condition number of the affine map taking triangle `from` to triangle `to` (both in 3D, each
+/// within its own plane); infinite if `from` is degenerate or the map is singular.
+inline double triangle_condition(const std::array<Eigen::Vector3d, 3>& from, const std::array<Eigen::Vector3d, 3>& to) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const Eigen::Matrix2d p = frame_coordinates(from), q = frame_coordinates(to);
+  if (!(p(0, 0) * p(1, 1) > 0.0)) return inf;
+  const Eigen::Matrix2d a = q * p.inverse();
+  // singular values of a 2 × 2 matrix in closed form
+  const double e = 0.5 * (a(0, 0) + a(1, 1)), f = 0.5 * (a(0, 0) - a(1, 1));
+  const double g = 0.5 * (a(1, 0) + a(0, 1)), h = 0.5 * (a(1, 0) - a(0, 1));
+  const double r1 = std::hypot(e, h), r2 = std::hypot(f, g);
+  const double largest = r1 + r2, smallest = std::abs(r1 - r2);
+  return smallest > 0.0 ? largest / smallest : inf;
+}
+
+/// World position on S2 of corner k of region r, as the quality report takes it: the corner's
+/// image moved onto the region's S2 element exactly where it can be (a vertex, an edge), else
+/// the region's affine map at the corner (remote_intersection in core/regions.hpp).
+inline Eigen::Vector3d region_corner_target_world(const PlMap<2>& map, Index r, int k) {
+  const auto& m = map.data();
+  const Index n = m.region_corners[r][k];
+  const LocalPoint<2> at = transfer_to_element(map.target(), m.node_image[n], m.region_target[r])
+                               .value_or(apply<2>(m.region_map[r], m.node_position[n]));
+  return map.target().world_position(m.region_target[r], at);
+}
+
+/// κ of region r of a surface map.
+inline double region_condition(const PlMap<2>& map, Index r) {
+  const auto& c = map.data().region_corners[r];
+  return triangle_condition({map.node_domain_world(c[0]), map.node_domain_world(c[1]), map.node_domain_world(c[2])},
+                            {region_corner_target_world(map, r, 0), region_corner_target_world(map, r, 1),
+                             region_corner_target_world(map, r, 2)});
+}
+
+/// Per S1 element, the largest κ of its regions (1 for an element without regions).
+inline std::vector<double> worst_condition_per_element(const PlMap<2>& map) {
+  const auto& m = map.data();
+  std::vector<double> worst(static_cast<std::size_t>(map.domain().element_count()), 1.0);
+  for (Index t = 0; t < map.domain().element_count(); ++t)
+    for (Index r = m.region_begin[t]; r < m.region_begin[t + 1]; ++r)
+      worst[static_cast<std::size_t>(t)] = std::max(worst[static_cast<std::size_t>(t)], region_condition(map, r));
+  return worst;
+}
+
+}  // namespace plmap::smoothing
