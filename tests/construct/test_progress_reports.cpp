@@ -152,7 +152,7 @@ TEST(ProgressReports, WritingAndReadingAMapFile) {
 
   Recorder read;
   const std::string text = out.str();
-  (void)parse_map(text, "memory", read.callback());
+  (void)parse_map(text, "memory", MapReadOptions{.progress = read.callback()});
   EXPECT_EQ(read.check(), std::vector<std::string>{"reading map"});
   EXPECT_GE(read.calls.size(), 2u);
   EXPECT_EQ(read.calls.back().total, text.size());
