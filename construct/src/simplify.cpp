@@ -3,6 +3,7 @@
 // themselves (EditableMap plans and applies them), and the hand-over to MapBuilder.
 
 #include <plmap/construct/simplify.hpp>
+#include "simplify_option_checks.hpp"
 
 #include <plmap/core/errors.hpp>
 #include <plmap/strategies/simplification/simplification_registry.hpp>
@@ -332,19 +333,7 @@ SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions 
   const auto start = Clock::now();
   if (!fine) throw Error("simplify: no surface given");
   const Surface<2>& s = *fine;
-  if (options.target_elements < 0 || options.target_vertices < 0)
-    throw Error("simplify: the element and vertex targets must not be negative");
-  if (options.target_elements > 0 && options.target_elements >= s.element_count())
-    throw Error(fmt::format("simplify: the target of {} elements is not below the surface's {} triangles",
-                            options.target_elements, s.element_count()));
-  if (options.target_vertices > 0 && options.target_vertices >= s.vertex_count())
-    throw Error(fmt::format("simplify: the target of {} vertices is not below the surface's {} vertices",
-                            options.target_vertices, s.vertex_count()));
-  if (options.target_elements == 0 && options.target_vertices == 0 && !std::isfinite(options.max_error))
-    throw Error("simplify: give a target element or vertex count, or an error bound");
-  if (!(options.max_error > 0.0)) throw Error(fmt::format("simplify: the error bound must be positive, not {}", options.max_error));
-  if (!(options.feature_angle_degrees >= 0.0 && options.feature_angle_degrees <= 180.0))
-    throw Error(fmt::format("simplify: the feature angle must be between 0 and 180 degrees, not {}", options.feature_angle_degrees));
+  detail::check_simplify_options(options, s.element_count(), s.vertex_count(), "surface", "triangles");
   if (options.oracles.empty()) options.oracles.add("hausdorff", 1.0).add("aspect-ratio", 0.05).add("normal-deviation", 0.5);
 
   SimplifyReport report;

@@ -5,6 +5,7 @@
 // neighbours are found by walking S2.
 
 #include <plmap/construct/simplify_curve.hpp>
+#include "simplify_option_checks.hpp"
 
 #include <plmap/core/errors.hpp>
 #include <plmap/core/map_builder.hpp>
@@ -240,19 +241,7 @@ CurveSimplifyResult simplify_curve(std::shared_ptr<const Surface<1>> fine, Simpl
   const auto start = Clock::now();
   if (!fine) throw Error("simplify: no curve given");
   const Surface<1>& s = *fine;
-  if (options.target_elements < 0 || options.target_vertices < 0)
-    throw Error("simplify: the element and vertex targets must not be negative");
-  if (options.target_elements > 0 && options.target_elements >= s.element_count())
-    throw Error(fmt::format("simplify: the target of {} elements is not below the curve's {} segments",
-                            options.target_elements, s.element_count()));
-  if (options.target_vertices > 0 && options.target_vertices >= s.vertex_count())
-    throw Error(fmt::format("simplify: the target of {} vertices is not below the curve's {} vertices",
-                            options.target_vertices, s.vertex_count()));
-  if (options.target_elements == 0 && options.target_vertices == 0 && !std::isfinite(options.max_error))
-    throw Error("simplify: give a target element or vertex count, or an error bound");
-  if (!(options.max_error > 0.0)) throw Error(fmt::format("simplify: the error bound must be positive, not {}", options.max_error));
-  if (!(options.feature_angle_degrees >= 0.0 && options.feature_angle_degrees <= 180.0))
-    throw Error(fmt::format("simplify: the feature angle must be between 0 and 180 degrees, not {}", options.feature_angle_degrees));
+  detail::check_simplify_options(options, s.element_count(), s.vertex_count(), "curve", "segments");
   if (options.oracles.empty()) options.oracles.add("hausdorff", 1.0).add("long-edge", 0.05);
   const CurveCosts costs = curve_costs(options.oracles);
 
