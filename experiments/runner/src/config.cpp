@@ -414,7 +414,8 @@ class Parser {
         stored.dimension = dim != 0 ? int(dim)
                                     : (std::filesystem::path(stored.parameters.text("path")).extension() == ".curve" ? 1 : 2);
       }
-      if (stored.kind == "cgal") check_cgal_mesh(stored);
+      if (stored.kind == "cgal" || (stored.kind == "contact-pair" && stored.parameters.has("mesh")))
+        check_cgal_mesh(stored);
     }
     if (std::none_of(config_.inputs.begin(), config_.inputs.end(), [](const InputConfig& in) { return in.run; }))
       fail("inputs", "every input has run = false; nothing would run");
@@ -514,29 +515,74 @@ class Parser {
     }
   }
 
+  /// [sweep] (one table: one group) or [[sweep]] (an array of tables: one group each).
   void parse_sweep(const toml::table& root) {
     const toml::node* node = root.get("sweep");
     if (!node) return;
-    const toml::table& t = table_or_fail(*node, "sweep");
+    if (node->is_table()) return parse_sweep_group(*node->as_table(), "sweep");
+    if (!node->is_array())
+      fail_at(*node, "sweep", fmt::format("expected a table ([sweep]) or an array of tables ([[sweep]]), got {}",
+                                          node_type_name(*node)));
+    for (const toml::table* t : array_of_tables(root, "sweep"))
+      parse_sweep_group(*t, fmt::format("sweep[{}]", config_.sweeps.size()));
+  }
+
+  void parse_sweep_group(const toml::table& t, const std::string& group_key) {
+    SweepGroup& group = config_.sweeps.emplace_back();
+    group.key = group_key;
+    if (const toml::node* list = t.get("inputs")) group.inputs = sweep_group_inputs(*list, fmt::format("{}.inputs", group_key));
     for (auto&& [k, value] : t) {
+      if (k.str() == "inputs") continue;
       SweepAxis axis;
       axis.key = std::string(k.str());
-      const std::string key = fmt::format("sweep.\"{}\"", axis.key);
-      const ParameterSpec* spec = locate_axis(axis, key, value);
+      const std::string key = fmt::format("{}.\"{}\"", group_key, axis.key);
+      const ParameterSpec* spec = locate_axis(axis, key, value, group.inputs);
       const auto* array = value.as_array();
       if (!array) fail_at(value, key, fmt::format("expected an array of values, got {}", node_type_name(value)));
       if (array->empty()) fail_at(value, key, "empty list; a sweep needs at least one value");
       for (std::size_t i = 0; i < array->size(); ++i)
         axis.values.push_back(convert(*array->get(i), *spec, fmt::format("{}[{}]", key, i)));
-      for (const auto& existing : config_.sweep)
+      for (const auto& existing : group.axes)
         if (existing.target == axis.target && existing.index == axis.index && existing.parameter == axis.parameter)
           fail_at(value, key, fmt::format("sweeps the same parameter as \"{}\"", existing.key));
-      config_.sweep.push_back(std::move(axis));
+      group.axes.push_back(std::move(axis));
     }
   }
 
+  /// A sweep group's `inputs = ["name", ...]`: running inputs, each once.
+  std::vector<int> sweep_group_inputs(const toml::node& list, const std::string& key) const {
+    const auto* array = list.as_array();
+    if (!array || array->empty())
+      fail_at(list, key, "expected a non-empty array of input names");
+    std::vector<int> indices;
+    for (std::size_t i = 0; i < array->size(); ++i) {
+      const std::string item_key = fmt::format("{}[{}]", key, i);
+      const auto name = array->get(i)->value_exact<std::string>();
+      if (!name) fail_at(*array->get(i), item_key, fmt::format("expected an input name, got {}", node_type_name(*array->get(i))));
+      const auto in = std::find_if(config_.inputs.begin(), config_.inputs.end(),
+                                   [&](const InputConfig& c) { return c.name == *name; });
+      if (in == config_.inputs.end()) {
+        std::vector<std::string> names;
+        for (const auto& c : config_.inputs) names.push_back(c.name);
+        fail_at(*array->get(i), item_key, fmt::format("unknown input \"{}\" (inputs: {})", *name, join(names)));
+      }
+      if (!in->run) fail_at(*array->get(i), item_key, fmt::format("input \"{}\" has run = false", *name));
+      const int index = int(in - config_.inputs.begin());
+      if (std::find(indices.begin(), indices.end(), index) != indices.end())
+        fail_at(*array->get(i), item_key, fmt::format("input \"{}\" is listed twice", *name));
+      indices.push_back(index);
+    }
+    std::sort(indices.begin(), indices.end());  // runs follow the config's order of inputs
+    return indices;
+  }
+
   /// Finds what a sweep key changes; returns the parameter's spec.
-  const ParameterSpec* locate_axis(SweepAxis& axis, const std::string& key, const toml::node& at) const {
+  /// `group_inputs`: the inputs of the axis's sweep group (empty: every running input).
+  const ParameterSpec* locate_axis(SweepAxis& axis, const std::string& key, const toml::node& at,
+                                   const std::vector<int>& group_inputs) const {
+    auto in_group = [&](int i) {
+      return group_inputs.empty() || std::find(group_inputs.begin(), group_inputs.end(), i) != group_inputs.end();
+    };
     const std::string& k = axis.key;
     const auto dot = k.rfind('.');
     if (dot == std::string::npos || dot == 0 || dot + 1 == k.size())
@@ -555,8 +601,9 @@ class Parser {
       const ParameterSpec* spec = nullptr;
       if (owner == "input") {
         axis.index = -1;
-        for (const auto& in : config_.inputs) {
-          if (!in.run) continue;
+        for (int i = 0; i < int(config_.inputs.size()); ++i) {
+          const InputConfig& in = config_.inputs[i];
+          if (!in.run || !in_group(i)) continue;
           const auto* s = detail::find_spec(input_schema(in.kind), axis.parameter);
           if (!s) unknown_parameter(fmt::format("input \"{}\" (kind {})", in.name, in.kind), input_schema(in.kind));
           if (spec && s->type != spec->type)
@@ -569,6 +616,7 @@ class Parser {
       const std::string name = owner.substr(7);
       for (int i = 0; i < int(config_.inputs.size()); ++i)
         if (config_.inputs[i].name == name) {
+          if (!in_group(i)) fail_at(at, key, fmt::format("input \"{}\" is not among the inputs this sweep runs", name));
           axis.index = i;
           const auto& schema = input_schema(config_.inputs[i].kind);
           if (!(spec = detail::find_spec(schema, axis.parameter)))
@@ -656,7 +704,7 @@ class Parser {
         std::vector<std::string> slope_names;
         for (auto s : slopes) {
           if (to_string(s) == *v) return s;
-          slope_names.push_back("\"" + to_string(s) + "\"");
+          slope_names.push_back(fmt::format("\"{}\"", to_string(s)));
         }
         fail_at(node, key, fmt::format("unknown reference slope \"{}\" (valid: {})", *v, join(slope_names)));
       };

@@ -80,7 +80,7 @@ std::shared_ptr<const Surface<d>> InputCache::surface(int index, const Parameter
       peers::SurfacePair<2> pair;
       if (which == "plane") pair = peers::facing_planes(long(p.integer("size")), seed);
       else if (which == "sphere") pair = peers::concentric_spheres(int(p.integer("size")), seed);
-      else pair = peers::femur_pair(cgal_mesh("femur").string(), which == "femur", seed);
+      else pair = peers::femur_pair(cgal_mesh(p.text("mesh")).string(), which == "femur", seed);
       s = peers::to_surface<2>(pair.s1);
 #else
       throw Error("contact-pair inputs need experiments/peers, which this build lacks");

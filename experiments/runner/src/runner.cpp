@@ -251,7 +251,7 @@ class Pipeline {
     } else {
       const std::string& which = in.text("case");
       argv.insert(argv.end(), {"--case", which, "--size", std::to_string(in.integer("size"))});
-      if (which.starts_with("femur")) argv.insert(argv.end(), {"--femur", inputs_.cgal_mesh("femur").string()});
+      if (which.starts_with("femur")) argv.insert(argv.end(), {"--femur", inputs_.cgal_mesh(in.text("mesh")).string()});
     }
     auto failed = [&](std::string why) {
       m.metrics[prefix + "ok"] = false;
@@ -488,13 +488,14 @@ int run_dimension(const ExperimentConfig& config, const RunSpec& run) {
 std::string describe(const ExperimentConfig& config, const RunSpec& run) {
   std::string text = fmt::format("input {}", config.inputs[run.input_index].name);
   std::set<std::string> shown;  // axes of several inputs share a column ("inputs.a.size", "inputs.b.size")
-  for (const auto& axis : config.sweep) {
-    const std::string column = axis.target == SweepAxis::Target::input
-                                   ? "input." + axis.parameter
-                                   : config.pipeline[axis.index].name + "." + axis.parameter;
-    if (run.columns.contains(column) && shown.insert(column).second)
-      text += fmt::format(", {}={}", column, run.columns[column].dump());
-  }
+  for (const auto& group : config.sweeps)
+    for (const auto& axis : group.axes) {
+      const std::string column = axis.target == SweepAxis::Target::input
+                                     ? "input." + axis.parameter
+                                     : config.pipeline[axis.index].name + "." + axis.parameter;
+      if (run.columns.contains(column) && shown.insert(column).second)
+        text += fmt::format(", {}={}", column, run.columns[column].dump());
+    }
   return text;
 }
 

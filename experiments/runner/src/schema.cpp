@@ -189,8 +189,12 @@ const std::vector<ParameterSpec>& input_schema(const std::string& kind) {
   static const std::vector<ParameterSpec> contact_pair = {
       choice("case", "plane", {"plane", "sphere", "femur", "femur-offset"}, "contact pair",
              "plane: facing jittered patches, overlap 0.72; sphere: icosphere levels L and 2^L + 1, "
-             "radius 1 and 1.01; femur: CGAL's femur against an offset remeshed copy; femur-offset: "
+             "radius 1 and 1.01; femur: a CGAL mesh (`mesh`) against an offset remeshed copy; femur-offset: "
              "against an offset copy (same triangulation)"),
+      only_for(text("mesh", "femur",
+                    "the mesh of libcgal-demo's data/meshes the femur cases pair with its offset copy "
+                    "(e.g. \"bones\", \"armadillo\")"),
+               "case", {"femur", "femur-offset"}),
       integer("size", 2000, 1, 1e8, "plane: S1 triangles; sphere: icosphere level (20 * 4^L triangles); femur: ignored"),
       seed("jitter, diagonals, rotation and offsets")};
   static const std::vector<ParameterSpec> contact_circles = {

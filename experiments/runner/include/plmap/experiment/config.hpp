@@ -9,6 +9,7 @@
 ///   [[pipeline]]  steps run on every input in order: build | project | evaluate | check
 ///   [sweep]       "<step>.<parameter>" / "input.<parameter>" / "inputs.<name>.<parameter>"
 ///                 = [values...]; every combination runs
+///   [[sweep]]     several such tables (each may name its `inputs`); their runs follow each other
 ///   [[plots]]     x, y, group_by, log_x, log_y, reference
 ///
 /// docs/experiments.md is the reference of every key.
@@ -50,6 +51,17 @@ struct SweepAxis {
   std::vector<ParameterValue> values;  ///< validated
 };
 
+/// One cartesian product of sweep axes: `[sweep]`, or one table of `[[sweep]]`. Several groups
+/// let a config run some combinations without all the others (plmap's thread counts without
+/// single-threaded peers at two threads).
+struct SweepGroup {
+  std::string key;  ///< "sweep" or "sweep[1]", for messages
+  std::vector<SweepAxis> axes;
+  /// The inputs (indices into ExperimentConfig::inputs) this group runs; empty: every input that
+  /// runs.
+  std::vector<int> inputs;
+};
+
 enum class ReferenceSlope { none, constant, log_n, sqrt_n, n, n_log_n, n_squared };
 std::string to_string(ReferenceSlope slope);
 
@@ -76,7 +88,8 @@ struct ExperimentConfig {
   std::vector<std::string> metrics;  ///< empty: every metric of the pipeline
   std::vector<InputConfig> inputs;
   std::vector<StepConfig> pipeline;
-  std::vector<SweepAxis> sweep;
+  /// No group: every running input once. One group per [[sweep]] table ([sweep]: one group).
+  std::vector<SweepGroup> sweeps;
   std::vector<PlotConfig> plots;
   /// Line of each key in the config text ("pipeline[1].locator" -> 12), for error messages.
   std::map<std::string, int> key_lines;

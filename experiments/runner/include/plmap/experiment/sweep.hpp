@@ -3,7 +3,8 @@
 /// Sweep expansion: every combination (cartesian product) of the [sweep] values, for every input
 /// that runs. An axis that names one input (`inputs.<name>.<parameter>`) only multiplies the
 /// runs of that input, so no run is repeated with a parameter that does not concern it.
-/// Order: inputs in config order; within an input, the first sweep axis varies slowest.
+/// Order: sweep groups ([[sweep]] tables) in config order; within a group, inputs in config
+/// order; within an input, the first sweep axis varies slowest.
 
 #include <plmap/experiment/config.hpp>
 
