@@ -11,6 +11,7 @@
 // --threads: plmap only (0 = all cores); the peers are single-threaded.
 // --write-inputs: also write S1 and S2 to PREFIX_s1.off/.curve and PREFIX_s2.off/.curve (reproducers).
 
+#include "command_line.hpp"
 #include "plain_mesh_surface.hpp"
 #include "tools.hpp"
 
@@ -18,17 +19,8 @@
 
 #include <fmt/format.h>
 
-#include <sys/resource.h>
-#include <unistd.h>
-
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <fcntl.h>
-#include <fstream>
-#include <iostream>
-#include <map>
 #include <string>
+#include <vector>
 
 namespace plmap::peers {
 
@@ -67,7 +59,7 @@ nlohmann::json measure(const Arguments& args, const SurfacePair<d>& input, doubl
     outcome = run_contactmerge<d>(input, clock);
 #endif
   } else {
-    throw std::invalid_argument(fmt::format("tool '{}' is not built in (see --list-tools)", args.tool));
+    reject_tool(args.tool);
   }
   const double relative_error = (outcome.covered - input.exact_overlap) / input.exact_overlap;
   const double covered_target = outcome.details.value("covered_target", 0.0);
@@ -100,32 +92,33 @@ nlohmann::json measure(const Arguments& args, const SurfacePair<d>& input, doubl
           {"details", outcome.details}};
 }
 
-int run(int argc, char** argv) {
-  Arguments args;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--tool") args.tool = value();
-    else if (a == "--case") args.family = value();
-    else if (a == "--size") args.size = std::stol(value());
-    else if (a == "--seed") args.seed = std::stoull(value());
-    else if (a == "--threads") args.threads = static_cast<unsigned>(std::stoul(value()));
-    else if (a == "--femur") args.femur = value();
-    else if (a == "--write-inputs") args.write_inputs = value();
-    else if (a == "--list-tools") {
-      std::cout << "plmap\n";
+/// The tools this build has, for --list-tools.
+std::vector<std::string> built_in_tools() {
+  std::vector<std::string> tools = {"plmap"};
 #ifdef PLMAP_PEERS_HAVE_PSURFACE
-      std::cout << "psurface\n";
+  tools.emplace_back("psurface");
 #endif
 #ifdef PLMAP_PEERS_HAVE_CONTACTMERGE
-      std::cout << "contactmerge\n";
+  tools.emplace_back("contactmerge");
 #endif
+  return tools;
+}
+
+int run(int argc, char** argv) {
+  Arguments args;
+  for (ArgumentReader a(argc, argv); a.next();) {
+    if (a.name() == "--tool") args.tool = a.value();
+    else if (a.name() == "--case") args.family = a.value();
+    else if (a.name() == "--size") args.size = std::stol(a.value());
+    else if (a.name() == "--seed") args.seed = std::stoull(a.value());
+    else if (a.name() == "--threads") args.threads = static_cast<unsigned>(std::stoul(a.value()));
+    else if (a.name() == "--femur") args.femur = a.value();
+    else if (a.name() == "--write-inputs") args.write_inputs = a.value();
+    else if (a.name() == "--list-tools") {
+      print_tools(built_in_tools());
       return 0;
     } else {
-      throw std::invalid_argument(fmt::format("unknown argument '{}'", a));
+      a.reject();
     }
   }
   const double t0 = now_seconds();
@@ -142,7 +135,7 @@ int run(int argc, char** argv) {
     else throw std::invalid_argument(fmt::format("unknown case '{}'", args.family));
     line = measure<2>(args, input, now_seconds() - t0);
   }
-  std::cout << line.dump() << std::endl;
+  print_result_line(line);
   return 0;
 }
 
@@ -151,10 +144,5 @@ int run(int argc, char** argv) {
 }  // namespace plmap::peers
 
 int main(int argc, char** argv) {
-  try {
-    return plmap::peers::run(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "bench_projection_peers: " << e.what() << "\n";
-    return 2;
-  }
+  return plmap::peers::run_benchmark("bench_projection_peers", [&] { return plmap::peers::run(argc, argv); });
 }

@@ -14,50 +14,52 @@
 //        bench_simplification_peers --list-tools
 // Exit 2 with one line on stderr for bad arguments or an unreadable mesh.
 
+#include "command_line.hpp"
 #include "simplification_tools.hpp"
 
 #include <plmap/core/io/surface_reader.hpp>
 
 #include <fmt/format.h>
 
-#include <iostream>
 #include <string>
+#include <vector>
 
 namespace plmap::peers {
 
 namespace {
 
+/// The tools this build has, for --list-tools.
+std::vector<std::string> built_in_tools() {
+  std::vector<std::string> tools = {"plmap", "cgal"};
+#ifdef PLMAP_PEERS_HAVE_PSURFACE
+  tools.emplace_back("psurface");
+#endif
+  return tools;
+}
+
 int run(int argc, char** argv) {
   SimplificationRequest request;
   std::string tool = "plmap", mesh;
   bool oracles_given = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--tool") tool = value();
-    else if (a == "--mesh") mesh = value();
-    else if (a == "--target") request.target_elements = Index(std::stoll(value()));
-    else if (a == "--oracle") {
+  for (ArgumentReader a(argc, argv); a.next();) {
+    if (a.name() == "--tool") tool = a.value();
+    else if (a.name() == "--mesh") mesh = a.value();
+    else if (a.name() == "--target") request.target_elements = Index(std::stoll(a.value()));
+    else if (a.name() == "--oracle") {
       if (!oracles_given) request.oracles.clear();
       oracles_given = true;
-      request.oracles.push_back(value());
-    } else if (a == "--feature-angle") request.feature_angle_degrees = std::stod(value());
-    else if (a == "--sweeps") request.smooth_sweeps = std::stoi(value());
-    else if (a == "--weights") request.smoothing_weights = value();
-    else if (a == "--refine-levels") request.refine_levels = std::stoi(value());
-    else if (a == "--psurface-aspect-ratio") request.psurface_aspect_ratio = std::stod(value());
-    else if (a == "--psurface-hausdorff") request.psurface_hausdorff = std::stod(value());
-    else if (a == "--list-tools") {
-      std::cout << "plmap\ncgal\n";
-#ifdef PLMAP_PEERS_HAVE_PSURFACE
-      std::cout << "psurface\n";
-#endif
+      request.oracles.push_back(a.value());
+    } else if (a.name() == "--feature-angle") request.feature_angle_degrees = std::stod(a.value());
+    else if (a.name() == "--sweeps") request.smooth_sweeps = std::stoi(a.value());
+    else if (a.name() == "--weights") request.smoothing_weights = a.value();
+    else if (a.name() == "--refine-levels") request.refine_levels = std::stoi(a.value());
+    else if (a.name() == "--psurface-aspect-ratio") request.psurface_aspect_ratio = std::stod(a.value());
+    else if (a.name() == "--psurface-hausdorff") request.psurface_hausdorff = std::stod(a.value());
+    else if (a.name() == "--list-tools") {
+      print_tools(built_in_tools());
       return 0;
     } else {
-      throw std::invalid_argument(fmt::format("unknown argument '{}'", a));
+      a.reject();
     }
   }
   if (mesh.empty()) throw std::invalid_argument("--mesh FILE is required");
@@ -74,7 +76,7 @@ int run(int argc, char** argv) {
 #ifdef PLMAP_PEERS_HAVE_PSURFACE
   else if (tool == "psurface") outcome = simplify_with_psurface(request, clock);
 #endif
-  else throw std::invalid_argument(fmt::format("tool '{}' is not built in (see --list-tools)", tool));
+  else reject_tool(tool);
   nlohmann::json line = {{"tool", tool},
                          {"mesh", mesh},
                          {"input_elements", request.fine->element_count()},
@@ -92,7 +94,7 @@ int run(int argc, char** argv) {
                          {"peak_reset", clock.peak_was_reset()},
                          {"reading_seconds", reading}};
   line.update(outcome.figures);
-  std::cout << line.dump() << std::endl;
+  print_result_line(line);
   return 0;
 }
 
@@ -101,10 +103,5 @@ int run(int argc, char** argv) {
 }  // namespace plmap::peers
 
 int main(int argc, char** argv) {
-  try {
-    return plmap::peers::run(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "bench_simplification_peers: " << e.what() << "\n";
-    return 2;
-  }
+  return plmap::peers::run_benchmark("bench_simplification_peers", [&] { return plmap::peers::run(argc, argv); });
 }

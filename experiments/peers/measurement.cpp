@@ -1,4 +1,4 @@
-// Wall clock, peak memory and stdout silencing of the peer benchmarks (measurement.hpp).
+// Wall clock, peak memory and stdout silencing of the experiments (measurement.hpp).
 
 #include "measurement.hpp"
 
@@ -53,11 +53,17 @@ void Measurement::start() {
 void Measurement::stop() {
   seconds_ = now_seconds() - start_time_;
   peak_kib_ = status_kib("VmHWM");
+  peak_read_ = peak_kib_ >= 0;
   if (peak_kib_ < 0) {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     peak_kib_ = usage.ru_maxrss;
   }
+}
+
+std::optional<double> Measurement::exact_peak_increase_mib() const {
+  if (!reset_ok_ || !peak_read_ || baseline_kib_ < 0) return std::nullopt;
+  return double(peak_kib_ - baseline_kib_) / 1024.0;
 }
 
 QuietStdout::QuietStdout() {

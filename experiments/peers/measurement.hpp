@@ -1,8 +1,11 @@
 #pragma once
-// How the peer benchmarks measure one tool: wall clock and the increase of peak resident memory
-// over the measured part, and a guard that silences the peers' printing. Shared by
-// bench_projection_peers and bench_simplification_peers.
+// How the experiments measure one part of a process: wall clock and the increase of peak
+// resident memory over the measured part, and a guard that silences the peers' printing. The one
+// implementation (library plmap_peer_measurement) of bench_projection_peers,
+// bench_simplification_peers and the experiment runner's in-process steps (simplify, smooth,
+// refine).
 
+#include <optional>
 #include <string>
 
 namespace plmap::peers {
@@ -26,10 +29,14 @@ class Measurement {
   /// False if the peak could not be reset (then the increase is an upper bound: the peak of the
   /// whole process, input generation included, minus the baseline).
   bool peak_was_reset() const { return reset_ok_; }
+  /// The increase in MiB where it is known exactly: the peak was reset (Linux >= 4.0) and
+  /// /proc/self/status was readable at start() and stop(); otherwise nothing.
+  std::optional<double> exact_peak_increase_mib() const;
 
  private:
   double start_time_ = 0.0, seconds_ = 0.0;
   long baseline_kib_ = 0, peak_kib_ = 0;
+  bool peak_read_ = false;  ///< VmHWM was read at stop() (not the getrusage fallback)
   bool reset_ok_ = false;
 };
 

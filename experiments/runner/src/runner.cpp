@@ -1,7 +1,7 @@
 // Running the pipeline of every run and writing the outputs (runner.hpp).
 
 #include "inputs.hpp"
-#include "process.hpp"
+#include "peer_benchmark.hpp"
 #include <plmap/verify/generators/subdivision_maps.hpp>
 
 #include <plmap/core/evaluation.hpp>
@@ -21,7 +21,7 @@
 #include <plmap/construct/smooth.hpp>
 #include <plmap/verify/quality.hpp>
 #endif
-#include "peak_memory.hpp"
+#include "peers/measurement.hpp"
 #include "resolve.hpp"
 
 #include <fmt/format.h>
@@ -241,11 +241,7 @@ class Pipeline {
     std::vector<std::string> argv = {peer_benchmark_program(), "--tool", tool, "--seed",
                                      std::to_string(in.integer("seed")), "--threads",
                                      std::to_string(tool == "plmap" ? p.integer("threads") : 1)};
-    if (argv[0].empty()) throw Error("peer_project: this build has no experiments/peers benchmark");
-    if (std::error_code ec; !std::filesystem::is_regular_file(argv[0], ec))
-      throw Error(fmt::format("peer_project: the benchmark {} does not exist (build the target "
-                              "bench_projection_peers, or set PLMAP_PEER_BENCH)",
-                              argv[0]));
+    detail::require_peer_benchmark("peer_project", argv[0], "benchmark", "bench_projection_peers", "PLMAP_PEER_BENCH");
     if (input.kind == "contact-circles") {
       argv.insert(argv.end(), {"--case", "circle", "--size", std::to_string(in.integer("segments"))});
     } else {
@@ -253,45 +249,25 @@ class Pipeline {
       argv.insert(argv.end(), {"--case", which, "--size", std::to_string(in.integer("size"))});
       if (which.starts_with("femur")) argv.insert(argv.end(), {"--femur", inputs_.cgal_mesh(in.text("mesh")).string()});
     }
-    auto failed = [&](std::string why) {
-      m.metrics[prefix + "ok"] = false;
-      m.metrics[prefix + "error"] = std::move(why);
-    };
     const auto limit = p.integer("psurface_max_elements");
-    if (tool == "psurface" && limit > 0 && std::int64_t(s1_->element_count()) > limit)
-      return failed(fmt::format("skipped: S1 has {} elements, more than psurface_max_elements = {}",
-                                s1_->element_count(), limit));
-    const auto result = detail::run_process(argv, {}, p.real("timeout_seconds"));
-    if (result.timed_out) return failed(fmt::format("timed out after {} s", p.real("timeout_seconds")));
-    // The benchmark prints one JSON line last; anything before it is the peers' chatter.
-    std::string last;
-    if (const auto end = result.output.find_last_not_of("\n"); end != std::string::npos) {
-      const auto newline = result.output.rfind('\n', end);
-      const std::size_t start = newline == std::string::npos ? 0 : newline + 1;
-      last = result.output.substr(start, end + 1 - start);
+    if (tool == "psurface" && limit > 0 && std::int64_t(s1_->element_count()) > limit) {
+      m.metrics[prefix + "ok"] = false;
+      m.metrics[prefix + "error"] = fmt::format("skipped: S1 has {} elements, more than psurface_max_elements = {}",
+                                                s1_->element_count(), limit);
+      return;
     }
-    if (result.exit_code != 0 || last.empty() || last.front() != '{') {
-      std::string why = result.errors.empty() ? result.output : result.errors;
-      while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
-      if (result.exit_code == 2 && why.find("not built in") != std::string::npos)
-        throw Error(fmt::format("peer_project: {} ({} was built without that peer's Debian package)", why, argv[0]));
-      return failed(fmt::format("{} exited with {}: {}", argv[0], result.exit_code, why));
-    }
-    const Json line = Json::parse(last, nullptr, /*allow_exceptions=*/false);
-    if (line.is_discarded() || !line.contains("ok") || !line.contains("seconds"))
-      return failed(fmt::format("{} printed no result line: {}", argv[0], last.substr(0, 200)));
-    // a number of the line, or null (the benchmark writes NaN, e.g. an undefined error, as null)
-    auto real = [&](const char* key) { return line.contains(key) && line[key].is_number() ? line[key] : Json(nullptr); };
-    const bool ok = line["ok"].is_boolean() && line["ok"].get<bool>();
-    m.metrics[prefix + "ok"] = ok;
-    m.metrics[prefix + "error"] = line.contains("error") && line["error"].is_string() ? line["error"] : Json("");
+    const auto outcome = detail::run_peer_benchmark("peer_project", argv, p.real("timeout_seconds"), false);
+    m.metrics[prefix + "ok"] = outcome.ok;
+    m.metrics[prefix + "error"] = outcome.error;
+    if (outcome.line.is_null()) return;
+    auto real = [&](const char* key) { return detail::number_or_null(outcome.line, key); };
     m.metrics[prefix + "target_elements"] = real("s2_cells");
-    if (!ok) return;
+    if (!outcome.ok) return;
     m.metrics[prefix + "pieces"] = real("pieces");
     m.metrics[prefix + "covered_error"] = real("covered_relative_error");
     m.metrics[prefix + "covered_target_error"] = real("covered_target_relative_error");
-    if (real("seconds").is_number()) m.timings[prefix + "seconds"] = line["seconds"].get<double>();
-    if (real("peak_increase_mib").is_number()) m.timings[prefix + "peak_mib"] = line["peak_increase_mib"].get<double>();
+    if (const Json t = real("seconds"); t.is_number()) m.timings[prefix + "seconds"] = t.get<double>();
+    if (const Json mib = real("peak_increase_mib"); mib.is_number()) m.timings[prefix + "peak_mib"] = mib.get<double>();
   }
 
 #ifdef PLMAP_EXPERIMENT_HAS_CONSTRUCT
@@ -317,9 +293,11 @@ class Pipeline {
     m.metrics[prefix + "kappa_p99" + suffix] = number(p99);
   }
 
-  /// Peak resident memory of the step above what the process held before it (MiB), when known.
-  static void record_peak(Measurements& m, const std::string& prefix, const detail::PeakMemory& memory) {
-    if (const auto mib = memory.increase_mib()) m.timings[prefix + "peak_mib"] = *mib;
+  /// The step's wall time, and its peak resident memory above what the process held before it
+  /// (MiB) when known.
+  static void record_measurement(Measurements& m, const std::string& prefix, const peers::Measurement& clock) {
+    m.timings[prefix + "seconds"] = clock.seconds();
+    if (const auto mib = clock.exact_peak_increase_mib()) m.timings[prefix + "peak_mib"] = *mib;
   }
 
   static void record_aspect(Measurements& m, const std::string& name, const AspectRatioSummary& a) {
@@ -343,12 +321,11 @@ class Pipeline {
     options.feature_angle_degrees = p.real("feature_angle");
     options.flattening = p.text("flattening");
     options.hole_triangulation = p.text("hole_triangulation");
-    detail::PeakMemory memory;
-    memory.start();
-    const auto start = std::chrono::steady_clock::now();
+    peers::Measurement clock;
+    clock.start();
     SimplifyResult result = plmap::simplify(s1_, options);
-    m.timings[prefix + "seconds"] = seconds_since(start);
-    record_peak(m, prefix, memory);
+    clock.stop();
+    record_measurement(m, prefix, clock);
     map_ = std::make_shared<const PlMap<d>>(std::move(result.map));
     m.metrics[prefix + "elements"] = map_->domain().element_count();
     m.metrics[prefix + "vertices"] = map_->domain().vertex_count();
@@ -365,12 +342,11 @@ class Pipeline {
     SmoothOptions options;
     options.sweeps = int(p.integer("sweeps"));
     options.weights = p.text("weights");
-    detail::PeakMemory memory;
-    memory.start();
-    const auto start = std::chrono::steady_clock::now();
+    peers::Measurement clock;
+    clock.start();
     SmoothResult result = plmap::smooth(*map_, options);
-    m.timings[prefix + "seconds"] = seconds_since(start);
-    record_peak(m, prefix, memory);
+    clock.stop();
+    record_measurement(m, prefix, clock);
     map_ = std::make_shared<const PlMap<d>>(std::move(result.map));
     record_kappa(m, prefix, "");
     m.metrics[prefix + "hausdorff"] = relative_hausdorff();
@@ -378,12 +354,11 @@ class Pipeline {
   }
 
   void refine_step(const ParameterSet& p, Measurements& m, const std::string& prefix) {
-    detail::PeakMemory memory;
-    memory.start();
-    const auto start = std::chrono::steady_clock::now();
+    peers::Measurement clock;
+    clock.start();
     const RefineResult result = refine_through_map(*map_, {.levels = int(p.integer("levels"))});
-    m.timings[prefix + "seconds"] = seconds_since(start);
-    record_peak(m, prefix, memory);
+    clock.stop();
+    record_measurement(m, prefix, clock);
     m.metrics[prefix + "elements"] = result.report.elements;
     m.metrics[prefix + "distance_max"] = result.report.distance_max_relative;
     m.metrics[prefix + "distance_mean"] = result.report.distance_mean;
@@ -400,11 +375,8 @@ class Pipeline {
     const InputConfig& input = config_.inputs[run_.input_index];
     const ParameterSet& in = run_.input_parameters;
     const std::string program = simplification_benchmark_program();
-    if (program.empty()) throw Error("peer_simplify: this build has no experiments/peers simplification benchmark");
-    if (std::error_code ec; !std::filesystem::is_regular_file(program, ec))
-      throw Error(fmt::format("peer_simplify: the benchmark {} does not exist (build the target "
-                              "bench_simplification_peers, or set PLMAP_SIMPLIFICATION_BENCH)",
-                              program));
+    detail::require_peer_benchmark("peer_simplify", program, "simplification benchmark", "bench_simplification_peers",
+                                   "PLMAP_SIMPLIFICATION_BENCH");
     std::filesystem::path mesh;
     if (input.kind == "cgal") {
       mesh = inputs_.cgal_mesh(in.text("mesh"));
@@ -420,37 +392,14 @@ class Pipeline {
                                      "--psurface-aspect-ratio", fmt::format("{}", p.real("psurface_aspect_ratio")),
                                      "--psurface-hausdorff", fmt::format("{}", p.real("psurface_hausdorff"))};
     for (const auto& spec : detail::split_oracles(p.text("oracles"))) argv.insert(argv.end(), {"--oracle", spec});
-    auto failed = [&](std::string why) {
-      m.metrics[prefix + "ok"] = false;
-      m.metrics[prefix + "error"] = std::move(why);
-    };
-    const auto result = detail::run_process(argv, {}, p.real("timeout_seconds"));
-    if (result.timed_out) return failed(fmt::format("timed out after {} s", p.real("timeout_seconds")));
-    std::string last;
-    if (const auto end = result.output.find_last_not_of("\n"); end != std::string::npos) {
-      const auto newline = result.output.rfind('\n', end);
-      const std::size_t start = newline == std::string::npos ? 0 : newline + 1;
-      last = result.output.substr(start, end + 1 - start);
-    }
-    if (result.exit_code != 0 || last.empty() || last.front() != '{') {
-      std::string why = result.errors.empty() ? result.output : result.errors;
-      while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
-      if (result.exit_code == 2 && why.find("not built in") != std::string::npos)
-        throw Error(fmt::format("peer_simplify: {} ({} was built without that peer's Debian package)", why, program));
-      if (result.exit_code == 2) throw Error(fmt::format("peer_simplify: {}", why));
-      return failed(fmt::format("{} exited with {}: {}", program, result.exit_code, why));
-    }
-    const Json line = Json::parse(last, nullptr, /*allow_exceptions=*/false);
-    if (line.is_discarded() || !line.contains("ok") || !line.contains("seconds"))
-      return failed(fmt::format("{} printed no result line: {}", program, last.substr(0, 200)));
+    const auto outcome = detail::run_peer_benchmark("peer_simplify", argv, p.real("timeout_seconds"), true);
+    m.metrics[prefix + "ok"] = outcome.ok;
+    m.metrics[prefix + "error"] = outcome.error;
+    if (!outcome.ok) return;
+    const Json& line = outcome.line;
     const auto field = [&](const char* group, const char* key) {
-      const Json& g = group ? (line.contains(group) ? line[group] : Json()) : line;
-      return g.is_object() && g.contains(key) && g[key].is_number() ? g[key] : Json(nullptr);
+      return detail::number_or_null(group ? (line.contains(group) ? line[group] : Json()) : line, key);
     };
-    const bool ok = line["ok"].is_boolean() && line["ok"].get<bool>();
-    m.metrics[prefix + "ok"] = ok;
-    m.metrics[prefix + "error"] = line.contains("error") && line["error"].is_string() ? line["error"] : Json("");
-    if (!ok) return;
     m.metrics[prefix + "elements"] = field(nullptr, "elements");
     m.metrics[prefix + "hausdorff_before_smoothing"] = field(nullptr, "hausdorff_before_smoothing");
     m.metrics[prefix + "hausdorff"] = field(nullptr, "hausdorff");
@@ -464,9 +413,9 @@ class Pipeline {
     }
     for (const char* t :
          {"seconds", "seconds_simplify", "seconds_smooth", "cpu_seconds", "cpu_seconds_simplify", "cpu_seconds_smooth"})
-      if (line[t].is_number()) m.timings[prefix + t] = line[t].get<double>();
-    if (field(nullptr, "peak_increase_mib").is_number())
-      m.timings[prefix + "peak_mib"] = line["peak_increase_mib"].get<double>();
+      if (const Json v = field(nullptr, t); v.is_number()) m.timings[prefix + t] = v.get<double>();
+    if (const Json mib = field(nullptr, "peak_increase_mib"); mib.is_number())
+      m.timings[prefix + "peak_mib"] = mib.get<double>();
   }
 
   const ExperimentConfig& config_;
