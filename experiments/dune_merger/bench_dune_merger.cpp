@@ -7,6 +7,7 @@
 //
 // Prints one JSON object per merger (time = median wall seconds of build() over the repetitions).
 
+#include "peers/dune_contact.hpp"
 #include "peers/inputs.hpp"
 
 #include <plmap/dune/plmap_merge.hh>
@@ -31,22 +32,8 @@ namespace {
 
 template <int d>
 struct DuneInput {
-  static constexpr int world = d + 1;
-  std::vector<Dune::FieldVector<double, world>> coords1, coords2;
-  std::vector<unsigned> cells1, cells2;
-  std::vector<Dune::GeometryType> types1, types2;
+  plmap::peers::DuneSimplices<d> s1, s2;
 };
-
-template <int d>
-void convert(const plmap::peers::PlainMesh<d>& mesh, std::vector<Dune::FieldVector<double, d + 1>>& coords,
-             std::vector<unsigned>& cells, std::vector<Dune::GeometryType>& types) {
-  coords.resize(mesh.points.size());
-  for (std::size_t i = 0; i < mesh.points.size(); ++i)
-    for (int k = 0; k <= d; ++k) coords[i][k] = mesh.points[i][k];
-  for (const auto& c : mesh.cells)
-    for (int k = 0; k <= d; ++k) cells.push_back(static_cast<unsigned>(c[k]));
-  types.assign(mesh.cells.size(), Dune::GeometryTypes::simplex(d));
-}
 
 struct Outcome {
   std::string merger;
@@ -68,7 +55,7 @@ Outcome run(const std::string& name, Dune::GridGlue::Merger<double, d, d, d + 1>
     auto* old = std::cout.rdbuf(quiet.rdbuf());
     const auto start = std::chrono::steady_clock::now();
     try {
-      merger.build(in.coords1, in.cells1, in.types1, in.coords2, in.cells2, in.types2);
+      merger.build(in.s1.coords, in.s1.cells, in.s1.types, in.s2.coords, in.s2.cells, in.s2.types);
     } catch (const std::exception& e) {
       out.error = e.what();
     } catch (...) {
@@ -80,31 +67,16 @@ Outcome run(const std::string& name, Dune::GridGlue::Merger<double, d, d, d + 1>
   }
   std::sort(times.begin(), times.end());
   out.seconds = times[times.size() / 2];
-  const auto list = merger.intersectionList();
-  out.intersections = list->size();
-  for (unsigned i = 0; i < list->size(); ++i) {
-    const auto relative = [&](auto side) {
-      constexpr int n = decltype(side)::value;
-      const auto c0 = list->template corner<n>(i, 0, 0);
-      const auto c1 = list->template corner<n>(i, 1, 0);
-      if constexpr (d == 1) {
-        return std::abs(c1[0] - c0[0]);
-      } else {
-        const auto c2 = list->template corner<n>(i, 2, 0);
-        return std::abs((c1[0] - c0[0]) * (c2[1] - c0[1]) - (c1[1] - c0[1]) * (c2[0] - c0[0]));
-      }
-    };
-    out.covered1 += relative(std::integral_constant<int, 0>{}) * pair.s1.cell_measure(list->template parent<0>(i));
-    out.covered2 += relative(std::integral_constant<int, 1>{}) * pair.s2.cell_measure(list->template parent<1>(i));
-  }
+  out.intersections = merger.intersectionList()->size();
+  const auto covered = plmap::peers::overlap_measures(merger, pair);
+  out.covered1 = covered.s1;
+  out.covered2 = covered.s2;
   return out;
 }
 
 template <int d>
 void compare(const plmap::peers::SurfacePair<d>& pair, int repeat, unsigned threads) {
-  DuneInput<d> in;
-  convert<d>(pair.s1, in.coords1, in.cells1, in.types1);
-  convert<d>(pair.s2, in.coords2, in.cells2, in.types2);
+  const DuneInput<d> in{plmap::peers::to_dune_simplices(pair.s1), plmap::peers::to_dune_simplices(pair.s2)};
   std::vector<Outcome> outcomes;
   {
     Dune::GridGlue::ContactMerge<d + 1, double> contact;
