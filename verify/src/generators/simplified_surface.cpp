@@ -12,6 +12,10 @@
 namespace plmap::generators {
 
 Surface<2> simplify_by_edge_collapse(const Surface<2>& surface, std::size_t faces) {
+  return simplify_by_edge_collapse(surface, faces, EdgeCollapseHooks{});
+}
+
+Surface<2> simplify_by_edge_collapse(const Surface<2>& surface, std::size_t faces, const EdgeCollapseHooks& hooks) {
   using Kernel = CGAL::Simple_cartesian<double>;
   using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
   Mesh mesh;
@@ -22,7 +26,9 @@ Surface<2> simplify_by_edge_collapse(const Surface<2>& surface, std::size_t face
       throw Error("cannot simplify a non-manifold mesh (CGAL rejected a face)");
   namespace SMS = CGAL::Surface_mesh_simplification;
   // CGAL 5.5's stop predicate counts edges; a closed triangle mesh has 3/2 edges per face.
+  if (hooks.before_collapse) hooks.before_collapse();
   SMS::edge_collapse(mesh, SMS::Count_stop_predicate<Mesh>(faces * 3 / 2));
+  if (hooks.after_collapse) hooks.after_collapse();
   mesh.collect_garbage();
   std::vector<WorldPoint<2>> vertices;
   for (auto vi : mesh.vertices()) {
