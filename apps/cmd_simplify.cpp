@@ -2,6 +2,7 @@
 // it by point-removal simplification (paper section 3.3.1), and prints what it did.
 
 #include "cli_common.hpp"
+#include "kappa_json.hpp"
 #include "progress_bar.hpp"
 
 #include <plmap/construct/simplify.hpp>
@@ -30,14 +31,9 @@ struct SimplifyCommand {
   ProgressMode progress = ProgressMode::automatic;
 };
 
+/// κ_Ξ as `plmap smooth` prints it, and how far the map stretches and shrinks lengths.
 Json quality_json(const QualityReport& q) {
-  Json j;
-  j["kappa_max"] = q.kappa_max;
-  j["kappa_mean"] = q.kappa_mean;
-  Json quantiles = Json::object();
-  for (std::size_t i = 0; i < q.quantiles.size(); ++i) quantiles[fmt::format("{}", q.quantile_levels[i])] = q.quantiles[i];
-  j["kappa_quantiles"] = quantiles;
-  j["degenerate_regions"] = q.degenerate_count;
+  Json j = kappa_json(kappa_summary(q));
   j["stretch_min"] = q.stretch_min;
   j["stretch_max"] = q.stretch_max;
   return j;

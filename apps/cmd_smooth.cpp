@@ -2,19 +2,18 @@
 // convex-combination parametrization (paper 3.3.2) and prints κ_Ξ before and after each sweep.
 
 #include "cli_common.hpp"
+#include "kappa_json.hpp"
 #include "progress_bar.hpp"
 
 #include <plmap/construct/smooth.hpp>
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/map_file.hpp>
 #include <plmap/strategies/smoothing/smoothing_weights_registry.hpp>
-#include <plmap/verify/quality.hpp>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include <algorithm>
-#include <cmath>
 
 namespace plmap::cli {
 
@@ -30,26 +29,7 @@ struct SmoothCommand {
 };
 
 /// κ_Ξ's distribution through verify's quality report (construct/ cannot compute it).
-KappaSummary measure_kappa(const PlMap<2>& map) {
-  const QualityReport q = compute_quality(map);
-  return {q.kappa_max, q.kappa_mean, q.quantile_levels, q.quantiles, q.histogram_bin_width, q.histogram, q.degenerate_count};
-}
-
-/// κ max, mean, the 99th percentile (kept flat for scripts), every quantile and the histogram.
-Json kappa_json(const KappaSummary& k) {
-  Json j;
-  j["kappa_max"] = k.max;
-  j["kappa_mean"] = k.mean;
-  Json quantiles = Json::object();
-  for (std::size_t i = 0; i < k.quantile_levels.size() && i < k.quantiles.size(); ++i) {
-    quantiles[fmt::format("p{}", static_cast<int>(std::lround(k.quantile_levels[i] * 100.0)))] = k.quantiles[i];
-    if (k.quantile_levels[i] == 0.99) j["kappa_p99"] = k.quantiles[i];
-  }
-  j["kappa_quantiles"] = quantiles;
-  j["log10_kappa_histogram"] = {{"bin_width", k.histogram_bin_width}, {"counts", k.histogram}};
-  j["degenerate_regions"] = k.degenerate_regions;
-  return j;
-}
+KappaSummary measure_kappa(const PlMap<2>& map) { return kappa_summary(compute_quality(map)); }
 
 int run_smooth(const SmoothCommand& o) {
   // A bad name is a bad command line, refused before the map is read.
