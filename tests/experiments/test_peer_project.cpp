@@ -1,6 +1,8 @@
 // The peer_project step: one tool's projection of a contact pair, run by experiments/peers'
 // benchmark in a child process, recorded as a row like any other step's.
 
+#include "benchmark_tools.hpp"
+
 #include <plmap/core/errors.hpp>
 #include <plmap/experiment/config.hpp>
 #include <plmap/experiment/runner.hpp>
@@ -9,7 +11,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -21,17 +22,6 @@ std::filesystem::path fresh_directory(const std::string& name) {
   const auto dir = std::filesystem::path(PLMAP_TEST_BINARY_DIR) / name;
   std::filesystem::remove_all(dir);
   return dir;
-}
-
-/// The tools the benchmark was built with (`--list-tools`), one per line.
-std::string listed_tools() {
-  std::string out;
-  if (FILE* pipe = popen((peer_benchmark_program() + " --list-tools").c_str(), "r")) {
-    char buffer[256];
-    while (std::fgets(buffer, sizeof buffer, pipe)) out += buffer;
-    pclose(pipe);
-  }
-  return out;
 }
 
 ExperimentConfig config_with(const std::string& inputs, const std::string& step, const std::string& sweep = "") {
@@ -112,7 +102,7 @@ TEST_F(PeerProject, AMissingBenchmarkIsAnErrorThatSaysWhatToBuild) {
 }
 
 TEST_F(PeerProject, ContactMergeAgreesWithPlmapOnThePiecesOfAPlanePair) {
-  if (listed_tools().find("contactmerge") == std::string::npos) GTEST_SKIP() << "built without dune-grid-glue";
+  if (!benchmark_has_tool(peer_benchmark_program(), "contactmerge")) GTEST_SKIP() << "built without dune-grid-glue";
   const auto config = config_with("[[inputs]]\nkind = \"contact-pair\"\ncase = \"plane\"\nsize = 300\n",
                                   "tool = \"plmap\"\n", "[sweep]\n\"peer_project.tool\" = [\"plmap\", \"contactmerge\"]\n");
   RunOptions options;

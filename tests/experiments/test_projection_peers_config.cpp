@@ -3,6 +3,8 @@
 // plmap on two threads on the planes 200k, the spheres L7 and the real-mesh pairs — and a reduced
 // copy of its real-mesh part runs end to end.
 
+#include "benchmark_tools.hpp"
+
 #include <plmap/experiment/cgal_data.hpp>
 #include <plmap/experiment/config.hpp>
 #include <plmap/experiment/runner.hpp>
@@ -11,7 +13,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -81,19 +82,8 @@ TEST_F(ProjectionPeersConfig, TheShippedConfigSweepsToolsRealMeshesAndPlmapsThre
   EXPECT_EQ(runs.back().columns["input.mesh"], "armadillo");
 }
 
-/// The tools the benchmark was built with (`--list-tools`), one per line.
-std::string listed_tools() {
-  std::string out;
-  if (FILE* pipe = popen((peer_benchmark_program() + " --list-tools").c_str(), "r")) {
-    char buffer[256];
-    while (std::fgets(buffer, sizeof buffer, pipe)) out += buffer;
-    pclose(pipe);
-  }
-  return out;
-}
-
 TEST_F(ProjectionPeersConfig, AReducedRealMeshPairRunsForBothToolsAndOnTwoThreads) {
-  const bool contactmerge = listed_tools().find("contactmerge") != std::string::npos;
+  const bool contactmerge = benchmark_has_tool(peer_benchmark_program(), "contactmerge");
   const std::string tools = contactmerge ? "[\"plmap\", \"contactmerge\"]" : "[\"plmap\"]";
   const auto config = parse_experiment_text(
       "[experiment]\nname = \"bones\"\nrepetitions = 1\n"

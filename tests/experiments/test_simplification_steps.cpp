@@ -2,6 +2,8 @@
 // oracles), the peer_simplify step (experiments/peers' bench_simplification_peers in a child
 // process), and the configs they reject.
 
+#include "benchmark_tools.hpp"
+
 #include <plmap/core/io/surface_writer.hpp>
 #include <plmap/experiment/cgal_data.hpp>
 #include <plmap/experiment/config.hpp>
@@ -13,7 +15,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -159,24 +160,13 @@ TEST(SimplificationSteps, TheShippedConfigsAreValid) {
   EXPECT_EQ(run_count(oracles), 10u);  // five meshes, two oracle combinations
 }
 
-/// The tools the benchmark was built with (`--list-tools`), one per line.
-std::string listed_tools() {
-  std::string out;
-  if (FILE* pipe = popen((simplification_benchmark_program() + " --list-tools").c_str(), "r")) {
-    char buffer[256];
-    while (std::fgets(buffer, sizeof buffer, pipe)) out += buffer;
-    pclose(pipe);
-  }
-  return out;
-}
-
 TEST(SimplificationSteps, PeerSimplifyMeasuresEveryToolWithTheSameCode) {
   if (!simplification_benchmark_available()) GTEST_SKIP() << "built without experiments/peers";
   const auto dir = fresh_directory("peer_simplify_cache");
   generators::Rng rng(5);
   write_surface<2>(dir / "sphere.off", generators::icosphere({.subdivisions = 3, .radial_jitter = 0.05}, rng));
   std::string tools = "\"plmap\", \"cgal\"";
-  const bool psurface = listed_tools().find("psurface") != std::string::npos;
+  const bool psurface = benchmark_has_tool(simplification_benchmark_program(), "psurface");
   if (psurface) tools += ", \"psurface\"";
   const auto config = parse(kExperiment + "[[inputs]]\nkind = \"file\"\npath = \"sphere.off\"\n"
                                           "[[pipeline]]\nstep = \"peer_simplify\"\ntool = \"plmap\"\ntarget_elements = 300\n"
