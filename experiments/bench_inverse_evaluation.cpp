@@ -12,6 +12,8 @@
 // Usage: bench_inverse_evaluation --s1 A.off --s2 B.off [--queries N] [--json out.json]
 //        bench_inverse_evaluation --map M.plmap [--queries N] [--json out.json]
 
+#include "peers/measurement.hpp"
+
 #include <plmap/construct/project.hpp>
 #include <plmap/core/evaluation.hpp>
 #include <plmap/core/inverse_evaluation.hpp>
@@ -34,23 +36,14 @@ namespace {
 using namespace plmap;
 using Json = nlohmann::ordered_json;
 
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-double wall_seconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 /// Best of three runs of work(), in CPU nanoseconds per query.
 template <class Work>
 double ns_per_query(std::size_t queries, Work&& work) {
   double best = 1e300;
   for (int rep = 0; rep < 3; ++rep) {
-    const double t0 = cpu_seconds();
+    const double t0 = peers::process_cpu_seconds();
     work();
-    best = std::min(best, cpu_seconds() - t0);
+    best = std::min(best, peers::process_cpu_seconds() - t0);
   }
   return 1e9 * best / double(queries);
 }
@@ -100,9 +93,9 @@ Json run(const PlMap<d>& map, std::size_t n) {
   for (const auto& e : forward) found += e.in_domain;
   j["forward_fraction_in_domain"] = double(found) / double(n);
 
-  const double t0 = wall_seconds();
+  const double t0 = peers::now_seconds();
   const InverseIndex<d> index(map);
-  j["inverse_index_build_seconds"] = wall_seconds() - t0;
+  j["inverse_index_build_seconds"] = peers::now_seconds() - t0;
   j["inverse_index_bytes"] = index.memory_bytes();
   j["map_bytes"] = map.memory_bytes();
 
@@ -152,11 +145,11 @@ int main(int argc, char** argv) {
     } else if (!s1_path.empty() && !s2_path.empty()) {
       auto s1 = std::make_shared<const plmap::Surface<2>>(plmap::read_surface<2>(s1_path));
       auto s2 = std::make_shared<const plmap::Surface<2>>(plmap::read_surface<2>(s2_path));
-      const double t0 = wall_seconds();
+      const double t0 = peers::now_seconds();
       const auto projected = plmap::project<2>(s1, s2);
       result["s1"] = s1_path;
       result["s2"] = s2_path;
-      result["projection_seconds"] = wall_seconds() - t0;
+      result["projection_seconds"] = peers::now_seconds() - t0;
       result.update(run(projected.map, queries));
     } else {
       fmt::print(stderr, "usage: bench_inverse_evaluation (--s1 A --s2 B | --map M) [--queries N] [--json F]\n");

@@ -20,13 +20,13 @@
 //   --map FILE.plmap    also measure a map from a file (d = 2 and covering S1, e.g. one made by
 //                       `plmap simplify`); repeatable
 
+#include "evaluation_cases/evaluation_cases.hpp"
+
 #include <plmap/verify/generators/subdivision_maps.hpp>
 
 #include <plmap/core/evaluation.hpp>
 #include <plmap/core/io/map_file.hpp>
-#include <plmap/core/io/surface_reader.hpp>
 #include <plmap/strategies/point_locator_registry.hpp>
-#include <plmap/verify/generators/simplified_surface.hpp>
 
 
 #include <fmt/format.h>
@@ -37,7 +37,6 @@
 #include <cmath>
 #include <ctime>
 #include <fstream>
-#include <random>
 #include <string>
 #include <thread>
 #include <type_traits>
@@ -92,33 +91,13 @@ struct Case {
   std::shared_ptr<const PlMap<2>> map;
 };
 
-/// The femur of CGAL's data set simplified to about `faces` triangles by edge collapse.
-std::shared_ptr<const Surface<2>> coarse_femur(const std::string& path, std::size_t faces) {
-  return std::make_shared<const Surface<2>>(
-      generators::simplify_by_edge_collapse(read_surface<2>(path), faces));
-}
-
-/// Random query points, uniform over the elements (uniform in each reference triangle).
-std::vector<SurfacePoint<2>> random_queries(const Surface<2>& s1, std::size_t n, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::uniform_int_distribution<Index> element(0, s1.element_count() - 1);
-  std::vector<SurfacePoint<2>> q(n);
-  for (auto& p : q) {
-    double x = u(rng), y = u(rng);
-    if (x + y > 1) x = 1 - x, y = 1 - y;
-    p = {element(rng), LocalPoint<2>(x, y)};
-  }
-  return q;
-}
-
 // ---- one case ----------------------------------------------------------------------------------
 
 Json run_case(const Case& c, std::size_t query_count, unsigned all_threads, double target_seconds,
              const point_location::CellGridOptions& cell_grid_options, const std::string& only) {
   const PlMap<2>& map = *c.map;
   const auto& s1 = map.domain();
-  const auto queries = random_queries(s1, query_count, 12345);
+  const auto queries = bench::random_queries(s1, query_count, 12345);
   std::vector<Evaluation<2>> out(queries.size());
 
   // The true regions, for the floor (and a check that every locator finds every query).
@@ -287,7 +266,7 @@ int main(int argc, char** argv) {
     }
     const std::size_t growth_cases = cases.size();
     if (!femur_path.empty()) {
-      const auto femur = coarse_femur(femur_path, 500);
+      const auto femur = bench::coarse_femur(femur_path, 500);
       for (int k : {4, 5})
         cases.push_back({fmt::format("femur {} tris, {}x{} refinement", femur->element_count(), k, k),
                          generators::subdivision_map(femur, k, 0.2, 200 + k).map});

@@ -28,14 +28,14 @@
 //                      [--queries N] [--json out.json]
 
 #include "../../tests/construct/projection_fixtures.hpp"
+#include "evaluation_cases/evaluation_cases.hpp"
+#include "peers/measurement.hpp"
 #include <plmap/verify/generators/subdivision_maps.hpp>
 
 #include <plmap/construct/project.hpp>
 #include <plmap/core/evaluation.hpp>
 #include <plmap/core/io/map_file.hpp>
-#include <plmap/core/io/surface_reader.hpp>
 #include <plmap/strategies/point_locator_registry.hpp>
-#include <plmap/verify/generators/simplified_surface.hpp>
 
 // PSURFACE_STANDALONE is defined by the build (the headers need it).
 #include <psurface/PSurface.h>
@@ -45,9 +45,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include <fcntl.h>
 #include <malloc.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -56,7 +54,6 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -65,20 +62,14 @@ namespace {
 using namespace plmap;
 using Json = nlohmann::json;
 
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
 /// CPU seconds of work(), median of three runs.
 template <class Work>
 double median_cpu_seconds(Work&& work) {
   std::array<double, 3> t{};
   for (double& s : t) {
-    const double t0 = cpu_seconds();
+    const double t0 = peers::process_cpu_seconds();
     work();
-    s = cpu_seconds() - t0;
+    s = peers::process_cpu_seconds() - t0;
   }
   std::sort(t.begin(), t.end());
   return t[1];
@@ -86,54 +77,12 @@ double median_cpu_seconds(Work&& work) {
 
 std::size_t heap_in_use() { return mallinfo2().uordblks; }
 
-/// PSurface prints a line for every query it cannot map; while it works, stdout goes to
-/// /dev/null (the failures are counted from the return values instead).
-class SilenceStdout {
- public:
-  SilenceStdout() {
-    std::fflush(stdout);
-    saved_ = dup(STDOUT_FILENO);
-    const int null = open("/dev/null", O_WRONLY);
-    dup2(null, STDOUT_FILENO);
-    close(null);
-  }
-  ~SilenceStdout() {
-    std::fflush(stdout);
-    dup2(saved_, STDOUT_FILENO);
-    close(saved_);
-  }
-  SilenceStdout(const SilenceStdout&) = delete;
-  SilenceStdout& operator=(const SilenceStdout&) = delete;
-
- private:
-  int saved_ = -1;
-};
-
 // ---- maps --------------------------------------------------------------------------------------
 
 struct Case {
   std::string name;
   std::shared_ptr<const PlMap<2>> map;
 };
-
-/// CGAL's femur simplified to about `faces` triangles by edge collapse (as bench_point_location).
-std::shared_ptr<const Surface<2>> coarse_femur(const std::string& path, std::size_t faces) {
-  return std::make_shared<const Surface<2>>(
-      generators::simplify_by_edge_collapse(read_surface<2>(path), faces));
-}
-
-std::vector<SurfacePoint<2>> random_queries(const Surface<2>& s1, std::size_t n, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::uniform_int_distribution<Index> element(0, s1.element_count() - 1);
-  std::vector<SurfacePoint<2>> q(n);
-  for (auto& p : q) {
-    double x = u(rng), y = u(rng);
-    if (x + y > 1) x = 1 - x, y = 1 - y;
-    p = {element(rng), LocalPoint<2>(x, y)};
-  }
-  return q;
-}
 
 // ---- the same map in PSurface ------------------------------------------------------------------
 
@@ -207,7 +156,7 @@ PSurfaceMap<ctype> build_psurface(const PlMap<2>& map) {
   const std::vector<Index> partner = intersection_partners(map);
   std::vector<int> local_index(std::size_t(map.node_count()), -1);
 
-  const double t0 = cpu_seconds();
+  const double t0 = peers::process_cpu_seconds();
   const std::size_t heap0 = heap_in_use();
   out.target = std::make_unique<psurface::Surface>();
   out.target->points.resize(std::size_t(s2.vertex_count()));
@@ -308,18 +257,18 @@ PSurfaceMap<ctype> build_psurface(const PlMap<2>& map) {
   // PSurface::createPointLocationStructure() is the per-triangle set-up below.
   out.edges_before_closure = count_graph_edges(ps);
   {
-    SilenceStdout quiet;
+    peers::QuietStdout quiet;  // PSurface prints a line for every query it cannot map
     for (Index t = 0; t < s1.element_count(); ++t) ps.triangles(t).createPointLocationStructure();
   }
   ps.hasUpToDatePointLocationStructure = true;
   const std::size_t heap3 = heap_in_use();
-  out.build_seconds = cpu_seconds() - t0;
+  out.build_seconds = peers::process_cpu_seconds() - t0;
 
   // For the record: PSurface's full set-up, closure step included, on a copy (after the heap
   // was measured).
   out.own_closure = std::make_unique<psurface::PSurface<2, ctype>>(ps);
   {
-    SilenceStdout quiet;
+    peers::QuietStdout quiet;
     out.own_closure->createPointLocationStructure();
   }
   out.edges_added_by_psurface = count_graph_edges(*out.own_closure) - out.edges_before_closure;
@@ -386,7 +335,7 @@ Agreement compare_images(const psurface::PSurface<2, ctype>& ps, const PlMap<2>&
   const auto& s2 = map.target();
   const double diagonal = (s2.bounding_box_max() - s2.bounding_box_min()).norm();
   Agreement a;
-  SilenceStdout quiet;
+  peers::QuietStdout quiet;
   std::tr1::array<int, 3> v;
   psurface::StaticVector<ctype, 2> c;
   for (std::size_t i = 0; i < std::min(count, queries.size()); ++i) {
@@ -437,7 +386,7 @@ Json measure_psurface(const PSurfaceMap<ctype>& psm, const PlMap<2>& map,
   std::vector<char> ok(queries.size());
   double seconds = 0;
   {
-    SilenceStdout quiet;
+    peers::QuietStdout quiet;
     seconds = median_cpu_seconds([&] {
       for (std::size_t i = 0; i < queries.size(); ++i)
         ok[i] = ps.map(queries[i].element, local[i], vertices[i], coords[i]);
@@ -465,7 +414,7 @@ Json measure_psurface(const PSurfaceMap<ctype>& psm, const PlMap<2>& map,
 
 Json run_case(const Case& c, std::size_t query_count) {
   const PlMap<2>& map = *c.map;
-  const auto queries = random_queries(map.domain(), query_count, 12345);
+  const auto queries = bench::random_queries(map.domain(), query_count, 12345);
   std::vector<Evaluation<2>> out(queries.size()), reference(queries.size());
   // Reference images by brute force (not timed).
   with_point_locator<2>("brute-force", [&](auto& locator) {
@@ -606,7 +555,7 @@ int main(int argc, char** argv) {
   try {
     std::vector<Case> cases;
     if (!femur_path.empty()) {
-      const auto femur = coarse_femur(femur_path, 500);
+      const auto femur = bench::coarse_femur(femur_path, 500);
       for (int k : {4, 5})
         cases.push_back({fmt::format("femur {} tris, {}x{} refinement", femur->element_count(), k, k),
                          generators::subdivision_map(femur, k, 0.2, 200 + k).map});
