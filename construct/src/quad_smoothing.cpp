@@ -4,6 +4,7 @@
 #include "region_condition.hpp"
 
 #include <plmap/core/predicates.hpp>
+#include <plmap/core/segment_sweep.hpp>
 #include <plmap/strategies/smoothing/uniform_weights.hpp>
 
 #include <Eigen/LU>
@@ -308,11 +309,11 @@ QuadOutcome QuadSmoother::smooth(Index e) {
     new_place[i] = {DomainPlace::Kind::element, t, 0.0, local};
   }
   const auto end_position = [&](const Piece& p, int end) { return p.unknown[end] >= 0 ? position[p.unknown[end]] : p.fixed[end]; };
-  for (std::size_t p = 0; p < pieces.size(); ++p)
-    for (std::size_t q = p + 1; q < pieces.size(); ++q)
-      if (segments_cross_properly(end_position(pieces[p], 0), end_position(pieces[p], 1), end_position(pieces[q], 0),
-                                  end_position(pieces[q], 1)))
-        return refuse("fold-over");
+  // all pairs of pieces, by a sweep (a late coarse quadrilateral carries hundreds of pieces)
+  std::vector<PlanarSegment> segments;
+  segments.reserve(pieces.size());
+  for (const Piece& p : pieces) segments.push_back({end_position(p, 0), end_position(p, 1)});
+  if (any_segments_cross(segments)) return refuse("fold-over");
   for (int i = 0; i < unknowns; ++i) {
     double turn = 0.0;
     const auto& ring = ordered_ring[i];
