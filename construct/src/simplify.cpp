@@ -98,6 +98,7 @@ class Simplifier {
     stamp_.assign(s.vertex_count(), 0);
     last_refusal_.assign(s.vertex_count(), {});
     prepared_.resize(static_cast<std::size_t>(s.vertex_count()));
+    new_edges_.assign(s.vertex_count(), 0);
   }
 
   Index feature_edge_count() const { return feature_edge_count_; }
@@ -127,13 +128,13 @@ class Simplifier {
     // The full plan of a popped vertex reuses its ranking's hole when the triangulation would
     // come out the same: the star is unchanged (same stamp) and every S1 edge the
     // triangulation asked about is still there or still absent.
-    if (extent == PlanExtent::full && hole.stamp == stamp_[v] && !hole.sheet.ring.empty() && hole_still_valid(hole)) {
+    if (extent == PlanExtent::full && hole.stamp == stamp_[v] && !hole.sheet.ring.empty() &&
+        hole.new_edge_count == new_edges_at(hole.sheet.ring)) {
       a.plan = map_.plan_vertex_removal(v, std::span(&hole.sheet, 1), std::span(&hole.flat, 1),
                                         std::span(&hole.triangles, 1), extent, std::move(a.plan));
       return judge(std::move(a));
     }
     hole.sheet.ring.clear();
-    hole.edge_queries.clear();
     std::vector<Index> ring = map_.closed_ring(v);
     if (ring.size() < 3) {
       a.refusal = to_string(RemovalRefusal::not_a_disk_star);
@@ -154,11 +155,8 @@ class Simplifier {
     std::vector<std::array<int, 2>> avoided;
     const DiagonalAllowed allowed = [&](int i, int j) {
       const std::array<int, 2> key{std::min(i, j), std::max(i, j)};
-      if (std::find(avoided.begin(), avoided.end(), key) != avoided.end()) return false;
       const std::vector<Index>& r = sheet[0].ring;
-      const bool exists = map_.has_edge(r[i], r[j]);
-      hole.edge_queries.push_back({r[i], r[j], exists});
-      return !exists;
+      return std::find(avoided.begin(), avoided.end(), key) == avoided.end() && !map_.has_edge(r[i], r[j]);
     };
     std::vector<HoleTriangles> triangles(1);
     for (std::size_t tries = 0; tries < sheet[0].ring.size(); ++tries) {
@@ -178,28 +176,28 @@ class Simplifier {
       hole.flat = std::move(flats[0]);
       hole.triangles = std::move(triangles[0]);
       hole.stamp = stamp_[v];
+      hole.new_edge_count = new_edges_at(hole.sheet.ring);
     }
     return a;
   }
 
   /// The flattening and triangulation of a closed star from its ranking, for its full plan.
   /// The hole triangulation is a deterministic function of the polygon and of the answers of
-  /// `allowed`; those depend on the S1 edges between ring vertices, recorded as asked.
-  struct EdgeQuery {
-    Index a, b;
-    bool exists;
-  };
+  /// `allowed`, which depend on the S1 edges between ring vertices. Such an edge disappears only
+  /// with a ring vertex (then v is ranked again: a new stamp) and appears only as a new edge of
+  /// a removal, whose ends all get their new_edges_ count raised: an unchanged sum over the ring
+  /// means unchanged answers.
   struct PreparedHole {
     std::uint32_t stamp = 0;
-    StarSheet sheet;  ///< empty ring: nothing kept
+    std::uint64_t new_edge_count = 0;  ///< sum of new_edges_ over the ring when triangulated
+    StarSheet sheet;                   ///< empty ring: nothing kept
     std::vector<Eigen::Vector2d> flat;
     HoleTriangles triangles;
-    std::vector<EdgeQuery> edge_queries;
   };
-  bool hole_still_valid(const PreparedHole& hole) const {
-    for (const EdgeQuery& q : hole.edge_queries)
-      if (map_.has_edge(q.a, q.b) != q.exists) return false;
-    return true;
+  std::uint64_t new_edges_at(const std::vector<Index>& ring) const {
+    std::uint64_t sum = 0;
+    for (Index w : ring) sum += new_edges_[w];
+    return sum;
   }
 
   /// The removal of v along its feature line: each side of the line (half-star) is flattened
@@ -335,6 +333,8 @@ class Simplifier {
       if (a.plan.line_edge[0] != invalid_index) ++report.removed_along_lines;
       const std::vector<Index> ring = std::move(a.plan.ring);
       spare_plan_ = std::move(a.plan);
+      for (Index w : ring) ++new_edges_[w];  // every new S1 edge joins two of these
+      prepared_[top.vertex] = PreparedHole{};
       for (Index w : ring) rank(w);
       if (options_.progress && options_.progress_every > 0 && report.removed_vertices % options_.progress_every == 0)
         report_removals(report, false);
@@ -380,6 +380,7 @@ class Simplifier {
   std::vector<std::uint32_t> stamp_;
   std::vector<std::string> last_refusal_;
   std::vector<PreparedHole> prepared_;  ///< per vertex, from its latest ranking
+  std::vector<std::uint32_t> new_edges_;  ///< per vertex, how many removals gave it new S1 edges (or might have)
   VertexRemovalPlan spare_plan_;         ///< the last plan that is no longer needed: its buffers are reused
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
 };

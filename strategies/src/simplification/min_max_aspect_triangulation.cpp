@@ -23,6 +23,7 @@ struct Tables {
   std::vector<char> usable;
   std::vector<double> best, chord;  ///< chord: distance between ring vertices i and j
   std::vector<int> split;
+  std::vector<std::array<int, 2>> stack;  ///< sub-polygons still to split when reading off the result
 };
 
 }  // namespace
@@ -109,7 +110,9 @@ std::optional<HoleTriangles> MinMaxAspectTriangulation::triangulate(std::span<co
     }
   if (split[n - 1] < 0) return std::nullopt;
   HoleTriangles out;
-  std::vector<std::array<int, 2>> stack = {{0, n - 1}};
+  out.reserve(static_cast<std::size_t>(n - 2));
+  std::vector<std::array<int, 2>>& stack = tables.stack;
+  stack.assign(1, {0, n - 1});
   while (!stack.empty()) {
     const auto [i, j] = stack.back();
     stack.pop_back();
