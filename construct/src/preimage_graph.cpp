@@ -111,25 +111,32 @@ double polyline_target_parameter(const PreimageGraph& g, Index edge, std::size_t
 }
 
 Index common_element(const Surface<2>& domain, const DomainPlace& a, const DomainPlace& b, bool* along_edge) {
-  std::vector<Index> ea, eb;
-  for (const auto* p : {&a, &b}) {
-    std::vector<Index>& out = p == &a ? ea : eb;
-    switch (p->kind) {
-      case DomainPlace::Kind::vertex: {
-        const auto list = domain.vertex_elements(p->where);
-        out.assign(list.begin(), list.end());
-        break;
-      }
+  // Called for every segment of every polyline a quadrilateral step touches: no allocation.
+  const auto holds = [&domain](const DomainPlace& p, Index t) {
+    switch (p.kind) {
+      case DomainPlace::Kind::vertex: return contains(domain.vertex_elements(p.where), t);
       case DomainPlace::Kind::edge:
-        for (const EdgeIncidence& i : domain.edge_elements(p->where)) out.push_back(i.element);
-        break;
-      case DomainPlace::Kind::element: out.push_back(p->where); break;
+        for (const EdgeIncidence& i : domain.edge_elements(p.where))
+          if (i.element == t) return true;
+        return false;
+      case DomainPlace::Kind::element: return p.where == t;
     }
-  }
+    return false;
+  };
   Index found = invalid_index;
   int count = 0;
-  for (Index t : ea)
-    if (contains(eb, t)) found = t, ++count;
+  const auto consider = [&](Index t) {
+    if (holds(b, t)) found = t, ++count;
+  };
+  switch (a.kind) {
+    case DomainPlace::Kind::vertex:
+      for (Index t : domain.vertex_elements(a.where)) consider(t);
+      break;
+    case DomainPlace::Kind::edge:
+      for (const EdgeIncidence& i : domain.edge_elements(a.where)) consider(i.element);
+      break;
+    case DomainPlace::Kind::element: consider(a.where); break;
+  }
   if (along_edge != nullptr) *along_edge = count > 1;
   return count == 1 ? found : invalid_index;
 }

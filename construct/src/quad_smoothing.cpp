@@ -4,6 +4,7 @@
 #include "region_condition.hpp"
 
 #include <plmap/core/predicates.hpp>
+#include <plmap/core/segment_sweep.hpp>
 #include <plmap/strategies/smoothing/uniform_weights.hpp>
 
 #include <Eigen/LU>
@@ -176,24 +177,30 @@ QuadOutcome QuadSmoother::smooth(Index e) {
     return refuse("non-convex quadrilateral");
 
   // ---- merge: the pieces of S2 edges in the quadrilateral, and the unknowns ----
-  std::vector<Index> relevant = edges_in_element_[u.t1];
+  // The step's working vectors live per thread: one sweep runs a step per S1 edge, and
+  // allocating them per step was a tenth of the smoothing.
+  thread_local std::vector<Index> relevant;
+  relevant.assign(edges_in_element_[u.t1].begin(), edges_in_element_[u.t1].end());
   for (Index x : edges_in_element_[u.t2])
     if (std::find(relevant.begin(), relevant.end(), x) == relevant.end()) relevant.push_back(x);
   const auto movable = [&](const DomainPlace& p) {
     return (p.kind == DomainPlace::Kind::element && (p.where == u.t1 || p.where == u.t2)) ||
            (p.kind == DomainPlace::Kind::edge && p.where == e);
   };
-  std::vector<Index> unknown_vertex;  // S2 vertex of each unknown
+  thread_local std::vector<Index> unknown_vertex;  // S2 vertex of each unknown
+  unknown_vertex.clear();
   const auto unknown_of = [&](Index v) {
     const auto it = std::find(unknown_vertex.begin(), unknown_vertex.end(), v);
     if (it != unknown_vertex.end()) return static_cast<int>(it - unknown_vertex.begin());
     unknown_vertex.push_back(v);
     return static_cast<int>(unknown_vertex.size()) - 1;
   };
-  std::vector<Piece> pieces;
+  thread_local std::vector<Piece> pieces;
+  pieces.clear();
+  thread_local std::vector<char> inside;
   for (Index te : relevant) {
     const std::size_t n = polyline_size(g_, te);
-    std::vector<char> inside(n - 1, 0);
+    inside.assign(n - 1, 0);
     for (std::size_t i = 0; i + 1 < n; ++i) {
       bool along = false;
       const Index t = common_element(s1_, polyline_point(g_, s2_, te, i), polyline_point(g_, s2_, te, i + 1), &along);
@@ -232,24 +239,32 @@ QuadOutcome QuadSmoother::smooth(Index e) {
 
   // ---- the convex-combination system ----
   const int unknowns = static_cast<int>(unknown_vertex.size());
-  std::vector<std::vector<std::pair<int, int>>> ring_of(unknown_vertex.size());  // (piece, end of the neighbour)
+  thread_local std::vector<std::vector<std::pair<int, int>>> ring_of;  // (piece, end of the neighbour)
+  thread_local std::vector<std::vector<std::pair<int, int>>> ordered_ring;
+  thread_local std::vector<std::vector<Eigen::Vector3d>> ring_world;
+  for (auto* lists : {&ring_of, &ordered_ring}) {
+    if (lists->size() < unknown_vertex.size()) lists->resize(unknown_vertex.size());
+    for (std::size_t i = 0; i < unknown_vertex.size(); ++i) (*lists)[i].clear();
+  }
+  if (ring_world.size() < unknown_vertex.size()) ring_world.resize(unknown_vertex.size());
   for (int p = 0; p < static_cast<int>(pieces.size()); ++p)
     for (int end = 0; end < 2; ++end)
       if (pieces[p].unknown[end] >= 0) ring_of[pieces[p].unknown[end]].push_back({p, 1 - end});
-  std::vector<Eigen::Triplet<double>> triplets;
+  thread_local std::vector<Eigen::Triplet<double>> triplets;
+  triplets.clear();
   Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
-  std::vector<std::vector<std::pair<int, int>>> ordered_ring(unknown_vertex.size());
-  std::vector<std::vector<Eigen::Vector3d>> ring_world(unknown_vertex.size());
   for (int i = 0; i < unknowns; ++i) {
     const Index v = unknown_vertex[i];
     // S2's cyclic order of v's neighbours: next(x) = y for each S2 triangle (v, x, y)
     const auto star = s2_.vertex_elements(v);
-    std::vector<std::pair<Index, Index>> next;
+    thread_local std::vector<std::pair<Index, Index>> next;
+    next.clear();
     for (Index s : star) {
       const int k = s2_.local_corner(s, v);
       next.push_back({s2_.element(s)[(k + 1) % 3], s2_.element(s)[(k + 2) % 3]});
     }
-    std::vector<Index> cycle{next.front().first};
+    thread_local std::vector<Index> cycle;
+    cycle.assign(1, next.front().first);
     while (cycle.size() <= next.size()) {
       const auto it = std::find_if(next.begin(), next.end(), [&](const auto& xy) { return xy.first == cycle.back(); });
       if (it == next.end()) return refuse("vertex preimage with an open S2 star");
@@ -257,7 +272,8 @@ QuadOutcome QuadSmoother::smooth(Index e) {
       cycle.push_back(it->second);
     }
     if (cycle.size() != next.size() || ring_of[i].size() != cycle.size()) return refuse("vertex preimage with an open S2 star");
-    std::vector<Eigen::Vector3d> ring;
+    std::vector<Eigen::Vector3d>& ring = ring_world[i];
+    ring.clear();
     for (Index x : cycle) {
       const Index te = s2_.find_edge(v, x);
       const auto it = std::find_if(ring_of[i].begin(), ring_of[i].end(), [&](const auto& pe) { return pieces[pe.first].edge == te; });
@@ -280,7 +296,6 @@ QuadOutcome QuadSmoother::smooth(Index e) {
       else
         rhs.row(i) += (*w)[j] * pieces[p].fixed[end].transpose();
     }
-    ring_world[i] = std::move(ring);
     if (g_.orientation < 0) {
       std::reverse(ordered_ring[i].begin(), ordered_ring[i].end());
       std::reverse(ring_world[i].begin(), ring_world[i].end());
@@ -308,11 +323,11 @@ QuadOutcome QuadSmoother::smooth(Index e) {
     new_place[i] = {DomainPlace::Kind::element, t, 0.0, local};
   }
   const auto end_position = [&](const Piece& p, int end) { return p.unknown[end] >= 0 ? position[p.unknown[end]] : p.fixed[end]; };
-  for (std::size_t p = 0; p < pieces.size(); ++p)
-    for (std::size_t q = p + 1; q < pieces.size(); ++q)
-      if (segments_cross_properly(end_position(pieces[p], 0), end_position(pieces[p], 1), end_position(pieces[q], 0),
-                                  end_position(pieces[q], 1)))
-        return refuse("fold-over");
+  // all pairs of pieces, by a sweep (a late coarse quadrilateral carries hundreds of pieces)
+  thread_local std::vector<PlanarSegment> segments;
+  segments.clear();
+  for (const Piece& p : pieces) segments.push_back({end_position(p, 0), end_position(p, 1)});
+  if (any_segments_cross(segments)) return refuse("fold-over");
   for (int i = 0; i < unknowns; ++i) {
     double turn = 0.0;
     const auto& ring = ordered_ring[i];

@@ -97,6 +97,8 @@ class Simplifier {
     }
     stamp_.assign(s.vertex_count(), 0);
     last_refusal_.assign(s.vertex_count(), {});
+    prepared_.resize(static_cast<std::size_t>(s.vertex_count()));
+    new_edges_.assign(s.vertex_count(), 0);
   }
 
   Index feature_edge_count() const { return feature_edge_count_; }
@@ -116,11 +118,24 @@ class Simplifier {
   EditableMap& map() { return map_; }
 
   /// Plans the removal of v (fully, or only its ranking bound) and judges it.
-  Attempt attempt(Index v, PlanExtent extent) const {
+  Attempt attempt(Index v, PlanExtent extent) {
     if (line_neighbours_[v][0] != invalid_index && !is_corner(v)) return attempt_along_line(v, extent);
     Attempt a;
+    a.plan = std::move(spare_plan_);  // its buffers, for this plan
+    a.plan.reset();
     a.plan.vertex = v;
-    const std::vector<Index> ring = map_.closed_ring(v);
+    PreparedHole& hole = prepared_[v];
+    // The full plan of a popped vertex reuses its ranking's hole when the triangulation would
+    // come out the same: the star is unchanged (same stamp) and every S1 edge the
+    // triangulation asked about is still there or still absent.
+    if (extent == PlanExtent::full && hole.stamp == stamp_[v] && !hole.sheet.ring.empty() &&
+        hole.new_edge_count == new_edges_at(hole.sheet.ring)) {
+      a.plan = map_.plan_vertex_removal(v, std::span(&hole.sheet, 1), std::span(&hole.flat, 1),
+                                        std::span(&hole.triangles, 1), extent, std::move(a.plan));
+      return judge(std::move(a));
+    }
+    hole.sheet.ring.clear();
+    std::vector<Index> ring = map_.closed_ring(v);
     if (ring.size() < 3) {
       a.refusal = to_string(RemovalRefusal::not_a_disk_star);
       return a;
@@ -128,29 +143,61 @@ class Simplifier {
     std::vector<Eigen::Vector3d> ring_positions;
     ring_positions.reserve(ring.size());
     for (Index w : ring) ring_positions.push_back(map_.position(w));
-    const auto flat = flatten_(map_.position(v), ring_positions);
+    auto flat = flatten_(map_.position(v), ring_positions);
     if (!flat) {
       a.refusal = to_string(RemovalRefusal::flattening_not_simple);
       return a;
     }
     // Diagonals through a node of the star (common in regular meshes, whose stars are
     // symmetric) are avoided by triangulating again without them.
+    std::vector<StarSheet> sheet{StarSheet{std::move(ring), true}};
+    std::vector<std::vector<Eigen::Vector2d>> flats{std::move(*flat)};
     std::vector<std::array<int, 2>> avoided;
     const DiagonalAllowed allowed = [&](int i, int j) {
       const std::array<int, 2> key{std::min(i, j), std::max(i, j)};
-      return std::find(avoided.begin(), avoided.end(), key) == avoided.end() && !map_.has_edge(ring[i], ring[j]);
+      const std::vector<Index>& r = sheet[0].ring;
+      return std::find(avoided.begin(), avoided.end(), key) == avoided.end() && !map_.has_edge(r[i], r[j]);
     };
-    for (std::size_t tries = 0; tries < ring.size(); ++tries) {
-      const auto triangles = triangulate_(*flat, allowed);
-      if (!triangles) {
+    std::vector<HoleTriangles> triangles(1);
+    for (std::size_t tries = 0; tries < sheet[0].ring.size(); ++tries) {
+      auto t = triangulate_(flats[0], allowed);
+      if (!t) {
         a.refusal = to_string(RemovalRefusal::no_triangulation);
         return a;
       }
-      a.plan = map_.plan_vertex_removal(v, *flat, *triangles, extent);
+      triangles[0] = std::move(*t);
+      a.plan = map_.plan_vertex_removal(v, sheet, flats, triangles, extent, std::move(a.plan));
       if (a.plan.refusal != RemovalRefusal::node_on_new_edge || a.plan.blocking_diagonal[0] < 0) break;
       avoided.push_back(a.plan.blocking_diagonal);
     }
-    return judge(std::move(a));
+    a = judge(std::move(a));
+    if (a.refusal.empty()) {
+      hole.sheet = std::move(sheet[0]);
+      hole.flat = std::move(flats[0]);
+      hole.triangles = std::move(triangles[0]);
+      hole.stamp = stamp_[v];
+      hole.new_edge_count = new_edges_at(hole.sheet.ring);
+    }
+    return a;
+  }
+
+  /// The flattening and triangulation of a closed star from its ranking, for its full plan.
+  /// The hole triangulation is a deterministic function of the polygon and of the answers of
+  /// `allowed`, which depend on the S1 edges between ring vertices. Such an edge disappears only
+  /// with a ring vertex (then v is ranked again: a new stamp) and appears only as a new edge of
+  /// a removal, whose ends all get their new_edges_ count raised: an unchanged sum over the ring
+  /// means unchanged answers.
+  struct PreparedHole {
+    std::uint32_t stamp = 0;
+    std::uint64_t new_edge_count = 0;  ///< sum of new_edges_ over the ring when triangulated
+    StarSheet sheet;                   ///< empty ring: nothing kept
+    std::vector<Eigen::Vector2d> flat;
+    HoleTriangles triangles;
+  };
+  std::uint64_t new_edges_at(const std::vector<Index>& ring) const {
+    std::uint64_t sum = 0;
+    for (Index w : ring) sum += new_edges_[w];
+    return sum;
   }
 
   /// The removal of v along its feature line: each side of the line (half-star) is flattened
@@ -237,9 +284,10 @@ class Simplifier {
   void rank(Index v) {
     ++stamp_[v];
     if (!map_.is_live_vertex(v) || is_corner(v)) return;
-    const Attempt a = attempt(v, PlanExtent::ranking_bound);
+    Attempt a = attempt(v, PlanExtent::ranking_bound);
     last_refusal_[v] = a.refusal;
     if (a.refusal.empty()) queue_.push({a.verdict.cost, v, stamp_[v]});
+    spare_plan_ = std::move(a.plan);
   }
 
   void run(SimplifyReport& report) {
@@ -262,6 +310,7 @@ class Simplifier {
       last_refusal_[top.vertex] = a.refusal;
       if (!a.refusal.empty()) {
         ++stamp_[top.vertex];
+        spare_plan_ = std::move(a.plan);
         continue;
       }
       if (a.verdict.cost > top.cost) {
@@ -273,6 +322,8 @@ class Simplifier {
         // on an unchanged map.
         ++stamp_[top.vertex];
         queue_.push({a.verdict.cost, top.vertex, stamp_[top.vertex]});
+        prepared_[top.vertex].stamp = stamp_[top.vertex];  // the map did not change: its hole stays
+        spare_plan_ = std::move(a.plan);
         continue;
       }
       map_.apply(a.plan);
@@ -280,7 +331,11 @@ class Simplifier {
       join_line_neighbours(top.vertex);
       ++report.removed_vertices;
       if (a.plan.line_edge[0] != invalid_index) ++report.removed_along_lines;
-      for (Index w : a.plan.ring) rank(w);
+      const std::vector<Index> ring = std::move(a.plan.ring);
+      spare_plan_ = std::move(a.plan);
+      for (Index w : ring) ++new_edges_[w];  // every new S1 edge joins two of these
+      prepared_[top.vertex] = PreparedHole{};
+      for (Index w : ring) rank(w);
       if (options_.progress && options_.progress_every > 0 && report.removed_vertices % options_.progress_every == 0)
         report_removals(report, false);
     }
@@ -324,6 +379,9 @@ class Simplifier {
   Index feature_edge_count_ = 0;
   std::vector<std::uint32_t> stamp_;
   std::vector<std::string> last_refusal_;
+  std::vector<PreparedHole> prepared_;  ///< per vertex, from its latest ranking
+  std::vector<std::uint32_t> new_edges_;  ///< per vertex, how many removals gave it new S1 edges (or might have)
+  VertexRemovalPlan spare_plan_;         ///< the last plan that is no longer needed: its buffers are reused
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
 };
 

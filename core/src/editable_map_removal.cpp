@@ -86,7 +86,42 @@ struct SheetPlan {
   }
 };
 
+/// Working buffers of a plan that do not outlive it, kept per thread between plans.
+struct PlanScratch {
+  std::vector<SheetPlan> sheets;
+  std::vector<std::array<Index, 2>> new_edges;
+  std::vector<Index> star_triangles, edges;
+};
+
 }  // namespace
+
+void VertexRemovalPlan::reset() {
+  vertex = invalid_index;
+  refusal = RemovalRefusal::none;
+  ring.clear();
+  old_triangles.clear();
+  new_triangles.clear();
+  old_triangle_sheet.clear();
+  new_triangle_sheet.clear();
+  line_edge = {invalid_index, invalid_index};
+  node_domain_positions.clear();
+  node_target_positions.clear();
+  max_node_distance = 0.0;
+  relocations.clear();
+  for (PolylineEdit& e : polyline_edits) {
+    e.point_vertex.clear();
+    e.point_edge.clear();
+    e.point_edge_parameter.clear();
+    e.point_target_parameter.clear();
+    e.segment_triangle.clear();
+    spare_edits.push_back(std::move(e));
+  }
+  polyline_edits.clear();
+  triangle_count_at_planning = 0;
+  extent = PlanExtent::full;
+  blocking_diagonal = {-1, -1};
+  blocking_sheet = -1;
+}
 
 VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2> flattened_ring,
                                                    std::span<const std::array<int, 3>> triangulation,
@@ -100,10 +135,12 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2
 VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const StarSheet> sheets,
                                                    std::span<const std::vector<Vec2>> flattened,
                                                    std::span<const std::vector<std::array<int, 3>>> triangulations,
-                                                   PlanExtent extent) const {
+                                                   PlanExtent extent, VertexRemovalPlan storage) const {
   const Impl& s = *impl_;
   const double clearance = s.options.edge_clearance;
-  VertexRemovalPlan plan;
+  VertexRemovalPlan plan = std::move(storage);
+  plan.reset();
+  thread_local PlanScratch scratch;
   plan.vertex = v;
   plan.extent = extent;
   plan.triangle_count_at_planning = static_cast<Index>(s.triangles.size());
@@ -132,9 +169,12 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
   const Vec2 origin = Vec2::Zero();
 
   // ---- the star's triangles, sheet by sheet: sheet triangle i is (v, ring[i], ring[i+1]) ----
-  std::vector<SheetPlan> sp(sheet_count);
+  std::vector<SheetPlan>& sp = scratch.sheets;
+  if (static_cast<int>(sp.size()) < sheet_count) sp.resize(static_cast<std::size_t>(sheet_count));
   for (int g = 0; g < sheet_count; ++g) {
     SheetPlan& sh = sp[g];
+    sh.diagonals.clear();
+    sh.moved.clear();
     sh.ring = &sheets[g].ring;
     sh.flat = flattened[g];
     sh.triangulation = triangulations[g];
@@ -168,7 +208,8 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
     }
   }
   {
-    std::vector<Index> all = plan.old_triangles;
+    std::vector<Index>& all = scratch.star_triangles;
+    all.assign(plan.old_triangles.begin(), plan.old_triangles.end());
     std::sort(all.begin(), all.end());
     if (std::adjacent_find(all.begin(), all.end()) != all.end() || all.size() != s.vertex_triangles[v].size())
       return refuse(RemovalRefusal::not_a_disk_star);
@@ -194,7 +235,8 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
   const double area_scale = (s.target->bounding_box_max() - s.target->bounding_box_min()).squaredNorm();
   const Eigen::Vector3d& pv = position(v);
   if (on_line && s.has_edge(line_key[0], line_key[1])) return refuse(RemovalRefusal::existing_edge);
-  std::vector<std::array<Index, 2>> new_edges;
+  std::vector<std::array<Index, 2>>& new_edges = scratch.new_edges;
+  new_edges.clear();
   for (int g = 0; g < sheet_count; ++g) {
     SheetPlan& sh = sp[g];
     const int k = sh.size();
@@ -381,7 +423,8 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
   };
 
   // ---- cut: every S2 edge polyline with a segment in the star ----
-  std::vector<Index> edges;
+  std::vector<Index>& edges = scratch.edges;
+  edges.clear();
   for (Index t : plan.old_triangles) edges.insert(edges.end(), s.triangle_edges[t].begin(), s.triangle_edges[t].end());
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
@@ -392,9 +435,10 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
     int diagonal;
     double parameter;  // on the diagonal, from its first ring vertex
   };
-  std::vector<Cut> cuts;
-  std::vector<PlanarPoint> points;
-  std::vector<Piece> pieces;
+  thread_local std::vector<Cut> cuts;
+  thread_local std::vector<PlanarPoint> points;
+  thread_local std::vector<Piece> pieces;
+  pieces.clear();
   for (Index e : edges) {
     const EdgePolyline& p = s.polylines[e];
     const int segments = static_cast<int>(p.segment_triangle.size());
@@ -403,6 +447,10 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
     if (!touches_star) continue;  // a stale entry of triangle_edges
 
     VertexRemovalPlan::PolylineEdit edit;
+    if (!plan.spare_edits.empty()) {
+      edit = std::move(plan.spare_edits.back());
+      plan.spare_edits.pop_back();
+    }
     edit.target_edge = e;
     auto push_point = [&edit, &p](int i) {
       edit.point_vertex.push_back(p.vertex[i]);
