@@ -3,6 +3,8 @@
 
 #include "projection_context.hpp"
 
+#include "projection_seeds.hpp"
+
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/core/errors.hpp>
 #include <plmap/core/parallel_ranges.hpp>
@@ -25,7 +27,7 @@ ProjectionContext<d>::ProjectionContext(std::shared_ptr<const Surface<d>> s1_sur
   const double diagonal = (s1.bounding_box_max() - s1.bounding_box_min()).norm();
   distance_limit = options.max_distance_is_relative ? options.max_distance * diagonal : options.max_distance;
   if (!(distance_limit >= 0.0)) throw Error(fmt::format("max_distance {} is not >= 0", options.max_distance));
-  seed_count = std::clamp(options.search_seeds, 1, 32);
+  seed_count = std::clamp(options.search_seeds, 1, max_search_seeds);
   threads = resolve_thread_count(options.threads);
   s1_index = std::make_unique<ElementIndex<d>>(s1);
   s2_index = std::make_unique<ElementIndex<d>>(s2);
@@ -34,13 +36,18 @@ ProjectionContext<d>::ProjectionContext(std::shared_ptr<const Surface<d>> s1_sur
       !(limits.inside_tolerance < 0.5) || !(limits.edge_parameter_slack >= 0.0) ||
       !(limits.edge_parameter_slack < 0.5) || !(limits.second_search_hits > 0) ||
       !(limits.second_search_hits <= 32) || !(limits.second_search_reach >= 0.0) ||
-      !(limits.farther_hit_retry >= 0.0))
+      !(limits.farther_hit_retry >= 0.0) || !(limits.retry_seeds > 0) || !(limits.retry_seeds <= max_search_seeds) ||
+      !(limits.piece_parameter_slack >= 0.0) || !(limits.piece_parameter_slack < 0.5) ||
+      !(limits.end_parameter_slack >= 0.0) || !(limits.end_parameter_slack < 0.5))
     throw Error(fmt::format(
         "projection search limits out of range (seed_walk_steps {} > 0, edge_walk_steps {} >= 0, "
-        "inside_tolerance {} and edge_parameter_slack {} in [0, 0.5), second_search_hits {} in 1..32, "
-        "second_search_reach {} and farther_hit_retry {} >= 0)",
+        "inside_tolerance {}, edge_parameter_slack {}, piece_parameter_slack {} and end_parameter_slack {} "
+        "in [0, 0.5), second_search_hits {} and retry_seeds {} in 1..32, second_search_reach {} and "
+        "farther_hit_retry {} >= 0)",
         limits.seed_walk_steps, limits.edge_walk_steps, limits.inside_tolerance, limits.edge_parameter_slack,
-        limits.second_search_hits, limits.second_search_reach, limits.farther_hit_retry));
+        limits.piece_parameter_slack, limits.end_parameter_slack, limits.second_search_hits, limits.retry_seeds,
+        limits.second_search_reach, limits.farther_hit_retry));
+  retry_seed_count = limits.retry_seeds;
   edge_walk_steps = limits.edge_walk_steps > 0 ? limits.edge_walk_steps : 2 * static_cast<int>(s1.element_count()) + 16;
   focal_free_reach.resize(s1.element_count());
   parallel_ranges(s1.element_count(), threads, [&](std::size_t begin, std::size_t end) {

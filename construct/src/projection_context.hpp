@@ -110,6 +110,8 @@ struct ProjectionContext {
   double distance_limit = 0.0;
   /// Nearest elements that seed a search (options.search_seeds, clamped to 1..max_search_seeds).
   int seed_count = 8;
+  /// Seeds of the repeated vertex preimage search (search_limits.retry_seeds).
+  int retry_seed_count = 32;
   unsigned threads = 1;
   /// Crossings one walk along an S2 edge may make (search_limits.edge_walk_steps, or derived
   /// from |T1|).

@@ -21,6 +21,10 @@ namespace {
 
 enum class WalkEnd : std::uint8_t { reached, left_boundary, failed };
 
+/// Which way a walk runs along its S2 edge; backwards, every edge parameter it gives is measured
+/// from the second vertex.
+enum class WalkDirection : std::uint8_t { from_first_vertex, from_second_vertex };
+
 /// How a walk along the preimage of an S2 edge ended; its crossings are appended to the
 /// PlanBuffer it was given.
 template <int d>
@@ -136,13 +140,13 @@ class EdgeWalker {
   }
 
   /// Walks along the preimage of S2 edge e from `start` (at parameter eta0) towards `end`.
-  /// With `reversed`, the walk runs from the second vertex towards the first: eta (and every
+  /// From the second vertex, the walk runs towards the first: eta (and every
   /// parameter in the result) is then measured from the second vertex; see plan_edge.
-  WalkResult<d> walk(Index e, const Place<d>& start, double eta0, const std::optional<Place<d>>& end, bool reversed,
+  WalkResult<d> walk(Index e, const Place<d>& start, double eta0, const std::optional<Place<d>>& end, WalkDirection direction,
                      PlanBuffer<d>& buffer) const {
     WalkResult<d> w;
     auto tv = ctx_.target_edge_vertices(e);
-    if (reversed) std::swap(tv[0], tv[1]);
+    if (direction == WalkDirection::from_second_vertex) std::swap(tv[0], tv[1]);
     const WorldPoint<d> qa = ctx_.s2.vertex(tv[0]), qb = ctx_.s2.vertex(tv[1]);
     const double eta_slack = ctx_.options.search_limits.edge_parameter_slack;
     Place<d> cur = start;
@@ -258,7 +262,7 @@ class EdgeWalker {
                                    : EdgeFailureReason::discontinuity;
         return w;
       }
-      if (best_eta >= 1.0 - 1e-12) {
+      if (best_eta >= 1.0 - ctx_.options.search_limits.end_parameter_slack) {
         // The walk reaches the image of the second vertex, but that vertex has no preimage here.
         w.end = WalkEnd::failed;
         w.reason = EdgeFailureReason::endpoint_without_preimage;
@@ -313,11 +317,12 @@ class EdgeWalker {
   /// `covered_until` (where the walks before it ended); returns whether it was.
   bool walk_back_from_exit(Index e, const BoundaryEntry<d>& exit, double covered_until,
                              PlanBuffer<d>& buffer) const {
+    const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
     auto& crossings = buffer.crossings;
     const std::size_t begin = crossings.size();
-    const WalkResult<d> w = walk(e, exit.place, 1.0 - exit.eta, std::nullopt, true, buffer);
+    const WalkResult<d> w = walk(e, exit.place, 1.0 - exit.eta, std::nullopt, WalkDirection::from_second_vertex, buffer);
     const double back_to = 1.0 - w.eta;  // in the edge's direction
-    if (w.end != WalkEnd::left_boundary || w.crossing_count == 0 || !(back_to >= covered_until - 1e-9)) {
+    if (w.end != WalkEnd::left_boundary || w.crossing_count == 0 || !(back_to >= covered_until - piece_slack)) {
       crossings.resize(begin);  // nothing over S1 before the exit, or not a clean piece
       return false;
     }
@@ -326,21 +331,23 @@ class EdgeWalker {
     for (std::size_t i = begin; i < crossings.size(); ++i)
       crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
     crossings.push_back(exit.crossing);
-    buffer.pieces.push_back({static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(crossings.size()), false, false});
+    buffer.pieces.push_back({static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(crossings.size()),
+                             PieceStart::first_crossing, PieceEnd::last_crossing});
     return true;
   }
 
   /// Walks along S2 edge e and appends its pieces (and what could not be walked) to `buffer`.
   PlannedEdge plan_edge(Index e, unsigned worker, PlanBuffer<d>& buffer) const {
+    const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
     PlannedEdge plan;
     plan.worker = worker;
     plan.pieces_begin = static_cast<std::uint32_t>(buffer.pieces.size());
     plan.failures_begin = static_cast<std::uint32_t>(buffer.failures.size());
     auto& crossings = buffer.crossings;
     // a piece ends at the last crossing appended
-    auto add_piece = [&](std::size_t begin, bool from_first, bool to_second) {
+    auto add_piece = [&](std::size_t begin, PieceStart starts_at, PieceEnd ends_at) {
       buffer.pieces.push_back(
-          {static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(crossings.size()), from_first, to_second});
+          {static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(crossings.size()), starts_at, ends_at});
     };
     const auto tv = ctx_.target_edge_vertices(e);
     const auto& pa = state_.target_place[tv[0]];
@@ -356,14 +363,14 @@ class EdgeWalker {
     double covered_until = -1.0;
     if (pa) {
       const std::size_t begin = crossings.size();
-      const WalkResult<d> w = walk(e, *pa, 0.0, pb, false, buffer);
+      const WalkResult<d> w = walk(e, *pa, 0.0, pb, WalkDirection::from_first_vertex, buffer);
       if (w.end == WalkEnd::failed) {
         // What was walked before the failure is inserted as a piece ending at the last crossing
         // (partial insertion): the S2 elements on both sides of e then keep their regions away
         // from the failure, and only the faces around its far end stay outside D.
         buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
         if (w.crossing_count > 0)
-          add_piece(begin, true, false);
+          add_piece(begin, PieceStart::first_vertex, PieceEnd::last_crossing);
         else
           crossings.resize(begin);
         covered_until = w.eta;
@@ -373,22 +380,22 @@ class EdgeWalker {
         reached_second |= reached;
         covered_until = reached ? 1.0 : w.eta;
         if (w.crossing_count > 0 || reached)
-          add_piece(begin, true, reached);
+          add_piece(begin, PieceStart::first_vertex, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing);
         else
           crossings.resize(begin);
       }
     }
     for (const auto& entry : state_.boundary_entries[e]) {
-      if (entry.eta <= covered_until + 1e-9) continue;
+      if (entry.eta <= covered_until + piece_slack) continue;
       const std::size_t begin = crossings.size();
       crossings.push_back(entry.crossing);  // the piece starts where the edge enters S1
-      const WalkResult<d> w = walk(e, entry.place, entry.eta, pb, false, buffer);
+      const WalkResult<d> w = walk(e, entry.place, entry.eta, pb, WalkDirection::from_first_vertex, buffer);
       const double walked_until = covered_until;  // before this entry
       covered_until = w.end == WalkEnd::reached ? 1.0 : w.eta;
       if (w.end == WalkEnd::failed) {
         if (w.crossing_count > 0) {  // partial insertion, as for the walk from the first vertex
           buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
-          add_piece(begin, false, false);
+          add_piece(begin, PieceStart::first_crossing, PieceEnd::last_crossing);
           continue;
         }
         crossings.resize(begin);
@@ -411,7 +418,7 @@ class EdgeWalker {
       const bool reached = w.end == WalkEnd::reached;
       reached_second |= reached;
       if (reached) second_reached_from_entry = entry.eta;
-      add_piece(begin, false, reached);
+      add_piece(begin, PieceStart::first_crossing, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing);
     }
     // The second vertex has a preimage that no walk reached: the edge enters S1 across its boundary
     // at a point the boundary-entry search cannot see (that search needs an image of one end of
@@ -425,12 +432,12 @@ class EdgeWalker {
     // disjoint along the edge.
     if (pb && (!reached_second || second_reached_from_entry)) {
       const std::size_t begin = crossings.size();
-      const WalkResult<d> w = walk(e, *pb, 0.0, std::nullopt, true, buffer);
+      const WalkResult<d> w = walk(e, *pb, 0.0, std::nullopt, WalkDirection::from_second_vertex, buffer);
       auto reverse_into_piece = [&](std::size_t piece_begin) {
         std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin), crossings.end());
         for (std::size_t i = piece_begin; i < crossings.size(); ++i)
           crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
-        add_piece(piece_begin, false, true);
+        add_piece(piece_begin, PieceStart::first_crossing, PieceEnd::second_vertex);
         reached_second = true;
       };
       // where the backward walk's last crossing lies, measured from the first vertex
@@ -438,7 +445,7 @@ class EdgeWalker {
       const bool partial = w.crossing_count > 0 && !second_reached_from_entry &&
                            (w.end == WalkEnd::failed || (first_walk_failed && w.end == WalkEnd::left_boundary));
       if (partial) {
-        if (walked_back_to > covered_until + 1e-9) {
+        if (walked_back_to > covered_until + piece_slack) {
           reverse_into_piece(begin);
         } else {
           crossings.resize(begin);
@@ -447,7 +454,7 @@ class EdgeWalker {
           buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
       } else if (w.end == WalkEnd::left_boundary && w.crossing_count > 0) {
         // measured from the first vertex again, in the edge's direction
-        if (second_reached_from_entry && !(1.0 - w.eta < *second_reached_from_entry - 1e-9)) {
+        if (second_reached_from_entry && !(1.0 - w.eta < *second_reached_from_entry - piece_slack)) {
           crossings.resize(begin);  // no farther back than the entry: the entry's piece stands
         } else {
           std::size_t piece_begin = begin;
@@ -496,6 +503,7 @@ class EdgeWalker {
       }
     } else {
       long long calls = 0, failures = 0;
+      const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
       std::vector<Index> edges;
       for (Index edge = 0; edge < ctx_.s1.edge_count(); ++edge) {
         if (ctx_.s1.edge_elements(edge).size() != 1) continue;
@@ -524,7 +532,7 @@ class EdgeWalker {
         for (Index e : edges) {
           const auto tv = ctx_.s2.edge_vertices(e);
           const CrossingCandidate c = solve_crossing(edge, ctx_.s2.vertex(tv[0]), ctx_.s2.vertex(tv[1]), calls, failures);
-          if (!c.valid || !(c.eta > 1e-9 && c.eta < 1.0 - 1e-9)) continue;
+          if (!c.valid || !(c.eta > piece_slack && c.eta < 1.0 - piece_slack)) continue;
           if (!ctx_.unfolded_at(ctx_.edge_place(edge, c.lambda), c.mu)) continue;
           BoundaryEntry<2> entry;
           entry.place = ctx_.edge_place(edge, c.lambda);

@@ -25,7 +25,8 @@ struct PlanBuffer {
   /// A piece of an S2 edge's preimage: crossings [begin, end) of `crossings`.
   struct Piece {
     std::uint32_t begin, end;
-    bool from_first, to_second;
+    PieceStart starts_at;
+    PieceEnd ends_at;
   };
   std::vector<Crossing<d>> crossings;
   std::vector<Piece> pieces;

@@ -207,12 +207,11 @@ std::uint32_t ProjectionInsertion<d>::insert_planned_edge(Index e, const Planned
       continue;
     }
     try {
-      if (piece.from_first && piece.to_second) {
+      if (piece.starts_at == PieceStart::first_vertex && piece.ends_at == PieceEnd::second_vertex) {
         builder_.add_edge(e, crossings);
         whole = true;
       } else {
-        builder_.add_edge_piece(e, crossings, piece.from_first ? PieceStart::first_vertex : PieceStart::first_crossing,
-                               piece.to_second ? PieceEnd::second_vertex : PieceEnd::last_crossing);
+        builder_.add_edge_piece(e, crossings, piece.starts_at, piece.ends_at);
         ++pieces;
       }
       mark_used_points(crossings, e);

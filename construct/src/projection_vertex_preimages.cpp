@@ -30,37 +30,46 @@ class VertexPreimageSearch {
     WorldPoint<d> value = WorldPoint<d>::Zero();
   };
 
-  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const SearchOffset& offset,
-                                                      NearestElements<d>& nearest) {
+  /// What the walks from one set of seeds found.
+  struct SeededSearch {
+    /// The admissible solution of least rank, if any.
+    std::optional<SurfacePoint<d>> preimage;
+    /// A walk stopped because the solver did not converge (more seeds may then help).
     bool solver_failed = false;
+  };
+
+  /// The preimage of S2 vertex q, seeded next to q moved by the chunk's previous offset (if
+  /// any), else at q itself.
+  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const SearchOffset& offset,
+                                                      NearestElements<d>& nearest) const {
     if (offset.valid) {
-      auto found = find_vertex_preimage(q, ctx_.s2.vertex(q) - offset.value, ctx_.seed_count, solver_failed, &nearest);
+      auto found = search_from_seeds(q, ctx_.s2.vertex(q) - offset.value, ctx_.seed_count, &nearest).preimage;
       if (found) return found;
     }
     return find_vertex_preimage(q);
   }
 
-  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q) {
-    bool solver_failed = false;
-    auto found = find_vertex_preimage(q, ctx_.s2.vertex(q), ctx_.seed_count, solver_failed, nullptr);
+  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q) const {
+    SeededSearch search = search_from_seeds(q, ctx_.s2.vertex(q), ctx_.seed_count, nullptr);
     // The elements nearest to q may all be tangential to the directions (eq. 3 is singular there),
     // e.g. the horizontal sheets of a T-junction when the vertical sheet is the one that sees S2:
     // their walks end at once, before reaching the element that holds the preimage. Only then is
-    // the search repeated from more seeds, so the usual case costs nothing extra.
-    if (!found && solver_failed && ctx_.seed_count < max_search_seeds)
-      found = find_vertex_preimage(q, ctx_.s2.vertex(q), max_search_seeds, solver_failed, nullptr);
-    return found;
+    // the search repeated from more seeds (search_limits.retry_seeds), so the usual case costs
+    // nothing extra.
+    if (!search.preimage && search.solver_failed && ctx_.seed_count < ctx_.retry_seed_count)
+      search = search_from_seeds(q, ctx_.s2.vertex(q), ctx_.retry_seed_count, nullptr);
+    return search.preimage;
   }
 
   /// Eq. (3) for S2 vertex q on walks across S1 that start at the `seed_count` elements nearest
   /// to `seed_point` (found with `nearest` for the moved seed points, which follow each other
   /// closely, else with the kd-tree).
-  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const WorldPoint<d>& seed_point, int seed_count,
-                                                      bool& solver_failed, NearestElements<d>* nearest) {
+  SeededSearch search_from_seeds(Index q, const WorldPoint<d>& seed_point, int seed_count,
+                                 NearestElements<d>* nearest) const {
     SeedElements seeds;
     int count = nearest_seeds(*ctx_.s1_index, nearest, seed_point, seed_count, seeds);
     count = add_long_elements_through(seed_point, seeds, count);
-    return walk_to_preimage(q, seeds, count, solver_failed);
+    return walk_to_preimage(q, seeds, count);
   }
 
   /// The nearest centroids miss an element that passes right by x when its centroid lies
@@ -105,8 +114,7 @@ class VertexPreimageSearch {
 
   /// Eq. (3) for S2 vertex q on walks across S1 from the first `count` of `seeds`: the solution
   /// of least rank among those that pass every check, or nothing.
-  std::optional<SurfacePoint<d>> walk_to_preimage(Index q, const SeedElements& seeds, int count,
-                                                  bool& solver_failed) {
+  SeededSearch walk_to_preimage(Index q, const SeedElements& seeds, int count) const {
     const WorldPoint<d>& target = ctx_.s2.vertex(q);
     std::optional<SurfacePoint<d>> best;
     double best_rank = std::numeric_limits<double>::infinity();
@@ -153,8 +161,7 @@ class VertexPreimageSearch {
     }
     ctx_.solver_calls += calls;
     ctx_.solver_failures += failures;
-    solver_failed = failures > 0;
-    return best;
+    return SeededSearch{best, failures > 0};
   }
 
   /// Whether the rays from the corners of S1 element t all hit S2 and their hits span a simplex
@@ -241,8 +248,7 @@ class VertexPreimageSearch {
               seeds[count++] = static_cast<std::uint32_t>(t);
         }
         if (count == 0) continue;
-        bool solver_failed = false;
-        found[i] = walk_to_preimage(q, seeds, count, solver_failed);
+        found[i] = walk_to_preimage(q, seeds, count).preimage;
         if (found[i] && !rays_keep_orientation(found[i]->element, cloud, cloud_id)) found[i].reset();
       }
     });
