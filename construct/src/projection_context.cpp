@@ -72,7 +72,13 @@ void ProjectionContext<d>::release_search_data() {
   release(s2_vertex_normals);
 }
 
-template struct ProjectionContext<1>;
-template struct ProjectionContext<2>;
+// Only the members defined here: an explicit instantiation of the whole class would instantiate
+// the members constrained to d == 2 for d = 1 as well (clang 14 does).
+template ProjectionContext<1>::ProjectionContext(std::shared_ptr<const Surface<1>>, std::shared_ptr<const Surface<1>>,
+                                                 const ProjectionOptions&);
+template ProjectionContext<2>::ProjectionContext(std::shared_ptr<const Surface<2>>, std::shared_ptr<const Surface<2>>,
+                                                 const ProjectionOptions&);
+template void ProjectionContext<1>::release_search_data();
+template void ProjectionContext<2>::release_search_data();
 
 }  // namespace plmap::projection
