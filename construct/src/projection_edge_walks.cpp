@@ -336,66 +336,110 @@ class EdgeWalker {
     return true;
   }
 
+  /// How far the walks along one S2 edge have come (plan_edge and its three walks).
+  struct EdgeProgress {
+    EdgeProgress(const std::optional<Place<d>>& first_place, const std::optional<Place<d>>& second_place)
+        : first(first_place), second(second_place) {}
+    /// Where the preimages of the edge's first and second vertex were inserted, if they were.
+    const std::optional<Place<d>>& first;
+    const std::optional<Place<d>>& second;
+    bool reached_second = false;
+    bool first_walk_failed = false;
+    /// The entry whose walk reached the second vertex, if that was no walk from the first vertex:
+    /// the boundary-entry search also finds points where the edge only touches S1's boundary
+    /// from inside (it comes over S1 and meets a boundary vertex, then runs along the boundary),
+    /// and the stretch before such a point would be lost (see walk_back_from_second_vertex).
+    /// (A flag and a value: GCC 12 warns falsely on a std::optional<double> here.)
+    bool second_reached_from_entry = false;
+    double reaching_entry_eta = 0.0;
+    /// Pieces are disjoint intervals of the edge parameter; an entry inside an interval already
+    /// walked is where that walk left S1 (or a re-detection of it), not a new piece.
+    double covered_until = -1.0;
+  };
+
+  /// Appends the piece of crossings [begin, end of the buffer).
+  static void add_piece(PlanBuffer<d>& buffer, std::size_t begin, PieceStart starts_at, PieceEnd ends_at) {
+    buffer.pieces.push_back(
+        {static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(buffer.crossings.size()), starts_at, ends_at});
+  }
+
   /// Walks along S2 edge e and appends its pieces (and what could not be walked) to `buffer`.
   PlannedEdge plan_edge(Index e, unsigned worker, PlanBuffer<d>& buffer) const {
-    const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
     PlannedEdge plan;
     plan.worker = worker;
     plan.pieces_begin = static_cast<std::uint32_t>(buffer.pieces.size());
     plan.failures_begin = static_cast<std::uint32_t>(buffer.failures.size());
-    auto& crossings = buffer.crossings;
-    // a piece ends at the last crossing appended
-    auto add_piece = [&](std::size_t begin, PieceStart starts_at, PieceEnd ends_at) {
-      buffer.pieces.push_back(
-          {static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(crossings.size()), starts_at, ends_at});
-    };
     const auto tv = ctx_.target_edge_vertices(e);
-    const auto& pa = state_.target_place[tv[0]];
-    const auto& pb = state_.target_place[tv[1]];
-    bool reached_second = false, first_walk_failed = false;
-    // The entry whose walk reached the second vertex, if that was no walk from the first vertex:
-    // the boundary-entry search also finds points where the edge only touches S1's boundary
-    // from inside (it comes over S1 and meets a boundary vertex, then runs along the boundary),
-    // and the stretch before such a point would be lost (see the backward walk below).
-    std::optional<double> second_reached_from_entry;
-    // Pieces are disjoint intervals of the edge parameter; an entry inside an interval already
-    // walked is where that walk left S1 (or a re-detection of it), not a new piece.
-    double covered_until = -1.0;
-    if (pa) {
-      const std::size_t begin = crossings.size();
-      const WalkResult<d> w = walk(e, *pa, 0.0, pb, WalkDirection::from_first_vertex, buffer);
-      if (w.end == WalkEnd::failed) {
-        // What was walked before the failure is inserted as a piece ending at the last crossing
-        // (partial insertion): the S2 elements on both sides of e then keep their regions away
-        // from the failure, and only the faces around its far end stay outside D.
-        buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
-        if (w.crossing_count > 0)
-          add_piece(begin, PieceStart::first_vertex, PieceEnd::last_crossing);
-        else
-          crossings.resize(begin);
-        covered_until = w.eta;
-        first_walk_failed = true;
-      } else {
-        const bool reached = w.end == WalkEnd::reached;
-        reached_second |= reached;
-        covered_until = reached ? 1.0 : w.eta;
-        if (w.crossing_count > 0 || reached)
-          add_piece(begin, PieceStart::first_vertex, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing);
-        else
-          crossings.resize(begin);
-      }
+    EdgeProgress progress(state_.target_place[tv[0]], state_.target_place[tv[1]]);
+    if (progress.first) walk_from_first_vertex(e, progress, buffer);
+    walk_from_boundary_entries(e, progress, buffer);
+    // The second vertex has a preimage that no walk reached: the edge enters S1 across its boundary
+    // at a point the boundary-entry search cannot see (that search needs an image of one end of
+    // the S1 boundary edge; both may lie outside S2 or over a hole of S2). Walking backwards from
+    // the second vertex finds the entry as the point where the reversed walk leaves S1.
+    // It also runs when the second vertex was reached only from an entry: if it leaves S1
+    // before that entry, the entry was a touch of the boundary from inside, and its piece is
+    // replaced by the longer one (whose crossings follow it in the buffer).
+    // After a failed walk from the first vertex, it also inserts the stretch from the second
+    // vertex back to where its own walk fails (partial insertion), if the two stretches are
+    // disjoint along the edge.
+    if (progress.second && (!progress.reached_second || progress.second_reached_from_entry))
+      walk_back_from_second_vertex(e, progress, buffer);
+    if (progress.second && !progress.reached_second && buffer.failures.size() == plan.failures_begin &&
+        !ctx_.on_boundary(*progress.second))
+      buffer.failures.push_back(failure(e, EdgeFailureReason::endpoint_without_preimage, *progress.second, 1.0,
+                                        fmt::format("the S2 vertex {} has no preimage", tv[0])));
+    plan.pieces_end = static_cast<std::uint32_t>(buffer.pieces.size());
+    plan.failures_end = static_cast<std::uint32_t>(buffer.failures.size());
+    // No piece and nothing wrong: the edge lies outside D (it may touch S1's boundary at an
+    // endpoint and leave at once).
+    plan.outside = plan.pieces_begin == plan.pieces_end && plan.failures_begin == plan.failures_end;
+    return plan;
+  }
+
+  /// The walk from the preimage of the edge's first vertex towards its second vertex.
+  void walk_from_first_vertex(Index e, EdgeProgress& progress, PlanBuffer<d>& buffer) const {
+    auto& crossings = buffer.crossings;
+    const std::size_t begin = crossings.size();
+    const WalkResult<d> w = walk(e, *progress.first, 0.0, progress.second, WalkDirection::from_first_vertex, buffer);
+    if (w.end == WalkEnd::failed) {
+      // What was walked before the failure is inserted as a piece ending at the last crossing
+      // (partial insertion): the S2 elements on both sides of e then keep their regions away
+      // from the failure, and only the faces around its far end stay outside D.
+      buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+      if (w.crossing_count > 0)
+        add_piece(buffer, begin, PieceStart::first_vertex, PieceEnd::last_crossing);
+      else
+        crossings.resize(begin);
+      progress.covered_until = w.eta;
+      progress.first_walk_failed = true;
+    } else {
+      const bool reached = w.end == WalkEnd::reached;
+      progress.reached_second |= reached;
+      progress.covered_until = reached ? 1.0 : w.eta;
+      if (w.crossing_count > 0 || reached)
+        add_piece(buffer, begin, PieceStart::first_vertex, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing);
+      else
+        crossings.resize(begin);
     }
+  }
+
+  /// The walks from the points where the edge enters S1 across its boundary, beyond what the
+  /// walks before them covered.
+  void walk_from_boundary_entries(Index e, EdgeProgress& progress, PlanBuffer<d>& buffer) const {
+    const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
+    auto& crossings = buffer.crossings;
     for (const auto& entry : state_.boundary_entries[e]) {
-      if (entry.eta <= covered_until + piece_slack) continue;
+      if (entry.eta <= progress.covered_until + piece_slack) continue;
       const std::size_t begin = crossings.size();
       crossings.push_back(entry.crossing);  // the piece starts where the edge enters S1
-      const WalkResult<d> w = walk(e, entry.place, entry.eta, pb, WalkDirection::from_first_vertex, buffer);
-      const double walked_until = covered_until;  // before this entry
-      covered_until = w.end == WalkEnd::reached ? 1.0 : w.eta;
+      const WalkResult<d> w = walk(e, entry.place, entry.eta, progress.second, WalkDirection::from_first_vertex, buffer);
+      const double walked_until = progress.covered_until;  // before this entry
+      progress.covered_until = w.end == WalkEnd::reached ? 1.0 : w.eta;
       if (w.end == WalkEnd::failed) {
         if (w.crossing_count > 0) {  // partial insertion, as for the walk from the first vertex
           buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
-          add_piece(begin, PieceStart::first_crossing, PieceEnd::last_crossing);
+          add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::last_crossing);
           continue;
         }
         crossings.resize(begin);
@@ -416,76 +460,63 @@ class EdgeWalker {
         continue;
       }
       const bool reached = w.end == WalkEnd::reached;
-      reached_second |= reached;
-      if (reached) second_reached_from_entry = entry.eta;
-      add_piece(begin, PieceStart::first_crossing, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing);
-    }
-    // The second vertex has a preimage that no walk reached: the edge enters S1 across its boundary
-    // at a point the boundary-entry search cannot see (that search needs an image of one end of
-    // the S1 boundary edge; both may lie outside S2 or over a hole of S2). Walking backwards from
-    // the second vertex finds the entry as the point where the reversed walk leaves S1.
-    // It also runs when the second vertex was reached only from an entry: if it leaves S1
-    // before that entry, the entry was a touch of the boundary from inside, and its piece is
-    // replaced by the longer one (whose crossings follow it in the buffer).
-    // After a failed walk from the first vertex, it also inserts the stretch from the second
-    // vertex back to where its own walk fails (partial insertion), if the two stretches are
-    // disjoint along the edge.
-    if (pb && (!reached_second || second_reached_from_entry)) {
-      const std::size_t begin = crossings.size();
-      const WalkResult<d> w = walk(e, *pb, 0.0, std::nullopt, WalkDirection::from_second_vertex, buffer);
-      auto reverse_into_piece = [&](std::size_t piece_begin) {
-        std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin), crossings.end());
-        for (std::size_t i = piece_begin; i < crossings.size(); ++i)
-          crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
-        add_piece(piece_begin, PieceStart::first_crossing, PieceEnd::second_vertex);
-        reached_second = true;
-      };
-      // where the backward walk's last crossing lies, measured from the first vertex
-      const double walked_back_to = w.crossing_count > 0 ? 1.0 - crossings.back().target_parameter : 1.0;
-      const bool partial = w.crossing_count > 0 && !second_reached_from_entry &&
-                           (w.end == WalkEnd::failed || (first_walk_failed && w.end == WalkEnd::left_boundary));
-      if (partial) {
-        if (walked_back_to > covered_until + piece_slack) {
-          reverse_into_piece(begin);
-        } else {
-          crossings.resize(begin);
-        }
-        if (w.end == WalkEnd::failed && !first_walk_failed && w.reason != EdgeFailureReason::endpoint_without_preimage)
-          buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
-      } else if (w.end == WalkEnd::left_boundary && w.crossing_count > 0) {
-        // measured from the first vertex again, in the edge's direction
-        if (second_reached_from_entry && !(1.0 - w.eta < *second_reached_from_entry - piece_slack)) {
-          crossings.resize(begin);  // no farther back than the entry: the entry's piece stands
-        } else {
-          std::size_t piece_begin = begin;
-          if (second_reached_from_entry) {  // the entry's piece is the last one: replace it
-            piece_begin = buffer.pieces.back().begin;
-            crossings.erase(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin),
-                            crossings.begin() + static_cast<std::ptrdiff_t>(begin));
-            buffer.pieces.pop_back();
-          }
-          reverse_into_piece(piece_begin);
-        }
-      } else {
-        crossings.resize(begin);
-        // after an entry's piece, a failure may lie where that piece's walk passed: not reported;
-        // after a failed walk from the first vertex, that walk's failure names the missing stretch
-        if (w.end == WalkEnd::failed && !second_reached_from_entry && !first_walk_failed &&
-            w.reason != EdgeFailureReason::endpoint_without_preimage)
-          buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
+      progress.reached_second |= reached;
+      if (reached) {
+        progress.second_reached_from_entry = true;
+        progress.reaching_entry_eta = entry.eta;
       }
+      add_piece(buffer, begin, PieceStart::first_crossing, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing);
     }
-    if (pb && !reached_second && buffer.failures.size() == plan.failures_begin && !ctx_.on_boundary(*pb))
-      buffer.failures.push_back(failure(e, EdgeFailureReason::endpoint_without_preimage, *pb, 1.0,
-                                        fmt::format("the S2 vertex {} has no preimage", tv[0])));
-    plan.pieces_end = static_cast<std::uint32_t>(buffer.pieces.size());
-    plan.failures_end = static_cast<std::uint32_t>(buffer.failures.size());
-    // No piece and nothing wrong: the edge lies outside D (it may touch S1's boundary at an
-    // endpoint and leave at once).
-    plan.outside = plan.pieces_begin == plan.pieces_end && plan.failures_begin == plan.failures_end;
-    return plan;
   }
 
+  /// The walk from the preimage of the second vertex backwards (see plan_edge for when it runs).
+  void walk_back_from_second_vertex(Index e, EdgeProgress& progress, PlanBuffer<d>& buffer) const {
+    const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
+    auto& crossings = buffer.crossings;
+    const std::size_t begin = crossings.size();
+    const WalkResult<d> w = walk(e, *progress.second, 0.0, std::nullopt, WalkDirection::from_second_vertex, buffer);
+    auto reverse_into_piece = [&](std::size_t piece_begin) {
+      std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin), crossings.end());
+      for (std::size_t i = piece_begin; i < crossings.size(); ++i)
+        crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
+      add_piece(buffer, piece_begin, PieceStart::first_crossing, PieceEnd::second_vertex);
+      progress.reached_second = true;
+    };
+    // where the backward walk's last crossing lies, measured from the first vertex
+    const double walked_back_to = w.crossing_count > 0 ? 1.0 - crossings.back().target_parameter : 1.0;
+    const bool partial = w.crossing_count > 0 && !progress.second_reached_from_entry &&
+                         (w.end == WalkEnd::failed || (progress.first_walk_failed && w.end == WalkEnd::left_boundary));
+    if (partial) {
+      if (walked_back_to > progress.covered_until + piece_slack) {
+        reverse_into_piece(begin);
+      } else {
+        crossings.resize(begin);
+      }
+      if (w.end == WalkEnd::failed && !progress.first_walk_failed && w.reason != EdgeFailureReason::endpoint_without_preimage)
+        buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
+    } else if (w.end == WalkEnd::left_boundary && w.crossing_count > 0) {
+      // measured from the first vertex again, in the edge's direction
+      if (progress.second_reached_from_entry && !(1.0 - w.eta < progress.reaching_entry_eta - piece_slack)) {
+        crossings.resize(begin);  // no farther back than the entry: the entry's piece stands
+      } else {
+        std::size_t piece_begin = begin;
+        if (progress.second_reached_from_entry) {  // the entry's piece is the last one: replace it
+          piece_begin = buffer.pieces.back().begin;
+          crossings.erase(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin),
+                          crossings.begin() + static_cast<std::ptrdiff_t>(begin));
+          buffer.pieces.pop_back();
+        }
+        reverse_into_piece(piece_begin);
+      }
+    } else {
+      crossings.resize(begin);
+      // after an entry's piece, a failure may lie where that piece's walk passed: not reported;
+      // after a failed walk from the first vertex, that walk's failure names the missing stretch
+      if (w.end == WalkEnd::failed && !progress.second_reached_from_entry && !progress.first_walk_failed &&
+          w.reason != EdgeFailureReason::endpoint_without_preimage)
+        buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
+    }
+  }
 
   /// Points where S2 edges cross S1's boundary, per S2 edge, sorted by the edge parameter.
   std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries() const {
