@@ -46,6 +46,18 @@ struct ProjectionSearchLimits {
   /// hit by more than this many times the longest S1 edge at its vertex is cast again from the
   /// elements nearest to the vertex, and the nearer admissible hit is kept.
   double farther_hit_retry = 4.0;
+  /// A vertex preimage search all of whose walks stopped at a solver failure (the seeds lie on
+  /// elements tangential to the directions) is repeated from this many nearest elements (1..32;
+  /// not more than search_seeds: no retry).
+  int retry_seeds = 32;
+  /// The pieces that the walks along one S2 edge find are disjoint intervals of its parameter;
+  /// a walk or boundary entry that starts within this much of where an earlier piece ended is a
+  /// re-detection of that piece, and a boundary entry this close to either end of the edge is
+  /// the end vertex itself, not an entry.
+  double piece_parameter_slack = 1e-9;
+  /// A crossing whose S2 edge parameter lies within this of 1 is at the image of the edge's
+  /// second vertex: the walk has reached it without finding its preimage.
+  double end_parameter_slack = 1e-12;
 };
 
 struct ProjectionOptions {

@@ -1,0 +1,626 @@
+// Normal projection, phase 4: edge walks (projection_edge_walks.hpp).
+
+#include "projection_edge_walks.hpp"
+
+#include <plmap/core/parallel_ranges.hpp>
+#include <plmap/solvers/projection_systems.hpp>
+#include <plmap/solvers/small_lu.hpp>
+#include <plmap/solvers/solver_kind.hpp>
+
+#include <fmt/format.h>
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace plmap::projection {
+
+namespace {
+
+enum class WalkEnd : std::uint8_t { reached, left_boundary, failed };
+
+/// Which way a walk runs along its S2 edge; backwards, every edge parameter it gives is measured
+/// from the second vertex.
+enum class WalkDirection : std::uint8_t { from_first_vertex, from_second_vertex };
+
+/// How a walk along the preimage of an S2 edge ended; its crossings are appended to the
+/// PlanBuffer it was given.
+template <int d>
+struct WalkResult {
+  WalkEnd end = WalkEnd::failed;
+  int crossing_count = 0;
+  EdgeFailureReason reason = EdgeFailureReason::discontinuity;
+  Place<d> stop;
+  double eta = 0.0;
+  int steps = 0;
+};
+
+/// The walks along the preimages of S2 edges.
+template <int d, class Solver>
+class EdgeWalker {
+ public:
+  EdgeWalker(const ProjectionContext<d>& ctx, const ProjectionState<d>& state, const Solver& solver)
+      : ctx_(ctx), state_(state), solver_(solver) {}
+
+  struct CrossingCandidate {
+    bool valid = false;
+    bool solver_failed = false;
+    bool beyond_limit = false;
+    double lambda = 0.0, mu = 0.0, eta = 0.0;
+  };
+
+  /// The answers of eq. (4) for the S2 edge of one walk, by S1 edge. Consecutive steps of a walk
+  /// share an element whose other edges were solved in the step before, and a walk from an S1
+  /// vertex meets each edge at the vertex in two elements: the answer depends only on the two
+  /// edges, so it is looked up instead of solved again. The last `capacity` answers are kept,
+  /// enough for a step from a vertex of any usual valence and the step after it.
+  struct CrossingMemo {
+    static constexpr int capacity = 16;
+    std::array<Index, capacity> edges;
+    std::array<CrossingCandidate, capacity> answers;
+    int size = 0, next = 0;
+
+    template <class Solve>
+    const CrossingCandidate& get(Index edge, Solve&& solve) {
+      for (int i = 0; i < size; ++i)
+        if (edges[i] == edge) return answers[i];
+      const int slot = next;
+      next = (next + 1) % capacity;
+      if (size < capacity) ++size;
+      edges[slot] = edge;
+      answers[slot] = solve();
+      return answers[slot];
+    }
+  };
+
+
+  /// Eq. (4): where the projection of S2 edge (qa, qb) crosses S1 edge `edge` (d = 2).
+  CrossingCandidate solve_crossing(Index edge, const WorldPoint<d>& qa, const WorldPoint<d>& qb,
+                                   long long& calls, long long& failures) const
+    requires(d == 2)
+  {
+    CrossingCandidate c;
+    const auto ev = ctx_.s1.edge_vertices(edge);
+    EdgeCrossingSystem sys;
+    sys.edge = {ctx_.s1.vertex(ev[0]), ctx_.s1.vertex(ev[1])};
+    sys.directions = {ctx_.vertex_directions[ev[0]], ctx_.vertex_directions[ev[1]]};
+    sys.target = {qa, qb};
+    // A crossing outside [-slack, 1 + slack] is rejected below whatever the solver returns.
+    const double crossing_lambda_slack = ctx_.options.search_limits.edge_parameter_slack;
+    if (sys.misses_the_edge(ctx_.options.solver_tolerance, crossing_lambda_slack)) return c;
+    ++calls;
+    const auto r = solver_.solve(sys, sys.initial_guess());
+    if (!r.converged) {
+      ++failures;
+      c.solver_failed = true;
+      return c;
+    }
+    c.lambda = r.x(0);
+    c.mu = r.x(1);
+    c.eta = r.x(2);
+    // A (nearly) singular Jacobian at the solution means the S2 edge runs along the projection
+    // of the S1 edge: there is no isolated crossing (the walk passes the edge's end vertices).
+    {
+      const Eigen::Matrix3d j = sys.jacobian(r.x);
+      const double s = sys.scale();
+      if (!(std::abs(j.determinant()) > 1e-10 * s * s * j.col(1).norm())) return c;
+    }
+    if (c.lambda < -crossing_lambda_slack || c.lambda > 1.0 + crossing_lambda_slack) return c;
+    if (!ctx_.distance_ok(c.mu, sys.scale())) {
+      c.beyond_limit = true;
+      return c;
+    }
+    c.lambda = std::clamp(c.lambda, 0.0, 1.0);
+    c.valid = true;
+    return c;
+  }
+
+  /// For d = 1: the ray from S1 vertex w meets the line of the S2 segment (qa, qb).
+  CrossingCandidate ray_crossing(Index w, const WorldPoint<d>& qa, const WorldPoint<d>& qb) const
+    requires(d == 1)
+  {
+    CrossingCandidate c;
+    Eigen::Matrix2d a;
+    a.col(0) = ctx_.vertex_directions[w];
+    a.col(1) = qa - qb;
+    const double scale = (qb - qa).norm();
+    if (!(std::abs(a.determinant()) > 1e-12 * scale)) return c;
+    const Eigen::Vector2d x = solve_with_partial_pivoting<2>(a, qa - ctx_.s1.vertex(w));
+    c.mu = x(0);
+    c.eta = x(1);
+    c.lambda = 0.0;
+    if (!ctx_.distance_ok(c.mu, scale)) {
+      c.beyond_limit = true;
+      return c;
+    }
+    c.valid = true;
+    return c;
+  }
+
+  /// Walks along the preimage of S2 edge e from `start` (at parameter eta0) towards `end`.
+  /// From the second vertex, the walk runs towards the first: eta (and every
+  /// parameter in the result) is then measured from the second vertex; see plan_edge.
+  WalkResult<d> walk(Index e, const Place<d>& start, double eta0, const std::optional<Place<d>>& end, WalkDirection direction,
+                     PlanBuffer<d>& buffer) const {
+    WalkResult<d> w;
+    auto tv = ctx_.target_edge_vertices(e);
+    if (direction == WalkDirection::from_second_vertex) std::swap(tv[0], tv[1]);
+    const WorldPoint<d> qa = ctx_.s2.vertex(tv[0]), qb = ctx_.s2.vertex(tv[1]);
+    const double eta_slack = ctx_.options.search_limits.edge_parameter_slack;
+    Place<d> cur = start;
+    double eta = eta0;
+    std::vector<Index>& cand = buffer.candidates;
+    std::vector<Index>& end_elements = buffer.end_elements;
+    if (end) ctx_.elements_of(*end, end_elements);
+    CrossingMemo memo;
+    long long calls = 0, failures = 0;
+    // The distance along the ray at the current point, once the walk has made a crossing. A
+    // crossing is taken if its ray is unfolded in the element the walk crosses to reach it; the
+    // walk then goes on only into elements where that ray is unfolded as well. So a walk that
+    // meets a fold stops at the last crossing before it, which becomes the end of a piece
+    // (partial insertion), instead of stopping one element earlier.
+    std::optional<double> cur_mu;
+    auto unfolded_here = [&](Index t) { return !cur_mu || ctx_.unfolded_in_at(t, cur, *cur_mu); };
+    bool start_folded = false;
+    for (w.steps = 0; w.steps < ctx_.edge_walk_steps; ++w.steps) {
+      ctx_.elements_of(cur, cand);
+      start_folded = false;
+      if (end) {
+        for (Index t : cand)
+          if (std::find(end_elements.begin(), end_elements.end(), t) != end_elements.end() && unfolded_here(t)) {
+            w.end = WalkEnd::reached;
+            ctx_.solver_calls += calls;
+            ctx_.solver_failures += failures;
+            return w;
+          }
+      }
+      bool solver_failed = false, beyond_limit = false, folded = false;
+      double best_eta = std::numeric_limits<double>::infinity(), best_mu = 0.0;
+      Place<d> best_place;
+      Crossing<d> best_crossing{};
+      // From a point shared by several S1 elements (an S1 vertex; an edge of a non-manifold S1)
+      // the preimage can seem to continue into more than one of them: an element whose own
+      // projection is a nearer part of S2 still reaches this S2 edge farther along its rays
+      // (remeshed copies of a zigzag polyline, folds). Like the vertex preimages, the
+      // continuation with the smallest distance wins; inside one element the exit is the
+      // crossing with the smallest eta beyond the current one.
+      double best_rank = std::numeric_limits<double>::infinity();
+      const double rank_tie = 1e-9 * ctx_.s1.max_edge_length();
+      for (Index t : cand) {
+        if (!unfolded_here(t)) {
+          start_folded = true;
+          continue;
+        }
+        double element_eta = std::numeric_limits<double>::infinity(), element_mu = 0.0;
+        Place<d> element_place;
+        Crossing<d> element_crossing{};
+        for (int k = 0; k <= d; ++k) {
+          CrossingCandidate c;
+          Place<d> place;
+          Crossing<d> crossing{};
+          if constexpr (d == 2) {
+            const Index edge = ctx_.s1.element_edge(t, k);
+            if (cur.kind == PlaceKind::edge && cur.index == edge) continue;
+            c = memo.get(edge, [&] { return solve_crossing(edge, qa, qb, calls, failures); });
+            if (!c.valid) {
+              solver_failed |= c.solver_failed;
+              beyond_limit |= c.beyond_limit;
+              continue;
+            }
+            place = ctx_.edge_place(edge, c.lambda);
+            crossing = EdgeCrossing{edge, c.lambda, c.eta};
+          } else {
+            const Index vtx = ctx_.s1.element(t)[k];
+            if (cur.kind == PlaceKind::vertex && cur.index == vtx) continue;
+            c = ray_crossing(vtx, qa, qb);
+            if (!c.valid) {
+              beyond_limit |= c.beyond_limit;
+              continue;
+            }
+            place.kind = PlaceKind::vertex;
+            place.index = vtx;
+            crossing = VertexCrossing{vtx, c.eta};
+          }
+          if (!(c.eta > eta + eta_slack) || c.eta > 1.0 + eta_slack || c.eta >= element_eta || place == cur) continue;
+          // beyond a focal point the continuation belongs to a folded sheet of the projection
+          if (!ctx_.unfolded_in_at(t, place, c.mu)) {
+            folded = true;
+            continue;
+          }
+          element_eta = c.eta;
+          element_mu = c.mu;
+          element_place = place;
+          element_crossing = crossing;
+        }
+        if (!std::isfinite(element_eta)) continue;
+        const double r = ctx_.rank(element_mu);
+        const bool nearer = r < best_rank - rank_tie;
+        const bool tie = !nearer && r <= best_rank + rank_tie;
+        if (!nearer && !(tie && element_eta < best_eta)) continue;
+        best_rank = std::min(best_rank, r);
+        best_mu = element_mu;
+        best_eta = element_eta;
+        best_place = element_place;
+        best_crossing = element_crossing;
+      }
+      ctx_.solver_calls += calls;
+      ctx_.solver_failures += failures;
+      calls = failures = 0;
+      w.stop = cur;
+      w.eta = eta;
+      if (!std::isfinite(best_eta)) {
+        if (ctx_.on_boundary(cur)) {  // the preimage leaves S1 here (possibly right at its start)
+          w.end = WalkEnd::left_boundary;
+          return w;
+        }
+        w.end = WalkEnd::failed;
+        w.reason = folded || start_folded ? EdgeFailureReason::fold
+                   : solver_failed ? EdgeFailureReason::solver_failure
+                   : beyond_limit  ? EdgeFailureReason::distance_limit
+                                   : EdgeFailureReason::discontinuity;
+        return w;
+      }
+      if (best_eta >= 1.0 - ctx_.options.search_limits.end_parameter_slack) {
+        // The walk reaches the image of the second vertex, but that vertex has no preimage here.
+        w.end = WalkEnd::failed;
+        w.reason = EdgeFailureReason::endpoint_without_preimage;
+        w.stop = best_place;
+        w.eta = best_eta;
+        return w;
+      }
+      if (best_place.kind == PlaceKind::vertex && state_.vertex_state[best_place.index] == VertexState::corner) {
+        w.end = WalkEnd::failed;
+        w.reason = EdgeFailureReason::vertex_conflict;
+        w.stop = best_place;
+        w.eta = best_eta;
+        return w;
+      }
+      if constexpr (d == 2) best_crossing.target_parameter = best_eta;
+      buffer.crossings.push_back(best_crossing);
+      ++w.crossing_count;
+      cur = best_place;
+      cur_mu = best_mu;
+      eta = best_eta;
+      if constexpr (d == 2) {
+        if (cur.kind == PlaceKind::edge && ctx_.s1.edge_elements(cur.index).size() == 1) {
+          w.end = WalkEnd::left_boundary;
+          w.stop = cur;
+          w.eta = eta;
+          return w;
+        }
+      }
+    }
+    w.end = WalkEnd::failed;
+    w.reason = EdgeFailureReason::walk_limit;
+    return w;
+  }
+
+  EdgeNotInserted<d> failure(Index e, EdgeFailureReason reason, const Place<d>& at, double eta,
+                             std::string detail = {}) const {
+    EdgeNotInserted<d> f;
+    f.target_edge = e;
+    f.reason = reason;
+    std::vector<Index> els;
+    ctx_.elements_of(at, els);
+    f.domain_element = els.empty() ? invalid_index : els.front();
+    f.domain_point = ctx_.world_of(at);
+    f.target_parameter = eta;
+    f.detail = std::move(detail);
+    return f;
+  }
+
+  /// For plan_edge: the piece of S2 edge e that ends where the edge leaves S1 at `exit`, found by
+  /// walking from there towards the first vertex until the walk leaves S1 (as the walk from the
+  /// second vertex in plan_edge). Appended as a piece if it is one and lies beyond
+  /// `covered_until` (where the walks before it ended); returns whether it was.
+  bool walk_back_from_exit(Index e, const BoundaryEntry<d>& exit, double covered_until,
+                             PlanBuffer<d>& buffer) const {
+    const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
+    auto& crossings = buffer.crossings;
+    const std::size_t begin = crossings.size();
+    const WalkResult<d> w = walk(e, exit.place, 1.0 - exit.eta, std::nullopt, WalkDirection::from_second_vertex, buffer);
+    const double back_to = 1.0 - w.eta;  // in the edge's direction
+    if (w.end != WalkEnd::left_boundary || w.crossing_count == 0 || !(back_to >= covered_until - piece_slack)) {
+      crossings.resize(begin);  // nothing over S1 before the exit, or not a clean piece
+      return false;
+    }
+    // measured from the first vertex again, in the edge's direction, ending at the exit
+    std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(begin), crossings.end());
+    for (std::size_t i = begin; i < crossings.size(); ++i)
+      crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
+    crossings.push_back(exit.crossing);
+    buffer.pieces.push_back({static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(crossings.size()),
+                             PieceStart::first_crossing, PieceEnd::last_crossing});
+    return true;
+  }
+
+  /// How far the walks along one S2 edge have come (plan_edge and its three walks).
+  struct EdgeProgress {
+    EdgeProgress(const std::optional<Place<d>>& first_place, const std::optional<Place<d>>& second_place)
+        : first(first_place), second(second_place) {}
+    /// Where the preimages of the edge's first and second vertex were inserted, if they were.
+    const std::optional<Place<d>>& first;
+    const std::optional<Place<d>>& second;
+    bool reached_second = false;
+    bool first_walk_failed = false;
+    /// The entry whose walk reached the second vertex, if that was no walk from the first vertex:
+    /// the boundary-entry search also finds points where the edge only touches S1's boundary
+    /// from inside (it comes over S1 and meets a boundary vertex, then runs along the boundary),
+    /// and the stretch before such a point would be lost (see walk_back_from_second_vertex).
+    /// (A flag and a value: GCC 12 warns falsely on a std::optional<double> here.)
+    bool second_reached_from_entry = false;
+    double reaching_entry_eta = 0.0;
+    /// Pieces are disjoint intervals of the edge parameter; an entry inside an interval already
+    /// walked is where that walk left S1 (or a re-detection of it), not a new piece.
+    double covered_until = -1.0;
+  };
+
+  /// Appends the piece of crossings [begin, end of the buffer).
+  static void add_piece(PlanBuffer<d>& buffer, std::size_t begin, PieceStart starts_at, PieceEnd ends_at) {
+    buffer.pieces.push_back(
+        {static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(buffer.crossings.size()), starts_at, ends_at});
+  }
+
+  /// Walks along S2 edge e and appends its pieces (and what could not be walked) to `buffer`.
+  PlannedEdge plan_edge(Index e, unsigned worker, PlanBuffer<d>& buffer) const {
+    PlannedEdge plan;
+    plan.worker = worker;
+    plan.pieces_begin = static_cast<std::uint32_t>(buffer.pieces.size());
+    plan.failures_begin = static_cast<std::uint32_t>(buffer.failures.size());
+    const auto tv = ctx_.target_edge_vertices(e);
+    EdgeProgress progress(state_.target_place[tv[0]], state_.target_place[tv[1]]);
+    if (progress.first) walk_from_first_vertex(e, progress, buffer);
+    walk_from_boundary_entries(e, progress, buffer);
+    // The second vertex has a preimage that no walk reached: the edge enters S1 across its boundary
+    // at a point the boundary-entry search cannot see (that search needs an image of one end of
+    // the S1 boundary edge; both may lie outside S2 or over a hole of S2). Walking backwards from
+    // the second vertex finds the entry as the point where the reversed walk leaves S1.
+    // It also runs when the second vertex was reached only from an entry: if it leaves S1
+    // before that entry, the entry was a touch of the boundary from inside, and its piece is
+    // replaced by the longer one (whose crossings follow it in the buffer).
+    // After a failed walk from the first vertex, it also inserts the stretch from the second
+    // vertex back to where its own walk fails (partial insertion), if the two stretches are
+    // disjoint along the edge.
+    if (progress.second && (!progress.reached_second || progress.second_reached_from_entry))
+      walk_back_from_second_vertex(e, progress, buffer);
+    if (progress.second && !progress.reached_second && buffer.failures.size() == plan.failures_begin &&
+        !ctx_.on_boundary(*progress.second))
+      buffer.failures.push_back(failure(e, EdgeFailureReason::endpoint_without_preimage, *progress.second, 1.0,
+                                        fmt::format("the S2 vertex {} has no preimage", tv[0])));
+    plan.pieces_end = static_cast<std::uint32_t>(buffer.pieces.size());
+    plan.failures_end = static_cast<std::uint32_t>(buffer.failures.size());
+    // No piece and nothing wrong: the edge lies outside D (it may touch S1's boundary at an
+    // endpoint and leave at once).
+    plan.outside = plan.pieces_begin == plan.pieces_end && plan.failures_begin == plan.failures_end;
+    return plan;
+  }
+
+  /// The walk from the preimage of the edge's first vertex towards its second vertex.
+  void walk_from_first_vertex(Index e, EdgeProgress& progress, PlanBuffer<d>& buffer) const {
+    auto& crossings = buffer.crossings;
+    const std::size_t begin = crossings.size();
+    const WalkResult<d> w = walk(e, *progress.first, 0.0, progress.second, WalkDirection::from_first_vertex, buffer);
+    if (w.end == WalkEnd::failed) {
+      // What was walked before the failure is inserted as a piece ending at the last crossing
+      // (partial insertion): the S2 elements on both sides of e then keep their regions away
+      // from the failure, and only the faces around its far end stay outside D.
+      buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+      if (w.crossing_count > 0)
+        add_piece(buffer, begin, PieceStart::first_vertex, PieceEnd::last_crossing);
+      else
+        crossings.resize(begin);
+      progress.covered_until = w.eta;
+      progress.first_walk_failed = true;
+    } else {
+      const bool reached = w.end == WalkEnd::reached;
+      progress.reached_second |= reached;
+      progress.covered_until = reached ? 1.0 : w.eta;
+      if (w.crossing_count > 0 || reached)
+        add_piece(buffer, begin, PieceStart::first_vertex, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing);
+      else
+        crossings.resize(begin);
+    }
+  }
+
+  /// The walks from the points where the edge enters S1 across its boundary, beyond what the
+  /// walks before them covered.
+  void walk_from_boundary_entries(Index e, EdgeProgress& progress, PlanBuffer<d>& buffer) const {
+    const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
+    auto& crossings = buffer.crossings;
+    for (const auto& entry : state_.boundary_entries[e]) {
+      if (entry.eta <= progress.covered_until + piece_slack) continue;
+      const std::size_t begin = crossings.size();
+      crossings.push_back(entry.crossing);  // the piece starts where the edge enters S1
+      const WalkResult<d> w = walk(e, entry.place, entry.eta, progress.second, WalkDirection::from_first_vertex, buffer);
+      const double walked_until = progress.covered_until;  // before this entry
+      progress.covered_until = w.end == WalkEnd::reached ? 1.0 : w.eta;
+      if (w.end == WalkEnd::failed) {
+        if (w.crossing_count > 0) {  // partial insertion, as for the walk from the first vertex
+          buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+          add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::last_crossing);
+          continue;
+        }
+        crossings.resize(begin);
+        if (w.steps == 0 && w.reason != EdgeFailureReason::solver_failure) {
+          // An exit: the edge leaves S1 here. If no walk has come this far, the stretch before
+          // it may still lie over S1 with neither of its ends found (it enters across a
+          // boundary edge whose end vertices both miss S2, and the first vertex has no
+          // preimage): walking backwards from the exit finds it.
+          walk_back_from_exit(e, entry, walked_until, buffer);
+          continue;
+        }
+        buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+        continue;
+      }
+      if (w.end == WalkEnd::left_boundary && w.crossing_count == 0) {  // an exit, as above
+        crossings.resize(begin);
+        walk_back_from_exit(e, entry, walked_until, buffer);
+        continue;
+      }
+      const bool reached = w.end == WalkEnd::reached;
+      progress.reached_second |= reached;
+      if (reached) {
+        progress.second_reached_from_entry = true;
+        progress.reaching_entry_eta = entry.eta;
+      }
+      add_piece(buffer, begin, PieceStart::first_crossing, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing);
+    }
+  }
+
+  /// The walk from the preimage of the second vertex backwards (see plan_edge for when it runs).
+  void walk_back_from_second_vertex(Index e, EdgeProgress& progress, PlanBuffer<d>& buffer) const {
+    const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
+    auto& crossings = buffer.crossings;
+    const std::size_t begin = crossings.size();
+    const WalkResult<d> w = walk(e, *progress.second, 0.0, std::nullopt, WalkDirection::from_second_vertex, buffer);
+    auto reverse_into_piece = [&](std::size_t piece_begin) {
+      std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin), crossings.end());
+      for (std::size_t i = piece_begin; i < crossings.size(); ++i)
+        crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
+      add_piece(buffer, piece_begin, PieceStart::first_crossing, PieceEnd::second_vertex);
+      progress.reached_second = true;
+    };
+    // where the backward walk's last crossing lies, measured from the first vertex
+    const double walked_back_to = w.crossing_count > 0 ? 1.0 - crossings.back().target_parameter : 1.0;
+    const bool partial = w.crossing_count > 0 && !progress.second_reached_from_entry &&
+                         (w.end == WalkEnd::failed || (progress.first_walk_failed && w.end == WalkEnd::left_boundary));
+    if (partial) {
+      if (walked_back_to > progress.covered_until + piece_slack) {
+        reverse_into_piece(begin);
+      } else {
+        crossings.resize(begin);
+      }
+      if (w.end == WalkEnd::failed && !progress.first_walk_failed && w.reason != EdgeFailureReason::endpoint_without_preimage)
+        buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
+    } else if (w.end == WalkEnd::left_boundary && w.crossing_count > 0) {
+      // measured from the first vertex again, in the edge's direction
+      if (progress.second_reached_from_entry && !(1.0 - w.eta < progress.reaching_entry_eta - piece_slack)) {
+        crossings.resize(begin);  // no farther back than the entry: the entry's piece stands
+      } else {
+        std::size_t piece_begin = begin;
+        if (progress.second_reached_from_entry) {  // the entry's piece is the last one: replace it
+          piece_begin = buffer.pieces.back().begin;
+          crossings.erase(crossings.begin() + static_cast<std::ptrdiff_t>(piece_begin),
+                          crossings.begin() + static_cast<std::ptrdiff_t>(begin));
+          buffer.pieces.pop_back();
+        }
+        reverse_into_piece(piece_begin);
+      }
+    } else {
+      crossings.resize(begin);
+      // after an entry's piece, a failure may lie where that piece's walk passed: not reported;
+      // after a failed walk from the first vertex, that walk's failure names the missing stretch
+      if (w.end == WalkEnd::failed && !progress.second_reached_from_entry && !progress.first_walk_failed &&
+          w.reason != EdgeFailureReason::endpoint_without_preimage)
+        buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
+    }
+  }
+
+  /// Points where S2 edges cross S1's boundary, per S2 edge, sorted by the edge parameter.
+  std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries() const {
+    std::vector<std::vector<BoundaryEntry<d>>> entries(ctx_.s2.edge_count());
+    if constexpr (d == 1) {
+      for (Index v = 0; v < ctx_.s1.vertex_count(); ++v) {
+        if (!ctx_.s1.is_boundary_vertex(v) || state_.vertex_state[v] != VertexState::ghost || !state_.vertex_image[v]) continue;
+        const auto& image = *state_.vertex_image[v];
+        BoundaryEntry<1> entry;
+        entry.place.kind = PlaceKind::vertex;
+        entry.place.index = v;
+        entry.eta = image.local(0);
+        entry.crossing = VertexCrossing{v, entry.eta};
+        entries[image.element].push_back(entry);
+      }
+    } else {
+      long long calls = 0, failures = 0;
+      const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
+      std::vector<Index> edges;
+      for (Index edge = 0; edge < ctx_.s1.edge_count(); ++edge) {
+        if (ctx_.s1.edge_elements(edge).size() != 1) continue;
+        const auto ev = ctx_.s1.edge_vertices(edge);
+        const auto& ia = state_.vertex_image[ev[0]];
+        const auto& ib = state_.vertex_image[ev[1]];
+        if (!ia && !ib) continue;
+        const double length = (ctx_.s1.vertex(ev[0]) - ctx_.s1.vertex(ev[1])).norm();
+        WorldPoint<2> centre;
+        double radius;
+        if (ia && ib) {
+          const WorldPoint<2> a = ctx_.s2.world_position(ia->element, ia->local);
+          const WorldPoint<2> b = ctx_.s2.world_position(ib->element, ib->local);
+          centre = 0.5 * (a + b);
+          radius = 0.5 * (a - b).norm();
+        } else {
+          const auto& i = ia ? *ia : *ib;
+          centre = ctx_.s2.world_position(i.element, i.local);
+          radius = 2.0 * length;
+        }
+        edges.clear();
+        for (Index t : ctx_.s2_index->within(centre, radius + ctx_.s2_index->radius * 1.01 + 1e-9 * length))
+          for (int k = 0; k < 3; ++k) edges.push_back(ctx_.s2.element_edge(t, k));
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+        for (Index e : edges) {
+          const auto tv = ctx_.s2.edge_vertices(e);
+          const CrossingCandidate c = solve_crossing(edge, ctx_.s2.vertex(tv[0]), ctx_.s2.vertex(tv[1]), calls, failures);
+          if (!c.valid || !(c.eta > piece_slack && c.eta < 1.0 - piece_slack)) continue;
+          if (!ctx_.unfolded_at(ctx_.edge_place(edge, c.lambda), c.mu)) continue;
+          BoundaryEntry<2> entry;
+          entry.place = ctx_.edge_place(edge, c.lambda);
+          entry.eta = c.eta;
+          entry.crossing = EdgeCrossing{edge, c.lambda, c.eta};
+          auto& list = entries[e];
+          const bool duplicate = std::any_of(list.begin(), list.end(), [&](const BoundaryEntry<2>& x) {
+            return x.place == entry.place;
+          });
+          if (!duplicate) list.push_back(entry);
+        }
+      }
+      ctx_.solver_calls += calls;
+      ctx_.solver_failures += failures;
+    }
+    for (auto& list : entries)
+      std::sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.eta < y.eta; });
+    return entries;
+  }
+
+ private:
+  const ProjectionContext<d>& ctx_;
+  const ProjectionState<d>& state_;
+  const Solver& solver_;
+};
+
+}  // namespace
+
+template <int d, class Solver>
+std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const ProjectionContext<d>& ctx,
+                                                                 const ProjectionState<d>& state, const Solver& solver) {
+  return EdgeWalker<d, Solver>(ctx, state, solver).find_boundary_entries();
+}
+
+template <int d, class Solver>
+void plan_edge_block(const ProjectionContext<d>& ctx, const ProjectionState<d>& state, const Solver& solver,
+                     Index block, Index block_end, std::vector<PlanBuffer<d>>& buffers,
+                     std::vector<PlannedEdge>& planned) {
+  const EdgeWalker<d, Solver> walker(ctx, state, solver);
+  for (auto& buffer : buffers) buffer.clear();
+  // one piece (and buffer) per thread; a short block is not worth a second thread
+  const auto count = static_cast<std::size_t>(block_end - block);
+  parallel_for_pieces(count, count < 64 ? 1 : buffers.size(), ctx.threads, [&](std::size_t worker, std::size_t begin, std::size_t end) {
+    for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i)
+      planned[i] = walker.plan_edge(block + i, static_cast<unsigned>(worker), buffers[worker]);
+  });
+}
+
+#define PLMAP_EDGE_WALKS(d, Solver)                                                                          \
+  template std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries<d, Solver>(                      \
+      const ProjectionContext<d>&, const ProjectionState<d>&, const Solver&);                               \
+  template void plan_edge_block<d, Solver>(const ProjectionContext<d>&, const ProjectionState<d>&, const Solver&, \
+                                           Index, Index, std::vector<PlanBuffer<d>>&, std::vector<PlannedEdge>&);
+PLMAP_EDGE_WALKS(1, DampedNewtonSolver)
+PLMAP_EDGE_WALKS(2, DampedNewtonSolver)
+PLMAP_EDGE_WALKS(1, CeresTinySolver)
+PLMAP_EDGE_WALKS(2, CeresTinySolver)
+#undef PLMAP_EDGE_WALKS
+
+}  // namespace plmap::projection

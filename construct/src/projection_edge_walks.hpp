@@ -1,0 +1,69 @@
+#pragma once
+// Normal projection, phase 4: edge walks (paper eq. 4). For every S2 edge, walk across S1 along
+// its preimage, solving p(lambda) + mu nu(lambda) = q(eta) on the S1 edges of the current element
+// and taking the crossing with the next larger eta. Walks start at the preimage of the edge's
+// first vertex and at every point where the edge enters S1 across S1's boundary, and end at the
+// preimage of the second vertex or where the edge leaves S1 across its boundary; what they walk
+// becomes the edge's pieces, planned here and entered into the builder by the insertion. The
+// walks read nothing the insertion changes, so edges are planned in parallel, block by block.
+
+#include "projection_context.hpp"
+
+#include <plmap/construct/projection_result.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace plmap::projection {
+
+/// What the edge walks plan for the S2 edges of one block, in flat arrays owned by one worker
+/// thread and reused from block to block: once they have grown, planning allocates nothing per
+/// edge or per walk (the per-edge vectors of pieces and crossings this replaces were millions of small
+/// allocations).
+template <int d>
+struct PlanBuffer {
+  /// A piece of an S2 edge's preimage: crossings [begin, end) of `crossings`.
+  struct Piece {
+    std::uint32_t begin, end;
+    PieceStart starts_at;
+    PieceEnd ends_at;
+  };
+  std::vector<Crossing<d>> crossings;
+  std::vector<Piece> pieces;
+  std::vector<EdgeNotInserted<d>> failures;
+  /// scratch of the walks: the S1 elements at the current point and at the walk's end
+  std::vector<Index> candidates, end_elements;
+
+  void clear() {
+    crossings.clear();
+    pieces.clear();
+    failures.clear();
+  }
+};
+
+/// The plan of one S2 edge: which worker's PlanBuffer holds it and where.
+struct PlannedEdge {
+  unsigned worker = 0;
+  std::uint32_t pieces_begin = 0, pieces_end = 0, failures_begin = 0, failures_end = 0;
+  bool outside = false;
+};
+
+/// S2 edges planned and inserted per block: large enough that the threads of a block have work,
+/// small enough that a block's plans take little memory.
+inline constexpr Index edge_plan_block = 4096;
+
+/// Points where S2 edges cross S1's boundary (d = 2: a boundary edge, d = 1: a boundary vertex
+/// with a ghost image), per S2 edge, sorted by the edge parameter; walks start there too. Reads
+/// state.vertex_state and vertex_image.
+template <int d, class Solver>
+std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const ProjectionContext<d>& ctx,
+                                                                 const ProjectionState<d>& state, const Solver& solver);
+
+/// Plans S2 edges [block, block_end): planned[e - block] tells which of `buffers` (one per
+/// worker, cleared here) holds edge e's pieces and failures. Independent of ctx.threads.
+template <int d, class Solver>
+void plan_edge_block(const ProjectionContext<d>& ctx, const ProjectionState<d>& state, const Solver& solver,
+                     Index block, Index block_end, std::vector<PlanBuffer<d>>& buffers,
+                     std::vector<PlannedEdge>& planned);
+
+}  // namespace plmap::projection

@@ -1,0 +1,243 @@
+// Normal projection, phase 5: insertion (projection_insertion.hpp).
+
+#include "projection_insertion.hpp"
+
+#include "projection_sheet_selection.hpp"
+
+#include <plmap/core/errors.hpp>
+#include <plmap/core/snapping.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <utility>
+
+namespace plmap::projection {
+
+template <int d>
+ProjectionInsertion<d>::ProjectionInsertion(const ProjectionContext<d>& ctx, ProjectionState<d>& state,
+                                            MapBuilder<d>& builder)
+    : ctx_(ctx), state_(state), builder_(builder) {
+  if constexpr (d == 2) used_first_.assign(ctx_.s1.edge_count(), invalid_index);
+  crossed_vertex_.assign(ctx_.s1.vertex_count(), invalid_index);
+  inserted_.assign(ctx_.s2.edge_count(), 0);
+}
+
+template <int d>
+void ProjectionInsertion<d>::insert_vertex_preimages(const std::vector<std::optional<SurfacePoint<d>>>& preimage,
+                                                     ProjectionReport<d>& report) {
+  const Index n2v = ctx_.s2.vertex_count();
+  // state_.target_place first holds every preimage's place; those that are not inserted lose it below
+  for (Index q = 0; q < n2v; ++q)
+    if (preimage[q]) state_.target_place[q] = ctx_.place_of(*preimage[q]);
+  const std::vector<bool> loses = coincident_preimage_losers(ctx_, state_.target_place);
+  for (Index q = 0; q < n2v; ++q) {
+    if (!preimage[q]) continue;
+    const Place<d> place = *state_.target_place[q];
+    if (loses[q] || (place.kind == PlaceKind::vertex && state_.vertex_state[place.index] != VertexState::free)) {
+      ++report.vertex_conflicts;
+      state_.target_place[q].reset();
+      continue;
+    }
+    builder_.add_vertex_preimage(q, {preimage[q]->element, ctx_.place_local(*preimage[q])});
+    if constexpr (d == 2)
+      if (place.kind == PlaceKind::edge) add_used_parameter(place.index, place.t, -1 - q);
+    ++report.vertex_preimages;
+    if (place.kind == PlaceKind::vertex) {
+      state_.vertex_state[place.index] = VertexState::corner;
+      state_.vertex_image[place.index] = SurfacePoint<d>{ctx_.s2.vertex_elements(q).front(),
+                                                   local_of_corner(ctx_.s2, ctx_.s2.vertex_elements(q).front(), q)};
+    }
+  }
+}
+
+// S1 vertices that became preimages of S2 vertices are no longer free.
+template <int d>
+void ProjectionInsertion<d>::insert_ghost_nodes(const std::vector<std::optional<SurfacePoint<d>>>& hit,
+                                                ProjectionReport<d>& report) {
+  const Index n1v = ctx_.s1.vertex_count();
+  for (Index v = 0; v < n1v; ++v) {
+    if (!hit[v] || state_.vertex_state[v] != VertexState::free) continue;
+    Barycentric<d> b = ctx_.clean_barycentric(hit[v]->local);
+    int at_vertex = -1;
+    for (int k = 0; k <= d; ++k)
+      if (b(k) == 1.0) at_vertex = k;
+    const SurfacePoint<d> image{hit[v]->element, local_from_barycentric<d>(b)};
+    if (at_vertex >= 0) {
+      const Index q = ctx_.s2.element(hit[v]->element)[at_vertex];
+      if (state_.target_place[q]) {
+        ++report.ghost_conflicts;
+        continue;
+      }
+      builder_.add_ghost_node(v, image);  // becomes the preimage of q (a corner node)
+      Place<d> p;
+      p.kind = PlaceKind::vertex;
+      p.index = v;
+      state_.target_place[q] = p;
+      state_.vertex_state[v] = VertexState::corner;
+      ++report.vertices_mapped_by_ray;
+      ++report.vertex_preimages;
+    } else {
+      builder_.add_ghost_node(v, image);
+      state_.vertex_state[v] = VertexState::ghost;
+      ++report.ghost_nodes;
+    }
+    state_.vertex_image[v] = image;
+  }
+}
+
+template <int d>
+void ProjectionInsertion<d>::insert_planned_edges(Index block, Index block_end, const std::vector<PlannedEdge>& planned,
+                                                  std::vector<PlanBuffer<d>>& buffers, ProjectionReport<d>& report) {
+  for (Index e = block; e < block_end; ++e)
+    inserted_[e] = insert_planned_edge(e, planned[e - block], buffers[planned[e - block].worker], report);
+}
+
+template <int d>
+void ProjectionInsertion<d>::release_used_points() {
+  auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
+  release(used_first_);
+  release(used_parameters_);
+  release(crossed_vertex_);
+}
+
+template <int d>
+void ProjectionInsertion<d>::report_edges_dropped_by_finalize(const FinalizeReport& dropped,
+                                                              ProjectionReport<d>& report) const {
+  for (std::size_t i = 0; i < dropped.dropped_edges.size(); ++i) {
+    const Index e = dropped.dropped_edges[i];
+    const Index pieces = static_cast<Index>(inserted_[e] & ~inserted_whole);
+    if (inserted_[e] & inserted_whole) --report.edges_inserted;
+    if (pieces > 0) --report.edges_partly_inserted;
+    report.edge_pieces -= pieces;
+    EdgeNotInserted<d> f;
+    f.target_edge = e;
+    f.reason = EdgeFailureReason::overlap;
+    f.domain_element = dropped.dropped_edge_element[i];
+    f.domain_point = ctx_.s1.world_position(f.domain_element, LocalPoint<d>::Constant(1.0 / (d + 1)));
+    f.detail = "its preimage crosses another edge's preimage, runs through a node, or meets this S1 "
+               "element twice: the projection is not injective or not continuous there";
+    report.edges_not_inserted.push_back(std::move(f));
+  }
+}
+
+// ---- points of S1 already taken ------------------------------------------------------------------
+template <int d>
+auto ProjectionInsertion<d>::find_used_point(std::span<const Crossing<d>> crossings) const -> std::optional<UsedPoint> {
+  for (const auto& c : crossings) {
+    Index vertex = invalid_index;
+    if constexpr (d == 2) {
+      const auto ev = ctx_.s1.edge_vertices(c.domain_edge);
+      const EdgeSnap snap = snap_edge_parameter(c.domain_parameter, ctx_.options.snap_tolerance);
+      if (snap == EdgeSnap::first_vertex) vertex = ev[0];
+      else if (snap == EdgeSnap::second_vertex) vertex = ev[1];
+      else {
+        for (Index i = used_first_[c.domain_edge]; i != invalid_index; i = used_parameters_[i].next)
+          if (const Index owner = used_parameters_[i].owner;
+              std::abs(used_parameters_[i].t - c.domain_parameter) <= ctx_.options.snap_tolerance) {
+            const Place<d> at = ctx_.edge_place(c.domain_edge, c.domain_parameter);
+            return UsedPoint{ctx_.s1.edge_elements(c.domain_edge).front().element, ctx_.world_of(at),
+                             fmt::format("its preimage meets {} on S1 edge {} at {:.17g}: the projection is not "
+                                         "injective there (directions tangential to S2?)",
+                                         owner < 0 ? fmt::format("the preimage of S2 vertex {}", -1 - owner)
+                                                   : fmt::format("the preimage of S2 edge {}", owner),
+                                         c.domain_edge, c.domain_parameter)};
+          }
+        continue;
+      }
+    } else {
+      vertex = c.domain_vertex;
+    }
+    if (crossed_vertex_[vertex] != invalid_index)
+      return UsedPoint{ctx_.s1.vertex_elements(vertex).front(), ctx_.s1.vertex(vertex),
+                       fmt::format("its preimage passes S1 vertex {}, which the preimage of S2 {} {} passes too: "
+                                   "the projection is not injective there (directions tangential to S2?)",
+                                   vertex, d == 2 ? "edge" : "segment", crossed_vertex_[vertex])};
+  }
+  return std::nullopt;
+}
+
+template <int d>
+void ProjectionInsertion<d>::mark_used_points(std::span<const Crossing<d>> crossings, Index e) {
+  for (const auto& c : crossings) {
+    if constexpr (d == 2) {
+      const auto ev = ctx_.s1.edge_vertices(c.domain_edge);
+      const EdgeSnap snap = snap_edge_parameter(c.domain_parameter, ctx_.options.snap_tolerance);
+      if (snap == EdgeSnap::first_vertex) crossed_vertex_[ev[0]] = e;
+      else if (snap == EdgeSnap::second_vertex) crossed_vertex_[ev[1]] = e;
+      else add_used_parameter(c.domain_edge, c.domain_parameter, e);
+    } else {
+      crossed_vertex_[c.domain_vertex] = e;
+    }
+  }
+}
+
+template <int d>
+void ProjectionInsertion<d>::add_used_parameter(Index edge, double t, Index owner) {
+  const Index entry = static_cast<Index>(used_parameters_.size());
+  used_parameters_.push_back({t, owner, invalid_index});
+  Index* link = &used_first_[edge];
+  while (*link != invalid_index) link = &used_parameters_[*link].next;
+  *link = entry;
+}
+
+/// Feeds the planned pieces of S2 edge e to the builder and reports what was left out. Returns
+/// inserted_whole if the edge was inserted whole, or'ed with the number of pieces inserted.
+template <int d>
+std::uint32_t ProjectionInsertion<d>::insert_planned_edge(Index e, const PlannedEdge& plan, PlanBuffer<d>& buffer,
+                                                          ProjectionReport<d>& report) {
+  if (plan.outside) {
+    ++report.edges_outside;
+    builder_.add_edge_outside_domain(e);
+  }
+  bool whole = false;
+  std::uint32_t pieces = 0;
+  std::vector<EdgeNotInserted<d>> rejected;
+  for (std::uint32_t p = plan.pieces_begin; p < plan.pieces_end; ++p) {
+    const auto& piece = buffer.pieces[p];
+    const std::span<const Crossing<d>> crossings(buffer.crossings.data() + piece.begin, piece.end - piece.begin);
+    if (const auto clash = find_used_point(crossings)) {
+      EdgeNotInserted<d> f;
+      f.target_edge = e;
+      f.reason = EdgeFailureReason::builder_rejected;
+      f.domain_element = clash->element;
+      f.domain_point = clash->point;
+      f.detail = clash->detail;
+      rejected.push_back(std::move(f));
+      continue;
+    }
+    try {
+      if (piece.starts_at == PieceStart::first_vertex && piece.ends_at == PieceEnd::second_vertex) {
+        builder_.add_edge(e, crossings);
+        whole = true;
+      } else {
+        builder_.add_edge_piece(e, crossings, piece.starts_at, piece.ends_at);
+        ++pieces;
+      }
+      mark_used_points(crossings, e);
+    } catch (const BuilderError& error) {
+      EdgeNotInserted<d> f;
+      f.target_edge = e;
+      f.reason = EdgeFailureReason::builder_rejected;
+      f.detail = error.what();
+      rejected.push_back(std::move(f));
+    }
+  }
+  // An edge of which no stretch could be inserted (its walks fail at once from both ends)
+  // still closes its S2 triangles' regions, as one beyond S1's boundary does: the faces it
+  // would split have nodes on both of its sides, so no single S2 element holds their images
+  // and they stay outside D, while the triangles' other faces keep their regions.
+  if (!whole && pieces == 0 && !plan.outside && !builder_.has_edge(e)) builder_.add_edge_outside_domain(e);
+  if (whole) ++report.edges_inserted;
+  if (pieces > 0) ++report.edges_partly_inserted;
+  report.edge_pieces += static_cast<Index>(pieces);
+  for (std::uint32_t f = plan.failures_begin; f < plan.failures_end; ++f)
+    report.edges_not_inserted.push_back(std::move(buffer.failures[f]));
+  for (auto& f : rejected) report.edges_not_inserted.push_back(std::move(f));
+  return (whole ? inserted_whole : 0u) | pieces;
+}
+
+template class ProjectionInsertion<1>;
+template class ProjectionInsertion<2>;
+
+}  // namespace plmap::projection

@@ -1,0 +1,90 @@
+#pragma once
+// Normal projection, phase 5: insertion. What the searches found is entered into the MapBuilder
+// sequentially, in index order, so that the map does not depend on the number of threads: the
+// vertex preimages (but of coincident ones only the nearest, sheet selection), the ghost nodes of
+// the S1 vertices left free, and the planned pieces of the S2 edges (edge walks). Points of S1
+// that an earlier edge already passes are not given to a later one, which is reported instead.
+
+#include "projection_context.hpp"
+#include "projection_edge_walks.hpp"
+
+#include <plmap/construct/projection_result.hpp>
+#include <plmap/core/map_builder.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace plmap::projection {
+
+template <int d>
+class ProjectionInsertion {
+ public:
+  /// Sets up `state` for the insertion (every S1 vertex free, no S2 vertex placed).
+  ProjectionInsertion(const ProjectionContext<d>& ctx, ProjectionState<d>& state, MapBuilder<d>& builder);
+
+  /// The preimages of the S2 vertices (per S2 vertex); fills state.target_place, and marks the
+  /// S1 vertices that became corner nodes.
+  void insert_vertex_preimages(const std::vector<std::optional<SurfacePoint<d>>>& preimage,
+                               ProjectionReport<d>& report);
+
+  /// The ghost nodes: the S1 vertices still free whose ray hits S2 (per S1 vertex). A hit on an
+  /// S2 vertex without a preimage makes the S1 vertex that vertex's preimage.
+  void insert_ghost_nodes(const std::vector<std::optional<SurfacePoint<d>>>& ray_hits, ProjectionReport<d>& report);
+
+  /// The planned pieces of S2 edges [block, block_end) (plan_edge_block), in index order.
+  void insert_planned_edges(Index block, Index block_end, const std::vector<PlannedEdge>& planned,
+                            std::vector<PlanBuffer<d>>& buffers, ProjectionReport<d>& report);
+
+  /// Frees what only the insertion needs, before finalize; what it inserted per edge stays.
+  void release_used_points();
+
+  /// Moves the edges that finalize dropped (their preimages cross) from the inserted ones to
+  /// edges_not_inserted (reason overlap).
+  void report_edges_dropped_by_finalize(const FinalizeReport& dropped, ProjectionReport<d>& report) const;
+
+ private:
+  // ---- insertion: points of S1 already taken ------------------------------------------------------
+  /// Two S2 edges whose preimages cross an S1 edge (or pass an S1 vertex) at the same point would
+  /// give the builder two nodes at one point (it throws in finalize), and the map could not be
+  /// injective there: S2 edges meet only at S2 vertices. This happens where the directions are
+  /// tangential to S2 (S2 perpendicular to S1, a vertical wall): edges of S2 then project onto
+  /// the same curve. The first edge (in index order, so independent of threads) keeps the point;
+  /// a later piece through it is reported, not inserted.
+  struct UsedPoint {
+    Index element;
+    WorldPoint<d> point;
+    std::string detail;
+  };
+
+  std::optional<UsedPoint> find_used_point(std::span<const Crossing<d>> crossings) const;
+  void mark_used_points(std::span<const Crossing<d>> crossings, Index e);
+  /// Appends to S1 edge `edge`'s list of used parameters (see used_first_).
+  void add_used_parameter(Index edge, double t, Index owner);
+  std::uint32_t insert_planned_edge(Index e, const PlannedEdge& plan, PlanBuffer<d>& buffer,
+                                    ProjectionReport<d>& report);
+
+  /// In the per-edge count of what was inserted: the edge was inserted whole.
+  static constexpr std::uint32_t inserted_whole = 1u << 31;
+
+  const ProjectionContext<d>& ctx_;
+  ProjectionState<d>& state_;
+  MapBuilder<d>& builder_;
+  /// Per S1 edge (d = 2): the parameters already holding a node, with their owner (an S2 edge,
+  /// or -1 - q for the preimage of S2 vertex q), as lists in insertion order linked through one
+  /// array (used_first_[edge] is the first entry). Per S1 vertex: the S2 edge whose preimage passes it.
+  struct UsedParameter {
+    double t;
+    Index owner, next;
+  };
+  std::vector<Index> used_first_;
+  std::vector<UsedParameter> used_parameters_;
+  std::vector<Index> crossed_vertex_;
+  /// Per S2 edge: bit 31 (inserted_whole) set if inserted whole, the lower bits count the pieces
+  /// inserted.
+  std::vector<std::uint32_t> inserted_;
+};
+
+}  // namespace plmap::projection

@@ -1,0 +1,89 @@
+// Normal projection, phase 3: sheet selection (projection_sheet_selection.hpp).
+
+#include "projection_sheet_selection.hpp"
+
+#include "image_overlaps.hpp"
+
+#include <plmap/core/face_removal.hpp>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <span>
+
+namespace plmap::projection {
+
+template <int d>
+std::vector<bool> coincident_preimage_losers(const ProjectionContext<d>& ctx,
+                                             const std::vector<std::optional<Place<d>>>& target_place) {
+  // Group the preimages by the S1 edge or element they lie on (a counting sort: almost every
+  // group has a single member, which keeps its place without further work).
+  const Index n2v = static_cast<Index>(target_place.size());
+  const Index edge_keys = d == 2 ? ctx.s1.edge_count() : 0;
+  auto key = [&](const Place<d>& p) { return p.kind == PlaceKind::edge ? p.index : edge_keys + p.index; };
+  std::vector<Index> group_begin(static_cast<std::size_t>(edge_keys + ctx.s1.element_count()) + 1, 0);
+  auto grouped = [&](Index q) { return target_place[q] && target_place[q]->kind != PlaceKind::vertex; };
+  for (Index q = 0; q < n2v; ++q)
+    if (grouped(q)) ++group_begin[key(*target_place[q]) + 1];
+  for (std::size_t k = 1; k < group_begin.size(); ++k) group_begin[k] += group_begin[k - 1];
+  std::vector<Index> members(static_cast<std::size_t>(group_begin.back()));
+  {
+    std::vector<Index> cursor(group_begin.begin(), group_begin.end() - 1);
+    for (Index q = 0; q < n2v; ++q)
+      if (grouped(q)) members[cursor[key(*target_place[q])]++] = q;
+  }
+  std::vector<bool> loses(target_place.size(), false);
+  struct Item {
+    double distance;
+    Index q;
+  };
+  std::vector<Item> group;
+  std::vector<const Place<d>*> kept;
+  for (std::size_t g = 0; g + 1 < group_begin.size(); ++g) {
+    if (group_begin[g + 1] - group_begin[g] < 2) continue;
+    // within one S1 edge or element, nearest first (then the smallest q): a point loses if it
+    // coincides with a kept one
+    group.clear();
+    for (Index i = group_begin[g]; i < group_begin[g + 1]; ++i) {
+      const Index q = members[i];
+      group.push_back({(ctx.s2.vertex(q) - ctx.world_of(*target_place[q])).norm(), q});
+    }
+    std::sort(group.begin(), group.end(), [](const Item& a, const Item& b) {
+      return a.distance != b.distance ? a.distance < b.distance : a.q < b.q;
+    });
+    kept.clear();
+    for (const Item& item : group) {
+      const Place<d>& place = *target_place[item.q];
+      const bool same = std::any_of(kept.begin(), kept.end(), [&](const Place<d>* w) {
+        const double gap = place.kind == PlaceKind::edge
+                               ? std::abs(place.t - w->t)
+                               : (place.local - w->local).template lpNorm<Eigen::Infinity>();
+        return gap <= ctx.options.snap_tolerance;
+      });
+      if (same)
+        loses[item.q] = true;
+      else
+        kept.push_back(&place);
+    }
+  }
+  return loses;
+}
+
+template <int d>
+void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, unsigned threads, ProjectionReport<d>& report) {
+  const std::vector<Index> farther = farther_overlapping_regions(map, images);
+  if (farther.empty()) return;
+  FaceRemovalReport removal;
+  map = remove_faces(map, std::span<const Index>(farther), &removal);
+  report.occluded_faces = removal.removed_faces;
+  report.occluded_regions = removal.removed_regions;
+  images = image_measures(map, threads);
+}
+
+template std::vector<bool> coincident_preimage_losers<1>(const ProjectionContext<1>&,
+                                                         const std::vector<std::optional<Place<1>>>&);
+template std::vector<bool> coincident_preimage_losers<2>(const ProjectionContext<2>&,
+                                                         const std::vector<std::optional<Place<2>>>&);
+template void keep_nearer_sheet<1>(PlMap<1>&, ImageMeasures&, unsigned, ProjectionReport<1>&);
+template void keep_nearer_sheet<2>(PlMap<2>&, ImageMeasures&, unsigned, ProjectionReport<2>&);
+
+}  // namespace plmap::projection

@@ -1,0 +1,304 @@
+// Normal projection, phase 2: vertex preimages (projection_vertex_preimages.hpp).
+
+#include "projection_vertex_preimages.hpp"
+
+#include "projection_seeds.hpp"
+
+#include <plmap/core/parallel_ranges.hpp>
+#include <plmap/solvers/projection_systems.hpp>
+#include <plmap/solvers/solver_kind.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace plmap::projection {
+
+namespace {
+
+/// The searches for the preimages of S2 vertices.
+template <int d, class Solver>
+class VertexPreimageSearch {
+ public:
+  VertexPreimageSearch(const ProjectionContext<d>& ctx, const Solver& solver) : ctx_(ctx), solver_(solver) {}
+
+  /// A plain flag and value rather than std::optional, on which GCC 12 warns falsely
+  /// (maybe-uninitialized) for Eigen members.
+  struct SearchOffset {
+    bool valid = false;
+    WorldPoint<d> value = WorldPoint<d>::Zero();
+  };
+
+  /// What the walks from one set of seeds found.
+  struct SeededSearch {
+    /// The admissible solution of least rank, if any.
+    std::optional<SurfacePoint<d>> preimage;
+    /// A walk stopped because the solver did not converge (more seeds may then help).
+    bool solver_failed = false;
+  };
+
+  /// The preimage of S2 vertex q, seeded next to q moved by the chunk's previous offset (if
+  /// any), else at q itself.
+  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const SearchOffset& offset,
+                                                      NearestElements<d>& nearest) const {
+    if (offset.valid) {
+      auto found = search_from_seeds(q, ctx_.s2.vertex(q) - offset.value, ctx_.seed_count, &nearest).preimage;
+      if (found) return found;
+    }
+    return find_vertex_preimage(q);
+  }
+
+  std::optional<SurfacePoint<d>> find_vertex_preimage(Index q) const {
+    SeededSearch search = search_from_seeds(q, ctx_.s2.vertex(q), ctx_.seed_count, nullptr);
+    // The elements nearest to q may all be tangential to the directions (eq. 3 is singular there),
+    // e.g. the horizontal sheets of a T-junction when the vertical sheet is the one that sees S2:
+    // their walks end at once, before reaching the element that holds the preimage. Only then is
+    // the search repeated from more seeds (search_limits.retry_seeds), so the usual case costs
+    // nothing extra.
+    if (!search.preimage && search.solver_failed && ctx_.seed_count < ctx_.retry_seed_count)
+      search = search_from_seeds(q, ctx_.s2.vertex(q), ctx_.retry_seed_count, nullptr);
+    return search.preimage;
+  }
+
+  /// Eq. (3) for S2 vertex q on walks across S1 that start at the `seed_count` elements nearest
+  /// to `seed_point` (found with `nearest` for the moved seed points, which follow each other
+  /// closely, else with the kd-tree).
+  SeededSearch search_from_seeds(Index q, const WorldPoint<d>& seed_point, int seed_count,
+                                 NearestElements<d>* nearest) const {
+    SeedElements seeds;
+    int count = nearest_seeds(*ctx_.s1_index, nearest, seed_point, seed_count, seeds);
+    count = add_long_elements_through(seed_point, seeds, count);
+    return walk_to_preimage(q, seeds, count);
+  }
+
+  /// The nearest centroids miss an element that passes right by x when its centroid lies
+  /// farther than theirs (a long element among short ones: the steep sides of a zigzag curve),
+  /// and the walks from the seeds stop at the first element that holds a solution, which may rank
+  /// worse than the one on the missed element (an S2 vertex on S1 then takes a preimage off
+  /// itself). Such elements are added as seeds, nearest centroid first, up to max_search_seeds: those whose
+  /// bounding box lies nearer to x than the nearest seed's centroid. Every element within that
+  /// distance of x has its centroid within it plus the largest centroid-to-corner distance, and
+  /// on meshes of even element size those are seeds already, so this adds none and costs no query.
+  int add_long_elements_through(const WorldPoint<d>& x, SeedElements& seeds, int count) const {
+    if (count == 0 || count >= max_search_seeds) return count;
+    double nearest = std::numeric_limits<double>::infinity(), farthest = 0.0;
+    for (int i = 0; i < count; ++i) {
+      const double squared = ctx_.s1_index->squared_distance(x, seeds[i]);
+      nearest = std::min(nearest, squared);
+      farthest = std::max(farthest, squared);
+    }
+    nearest = std::sqrt(nearest);
+    // The seeds are the nearest centroids: if they reach beyond that bound, or are all there are,
+    // every candidate is a seed already (the usual case, at the cost of no tree query).
+    if (count >= ctx_.s1_index->size() || std::sqrt(farthest) > nearest + ctx_.s1_index->radius) return count;
+    std::vector<std::pair<double, Index>> added;
+    for (Index t : ctx_.s1_index->within(x, nearest + ctx_.s1_index->radius)) {
+      if (std::find(seeds.begin(), seeds.begin() + count, static_cast<std::uint32_t>(t)) != seeds.begin() + count)
+        continue;
+      WorldPoint<d> low = ctx_.s1.corner(t, 0), high = low;
+      for (int k = 1; k <= d; ++k) {
+        low = low.cwiseMin(ctx_.s1.corner(t, k));
+        high = high.cwiseMax(ctx_.s1.corner(t, k));
+      }
+      const double box_distance = (x.cwiseMax(low).cwiseMin(high) - x).norm();
+      if (box_distance < nearest) added.emplace_back(ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t)), t);
+    }
+    std::sort(added.begin(), added.end());
+    for (const auto& [unused, t] : added) {
+      if (count == max_search_seeds) break;
+      seeds[count++] = static_cast<std::uint32_t>(t);
+    }
+    return count;
+  }
+
+  /// Eq. (3) for S2 vertex q on walks across S1 from the first `count` of `seeds`: the solution
+  /// of least rank among those that pass every check, or nothing.
+  SeededSearch walk_to_preimage(Index q, const SeedElements& seeds, int count) const {
+    const WorldPoint<d>& target = ctx_.s2.vertex(q);
+    std::optional<SurfacePoint<d>> best;
+    double best_rank = std::numeric_limits<double>::infinity();
+    std::array<Index, 64> visited;
+    int nvisited = 0;
+    long long calls = 0, failures = 0;
+    for (int s = 0; s < count; ++s) {
+      Index t = static_cast<Index>(seeds[s]);
+      for (int step = 0; step < ctx_.options.search_limits.seed_walk_steps && t != invalid_index; ++step) {
+        if (std::find(visited.begin(), visited.begin() + nvisited, t) != visited.begin() + nvisited) break;
+        if (nvisited < 64) visited[nvisited++] = t;
+        VertexProjectionSystem<d> sys;
+        for (int k = 0; k <= d; ++k) {
+          sys.corners[k] = ctx_.s1.corner(t, k);
+          sys.directions[k] = ctx_.vertex_directions[ctx_.s1.element(t)[k]];
+        }
+        sys.target = target;
+        ++calls;
+        const auto r = solver_.solve(sys, sys.initial_guess());
+        if (!r.converged) {
+          ++failures;
+          break;
+        }
+        const LocalPoint<d> xi = r.x.template head<d>();
+        const Barycentric<d> b = barycentric_from_local<d>(xi);
+        int worst = 0;
+        for (int k = 1; k <= d; ++k)
+          if (b(k) < b(worst)) worst = k;
+        if (b(worst) >= -ctx_.options.search_limits.inside_tolerance) {
+          const double mu = r.x(d);
+          WorldPoint<d> direction = sys.directions[0];
+          for (int k = 0; k < d; ++k) direction += xi(k) * (sys.directions[k + 1] - sys.directions[0]);
+          if (ctx_.distance_ok(mu, sys.scale()) && (ctx_.s2_vertex_normals.empty() || ctx_.normal_ok(direction, ctx_.s2_vertex_normals[q])) &&
+              ctx_.rank(mu) < best_rank && ctx_.unfolded_in(t, xi, mu)) {
+            best_rank = ctx_.rank(mu);
+            Barycentric<d> bc = b.cwiseMax(0.0);
+            bc /= bc.sum();
+            best = SurfacePoint<d>{t, local_from_barycentric<d>(bc)};
+          }
+          break;
+        }
+        t = element_across(ctx_.s1, t, worst);
+      }
+    }
+    ctx_.solver_calls += calls;
+    ctx_.solver_failures += failures;
+    return SeededSearch{best, failures > 0};
+  }
+
+  /// Whether the rays from the corners of S1 element t all hit S2 and their hits span a simplex
+  /// of the element's orientation (seen along the mean direction). Preimages found by the second
+  /// search must pass this: where rays have crossed (beyond a focal line of the field, which a
+  /// twisted discrete field can hide from the focal test, whose polynomial then has no real
+  /// root) the hits are mirrored, and such an element does not see S2 as a sheet.
+  bool rays_keep_orientation(Index t, const projection::PointCloud<d + 1>& hits,
+                             const std::vector<Index>& hit_id) const {
+    std::array<WorldPoint<d>, d + 1> c, h;
+    WorldPoint<d> direction = WorldPoint<d>::Zero();
+    for (int k = 0; k <= d; ++k) {
+      const Index v = ctx_.s1.element(t)[k];
+      if (hit_id[v] == invalid_index) return false;
+      c[k] = ctx_.s1.vertex(v);
+      h[k] = hits.points[hit_id[v]];
+      direction += ctx_.vertex_directions[v];
+    }
+    const auto side = [&](const std::array<WorldPoint<d>, d + 1>& p) {
+      if constexpr (d == 2)
+        return (p[1] - p[0]).cross(p[2] - p[0]).dot(direction);
+      else
+        return (p[1] - p[0]).x() * direction.y() - (p[1] - p[0]).y() * direction.x();
+    };
+    return side(c) * side(h) > 0.0;
+  }
+
+  /// The second search, for the S2 vertices that find_vertex_preimage left without a preimage;
+  /// returns how many it maps. The first search walks from the S1 elements whose centroids lie
+  /// nearest to q, and those can all lie on a sheet of S1 that is nearer to S2 but does not
+  /// reach q (a body above a wider one: the upper body's elements are the nearest to every S2
+  /// vertex above both). The rays know better: an S1 vertex whose ray hits S2 next to q lies on
+  /// a sheet that sees q, so here the walks start from the stars of the S1 vertices with the
+  /// hits nearest to q. A hit farther from q than the largest distance between the hits of two
+  /// corners of an element around its vertex (with a margin) cannot belong to an element holding
+  /// q's preimage and is not tried, so S2 vertices far outside S1's shadow cost one tree query.
+  Index find_remaining_preimages_from_hits(const std::vector<std::optional<SurfacePoint<d>>>& hit,
+                                           std::vector<std::optional<SurfacePoint<d>>>& preimage) {
+    std::vector<Index> missing;
+    for (Index q = 0; q < ctx_.s2.vertex_count(); ++q)
+      if (!preimage[q] && !ctx_.s2.vertex_elements(q).empty()) missing.push_back(q);
+    if (missing.empty()) return 0;
+    // the hits as a point cloud, and the S1 vertex of each
+    projection::PointCloud<d + 1> cloud;
+    std::vector<Index> hit_vertex, cloud_id(ctx_.s1.vertex_count(), invalid_index);
+    for (Index v = 0; v < ctx_.s1.vertex_count(); ++v) {
+      if (!hit[v]) continue;
+      cloud_id[v] = static_cast<Index>(cloud.points.size());
+      cloud.points.push_back(ctx_.s2.world_position(hit[v]->element, hit[v]->local));
+      hit_vertex.push_back(v);
+    }
+    if (cloud.points.empty()) return 0;
+    // reach[i]: 1.5 times the largest distance between the hits of two corners of an element
+    // around the S1 vertex of hit i (a local bound: grazing rays elsewhere do not widen it)
+    std::vector<double> reach(cloud.points.size(), 0.0);
+    for (Index t = 0; t < ctx_.s1.element_count(); ++t) {
+      const auto corners = ctx_.s1.element(t);
+      double diameter = 0.0;
+      for (int a = 0; a <= d; ++a)
+        for (int b = a + 1; b <= d; ++b) {
+          const Index ia = cloud_id[corners[a]], ib = cloud_id[corners[b]];
+          if (ia != invalid_index && ib != invalid_index)
+            diameter = std::max(diameter, (cloud.points[ia] - cloud.points[ib]).norm());
+        }
+      for (Index v : corners)
+        if (cloud_id[v] != invalid_index)
+          reach[cloud_id[v]] = std::max(reach[cloud_id[v]], ctx_.options.search_limits.second_search_reach * diameter);
+    }
+    const projection::KdTree<d + 1> tree(d + 1, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+    std::vector<std::optional<SurfacePoint<d>>> found(missing.size());
+    parallel_for_chunks(missing.size(), search_chunk, ctx_.threads, [&](Index begin, Index end) {
+      const int nearest_hits = ctx_.options.search_limits.second_search_hits;
+      for (Index i = begin; i < end; ++i) {
+        const Index q = missing[i];
+        SeedElements ids;
+        std::array<double, max_search_seeds> squared;
+        const int n = static_cast<int>(tree.knnSearch(ctx_.s2.vertex(q).data(), nearest_hits, ids.data(), squared.data()));
+        SeedElements seeds;
+        int count = 0;
+        for (int j = 0; j < n; ++j) {
+          if (!(squared[j] <= reach[ids[j]] * reach[ids[j]])) continue;
+          for (Index t : ctx_.s1.vertex_elements(hit_vertex[ids[j]]))
+            if (count < max_search_seeds && std::find(seeds.begin(), seeds.begin() + count, t) == seeds.begin() + count)
+              seeds[count++] = static_cast<std::uint32_t>(t);
+        }
+        if (count == 0) continue;
+        found[i] = walk_to_preimage(q, seeds, count).preimage;
+        if (found[i] && !rays_keep_orientation(found[i]->element, cloud, cloud_id)) found[i].reset();
+      }
+    });
+    Index mapped = 0;
+    for (std::size_t i = 0; i < missing.size(); ++i)
+      if (found[i]) {
+        preimage[missing[i]] = found[i];
+        ++mapped;
+      }
+    return mapped;
+  }
+
+ private:
+  const ProjectionContext<d>& ctx_;
+  const Solver& solver_;
+};
+
+}  // namespace
+
+template <int d, class Solver>
+VertexPreimages<d> find_vertex_preimages(const ProjectionContext<d>& ctx, const Solver& solver,
+                                         const std::vector<std::optional<SurfacePoint<d>>>& ray_hits) {
+  using Search = VertexPreimageSearch<d, Solver>;
+  Search search(ctx, solver);
+  VertexPreimages<d> result;
+  auto& preimage = result.preimage;
+  preimage.resize(ctx.s2.vertex_count());
+  parallel_for_chunks(ctx.s2.vertex_count(), search_chunk, ctx.threads, [&](Index begin, Index end) {
+    typename Search::SearchOffset offset;  // target minus preimage of the previous vertex found
+    NearestElements<d> nearest(*ctx.s1_index);
+    for (Index q = begin; q < end; ++q) {
+      // an isolated S2 vertex (no element) is not part of S2: it needs no preimage
+      if (ctx.s2.vertex_elements(q).empty()) continue;
+      preimage[q] = search.find_vertex_preimage(q, offset, nearest);
+      offset.valid = preimage[q].has_value();
+      if (offset.valid)
+        offset.value = ctx.s2.vertex(q) - ctx.s1.world_position(preimage[q]->element, preimage[q]->local);
+    }
+  });
+  result.found_by_ray_hits = search.find_remaining_preimages_from_hits(ray_hits, preimage);
+  return result;
+}
+
+#define PLMAP_VERTEX_PREIMAGES(d, Solver)                                                           \
+  template VertexPreimages<d> find_vertex_preimages<d, Solver>(const ProjectionContext<d>&, const Solver&, \
+                                                               const std::vector<std::optional<SurfacePoint<d>>>&);
+PLMAP_VERTEX_PREIMAGES(1, DampedNewtonSolver)
+PLMAP_VERTEX_PREIMAGES(2, DampedNewtonSolver)
+PLMAP_VERTEX_PREIMAGES(1, CeresTinySolver)
+PLMAP_VERTEX_PREIMAGES(2, CeresTinySolver)
+#undef PLMAP_VERTEX_PREIMAGES
+
+}  // namespace plmap::projection
