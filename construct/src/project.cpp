@@ -20,6 +20,7 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/face_removal.hpp>
 #include <plmap/core/map_builder.hpp>
+#include <plmap/core/ordered_pipeline.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 #include <plmap/core/regions.hpp>
 #include <plmap/core/snapping.hpp>
@@ -333,8 +334,9 @@ class Projector {
     if (!(limit_ >= 0.0)) throw Error(fmt::format("max_distance {} is not >= 0", opt_.max_distance));
     seeds_ = std::clamp(opt_.search_seeds, 1, 32);
     threads_ = resolve_thread_count(opt_.threads);
-    index1_ = std::make_unique<ElementIndex<d>>(s1_);
-    index2_ = std::make_unique<ElementIndex<d>>(s2_);
+    parallel_for_pieces(2, 2, threads_, [&](std::size_t k, std::size_t, std::size_t) {  // two independent kd-trees
+      (k == 0 ? index1_ : index2_) = std::make_unique<ElementIndex<d>>(k == 0 ? s1_ : s2_);
+    });
     const ProjectionSearchLimits& limits = opt_.search_limits;
     if (!(limits.seed_walk_steps > 0) || !(limits.edge_walk_steps >= 0) || !(limits.inside_tolerance >= 0.0) ||
         !(limits.inside_tolerance < 0.5) || !(limits.edge_parameter_slack >= 0.0) ||
@@ -1470,37 +1472,42 @@ class Projector {
   }
 
   // ---- insertion of the planned edges -----------------------------------------------------------
-  /// S2 edges planned and inserted per block (see run()): large enough that the threads of a
-  /// block have work, small enough that a block's plans take little memory.
-  static constexpr Index plan_block = 4096;
+  /// S2 edges planned per block (see plan_and_insert_edges): small enough that the blocks spread
+  /// evenly over the threads and that the plans of the blocks in flight take little memory.
+  static constexpr Index plan_block = 1024;
   /// In the per-edge count of what was inserted: the edge was inserted whole.
   static constexpr std::uint32_t inserted_whole = 1u << 31;
 
-  /// Phase 3 proper. The edges are planned in blocks of consecutive indices (in parallel, into
-  /// per-worker flat buffers) and each block is fed to the builder, in index order, before the
-  /// next one is planned: the walks read nothing the insertion changes, so this is the same as
-  /// planning all edges first, and only one block's plans are ever held in memory.
+  /// Phase 3 proper. The edges are planned in blocks of consecutive indices on all threads, each
+  /// block into the flat buffers of its slot, and the blocks are fed to the builder on this thread,
+  /// in index order, while the blocks after them are planned: the walks read nothing the insertion
+  /// changes, so this is the same as planning all edges first, and only a few blocks' plans are
+  /// ever held in memory. Seconds: the insertion's own, the rest of the phase counts as walks.
   void plan_and_insert_edges(MapBuilder<d>& builder, ProjectionReport<d>& report, std::vector<std::uint32_t>& counted) {
     const Index n2e = s2_.edge_count();
-    std::vector<PlanBuffer<d>> buffers(std::max(1u, threads_));
-    std::vector<PlannedEdge> planned(static_cast<std::size_t>(std::min(n2e, plan_block)));
-    for (Index block = 0; block < n2e; block += plan_block) {
-      const Index block_end = std::min(n2e, block + plan_block);
-      auto t0 = Clock::now();
-      for (auto& buffer : buffers) buffer.clear();
-      // one piece (and buffer) per thread; a short block is not worth a second thread
-      const auto count = static_cast<std::size_t>(block_end - block);
-      parallel_for_pieces(count, count < 64 ? 1 : buffers.size(), threads_, [&](std::size_t worker, std::size_t begin, std::size_t end) {
-        for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i)
-          planned[i] = plan_edge(block + i, static_cast<unsigned>(worker), buffers[worker]);
-      });
-      report.seconds.edge_walks += seconds_since(t0);
-      t0 = Clock::now();
-      for (Index e = block; e < block_end; ++e)
-        counted[e] = insert_planned_edge(e, planned[e - block], buffers[planned[e - block].worker], builder, report);
-      report.seconds.insertion += seconds_since(t0);
-      report_progress(opt_.progress, "S2 edges", block_end, n2e);
-    }
+    const std::size_t slots = threads_ == 1 ? 1 : 4 * std::size_t{threads_};
+    std::vector<PlanBuffer<d>> buffers(slots);
+    std::vector<std::vector<PlannedEdge>> planned(slots);
+    const auto t0 = Clock::now();
+    double inserting = 0.0;
+    produce_in_parallel_consume_in_order(
+        static_cast<std::size_t>(n2e), plan_block, slots, threads_,
+        [&](std::size_t slot, std::size_t begin, std::size_t end) {
+          buffers[slot].clear();
+          planned[slot].resize(end - begin);
+          for (auto e = static_cast<Index>(begin); e < static_cast<Index>(end); ++e)
+            planned[slot][e - begin] = plan_edge(e, static_cast<unsigned>(slot), buffers[slot]);
+        },
+        [&](std::size_t slot, std::size_t begin, std::size_t end) {
+          const auto t1 = Clock::now();
+          for (auto e = static_cast<Index>(begin); e < static_cast<Index>(end); ++e)
+            counted[e] = insert_planned_edge(e, planned[slot][e - begin], buffers[slot], builder, report);
+          inserting += seconds_since(t1);
+          if (end % (4 * plan_block) == 0 || end == static_cast<std::size_t>(n2e))  // every 4096 edges
+            report_progress(opt_.progress, "S2 edges", end, n2e);
+        });
+    report.seconds.insertion += inserting;
+    report.seconds.edge_walks += seconds_since(t0) - inserting;
   }
 
   /// Feeds the planned pieces of S2 edge e to the builder and reports what was left out. Returns

@@ -78,10 +78,14 @@ class ClosingPass {
   unsigned threads() const { return threads_; }
 
  private:
-  /// One block per thread, and at least 64 elements per block.
+  /// One block with one thread (no join needed); otherwise blocks_per_thread blocks per thread,
+  /// so that a thread that finishes early takes another block (the halves of the 200k planes cost
+  /// 0.52 and 0.63 s), and at least 64 elements per block.
   static unsigned block_count(Index elements, unsigned threads) {
-    return std::max(1u, std::min<unsigned>(resolve_thread_count(threads),
-                                           static_cast<unsigned>(std::max<Index>(1, elements / 64))));
+    constexpr unsigned blocks_per_thread = 4;
+    threads = resolve_thread_count(threads);
+    const unsigned wanted = threads == 1 ? 1 : blocks_per_thread * threads;
+    return std::max(1u, std::min<unsigned>(wanted, static_cast<unsigned>(std::max<Index>(1, elements / 64))));
   }
 
   BuilderContents<2>& in_;
