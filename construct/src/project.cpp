@@ -326,9 +326,10 @@ class Projector {
  private:
   // ---- set-up -------------------------------------------------------------------------------------
   void setup() {
-    nu_ = opt_.directions.empty() ? averaged_vertex_normals(s1_)
+    const unsigned threads = resolve_thread_count(opt_.threads);
+    nu_ = opt_.directions.empty() ? averaged_vertex_normals(s1_, threads)
                                   : directions_from_values(s1_, std::span<const double>(opt_.directions));
-    if (opt_.normal_check != TargetNormalCheck::none) n2_ = averaged_vertex_normals(s2_);
+    if (opt_.normal_check != TargetNormalCheck::none) n2_ = averaged_vertex_normals(s2_, threads);
     const double diagonal = (s1_.bounding_box_max() - s1_.bounding_box_min()).norm();
     limit_ = opt_.max_distance_is_relative ? opt_.max_distance * diagonal : opt_.max_distance;
     if (!(limit_ >= 0.0)) throw Error(fmt::format("max_distance {} is not >= 0", opt_.max_distance));
