@@ -1,5 +1,6 @@
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/core/errors.hpp>
+#include <plmap/core/parallel_ranges.hpp>
 
 #include <fmt/format.h>
 
@@ -9,19 +10,21 @@ namespace plmap {
 
 template <int d>
   requires SurfaceDimension<d>
-std::vector<WorldPoint<d>> averaged_vertex_normals(const Surface<d>& surface) {
+std::vector<WorldPoint<d>> averaged_vertex_normals(const Surface<d>& surface, unsigned threads) {
   std::vector<WorldPoint<d>> out(surface.vertex_count(), WorldPoint<d>::Zero());
-  for (Index v = 0; v < surface.vertex_count(); ++v) {
-    const auto star = surface.vertex_elements(v);
-    if (star.empty()) continue;
-    WorldPoint<d> sum = WorldPoint<d>::Zero();
-    for (Index t : star) sum += surface.element_measure(t) * surface.element_normal(t);
-    const double norm = sum.norm();
-    // Cancellation is judged relative to the weights, so the rule does not depend on the scale.
-    double weight = 0.0;
-    for (Index t : star) weight += surface.element_measure(t);
-    out[v] = norm > 1e-12 * weight ? WorldPoint<d>(sum / norm) : surface.element_normal(star.front());
-  }
+  parallel_for_chunks(static_cast<std::size_t>(surface.vertex_count()), 4096, threads, [&](std::size_t begin, std::size_t end) {
+    for (auto v = static_cast<Index>(begin); v < static_cast<Index>(end); ++v) {
+      const auto star = surface.vertex_elements(v);
+      if (star.empty()) continue;
+      WorldPoint<d> sum = WorldPoint<d>::Zero();
+      for (Index t : star) sum += surface.element_measure(t) * surface.element_normal(t);
+      const double norm = sum.norm();
+      // Cancellation is judged relative to the weights, so the rule does not depend on the scale.
+      double weight = 0.0;
+      for (Index t : star) weight += surface.element_measure(t);
+      out[v] = norm > 1e-12 * weight ? WorldPoint<d>(sum / norm) : surface.element_normal(star.front());
+    }
+  });
   return out;
 }
 
@@ -43,8 +46,8 @@ std::vector<WorldPoint<d>> directions_from_values(const Surface<d>& surface, std
   return out;
 }
 
-template std::vector<WorldPoint<1>> averaged_vertex_normals<1>(const Surface<1>&);
-template std::vector<WorldPoint<2>> averaged_vertex_normals<2>(const Surface<2>&);
+template std::vector<WorldPoint<1>> averaged_vertex_normals<1>(const Surface<1>&, unsigned);
+template std::vector<WorldPoint<2>> averaged_vertex_normals<2>(const Surface<2>&, unsigned);
 template std::vector<WorldPoint<1>> directions_from_values<1>(const Surface<1>&, std::span<const double>);
 template std::vector<WorldPoint<2>> directions_from_values<2>(const Surface<2>&, std::span<const double>);
 

@@ -21,16 +21,18 @@ ProjectionContext<d>::ProjectionContext(std::shared_ptr<const Surface<d>> s1_sur
                                         const ProjectionOptions& projection_options)
     : s1_shared(std::move(s1_surface)), s2_shared(std::move(s2_surface)), s1(*s1_shared), s2(*s2_shared),
       options(projection_options) {
-  vertex_directions = options.directions.empty() ? averaged_vertex_normals(s1)
+  const unsigned setup_threads = resolve_thread_count(options.threads);
+  vertex_directions = options.directions.empty() ? averaged_vertex_normals(s1, setup_threads)
                                 : directions_from_values(s1, std::span<const double>(options.directions));
-  if (options.normal_check != TargetNormalCheck::none) s2_vertex_normals = averaged_vertex_normals(s2);
+  if (options.normal_check != TargetNormalCheck::none) s2_vertex_normals = averaged_vertex_normals(s2, setup_threads);
   const double diagonal = (s1.bounding_box_max() - s1.bounding_box_min()).norm();
   distance_limit = options.max_distance_is_relative ? options.max_distance * diagonal : options.max_distance;
   if (!(distance_limit >= 0.0)) throw Error(fmt::format("max_distance {} is not >= 0", options.max_distance));
   seed_count = std::clamp(options.search_seeds, 1, max_search_seeds);
   threads = resolve_thread_count(options.threads);
-  s1_index = std::make_unique<ElementIndex<d>>(s1);
-  s2_index = std::make_unique<ElementIndex<d>>(s2);
+  parallel_for_pieces(2, 2, threads, [&](std::size_t k, std::size_t, std::size_t) {  // two independent kd-trees
+    (k == 0 ? s1_index : s2_index) = std::make_unique<ElementIndex<d>>(k == 0 ? s1 : s2);
+  });
   const ProjectionSearchLimits& limits = options.search_limits;
   if (!(limits.seed_walk_steps > 0) || !(limits.edge_walk_steps >= 0) || !(limits.inside_tolerance >= 0.0) ||
       !(limits.inside_tolerance < 0.5) || !(limits.edge_parameter_slack >= 0.0) ||

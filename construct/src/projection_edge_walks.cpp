@@ -600,23 +600,19 @@ std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const Projectio
 
 template <int d, class Solver>
 void plan_edge_block(const ProjectionContext<d>& ctx, const ProjectionState<d>& state, const Solver& solver,
-                     Index block, Index block_end, std::vector<PlanBuffer<d>>& buffers,
+                     Index block, Index block_end, unsigned slot, PlanBuffer<d>& buffer,
                      std::vector<PlannedEdge>& planned) {
   const EdgeWalker<d, Solver> walker(ctx, state, solver);
-  for (auto& buffer : buffers) buffer.clear();
-  // one piece (and buffer) per thread; a short block is not worth a second thread
-  const auto count = static_cast<std::size_t>(block_end - block);
-  parallel_for_pieces(count, count < 64 ? 1 : buffers.size(), ctx.threads, [&](std::size_t worker, std::size_t begin, std::size_t end) {
-    for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i)
-      planned[i] = walker.plan_edge(block + i, static_cast<unsigned>(worker), buffers[worker]);
-  });
+  buffer.clear();
+  planned.resize(static_cast<std::size_t>(block_end - block));
+  for (Index e = block; e < block_end; ++e) planned[e - block] = walker.plan_edge(e, slot, buffer);
 }
 
 #define PLMAP_EDGE_WALKS(d, Solver)                                                                          \
   template std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries<d, Solver>(                      \
       const ProjectionContext<d>&, const ProjectionState<d>&, const Solver&);                               \
   template void plan_edge_block<d, Solver>(const ProjectionContext<d>&, const ProjectionState<d>&, const Solver&, \
-                                           Index, Index, std::vector<PlanBuffer<d>>&, std::vector<PlannedEdge>&);
+                                           Index, Index, unsigned, PlanBuffer<d>&, std::vector<PlannedEdge>&);
 PLMAP_EDGE_WALKS(1, DampedNewtonSolver)
 PLMAP_EDGE_WALKS(2, DampedNewtonSolver)
 PLMAP_EDGE_WALKS(1, CeresTinySolver)

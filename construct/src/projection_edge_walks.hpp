@@ -48,9 +48,10 @@ struct PlannedEdge {
   bool outside = false;
 };
 
-/// S2 edges planned and inserted per block: large enough that the threads of a block have work,
-/// small enough that a block's plans take little memory.
-inline constexpr Index edge_plan_block = 4096;
+/// S2 edges planned per block (see walk_and_insert_edges in project.cpp): small enough that the
+/// blocks spread evenly over the threads and that the plans of the blocks in flight take little
+/// memory.
+inline constexpr Index edge_plan_block = 1024;
 
 /// Points where S2 edges cross S1's boundary (d = 2: a boundary edge, d = 1: a boundary vertex
 /// with a ghost image), per S2 edge, sorted by the edge parameter; walks start there too. Reads
@@ -59,11 +60,12 @@ template <int d, class Solver>
 std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const ProjectionContext<d>& ctx,
                                                                  const ProjectionState<d>& state, const Solver& solver);
 
-/// Plans S2 edges [block, block_end): planned[e - block] tells which of `buffers` (one per
-/// worker, cleared here) holds edge e's pieces and failures. Independent of ctx.threads.
+/// Plans S2 edges [block, block_end) on the calling thread into `buffer` (cleared here), which the
+/// caller numbers `slot`: planned[e - block] (resized here) holds edge e's pieces and failures.
+/// Independent of ctx.threads.
 template <int d, class Solver>
 void plan_edge_block(const ProjectionContext<d>& ctx, const ProjectionState<d>& state, const Solver& solver,
-                     Index block, Index block_end, std::vector<PlanBuffer<d>>& buffers,
+                     Index block, Index block_end, unsigned slot, PlanBuffer<d>& buffer,
                      std::vector<PlannedEdge>& planned);
 
 }  // namespace plmap::projection

@@ -22,11 +22,32 @@ void NodesAndSegmentsByPlace<d>::build(const BuilderContents<d>& in, const Dropp
     const auto& node = in.nodes[n];
     return !(d == 2 && node.kind == BuilderNodeKind::intersection && dropped.contains(node.target));
   };
-  interior_nodes.build(elements, node_count, [&](Index n) {
-    return live(n) && in.nodes[n].place.kind == PlaceKind::element ? in.nodes[n].place.index : -1;
-  });
-  edge_nodes.build(edges, node_count, [&](Index n) {
-    return live(n) && in.nodes[n].place.kind == PlaceKind::edge ? in.nodes[n].place.index : -1;
+  // The four counting sorts are independent (each one pass over all nodes or all segments, too
+  // little work per item to cut them further): they run side by side.
+  parallel_for_pieces(4, 4, in.options.threads, [&](std::size_t k, std::size_t, std::size_t) {
+    switch (k) {
+      case 0:
+        interior_nodes.build(elements, node_count, [&](Index n) {
+          return live(n) && in.nodes[n].place.kind == PlaceKind::element ? in.nodes[n].place.index : -1;
+        });
+        break;
+      case 1:
+        edge_nodes.build(edges, node_count, [&](Index n) {
+          return live(n) && in.nodes[n].place.kind == PlaceKind::edge ? in.nodes[n].place.index : -1;
+        });
+        break;
+      case 2:
+        edge_segments.build(edges, segment_count, [&](Index s) {
+          const auto& seg = in.segments[s];
+          return !dropped.contains(seg.target_edge) && seg.along_edge ? seg.where : -1;
+        });
+        break;
+      default:
+        element_segments.build(elements, segment_count, [&](Index s) {
+          const auto& seg = in.segments[s];
+          return !dropped.contains(seg.target_edge) && !seg.along_edge ? seg.where : -1;
+        });
+    }
   });
   // in fixed chunks of edges, so the error names the same (first) edge for every thread count
   parallel_for_chunks(static_cast<std::size_t>(edges), 4096, in.options.threads, [&](std::size_t begin, std::size_t end) {
@@ -38,14 +59,6 @@ void NodesAndSegmentsByPlace<d>::build(const BuilderContents<d>& in, const Dropp
         if (in.nodes[list[i]].place.t() == in.nodes[list[i - 1]].place.t())
           throw BuilderError(fmt::format("two nodes at the same point of S1 edge {}", in.nodes[list[i]].place.index));
     }
-  });
-  edge_segments.build(edges, segment_count, [&](Index s) {
-    const auto& seg = in.segments[s];
-    return !dropped.contains(seg.target_edge) && seg.along_edge ? seg.where : -1;
-  });
-  element_segments.build(elements, segment_count, [&](Index s) {
-    const auto& seg = in.segments[s];
-    return !dropped.contains(seg.target_edge) && !seg.along_edge ? seg.where : -1;
   });
 }
 
