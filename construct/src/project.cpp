@@ -12,8 +12,10 @@
 // index order, so the result does not depend on the number of threads.
 
 #include "element_index.hpp"
+#include "folded_regions.hpp"
 #include "image_overlaps.hpp"
 #include "unit_scale.hpp"
+#include "walk_acceptance.hpp"
 
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/construct/project.hpp>
@@ -272,13 +274,24 @@ class Projector {
     // per edge: bit 31 set if inserted whole, the lower bits count the pieces inserted
     std::vector<std::uint32_t> counted(n2e, 0);
     plan_and_insert_edges(builder, report, counted);
-    // what the projection no longer needs, freed before finalize (which has the memory peak)
+    // what the projection no longer needs, freed before finalize (which has the memory peak);
+    // the directions are kept for the fold test of the finished regions
+    const std::vector<WorldPoint<d>> directions = std::move(nu_);
     release_search_data();
 
     t0 = Clock::now();
     report_progress(opt_.progress, "finalize", 0, 1);
     FinalizeReport dropped;
     PlMap<d> map = std::move(builder).finalize(&dropped);
+    // faces closed on an element where the ray of a ghost node accepted from another element at
+    // its vertex is folded (folded_regions.hpp)
+    if (const std::vector<Index> folded = projection::regions_with_folded_corners<d>(map, directions, threads_);
+        !folded.empty()) {
+      FaceRemovalReport removal;
+      map = remove_faces(map, std::span<const Index>(folded), &removal);
+      report.folded_faces = removal.removed_faces;
+      report.folded_regions = removal.removed_regions;
+    }
     // The image measures give the covered measures and show where images overlap on S2: two
     // sheets of S1 whose rays reach the same part of S2, of which the farther one leaves D.
     ImageMeasures images = image_measures(map, threads_);
@@ -505,6 +518,14 @@ class Projector {
       }
     }
     return true;
+  }
+
+  /// The ghost ray from S1 vertex v reaches distance mu unfolded in at least one element at v
+  /// (walk_acceptance.hpp: the per-element rule of the walks and the ray check).
+  bool ghost_ray_unfolded(Index v, double mu) const {
+    return projection::unfolded_in_some_element(s1_.vertex_elements(v), [&](Index t) {
+      return std::abs(mu) <= focal_free_[t] || reaches_without_focal_point_in(t, local_of_corner(s1_, t, v), mu);
+    });
   }
 
   bool normal_ok(const WorldPoint<d>& direction, const WorldPoint<d>& target_normal) const {
@@ -1000,7 +1021,7 @@ class Projector {
           const double mu = x(d);
           WorldPoint<d> target_normal = s2_.element_normal(t);
           if (distance_ok(mu, scale) && normal_ok(direction, target_normal) && rank(mu) < best_rank &&
-              unfolded_at(Place<d>{PlaceKind::vertex, v}, mu)) {
+              ghost_ray_unfolded(v, mu)) {
             best_rank = rank(mu);
             hit_mu = mu;
             Barycentric<d> bc = b.cwiseMax(0.0);
