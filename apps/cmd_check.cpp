@@ -74,13 +74,19 @@ std::pair<Json, bool> ray_check(const PlMap<d>& map, const CheckOptions& o) {
 std::string ray_summary(const Json& j) {
   const auto& by = j["missed"]["by_reason"];
   const auto& e = j["image_error_relative_to_edge"];
+  const auto f = [&](const char* reason) { return by[reason]["fraction"].get<double>(); };
   return fmt::format(
-      "against rays ({} samples): {}\n  missed {:.3g} of S1 (nearer sheet {:.3g}, farther sheet {:.3g}, not "
-      "covered {:.3g})\n  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, unexplained {:.3g})\n  image error / S2 edge length: median {:.3g}, p99 {:.3g}, max {:.3g}\n",
+      "against rays ({} samples): {}\n"
+      "  missed {:.3g} of S1, defects {:.3g}\n"
+      "    outside D for a reason: nearer sheet {:.3g}, S1 in between {:.3g}, S2 seen twice {:.3g}, past a focal "
+      "point {:.3g}\n"
+      "    defects: farther sheet {:.3g}, next to a fold {:.3g}, not covered {:.3g}\n"
+      "  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, unexplained {:.3g})\n"
+      "  image error / S2 edge length: median {:.3g}, p99 {:.3g}, max {:.3g}\n",
       j["samples"].get<std::size_t>(), j["ok"].get<bool>() ? "ok" : "FAILED", j["missed"]["fraction"].get<double>(),
-      by["nearer_sheet"]["fraction"].get<double>(), by["farther_sheet"]["fraction"].get<double>(),
-      by["not_covered"]["fraction"].get<double>(), j["extra"]["fraction"].get<double>(),
-      j["extra"]["by_reason"]["beyond_target_boundary"]["fraction"].get<double>(),
+      j["missed"]["defect_fraction"].get<double>(), f("nearer_sheet"), f("domain_in_between"),
+      f("target_seen_twice"), f("past_focal_point"), f("farther_sheet"), f("next_to_fold"), f("not_covered"),
+      j["extra"]["fraction"].get<double>(), j["extra"]["by_reason"]["beyond_target_boundary"]["fraction"].get<double>(),
       j["extra"]["by_reason"]["unexplained"]["fraction"].get<double>(), e["median"].get<double>(),
       e["p99"].get<double>(), e["max"].get<double>());
 }
@@ -140,7 +146,8 @@ void register_check(CLI::App& app, Action& action) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--ray-seed", o->ray_seed, "Seed of the ray sample")->capture_default_str();
   cmd->add_option("--ray-tolerance", o->ray_tolerance,
-                  "The ray check fails if the missed area (not counting what a nearer sheet of S1 covers) or "
+                  "The ray check fails if the missed area that has no stated reason to be outside D (farther "
+                  "sheet, next to a fold, not covered) or "
                   "the extra area (not counting the interpolation at S2's boundary) exceeds this fraction of S1")
       ->capture_default_str();
   cmd->add_option("--max-distance", o->max_distance, "Ray check: largest projection distance |mu|, as given to project")

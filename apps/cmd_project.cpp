@@ -108,6 +108,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   j["edges_not_inserted"] = r.edges_not_inserted.size();
   j["reversed_faces"] = r.reversed_faces;
   j["occluded_faces"] = r.occluded_faces;
+  j["folded_faces"] = r.folded_faces;
   Json listed = Json::array();
   for (std::size_t i = 0; i < std::min(o.max_listed, r.edges_not_inserted.size()); ++i) {
     const auto& e = r.edges_not_inserted[i];

@@ -13,6 +13,7 @@
 // Phases 1, 2 and 4 compute into per-item slots, in parallel; the builder is fed sequentially in
 // index order, so the result does not depend on the number of threads.
 
+#include "folded_regions.hpp"
 #include "projection_context.hpp"
 #include "projection_edge_walks.hpp"
 #include "projection_ghost_rays.hpp"
@@ -23,6 +24,7 @@
 
 #include <plmap/construct/project.hpp>
 #include <plmap/core/errors.hpp>
+#include <plmap/core/face_removal.hpp>
 #include <plmap/core/map_builder.hpp>
 #include <plmap/core/ordered_pipeline.hpp>
 #include <plmap/core/regions.hpp>
@@ -30,6 +32,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace plmap {
@@ -152,7 +155,9 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   report.seconds.edge_walks += seconds_since(t0);
   report.target_edges = n2e;
   walk_and_insert_edges(ctx, state, solver, insertion, report);
-  // what the projection no longer needs, freed before finalize (which has the memory peak)
+  // what the projection no longer needs, freed before finalize (which has the memory peak);
+  // the directions are kept for the fold test of the finished regions
+  const std::vector<WorldPoint<d>> directions = std::move(ctx.vertex_directions);
   ctx.release_search_data();
   state.release();
   insertion.release_used_points();
@@ -162,6 +167,15 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   report_progress(options.progress, "finalize", 0, 1);
   FinalizeReport dropped;
   PlMap<d> map = std::move(builder).finalize(&dropped);
+  // faces closed on an element where the ray of a ghost node accepted from another element at
+  // its vertex is folded (folded_regions.hpp)
+  if (const std::vector<Index> folded = regions_with_folded_corners<d>(map, directions, ctx.threads);
+      !folded.empty()) {
+    FaceRemovalReport removal;
+    map = remove_faces(map, std::span<const Index>(folded), &removal);
+    report.folded_faces = removal.removed_faces;
+    report.folded_regions = removal.removed_regions;
+  }
   // The image measures give the covered measures and show where images overlap on S2: two
   // sheets of S1 whose rays reach the same part of S2, of which the farther one leaves D.
   ImageMeasures images = image_measures(map, ctx.threads);

@@ -10,6 +10,7 @@
 //   4. edge walks (projection_edge_walks): the preimages of the S2 edges, walked across S1;
 //   5. insertion (projection_insertion): everything entered into the MapBuilder, in index order.
 
+#include "walk_acceptance.hpp"
 #include "element_index.hpp"
 
 #include <plmap/construct/projection_options.hpp>
@@ -264,6 +265,14 @@ struct ProjectionContext {
       }
     }
     return true;
+  }
+
+  /// The ghost ray from S1 vertex v reaches distance mu unfolded in at least one element at v
+  /// (walk_acceptance.hpp: the per-element rule of the walks and the ray check).
+  bool ghost_ray_unfolded(Index v, double mu) const {
+    return unfolded_in_some_element(s1.vertex_elements(v), [&](Index t) {
+      return std::abs(mu) <= focal_free_reach[t] || reaches_without_focal_point_in(t, local_of_corner(s1, t, v), mu);
+    });
   }
 
   bool normal_ok(const WorldPoint<d>& direction, const WorldPoint<d>& target_normal) const {

@@ -104,7 +104,7 @@ class GhostRays {
           const double mu = x(d);
           WorldPoint<d> target_normal = ctx_.s2.element_normal(t);
           if (ctx_.distance_ok(mu, scale) && ctx_.normal_ok(direction, target_normal) && ctx_.rank(mu) < best_rank &&
-              ctx_.unfolded_at(Place<d>{PlaceKind::vertex, v}, mu)) {
+              ctx_.ghost_ray_unfolded(v, mu)) {
             best_rank = ctx_.rank(mu);
             hit_mu = mu;
             Barycentric<d> bc = b.cwiseMax(0.0);

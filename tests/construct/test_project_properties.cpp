@@ -121,6 +121,7 @@ void assert_coverage_against_rays(const ProjectionResult<2>& r, const std::vecto
   // vertex without an entry in edges_not_inserted; the ray check finds that area as missed.)
   const auto& p = r.report;
   const bool complete = p.edges_not_inserted.empty() && p.occluded_faces == 0 && p.reversed_faces == 0 &&
+                        p.folded_faces == 0 &&
                         p.ghost_nodes + p.vertices_mapped_by_ray == p.domain_vertices;
   if (complete && report.missed != 0)
     RC_FAIL(what + fmt::format(": every ray and edge inserted, but {} of {} ray samples outside D hit S2",

@@ -26,6 +26,10 @@ std::string_view to_string(MissedReason reason) {
     case MissedReason::nearer_sheet: return "nearer_sheet";
     case MissedReason::farther_sheet: return "farther_sheet";
     case MissedReason::not_covered: return "not_covered";
+    case MissedReason::domain_in_between: return "domain_in_between";
+    case MissedReason::target_seen_twice: return "target_seen_twice";
+    case MissedReason::past_focal_point: return "past_focal_point";
+    case MissedReason::next_to_fold: return "next_to_fold";
   }
   return "unknown";
 }
@@ -169,7 +173,7 @@ template <int d>
 class RayChecker {
  public:
   RayChecker(const PlMap<d>& map, const RayCheckOptions<d>& o)
-      : map_(map), s1_(map.domain()), s2_(map.target()), o_(o), triangles_(s2_) {
+      : map_(map), s1_(map.domain()), s2_(map.target()), o_(o), triangles_(s2_), domain_triangles_(s1_) {
     if (o_.directions.size() != static_cast<std::size_t>(s1_.vertex_count()))
       throw Error(fmt::format("the ray check needs one direction per S1 vertex: {} given, S1 has {} vertices",
                               o_.directions.size(), s1_.vertex_count()));
@@ -184,6 +188,8 @@ class RayChecker {
     if (std::isfinite(limit_)) reach_ = std::min(reach_, 2.0 * limit_ + 1e-6 * reach_);
     tree_.insert(triangles_.triangles.cbegin(), triangles_.triangles.cend());
     tree_.build();
+    domain_tree_.insert(domain_triangles_.triangles.cbegin(), domain_triangles_.triangles.cend());
+    domain_tree_.build();
     regions_of_target_.resize(s2_.element_count());
     for (Index r = 0; r < map_.region_count(); ++r) regions_of_target_[map_.data().region_target[r]].push_back(r);
   }
@@ -248,7 +254,8 @@ class RayChecker {
             RaySample<d>{t, x, e.image.element, 0.0, MissedReason::not_covered, reason});
     } else if (hit) {
       ++report.missed;
-      const MissedReason reason = classify_missed(x, *hit);
+      MissedReason reason = classify_missed(x, *hit);
+      if (reason == MissedReason::not_covered) reason = explain_not_covered(t, x, nu, *hit);
       ++report.missed_by_reason[static_cast<std::size_t>(reason)];
       if (report.missed_examples.size() < o_.max_listed)
         report.missed_examples.push_back(RaySample<d>{t, x, hit->element, hit->mu, reason});
@@ -369,12 +376,107 @@ class RayChecker {
     return MissedReason::not_covered;
   }
 
+  /// Why a sample that no region covers must stay outside D, if a reason is found
+  /// (MissedReason's last three, tried in that order); else not_covered.
+  MissedReason explain_not_covered(Index t, const WorldPoint<d>& x, const WorldPoint<d>& nu, const Hit& hit) const {
+    if (domain_between(lifted<d>(x), hit.point)) return MissedReason::domain_in_between;
+    if (target_seen_again(lifted<d>(nu), hit)) return MissedReason::target_seen_twice;
+    if (folds_within(t, hit.mu)) return MissedReason::past_focal_point;
+    if (fold_next_to(t, hit.mu)) return MissedReason::next_to_fold;
+    return MissedReason::not_covered;
+  }
+
+  /// Another part of S1 meets the open segment between x and its hit. Intersections within a
+  /// millionth of the segment's length of either end are x's own element (and its neighbours
+  /// when x lies on an edge) or S1 touching S2 at the hit.
+  bool domain_between(const Eigen::Vector3d& x, const Eigen::Vector3d& hit) const {
+    const double length = (hit - x).norm();
+    if (!(length > 0.0)) return false;
+    const double end_slack = 1e-6 * length;
+    using Query = Kernel::Segment_3;
+    const Query segment(cgal_point(x), cgal_point(hit));
+    std::vector<Tree::Intersection_and_primitive_id<Query>::Type> hits;
+    domain_tree_.all_intersections(segment, std::back_inserter(hits));
+    for (const auto& [where, id] : hits) {
+      std::array<Eigen::Vector3d, 2> points;
+      int n = 0;
+      if (const Point3* p = boost::get<Point3>(&where)) {
+        points[n++] = eigen_point(*p);
+      } else if (const auto* s = boost::get<Kernel::Segment_3>(&where)) {
+        points[n++] = eigen_point(s->source());
+        points[n++] = eigen_point(s->target());
+      }
+      for (int i = 0; i < n; ++i)
+        if ((points[i] - x).norm() > end_slack && (points[i] - hit).norm() > end_slack) return true;
+    }
+    return false;
+  }
+
+  /// S2 crosses the ray again within one mean edge length of the element hit, seen from the
+  /// other side (its normal's component along the ray has the opposite sign).
+  bool target_seen_again(const Eigen::Vector3d& direction, const Hit& hit) const {
+    const double reach = mean_edge_length(s2_, hit.element);
+    const double n = direction.norm();
+    if (!(reach > 0.0) || !(n > 0.0)) return false;
+    const Eigen::Vector3d unit = direction / n;
+    const double side = facing_sign(hit.element, unit);
+    if (side == 0.0) return false;
+    using Query = Kernel::Segment_3;
+    const Query segment(cgal_point(hit.point - reach * unit), cgal_point(hit.point + reach * unit));
+    std::vector<Tree::Intersection_and_primitive_id<Query>::Type> hits;
+    tree_.all_intersections(segment, std::back_inserter(hits));
+    for (const auto& [where, id] : hits) {
+      const Point3* p = boost::get<Point3>(&where);
+      if (!p || (eigen_point(*p) - hit.point).norm() <= 1e-6 * reach) continue;
+      const Index tau = triangles_.element[static_cast<std::size_t>(id - triangles_.triangles.cbegin())];
+      if (facing_sign(tau, unit) == -side) return true;
+    }
+    return false;
+  }
+
+  /// The sign of the S2 element's normal along the unit direction (0 for curves, whose
+  /// extruded segments have no orientation here, and for grazing elements).
+  double facing_sign(Index tau, const Eigen::Vector3d& unit) const {
+    if constexpr (d == 2) {
+      const double c = s2_.element_normal(tau).dot(unit);
+      return c > 0.0 ? 1.0 : (c < 0.0 ? -1.0 : 0.0);
+    } else {
+      WorldPoint<1> tangent = s2_.corner(tau, 1) - s2_.corner(tau, 0);
+      const double c = tangent.x() * unit.y() - tangent.y() * unit.x();
+      return c > 0.0 ? 1.0 : (c < 0.0 ? -1.0 : 0.0);
+    }
+  }
+
+  /// The ray from some corner of an element sharing a vertex with t passes a focal point before
+  /// distance mu.
+  bool fold_next_to(Index t, double mu) const {
+    for (int k = 0; k <= d; ++k)
+      for (Index u : s1_.vertex_elements(s1_.element(t)[k]))
+        if (folds_within(u, mu)) return true;
+    return false;
+  }
+
+  /// The ray from some corner of element u passes a focal point before distance mu: the fold
+  /// line at that distance runs through u (or u lies wholly beyond it).
+  bool folds_within(Index u, double mu) const {
+    std::array<WorldPoint<d>, d + 1> corners, nus;
+    for (int k = 0; k <= d; ++k) {
+      corners[k] = s1_.corner(u, k);
+      nus[k] = o_.directions[s1_.element(u)[k]];
+    }
+    for (int k = 0; k <= d; ++k)
+      if (passes_focal_point<d>(corners, nus, nus[k], mu)) return true;
+    return false;
+  }
+
   const PlMap<d>& map_;
   const Surface<d>& s1_;
   const Surface<d>& s2_;
   const RayCheckOptions<d>& o_;
   TargetTriangles<d> triangles_;
   Tree tree_;
+  TargetTriangles<d> domain_triangles_;  ///< S1's elements, for domain_in_between
+  Tree domain_tree_;
   double limit_ = 0.0, reach_ = 0.0;
   std::vector<std::vector<Index>> regions_of_target_;
 };
@@ -400,7 +502,9 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
     return a;
   };
   nlohmann::json by_reason = nlohmann::json::object();
-  for (MissedReason reason : {MissedReason::nearer_sheet, MissedReason::farther_sheet, MissedReason::not_covered}) {
+  for (MissedReason reason : {MissedReason::nearer_sheet, MissedReason::farther_sheet, MissedReason::not_covered,
+                              MissedReason::domain_in_between, MissedReason::target_seen_twice,
+                              MissedReason::past_focal_point, MissedReason::next_to_fold}) {
     const std::size_t n = r.missed_by_reason[static_cast<std::size_t>(reason)];
     by_reason[std::string(to_string(reason))] = {{"samples", n}, {"fraction", r.fraction(n)}};
   }

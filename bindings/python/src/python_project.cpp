@@ -74,6 +74,7 @@ nlohmann::json report_json(const ProjectionResult<d>& result) {
   j["edges_outside"] = r.edges_outside;
   j["reversed_faces"] = r.reversed_faces;
   j["occluded_faces"] = r.occluded_faces;
+  j["folded_faces"] = r.folded_faces;
   nlohmann::json missing = nlohmann::json::array();
   for (const EdgeNotInserted<d>& e : r.edges_not_inserted) {
     std::vector<double> point(e.domain_point.data(), e.domain_point.data() + d + 1);

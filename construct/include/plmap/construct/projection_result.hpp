@@ -95,6 +95,11 @@ struct ProjectionReport {
   /// element whose left-out face lay strictly inside it loses all its regions (core/face_removal.hpp).
   Index occluded_faces = 0;
   Index occluded_regions = 0;
+  /// Faces left out of D because a corner's ray passes a focal point of their element before
+  /// its image: closed from a ghost node whose ray is unfolded only in other elements at its
+  /// vertex (docs/projection.md step 2), and their regions (cleared elements included).
+  Index folded_faces = 0;
+  Index folded_regions = 0;
   std::vector<EdgeNotInserted<d>> edges_not_inserted;
   /// Solver calls and how many did not converge (eq. 3 and eq. 4 together).
   long long solver_calls = 0;

@@ -59,7 +59,11 @@ struct RayCheckOptions {
   std::size_t max_listed = 20;
 };
 
-/// Why a sample whose ray hits S2 lies outside D.
+/// Why a sample whose ray hits S2 lies outside D. The first three say what covers the hit on
+/// S2; a sample that no region covers is then put in the first of the later classes that applies
+/// (in the order listed); not_covered is what none of them explains. nearer_sheet,
+/// domain_in_between, target_seen_twice and past_focal_point are outside D for a stated reason;
+/// farther_sheet, not_covered and next_to_fold are defects of the construction.
 enum class MissedReason {
   /// The hit lies in the image of a region whose preimage is nearer to it along the ray's
   /// measure than x: a nearer sheet of S1 claims that part of S2 (the projection keeps the
@@ -68,9 +72,26 @@ enum class MissedReason {
   /// The hit lies in the image of a region whose preimage is farther than x: the map took a
   /// farther sheet there. A defect.
   farther_sheet,
-  /// No region maps onto the hit: the map does not cover that part of S2. A defect.
+  /// No region maps onto the hit, and none of the reasons below applies. A defect.
   not_covered,
+  /// Not covered, and another part of S1 lies on the segment between x and its hit: that
+  /// nearer sheet of S1 projects onto the hit first (its own ray may still miss it, or be
+  /// folded there). Outside D on purpose.
+  domain_in_between,
+  /// Not covered, and S2 crosses the ray a second time, seen from its other side, within one
+  /// edge length of the S2 element hit: S2 folds back over itself (or two of its sheets face
+  /// each other) closer than its edges, so the preimages of its edges there cross or reverse.
+  target_seen_twice,
+  /// Not covered, and the projection folds in x's S1 element: the ray from one of its corners
+  /// passes a focal point before the hit's distance. The preimages of the S2 edges that reach
+  /// the fold end there, and D, bounded by S1 edges and S2-edge preimages, cannot follow the
+  /// fold line through the element.
+  past_focal_point,
+  /// Not covered, x's element does not fold, but one sharing a vertex with it does (the test of
+  /// past_focal_point): the construction lost the fold-free elements around a fold. A defect.
+  next_to_fold,
 };
+constexpr std::size_t missed_reason_count = 7;
 std::string_view to_string(MissedReason reason);
 
 /// Why a sample in D has no admissible ray hit.
@@ -105,7 +126,7 @@ struct RayCheckReport {
   std::size_t missed = 0;  ///< admissible hit, but outside D
   std::size_t neither = 0;
   /// missed samples by MissedReason (index = enum value)
-  std::array<std::size_t, 3> missed_by_reason{};
+  std::array<std::size_t, missed_reason_count> missed_by_reason{};
   /// extra samples by ExtraReason (index = enum value)
   std::array<std::size_t, 2> extra_by_reason{};
   /// Image error |Xi(x) - hit| / mean edge length of the S2 element hit, over the samples in D
@@ -114,8 +135,13 @@ struct RayCheckReport {
   std::vector<RaySample<d>> missed_examples, extra_examples;
 
   double fraction(std::size_t count) const { return samples ? double(count) / double(samples) : 0.0; }
-  /// Missed samples that are not outside D on purpose (all but nearer_sheet).
-  std::size_t missed_defects() const { return missed - missed_by_reason[0]; }
+  /// Missed samples that are not outside D for a stated reason: farther_sheet, not_covered and
+  /// next_to_fold.
+  std::size_t missed_defects() const {
+    return missed_by_reason[static_cast<std::size_t>(MissedReason::farther_sheet)] +
+           missed_by_reason[static_cast<std::size_t>(MissedReason::not_covered)] +
+           missed_by_reason[static_cast<std::size_t>(MissedReason::next_to_fold)];
+  }
   /// Extra samples not explained by the interpolation at S2's boundary.
   std::size_t extra_defects() const { return extra_by_reason[1]; }
 };

@@ -1,0 +1,55 @@
+// Regions on a folded part of the projection (folded_regions.hpp).
+
+#include "folded_regions.hpp"
+
+#include <plmap/core/parallel_ranges.hpp>
+#include <plmap/solvers/focal_points.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace plmap::projection {
+
+template <int d>
+  requires SurfaceDimension<d>
+std::vector<Index> regions_with_folded_corners(const PlMap<d>& map, std::span<const WorldPoint<d>> directions,
+                                               unsigned threads) {
+  const Surface<d>& s1 = map.domain();
+  const auto& m = map.data();
+  constexpr std::size_t chunk = 4096;
+  const auto n1 = static_cast<std::size_t>(s1.element_count());
+  std::vector<std::vector<Index>> found((n1 + chunk - 1) / chunk);
+  parallel_for_chunks(n1, chunk, threads, [&](std::size_t begin, std::size_t end) {
+    auto& list = found[begin / chunk];
+    for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) {
+      if (map.regions_begin(t) == map.regions_end(t)) continue;
+      std::array<WorldPoint<d>, d + 1> corners, nus;
+      for (int k = 0; k <= d; ++k) {
+        corners[k] = s1.corner(t, k);
+        nus[k] = directions[s1.element(t)[k]];
+      }
+      // most elements are unfolded up to far beyond their nodes' distances: no polynomial there
+      const double free = focal_free_distance<d>(corners, nus);
+      const auto folded = [&](Index n) {
+        const LocalPoint<d>& xi = m.node_position[n];
+        WorldPoint<d> nu = nus[0];
+        for (int i = 0; i < d; ++i) nu += xi(i) * (nus[i + 1] - nus[0]);
+        const double nn = nu.squaredNorm();
+        if (!(nn > 0.0)) return false;
+        const double mu = (map.node_target_world(n) - map.node_domain_world(n)).dot(nu) / nn;
+        return !(std::abs(mu) <= free) && !reaches_without_focal_point<d>(corners, nus, xi, mu);
+      };
+      for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
+        if (std::any_of(m.region_corners[r].begin(), m.region_corners[r].end(), folded)) list.push_back(r);
+    }
+  });
+  std::vector<Index> regions;
+  for (const auto& list : found) regions.insert(regions.end(), list.begin(), list.end());
+  return regions;  // chunks in element order, regions in order within each: sorted
+}
+
+template std::vector<Index> regions_with_folded_corners<1>(const PlMap<1>&, std::span<const WorldPoint<1>>, unsigned);
+template std::vector<Index> regions_with_folded_corners<2>(const PlMap<2>&, std::span<const WorldPoint<2>>, unsigned);
+
+}  // namespace plmap::projection

@@ -1,0 +1,33 @@
+#pragma once
+/// \file
+/// Regions of a projection map that lie on a folded part of the projection.
+///
+/// A ghost node is accepted if its ray is unfolded in at least one element at its S1 vertex
+/// (walk_acceptance.hpp); in the other elements at that vertex the same ray passes a focal point
+/// of their own direction field. No walk enters those elements, but a face there can still close
+/// from the ghost node and the pieces that end on the element's edges, and its region would then
+/// map points whose rays are folded (area that the ray check finds extra). Such a region has a
+/// corner whose ray, from the node's point to its image, passes a focal point of the element:
+/// those regions are found here and their faces left out of D (core/face_removal.hpp).
+
+#include <plmap/core/pl_map.hpp>
+
+#include <span>
+#include <vector>
+
+namespace plmap::projection {
+
+/// The regions (sorted, each once) with a corner node whose ray along the interpolated field of
+/// its S1 element (`directions`, one per S1 vertex) reaches the node's image only past a focal
+/// point of that element (solvers/focal_points.hpp).
+template <int d>
+  requires SurfaceDimension<d>
+std::vector<Index> regions_with_folded_corners(const PlMap<d>& map, std::span<const WorldPoint<d>> directions,
+                                               unsigned threads);
+
+extern template std::vector<Index> regions_with_folded_corners<1>(const PlMap<1>&, std::span<const WorldPoint<1>>,
+                                                                  unsigned);
+extern template std::vector<Index> regions_with_folded_corners<2>(const PlMap<2>&, std::span<const WorldPoint<2>>,
+                                                                  unsigned);
+
+}  // namespace plmap::projection

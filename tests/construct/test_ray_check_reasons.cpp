@@ -1,0 +1,116 @@
+// The reasons the ray check (verify/ray_check.hpp) gives for missed samples that no region
+// covers: another part of S1 between the sample and its hit, S2 crossing the ray twice within
+// an edge length, a fold of the projection in or next to the sample's element. Each case
+// projects with a distance limit far below the gap, so that the map covers nothing, and checks
+// without the limit: every sample with a hit is missed, and its class is known from the geometry.
+#include "projection_fixtures.hpp"
+
+#include <plmap/construct/direction_field.hpp>
+#include <plmap/construct/project.hpp>
+#include <plmap/verify/ray_check.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace plmap;
+using namespace plmap::test;
+
+namespace {
+
+/// One surface made of the elements of a and b (two components).
+std::shared_ptr<const Surface<2>> joined(const Surface<2>& a, const Surface<2>& b) {
+  std::vector<WorldPoint<2>> v(a.vertices().begin(), a.vertices().end());
+  v.insert(v.end(), b.vertices().begin(), b.vertices().end());
+  auto e = a.elements();
+  const auto offset = static_cast<Index>(a.vertex_count());
+  for (auto t : b.elements()) {
+    for (auto& c : t) c += offset;
+    e.push_back(t);
+  }
+  return std::make_shared<const Surface<2>>(std::move(v), std::move(e));
+}
+
+/// The ray check, without a distance limit, of the map that projecting S2 onto S1 along
+/// `directions` (empty: S1's averaged vertex normals) with a negligible distance limit gives (a map that covers nothing).
+RayCheckReport<2> check_of_empty_map(const std::shared_ptr<const Surface<2>>& s1,
+                                     const std::shared_ptr<const Surface<2>>& s2, std::vector<double> directions) {
+  ProjectionOptions po{.max_distance = 1e-9};
+  po.directions = std::move(directions);
+  const auto r = project<2>(s1, s2, po);
+  EXPECT_EQ(r.map.region_count(), 0);
+  RayCheckOptions<2> o;
+  o.directions = po.directions.empty() ? averaged_vertex_normals(*s1) : directions_from_values(*s1, po.directions);
+  o.samples = 20000;
+  o.max_listed = o.samples;
+  return check_against_rays(r.map, o);
+}
+
+double fraction_of(const RayCheckReport<2>& r, MissedReason reason) {
+  return r.fraction(r.missed_by_reason[static_cast<std::size_t>(reason)]);
+}
+
+}  // namespace
+
+TEST(RayCheckReasons, AnotherPartOfS1BetweenTheSampleAndItsHit) {
+  // S1: the unit square at z = 0 and, above its strip x < 0.4, a second sheet at z = 0.3; S2 a
+  // plane at z = 1 facing them. The lower square's samples under the strip have the strip in
+  // between (0.4 of 1.4); the rest, with nothing in between, stay unexplained.
+  auto s1 = joined(*grid(10, 10, 0, 1, 0, 1, 0.0), *grid(4, 10, 0, 0.4, 0, 1, 0.3));
+  auto s2 = grid(13, 13, -0.1, 1.1, -0.1, 1.1, 1.0, true);
+  const auto r = check_of_empty_map(s1, s2, constant_directions(*s1, WorldPoint<2>(0, 0, 1)));
+  EXPECT_EQ(r.missed, r.samples);
+  EXPECT_NEAR(fraction_of(r, MissedReason::domain_in_between), 0.4 / 1.4, 0.02);
+  EXPECT_NEAR(fraction_of(r, MissedReason::not_covered), 1.0 / 1.4, 0.02);
+  for (const auto& s : r.missed_examples) {
+    if (s.reason == MissedReason::domain_in_between) {
+      EXPECT_LT(s.point.z(), 0.15);
+      EXPECT_LT(s.point.x(), 0.4 + 1e-9);
+    }
+  }
+  EXPECT_EQ(r.missed_defects(), r.missed_by_reason[static_cast<std::size_t>(MissedReason::not_covered)]);
+}
+
+TEST(RayCheckReasons, S2SeenTwiceWithinAnEdgeLength) {
+  // S2: a plane at z = 1 facing S1 and, 0.03 above it (a third of its edge length), a second
+  // one facing away: the ray meets S2 twice, from both sides. With the second sheet half a unit
+  // above instead (several edge lengths), nothing explains the miss.
+  auto s1 = grid(10, 10, 0, 1, 0, 1, 0.0);
+  auto lower = grid(13, 13, -0.1, 1.1, -0.1, 1.1, 1.0, true);
+  const auto close = check_of_empty_map(s1, joined(*lower, *grid(13, 13, -0.1, 1.1, -0.1, 1.1, 1.03)),
+                                        constant_directions(*s1, WorldPoint<2>(0, 0, 1)));
+  EXPECT_EQ(close.missed, close.samples);
+  EXPECT_EQ(fraction_of(close, MissedReason::target_seen_twice), 1.0);
+  EXPECT_EQ(close.missed_defects(), 0u);
+  const auto far = check_of_empty_map(s1, joined(*lower, *grid(13, 13, -0.1, 1.1, -0.1, 1.1, 1.5)),
+                                      constant_directions(*s1, WorldPoint<2>(0, 0, 1)));
+  EXPECT_EQ(far.missed, far.samples);
+  EXPECT_EQ(fraction_of(far, MissedReason::not_covered), 1.0);
+}
+
+TEST(RayCheckReasons, FoldsAtAValleyCrease) {
+  // S1: a valley z = k(y) |x - 0.5| of 10 x 10 cells, k from 1 to 3 along y, with its averaged
+  // normals. The normals of the two columns at the crease turn over one cell h, so their rays
+  // meet at a height of about h (k + 1/k): 0.2 where k = 1, 0.33 where k = 3. S2, a plane at
+  // z = 0.26, lies beyond those focal points at one end of the crease and before them at the
+  // other: the crease elements where it passes through the focal line fold with admissible hits
+  // on their unfolded side, and the elements around them are next to a fold.
+  const double h = 0.1;
+  auto s1 = transformed<2>(*grid(10, 10, 0, 1, 0, 1, 0.0), [](const WorldPoint<2>& p) {
+    return WorldPoint<2>(p.x(), p.y(), (1.0 + 2.0 * p.y()) * std::abs(p.x() - 0.5));
+  });
+  auto s2 = grid(30, 10, -1, 2, -0.5, 1.5, 0.26, true);
+  const auto r = check_of_empty_map(s1, s2, {});
+  EXPECT_GT(fraction_of(r, MissedReason::past_focal_point), 0.005);
+  EXPECT_GT(fraction_of(r, MissedReason::next_to_fold), 0.005);
+  EXPECT_EQ(r.missed_examples.size(), r.missed);
+  for (const auto& s : r.missed_examples) {
+    const double from_crease = std::abs(s.point.x() - 0.5);
+    if (s.reason == MissedReason::past_focal_point) {
+      EXPECT_LT(from_crease, h + 1e-9);
+    }
+    if (s.reason == MissedReason::next_to_fold) {
+      EXPECT_LT(from_crease, 2 * h + 1e-9);
+    }
+  }
+}
