@@ -96,7 +96,9 @@ RC_GTEST_PROP(InverseGridCells, ListEveryImageWithinTheToleranceAndAnswerLikeAFu
       const InverseEvaluation<2> got = inverse_evaluate(index, y);
       const auto [found, world] = scan_all_images(index, y);
       RC_ASSERT(got.in_image == found);
-      if (found) RC_ASSERT((got.world - world).norm() <= 1e-12 * (1.0 + world.norm()));
+      if (found) {
+        RC_ASSERT((got.world - world).norm() <= 1e-12 * (1.0 + world.norm()));
+      }
       ++checked;
     }
   }

@@ -21,6 +21,7 @@
 /// coordinates, hence relative to its size) of one is attributed to the nearest such image, its
 /// barycentric weights clamped onto it; farther points are outside Xi(D) and reported as such.
 
+#include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/pl_map.hpp>
 
 #include <array>
@@ -128,7 +129,8 @@ class InverseIndex {
   const PlMap<d>* map_;
   InverseOptions options_;
   std::vector<Index> begin_;  ///< size |T2| + 1
-  std::vector<Entry> entry_;
+  // The two arrays a query reads at random: on huge pages where the system offers them.
+  std::vector<Entry, HugePageAllocator<Entry>> entry_;
   // Grids of the elements with more than grid_threshold regions: grid_of_[e] indexes grids_ or
   // is invalid; a grid's cells are cells_[first_cell ...], listing positions in entries(e).
   struct Grid {
@@ -140,7 +142,7 @@ class InverseIndex {
   void build_grids();
   std::vector<Index> grid_of_;
   std::vector<Grid> grids_;
-  std::vector<Cell> cells_;  ///< one more than there are cells: the last one ends the overflow
+  std::vector<Cell, HugePageAllocator<Cell>> cells_;  ///< one more than there are cells: the last one ends the overflow
   std::vector<Index> cell_overflow_;
 };
 
