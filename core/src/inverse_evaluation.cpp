@@ -63,24 +63,48 @@ const typename InverseIndex<d>::Entry* find_containing(std::span<const typename 
   return nullptr;
 }
 
+/// Whether y is in the entry's closed image (as computed in doubles); its weights in `w`.
+template <int d>
+bool contains(const typename InverseIndex<d>::Entry& e, const LocalPoint<d>& y, std::array<double, d + 1>& w) {
+  w = raw_weights(e, y);
+  bool inside = true;
+  for (int k = 0; k <= d; ++k) inside &= w[k] >= 0.0;
+  return inside;
+}
+
 /// find_containing over the element's entries, or over its grid cell's if it has a grid.
 template <int d>
 const typename InverseIndex<d>::Entry* find_in_element(const InverseIndex<d>& index, Index element,
                                                        const LocalPoint<d>& y, std::array<double, d + 1>& w) {
   const auto entries = index.entries(element);
   if (!index.has_grid(element)) return find_containing<d>(entries, y, w);
-  const Index first = index.first_candidate(element, y);
-  if (first == invalid_index) return nullptr;
-  auto contains = [&](const typename InverseIndex<d>::Entry& e) {
-    w = raw_weights(e, y);
-    bool inside = true;
-    for (int k = 0; k <= d; ++k) inside &= w[k] >= 0.0;
-    return inside;
-  };
-  if (contains(entries[static_cast<std::size_t>(first)])) return &entries[static_cast<std::size_t>(first)];
-  for (Index i : index.cell_candidates(element, y).subspan(1))
-    if (contains(entries[static_cast<std::size_t>(i)])) return &entries[static_cast<std::size_t>(i)];
+  const auto& cell = index.cell(element, y);
+  // The cell names its candidates: ask for all of their entries now, so that the memory
+  // latencies overlap where the first candidate is not the answer.
+  for (int k = 1; k < InverseIndex<d>::inline_candidates && cell.candidate[k] != invalid_index; ++k)
+    __builtin_prefetch(&entries[static_cast<std::size_t>(cell.candidate[k])], 0, 3);
+  for (const Index i : cell.candidate) {
+    if (i == invalid_index) return nullptr;
+    if (contains<d>(entries[static_cast<std::size_t>(i)], y, w)) return &entries[static_cast<std::size_t>(i)];
+  }
+  for (const Index i : index.overflow(cell))
+    if (contains<d>(entries[static_cast<std::size_t>(i)], y, w)) return &entries[static_cast<std::size_t>(i)];
   return nullptr;
+}
+
+/// Calls f(entry) for every entry of `element` whose image may come within the tolerance of y:
+/// its grid cell's candidates, or all of the element's entries if it has no grid.
+template <int d, class F>
+void for_each_nearby_entry(const InverseIndex<d>& index, Index element, const LocalPoint<d>& y, F&& f) {
+  const auto entries = index.entries(element);
+  if (!index.has_grid(element)) {
+    for (const auto& e : entries) f(e);
+    return;
+  }
+  const auto& cell = index.cell(element, y);
+  for (const Index i : cell.candidate)
+    if (i != invalid_index) f(entries[static_cast<std::size_t>(i)]);
+  for (const Index i : index.overflow(cell)) f(entries[static_cast<std::size_t>(i)]);
 }
 
 template <int d>
@@ -167,7 +191,7 @@ InverseIndex<d>::InverseIndex(const PlMap<d>& map, InverseOptions options) : map
 template <int d>
   requires SurfaceDimension<d>
 std::size_t InverseIndex<d>::memory_bytes() const {
-  return (begin_.capacity() + grid_of_.capacity() + cell_entry_.capacity()) * sizeof(Index) + cells_.capacity() * sizeof(Cell) +
+  return (begin_.capacity() + grid_of_.capacity() + cell_overflow_.capacity()) * sizeof(Index) + cells_.capacity() * sizeof(Cell) +
          entry_.capacity() * sizeof(Entry) +
          grids_.capacity() * sizeof(Grid);
 }
@@ -240,9 +264,14 @@ Index InverseIndex<d>::cell_index(Index target_element, const LocalPoint<d>& loc
 
 template <int d>
   requires SurfaceDimension<d>
-std::span<const Index> InverseIndex<d>::cell_candidates(Index target_element, const LocalPoint<d>& local) const {
-  const Index k = cell_index(target_element, local);
-  return {cell_entry_.data() + cells_[k].begin, cell_entry_.data() + cells_[k + 1].begin};
+std::vector<Index> InverseIndex<d>::cell_candidates(Index target_element, const LocalPoint<d>& local) const {
+  const Cell& c = cell(target_element, local);
+  std::vector<Index> out;
+  for (const Index i : c.candidate)
+    if (i != invalid_index) out.push_back(i);
+  const auto rest = overflow(c);
+  out.insert(out.end(), rest.begin(), rest.end());
+  return out;
 }
 
 template <int d>
@@ -251,6 +280,11 @@ void InverseIndex<d>::build_grids() {
   const Index targets = static_cast<Index>(begin_.size()) - 1;
   grid_of_.assign(static_cast<std::size_t>(targets), invalid_index);
   cells_.clear();
+  cell_overflow_.clear();
+  // An image is listed in every cell that it meets when the cell is grown by the tolerance (and
+  // a little more for the rounding of this test): every image that contains a point of the cell,
+  // or comes within the tolerance of one, is then among the cell's candidates.
+  const double slack = options_.tolerance + 64 * std::numeric_limits<double>::epsilon();
   for (Index e = 0; e < targets; ++e) {
     const auto list = entries(e);
     const Index count = static_cast<Index>(list.size());
@@ -260,17 +294,39 @@ void InverseIndex<d>::build_grids() {
     // queries are answered by the cell's first candidate alone
     const Index side = d == 1 ? 4 * count : std::max<Index>(2, static_cast<Index>(std::ceil(std::sqrt(8.0 * count))));
     const Index cells = d == 1 ? side : side * side;
+    const double h = 1.0 / double(side);
     grid_of_[e] = static_cast<Index>(grids_.size());
     grids_.push_back({side, static_cast<Index>(cells_.size())});
     std::vector<std::vector<Index>> cell_lists(static_cast<std::size_t>(cells));
     for (Index i = 0; i < count; ++i) {
-      LocalPoint<d> lo = list[i].image_corners[0], hi = lo;
-      for (int k = 1; k <= d; ++k) lo = lo.cwiseMin(list[i].image_corners[k]), hi = hi.cwiseMax(list[i].image_corners[k]);
+      const auto& corners = list[i].image_corners;
+      LocalPoint<d> lo = corners[0], hi = lo;
+      for (int k = 1; k <= d; ++k) lo = lo.cwiseMin(corners[k]), hi = hi.cwiseMax(corners[k]);
+      lo.array() -= slack;
+      hi.array() += slack;
       const Index x0 = grid_cell(lo(0), side), x1 = grid_cell(hi(0), side);
       Index y0 = 0, y1 = 0;
       if constexpr (d == 2) y0 = grid_cell(lo(1), side), y1 = grid_cell(hi(1), side);
       for (Index y = y0; y <= y1; ++y)
-        for (Index x = x0; x <= x1; ++x) cell_lists[static_cast<std::size_t>(y * side + x)].push_back(i);
+        for (Index x = x0; x <= x1; ++x) {
+          if constexpr (d == 2) {
+            // Separating axes beyond the bounding box's: a side of the image (positively
+            // oriented, inside on the left) with the whole grown cell strictly outside it.
+            bool separated = false;
+            for (int k = 0; k < 3 && !separated; ++k) {
+              const LocalPoint<2> a = corners[k], b = corners[(k + 1) % 3];
+              const LocalPoint<2> outward(b.y() - a.y(), a.x() - b.x());
+              const double reach = slack * outward.norm();
+              double nearest = std::numeric_limits<double>::infinity();
+              for (const double cx : {double(x) * h - slack, double(x + 1) * h + slack})
+                for (const double cy : {double(y) * h - slack, double(y + 1) * h + slack})
+                  nearest = std::min(nearest, outward.dot(LocalPoint<2>(cx, cy) - a));
+              separated = nearest > reach;
+            }
+            if (separated) continue;
+          }
+          cell_lists[static_cast<std::size_t>(y * side + x)].push_back(i);
+        }
     }
     for (std::size_t k = 0; k < cell_lists.size(); ++k) {
       auto& c = cell_lists[k];
@@ -282,11 +338,20 @@ void InverseIndex<d>::build_grids() {
         std::sort(ranked.begin(), ranked.end());
         for (std::size_t j = 0; j < c.size(); ++j) c[j] = ranked[j].second;
       }
-      cells_.push_back({static_cast<Index>(cell_entry_.size()), c.empty() ? invalid_index : c.front()});
-      cell_entry_.insert(cell_entry_.end(), c.begin(), c.end());
+      Cell cell;
+      cell.overflow_begin = static_cast<Index>(cell_overflow_.size());
+      for (std::size_t j = 0; j < c.size(); ++j) {
+        if (j < static_cast<std::size_t>(inline_candidates))
+          cell.candidate[j] = c[j];
+        else
+          cell_overflow_.push_back(c[j]);
+      }
+      cells_.push_back(cell);
     }
   }
-  cells_.push_back({static_cast<Index>(cell_entry_.size()), invalid_index});  // ends the last list
+  Cell end;  // ends the last overflow list
+  end.overflow_begin = static_cast<Index>(cell_overflow_.size());
+  cells_.push_back(end);
 }
 
 template <int d>
@@ -317,11 +382,15 @@ InverseEvaluation<d> inverse_evaluate(const InverseIndex<d>& index, const Surfac
   std::array<double, d + 1> best_w{};
   double best_margin = -tolerance;
   for (const Candidate& c : candidates)
-    for (const Entry& e : index.entries(c.element)) {
+    for_each_nearby_entry<d>(index, c.element, c.local, [&](const Entry& e) {
       const auto cw = raw_weights(e, c.local);
+      // A weight below -2 tolerance puts y farther than the tolerance from that side (sides of
+      // images in the reference element are shorter than 2): skip the side lengths' roots.
+      for (double x : cw)
+        if (x < -2.0 * tolerance) return;
       const double margin = inside_margin<d>(e, cw);
       if (margin >= best_margin) best = &e, best_w = cw, best_margin = margin;
-    }
+    });
   if (best == nullptr) return {};
   return preimage_from_weights<d>(*best, best_w);
 }

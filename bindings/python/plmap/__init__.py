@@ -8,6 +8,7 @@
     e = m.evaluate(elements, local)                # vectorised, threads, without the GIL
     r = m.regions()                                # flat arrays: parents, corners, measures
     m.save("map.plmap"); plmap.load("map.plmap")
+    plmap.load("map.plmapb", s1, s2)              # refuses a map built for other surfaces
 
 Errors of the library are raised as plmap.Error (a ValueError) or one of its subclasses
 ParseError, InvalidSurfaceError, BuilderError, InvalidMapError, with the library's message.

@@ -313,14 +313,31 @@ py::object map_summary(const PlMap<d>& map, bool quality) {
   return json_to_python(j);
 }
 
-PyMap load_any_map(const std::filesystem::path& path) {
+PyMap load_any_map(const std::filesystem::path& path, py::handle s1_in, py::handle s2_in) {
+  if (s1_in.is_none() != s2_in.is_none())
+    throw py::type_error("load(): give both surfaces s1 and s2 (to check the map against them) or neither");
   decltype(PyMap::map) loaded;
-  {
+  if (s1_in.is_none()) {
     py::gil_scoped_release unlocked;
     loaded = std::visit([](auto&& map) -> decltype(PyMap::map) {
       using M = std::decay_t<decltype(map)>;
       return std::make_shared<const M>(std::move(map));
     }, load_map(path));
+  } else {
+    const PySurface s1 = surface_argument(s1_in, "load(): s1");
+    const PySurface s2 = surface_argument(s2_in, "load(): s2");
+    const int stored = map_file_dimension(path);
+    for (const auto& [given, name] : {std::pair{&s1, "s1"}, std::pair{&s2, "s2"}})
+      if (given->dimension() != stored)
+        throw py::value_error("load(): " + path.string() + " holds a map of dimension " + std::to_string(stored) +
+                              ", but " + name + " has dimension " + std::to_string(given->dimension()));
+    py::gil_scoped_release unlocked;
+    // load_map checks both surfaces against the fingerprints stored in the file and refuses a
+    // mismatch with a ParseError naming the file and the surface (domain (S1) or target (S2)).
+    if (stored == 1)
+      loaded = std::make_shared<const PlMap<1>>(load_map<1>(path, s1.get<1>(), s2.get<1>()));
+    else
+      loaded = std::make_shared<const PlMap<2>>(load_map<2>(path, s1.get<2>(), s2.get<2>()));
   }
   PyMap out;  // with the GIL: PyMap holds a Python object
   out.map = std::move(loaded);
@@ -406,7 +423,13 @@ void bind_map(py::module_& m) {
         });
       });
 
-  m.def("load", &load_any_map, py::arg("path"), "Loads a map file (.plmap text or .plmapb binary) of either dimension.");
+  m.def("load", &load_any_map, py::arg("path"), py::arg("s1") = py::none(), py::arg("s2") = py::none(),
+        "load(path, s1=None, s2=None): loads a map file (.plmap text or .plmapb binary) of either "
+        "dimension. With s1 and s2 (each a plmap.Surface, a (vertices, elements) pair of arrays or "
+        "a surface file path), the map is checked against them: a surface whose fingerprint "
+        "differs from the one stored for it in the file is refused with plmap.ParseError, whose "
+        "message names the file and which surface differs ('domain (S1)' or 'target (S2)'); the "
+        "returned map then holds the given surfaces (map.domain, map.target).");
 }
 
 }  // namespace plmap::python

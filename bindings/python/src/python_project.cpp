@@ -140,7 +140,7 @@ void bind_project(py::module_& m) {
   m.def("project", &project_any, py::arg("s1"), py::arg("s2"),
         "Maps S1 to S2 by normal projection (paper section 3.2) and returns the plmap.Map "
         "D ⊂ S1 -> S2; map.report says what was built and what not. s1, s2: plmap.Surface or file "
-        "paths. Keyword options are the fields of plmap::ProjectionOptions: directions ((n1, d+1) "
+        "paths or (vertices, elements) pairs of arrays. Keyword options are the fields of plmap::ProjectionOptions: directions ((n1, d+1) "
         "array), solver, solver_tolerance, max_distance, max_distance_is_relative, "
         "allow_negative_distance, normal_check ('none', 'facing', 'aligned'), threads (default 0: "
         "all cores), search_seeds, snap_tolerance, orientation, keep_nearer_sheet.");

@@ -102,7 +102,14 @@ PySurface surface_argument(py::handle value, const char* what) {
   if (py::isinstance<PySurface>(value)) return py::cast<PySurface>(value);
   if (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"))
     return read_any_surface(py::cast<std::filesystem::path>(value).string(), 0);
-  throw py::type_error(std::string(what) + ": expected a plmap.Surface or a file path, got " +
+  if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
+    const auto pair = py::reinterpret_borrow<py::sequence>(value);
+    if (pair.size() != 2)
+      throw py::type_error(std::string(what) + ": expected a (vertices, elements) pair of arrays, got a sequence of " +
+                           std::to_string(pair.size()) + " items");
+    return surface_from_python_arrays(pair[0], pair[1]);
+  }
+  throw py::type_error(std::string(what) + ": expected a plmap.Surface or a file path (or a (vertices, elements) pair of arrays), got " +
                        py::cast<std::string>(py::type::of(value).attr("__name__")));
 }
 

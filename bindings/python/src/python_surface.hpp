@@ -22,7 +22,8 @@ struct PySurface {
   }
 };
 
-/// A Surface, or a path (str or os.PathLike) read as a surface file; anything else is a
+/// A Surface, a (vertices, elements) pair of arrays, or a path (str or os.PathLike) read as a
+/// surface file; anything else is a
 /// TypeError naming `what`.
 PySurface surface_argument(py::handle value, const char* what);
 

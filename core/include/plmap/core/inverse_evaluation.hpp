@@ -5,8 +5,9 @@
 /// The compact form is indexed by S1 element; the inverse needs the opposite direction. An
 /// InverseIndex, built on demand from a PlMap, lists for every S2 element the regions whose image
 /// lies in it (CSR arrays), each with the corners of its image triangle (interval for d = 1) in
-/// the S2 element's local coordinates. A query (S2 element, local coordinates) scans the regions
-/// of its element for the image that contains the point, takes the point's barycentric weights in
+/// the S2 element's local coordinates. A query (S2 element, local coordinates) looks for the image
+/// that contains the point among the regions of its element (where an element has many, among
+/// those listed in the point's cell of a grid over the element), takes the point's barycentric weights in
 /// that image and applies them to the region's corners on S1: the preimage lies in the region by
 /// construction.
 ///
@@ -20,6 +21,7 @@
 /// coordinates, hence relative to its size) of one is attributed to the nearest such image, its
 /// barycentric weights clamped onto it; farther points are outside Xi(D) and reported as such.
 
+#include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/pl_map.hpp>
 
 #include <array>
@@ -87,17 +89,37 @@ class InverseIndex {
   /// Whether `target_element` has more than grid_threshold regions and hence a grid of cells.
   bool has_grid(Index target_element) const { return grid_of_[target_element] != invalid_index; }
 
-  /// For an element with a grid: the entries (positions in entries(target_element)) whose image
-  /// may contain the point with local coordinates `local`: the cell of a uniform grid over the
-  /// reference element that contains the point lists every image whose bounding box meets it.
-  /// Where S2 is much coarser than S1 this keeps a query from scanning all of an element's images.
-  std::span<const Index> cell_candidates(Index target_element, const LocalPoint<d>& local) const;
+  /// A cell of an element's grid: the entries (positions in entries(target_element)) whose image
+  /// comes within the tolerance of the cell. The first `inline_candidates` are stored in the cell
+  /// itself, the image that covers most of the cell first, so that a query reads the cell and
+  /// then asks for all of its candidates' entries at once instead of one after the other; the
+  /// rare rest is in an overflow list.
+  static constexpr int inline_candidates = 3;
+  struct Cell {
+    std::array<Index, inline_candidates> candidate{invalid_index, invalid_index, invalid_index};
+    Index overflow_begin = 0;  ///< into the overflow list; it ends at the next cell's overflow_begin
+  };
+
+  /// For an element with a grid: the cell that contains the point with local coordinates `local`
+  /// (points outside the reference element: the nearest cell).
+  const Cell& cell(Index target_element, const LocalPoint<d>& local) const {
+    return cells_[static_cast<std::size_t>(cell_index(target_element, local))];
+  }
+  /// The candidates of a cell beyond its inline ones.
+  std::span<const Index> overflow(const Cell& c) const {
+    return {cell_overflow_.data() + c.overflow_begin, cell_overflow_.data() + (&c + 1)->overflow_begin};
+  }
+
+  /// For an element with a grid: every entry (position in entries(target_element)) whose image
+  /// may contain, or come within the tolerance of, the point with local coordinates `local`:
+  /// the candidates of its cell. Where S2 is much coarser than S1 this keeps a query from
+  /// scanning all of an element's images.
+  std::vector<Index> cell_candidates(Index target_element, const LocalPoint<d>& local) const;
 
   /// The first of cell_candidates(target_element, local), the image that covers most of the
-  /// cell, or invalid_index if the cell lists none. Stored with the cell, so that the common
-  /// query (that image contains the point) does not read the candidate list.
+  /// cell, or invalid_index if the cell lists none.
   Index first_candidate(Index target_element, const LocalPoint<d>& local) const {
-    return cells_[cell_index(target_element, local)].first;
+    return cell(target_element, local).candidate[0];
   }
 
   /// Bytes held by the index's arrays.
@@ -107,24 +129,21 @@ class InverseIndex {
   const PlMap<d>* map_;
   InverseOptions options_;
   std::vector<Index> begin_;  ///< size |T2| + 1
-  std::vector<Entry> entry_;
+  // The two arrays a query reads at random: on huge pages where the system offers them.
+  std::vector<Entry, HugePageAllocator<Entry>> entry_;
   // Grids of the elements with more than grid_threshold regions: grid_of_[e] indexes grids_ or
   // is invalid; a grid's cells are cells_[first_cell ...], listing positions in entries(e).
   struct Grid {
     Index side = 0;        ///< cells per side (d = 1: cells)
     Index first_cell = 0;  ///< into cells_
   };
-  struct Cell {
-    Index begin = 0;                ///< into cell_entry_; the cell's list ends at the next cell's begin
-    Index first = invalid_index;    ///< cell_entry_[begin], if the list is not empty
-  };
   Index cell_index(Index target_element, const LocalPoint<d>& local) const;
   void sort_entries_spatially();
   void build_grids();
   std::vector<Index> grid_of_;
   std::vector<Grid> grids_;
-  std::vector<Cell> cells_;  ///< one more than there are cells: the last one ends the lists
-  std::vector<Index> cell_entry_;
+  std::vector<Cell, HugePageAllocator<Cell>> cells_;  ///< one more than there are cells: the last one ends the overflow
+  std::vector<Index> cell_overflow_;
 };
 
 extern template class InverseIndex<1>;
