@@ -10,8 +10,8 @@
 //   4. edge walks (projection_edge_walks): the preimages of the S2 edges, walked across S1;
 //   5. insertion (projection_insertion): everything entered into the MapBuilder, in index order.
 
-#include "walk_acceptance.hpp"
 #include "element_index.hpp"
+#include "walk_acceptance.hpp"
 
 #include <plmap/construct/projection_options.hpp>
 #include <plmap/core/map_builder.hpp>
