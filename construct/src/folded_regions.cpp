@@ -14,7 +14,7 @@ namespace plmap::projection {
 template <int d>
   requires SurfaceDimension<d>
 std::vector<Index> regions_with_folded_corners(const PlMap<d>& map, std::span<const WorldPoint<d>> directions,
-                                               unsigned threads) {
+                                               std::span<const double> focal_free_reach, unsigned threads) {
   const Surface<d>& s1 = map.domain();
   const auto& m = map.data();
   constexpr std::size_t chunk = 4096;
@@ -30,7 +30,7 @@ std::vector<Index> regions_with_folded_corners(const PlMap<d>& map, std::span<co
         nus[k] = directions[s1.element(t)[k]];
       }
       // most elements are unfolded up to far beyond their nodes' distances: no polynomial there
-      const double free = focal_free_distance<d>(corners, nus);
+      const double free = focal_free_reach[t];
       const auto folded = [&](Index n) {
         const LocalPoint<d>& xi = m.node_position[n];
         WorldPoint<d> nu = nus[0];
@@ -49,7 +49,9 @@ std::vector<Index> regions_with_folded_corners(const PlMap<d>& map, std::span<co
   return regions;  // chunks in element order, regions in order within each: sorted
 }
 
-template std::vector<Index> regions_with_folded_corners<1>(const PlMap<1>&, std::span<const WorldPoint<1>>, unsigned);
-template std::vector<Index> regions_with_folded_corners<2>(const PlMap<2>&, std::span<const WorldPoint<2>>, unsigned);
+template std::vector<Index> regions_with_folded_corners<1>(const PlMap<1>&, std::span<const WorldPoint<1>>,
+                                                           std::span<const double>, unsigned);
+template std::vector<Index> regions_with_folded_corners<2>(const PlMap<2>&, std::span<const WorldPoint<2>>,
+                                                           std::span<const double>, unsigned);
 
 }  // namespace plmap::projection

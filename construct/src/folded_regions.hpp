@@ -19,15 +19,16 @@ namespace plmap::projection {
 
 /// The regions (sorted, each once) with a corner node whose ray along the interpolated field of
 /// its S1 element (`directions`, one per S1 vertex) reaches the node's image only past a focal
-/// point of that element (solvers/focal_points.hpp).
+/// point of that element (solvers/focal_points.hpp). `focal_free_reach` is each S1 element's
+/// focal-free distance, as the projection's set-up computed it (no focal test below it).
 template <int d>
   requires SurfaceDimension<d>
 std::vector<Index> regions_with_folded_corners(const PlMap<d>& map, std::span<const WorldPoint<d>> directions,
-                                               unsigned threads);
+                                               std::span<const double> focal_free_reach, unsigned threads);
 
 extern template std::vector<Index> regions_with_folded_corners<1>(const PlMap<1>&, std::span<const WorldPoint<1>>,
-                                                                  unsigned);
+                                                                  std::span<const double>, unsigned);
 extern template std::vector<Index> regions_with_folded_corners<2>(const PlMap<2>&, std::span<const WorldPoint<2>>,
-                                                                  unsigned);
+                                                                  std::span<const double>, unsigned);
 
 }  // namespace plmap::projection

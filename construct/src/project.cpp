@@ -156,8 +156,9 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   report.target_edges = n2e;
   walk_and_insert_edges(ctx, state, solver, insertion, report);
   // what the projection no longer needs, freed before finalize (which has the memory peak);
-  // the directions are kept for the fold test of the finished regions
+  // the directions and focal-free distances are kept for the fold test of the finished regions
   const std::vector<WorldPoint<d>> directions = std::move(ctx.vertex_directions);
+  const std::vector<double> focal_free_reach = std::move(ctx.focal_free_reach);
   ctx.release_search_data();
   state.release();
   insertion.release_used_points();
@@ -169,7 +170,7 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   PlMap<d> map = std::move(builder).finalize(&dropped);
   // faces closed on an element where the ray of a ghost node accepted from another element at
   // its vertex is folded (folded_regions.hpp)
-  if (const std::vector<Index> folded = regions_with_folded_corners<d>(map, directions, ctx.threads);
+  if (const std::vector<Index> folded = regions_with_folded_corners<d>(map, directions, focal_free_reach, ctx.threads);
       !folded.empty()) {
     FaceRemovalReport removal;
     map = remove_faces(map, std::span<const Index>(folded), &removal);

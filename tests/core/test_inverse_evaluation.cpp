@@ -7,6 +7,8 @@
 // - Xi(Xi^{-1}(y)) = y and Xi^{-1}(Xi(x)) = x to rounding;
 // and on maps with holes in D (subdivision maps with dropped sub-elements) S2 points of the kept
 // part are found, and the batch version agrees with single queries for any thread count.
+#include "fine_onto_coarse_overlays.hpp"
+
 #include <plmap/verify/deepest_region_locator.hpp>
 
 #include <plmap/core/evaluation.hpp>
@@ -99,28 +101,7 @@ RC_GTEST_PROP(InverseEvaluation, OverlayMaps1, (std::uint64_t seed)) { check_inv
 
 RC_GTEST_PROP(InverseEvaluation, FineOntoCoarseOverlaysUseTheCellGrids, (std::uint64_t seed)) {
   // S2 much coarser than S1: hundreds of regions per S2 element, found through the grids.
-  generators::PlanarRecipe fine, coarse;
-  fine.base = *rc::gen::element(generators::PlanarBase::grid, generators::PlanarBase::delaunay);
-  fine.resolution = fine.base == generators::PlanarBase::grid ? *rc::gen::inRange(12, 17) : *rc::gen::inRange(100, 200);
-  fine.jitter = *rc::gen::arbitrary<bool>();
-  fine.seed = *rc::gen::noShrink(rc::gen::arbitrary<std::uint64_t>());
-  coarse.base = generators::PlanarBase::grid;
-  coarse.resolution = *rc::gen::inRange(1, 3);
-  // Not jittered: overlays onto a jittered 1x1 grid can place a touching node off its S2 vertex
-  // (Xi is then not the identity there; reported with issue 15's work, generator defect).
-  coarse.jitter = false;
-  coarse.seed = *rc::gen::noShrink(rc::gen::arbitrary<std::uint64_t>());
-  generators::MapCase<2> c;
-  try {
-    c = generators::plane_overlay_map(std::make_shared<const Surface<2>>(generators::make_planar(fine)),
-                                      std::make_shared<const Surface<2>>(generators::make_planar(coarse)),
-                                      "fine " + generators::describe(fine) + " onto coarse " + generators::describe(coarse));
-  } catch (const Error&) {
-    // The brute-force overlay generator gives up on some pairs of grids (edges through vertices
-    // it cannot order); those pairs say nothing about inverse evaluation.
-    RC_DISCARD("the overlay generator refused the pair");
-  }
-  RC_TAG(fine.base == generators::PlanarBase::grid ? "grid" : "delaunay");
+  const generators::MapCase<2> c = test::fine_onto_coarse_overlay(2);
   const InverseIndex<2> index(*c.map);
   bool any_grid = false;
   for (Index e = 0; e < c.target->element_count(); ++e) any_grid |= index.has_grid(e);

@@ -3,6 +3,8 @@
 // border of Xi(D)). These tests check that the cells list every image within the tolerance of a
 // point, and that the answers equal those of a scan of all the element's images.
 
+#include "fine_onto_coarse_overlays.hpp"
+
 #include <plmap/core/errors.hpp>
 #include <plmap/core/inverse_evaluation.hpp>
 #include <plmap/verify/generators/random_maps.hpp>
@@ -50,22 +52,8 @@ std::pair<bool, WorldPoint<2>> scan_all_images(const InverseIndex<2>& index, con
 }  // namespace
 
 RC_GTEST_PROP(InverseGridCells, ListEveryImageWithinTheToleranceAndAnswerLikeAFullScan, (std::uint64_t seed)) {
-  generators::PlanarRecipe fine, coarse;
-  fine.base = *rc::gen::element(generators::PlanarBase::grid, generators::PlanarBase::delaunay);
-  fine.resolution = fine.base == generators::PlanarBase::grid ? *rc::gen::inRange(12, 17) : *rc::gen::inRange(100, 200);
-  fine.jitter = *rc::gen::arbitrary<bool>();
-  fine.seed = *rc::gen::noShrink(rc::gen::arbitrary<std::uint64_t>());
-  coarse.base = generators::PlanarBase::grid;
-  coarse.resolution = *rc::gen::inRange(1, 2);
-  coarse.jitter = false;
-  coarse.seed = *rc::gen::noShrink(rc::gen::arbitrary<std::uint64_t>());
-  generators::MapCase<2> c;
-  try {
-    c = generators::plane_overlay_map(std::make_shared<const Surface<2>>(generators::make_planar(fine)),
-                                      std::make_shared<const Surface<2>>(generators::make_planar(coarse)), "fine onto coarse");
-  } catch (const Error&) {
-    RC_DISCARD("the overlay generator refused the pair");
-  }
+  // a 1x1 coarse grid: every fine region lies on one of its two triangles
+  const generators::MapCase<2> c = test::fine_onto_coarse_overlay(1);
   const InverseIndex<2> index(*c.map);
   const double tolerance = index.options().tolerance;
   generators::Rng rng(seed);
