@@ -601,6 +601,14 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       if (min_x(pieces[b]) > max_x) break;
       if (std::max(pieces[b].from.y(), pieces[b].to.y()) < low_y || std::min(pieces[b].from.y(), pieces[b].to.y()) > high_y)
         continue;
+      // Most pairs that get here share an end (consecutive pieces of a polyline, pieces ending
+      // at one node): those cross only if they are collinear, which one orientation of b's
+      // other end decides (segments_cross_properly's answer, at a quarter of its predicates).
+      const Vec2 &p = pieces[a].from, &q = pieces[a].to, &r = pieces[b].from, &t = pieces[b].to;
+      if (p == r || p == t || q == r || q == t) {
+        const Vec2& other = (r == p || r == q) ? t : r;
+        if (orient2d(p, q, other) != 0) continue;
+      }
       if (segments_cross_properly(pieces[a].from, pieces[a].to, pieces[b].from, pieces[b].to))
         return refuse(RemovalRefusal::crossing_edges);
     }
