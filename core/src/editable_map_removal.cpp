@@ -452,6 +452,7 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       plan.spare_edits.pop_back();
     }
     edit.target_edge = e;
+    edit.version_at_planning = s.polyline_version[e];
     auto push_point = [&edit, &p](int i) {
       edit.point_vertex.push_back(p.vertex[i]);
       edit.point_edge.push_back(p.edge[i]);
