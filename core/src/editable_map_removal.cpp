@@ -295,6 +295,9 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
         best_min = b.minCoeff();
         best = n;
         if (barycentric) *barycentric = b;
+        // Inside by more than the clearance: the new triangles do not overlap, so no other one
+        // can hold the point with all coordinates above it (rounding is far below 1e-9).
+        if (best_min > std::max(clearance, 1e-9)) break;
       }
     }
     return std::pair{best < 0 ? -1 : sh.first_new + best, best_min};
