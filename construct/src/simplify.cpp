@@ -413,7 +413,10 @@ class Simplifier {
     spare_plans_.pop_back();
     return plan;
   }
-  void give_back(VertexRemovalPlan plan) { spare_plans_.push_back(std::move(plan)); }
+  void give_back(VertexRemovalPlan plan) {
+    // A few spares cover the plans of one step; more would only hold memory.
+    if (spare_plans_.size() < 8) spare_plans_.push_back(std::move(plan));
+  }
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
 };
 
