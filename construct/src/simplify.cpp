@@ -121,10 +121,22 @@ class Simplifier {
   Attempt attempt(Index v, PlanExtent extent) {
     if (line_neighbours_[v][0] != invalid_index && !is_corner(v)) return attempt_along_line(v, extent);
     Attempt a;
-    a.plan = std::move(spare_plan_);  // its buffers, for this plan
+    PreparedHole& hole = prepared_[v];
+    // A vertex queued again after its full plan comes up with that plan when nothing it copied
+    // has changed since (EditableMap::refresh_plan) and the hole would be triangulated the same
+    // (see below): the plan is the one planning again would make.
+    if (extent == PlanExtent::full && hole.has_full_plan && hole.stamp == stamp_[v] && !hole.sheet.ring.empty() &&
+        hole.new_edge_count == new_edges_at(hole.sheet.ring)) {
+      hole.has_full_plan = false;
+      if (map_.refresh_plan(hole.full_plan)) {
+        a.plan = std::move(hole.full_plan);
+        return judge(std::move(a));
+      }
+      give_back(std::move(hole.full_plan));
+    }
+    a.plan = spare_plan();  // its buffers, for this plan
     a.plan.reset();
     a.plan.vertex = v;
-    PreparedHole& hole = prepared_[v];
     // The full plan of a popped vertex reuses its ranking's hole when the triangulation would
     // come out the same: the star is unchanged (same stamp) and every S1 edge the
     // triangulation asked about is still there or still absent.
@@ -135,6 +147,8 @@ class Simplifier {
       return judge(std::move(a));
     }
     hole.sheet.ring.clear();
+    if (hole.has_full_plan) give_back(std::move(hole.full_plan));
+    hole.has_full_plan = false;
     std::vector<Index> ring = map_.closed_ring(v);
     if (ring.size() < 3) {
       a.refusal = to_string(RemovalRefusal::not_a_disk_star);
@@ -193,6 +207,8 @@ class Simplifier {
     StarSheet sheet;                   ///< empty ring: nothing kept
     std::vector<Eigen::Vector2d> flat;
     HoleTriangles triangles;
+    bool has_full_plan = false;        ///< full_plan holds the full plan made when v was queued again
+    VertexRemovalPlan full_plan;
   };
   std::uint64_t new_edges_at(const std::vector<Index>& ring) const {
     std::uint64_t sum = 0;
@@ -287,7 +303,7 @@ class Simplifier {
     Attempt a = attempt(v, PlanExtent::ranking_bound);
     last_refusal_[v] = a.refusal;
     if (a.refusal.empty()) queue_.push({a.verdict.cost, v, stamp_[v]});
-    spare_plan_ = std::move(a.plan);
+    give_back(std::move(a.plan));
   }
 
   void run(SimplifyReport& report) {
@@ -310,7 +326,7 @@ class Simplifier {
       last_refusal_[top.vertex] = a.refusal;
       if (!a.refusal.empty()) {
         ++stamp_[top.vertex];
-        spare_plan_ = std::move(a.plan);
+        give_back(std::move(a.plan));
         continue;
       }
       if (a.verdict.cost > top.cost) {
@@ -322,8 +338,15 @@ class Simplifier {
         // on an unchanged map.
         ++stamp_[top.vertex];
         queue_.push({a.verdict.cost, top.vertex, stamp_[top.vertex]});
-        prepared_[top.vertex].stamp = stamp_[top.vertex];  // the map did not change: its hole stays
-        spare_plan_ = std::move(a.plan);
+        PreparedHole& hole = prepared_[top.vertex];
+        hole.stamp = stamp_[top.vertex];  // the map did not change: its hole stays, and so does the plan
+        if (!hole.sheet.ring.empty()) {
+          if (hole.has_full_plan) give_back(std::move(hole.full_plan));
+          hole.full_plan = std::move(a.plan);
+          hole.has_full_plan = true;
+        } else {
+          give_back(std::move(a.plan));
+        }
         continue;
       }
       map_.apply(a.plan);
@@ -332,7 +355,7 @@ class Simplifier {
       ++report.removed_vertices;
       if (a.plan.line_edge[0] != invalid_index) ++report.removed_along_lines;
       const std::vector<Index> ring = std::move(a.plan.ring);
-      spare_plan_ = std::move(a.plan);
+      give_back(std::move(a.plan));
       for (Index w : ring) ++new_edges_[w];  // every new S1 edge joins two of these
       prepared_[top.vertex] = PreparedHole{};
       for (Index w : ring) rank(w);
@@ -381,7 +404,19 @@ class Simplifier {
   std::vector<std::string> last_refusal_;
   std::vector<PreparedHole> prepared_;  ///< per vertex, from its latest ranking
   std::vector<std::uint32_t> new_edges_;  ///< per vertex, how many removals gave it new S1 edges (or might have)
-  VertexRemovalPlan spare_plan_;         ///< the last plan that is no longer needed: its buffers are reused
+  /// Plans no longer needed, whose buffers the next plans reuse (a plan kept for a queued vertex
+  /// comes back here when the vertex is ranked again).
+  std::vector<VertexRemovalPlan> spare_plans_;
+  VertexRemovalPlan spare_plan() {
+    if (spare_plans_.empty()) return {};
+    VertexRemovalPlan plan = std::move(spare_plans_.back());
+    spare_plans_.pop_back();
+    return plan;
+  }
+  void give_back(VertexRemovalPlan plan) {
+    // A few spares cover the plans of one step; more would only hold memory.
+    if (spare_plans_.size() < 8) spare_plans_.push_back(std::move(plan));
+  }
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
 };
 

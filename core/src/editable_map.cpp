@@ -52,6 +52,7 @@ EditableMap::EditableMap(std::shared_ptr<const Surface<2>> target, EditOptions o
   s.triangle_vertices.resize(nt);
   s.triangle_edges.resize(nt);
   s.polylines.resize(ne);
+  s.polyline_version.assign(ne, 0);
   for (Index e = 0; e < ne; ++e) {
     const auto ab = t2.edge_vertices(e);
     EdgePolyline& p = s.polylines[e];
@@ -206,6 +207,7 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
   }
   for (const auto& edit : plan.polyline_edits) {
     EdgePolyline& p = s.polylines[edit.target_edge];
+    ++s.polyline_version[edit.target_edge];
     p.vertex = edit.point_vertex;
     p.edge = edit.point_edge;
     p.edge_parameter = edit.point_edge_parameter;
@@ -221,6 +223,42 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
       }
     }
   }
+}
+
+bool EditableMap::refresh_plan(VertexRemovalPlan& plan) const {
+  const Impl& s = *impl_;
+  if (!plan.accepted() || plan.extent != PlanExtent::full || plan.line_edge[0] != invalid_index) return false;
+  const Index v = plan.vertex;
+  if (v < 0 || v >= static_cast<Index>(s.vertex_live.size()) || !s.vertex_live[v]) return false;
+  // The same star: its triangles never change while alive, so all alive and no other around v.
+  if (s.vertex_triangles[v].size() != plan.old_triangles.size()) return false;
+  for (Index t : plan.old_triangles)
+    if (!s.triangle_live[t]) return false;
+  for (const auto& edit : plan.polyline_edits)
+    if (s.polyline_version[edit.target_edge] != edit.version_at_planning) return false;
+  // New edges and the single new triangle of a three-vertex hole must still be new.
+  const std::vector<Index>& ring = plan.ring;
+  const std::size_t k = ring.size();
+  auto ring_side = [&](Index a, Index b) {
+    for (std::size_t i = 0; i < k; ++i)
+      if ((ring[i] == a && ring[(i + 1) % k] == b) || (ring[i] == b && ring[(i + 1) % k] == a)) return true;
+    return false;
+  };
+  for (const auto& c : plan.new_triangles)
+    for (int m = 0; m < 3; ++m)
+      if (!ring_side(c[m], c[(m + 1) % 3]) && s.has_edge(c[m], c[(m + 1) % 3])) return false;
+  if (k == 3) {
+    auto n = plan.new_triangles.front();
+    std::sort(n.begin(), n.end());
+    for (Index t : s.vertex_triangles[ring[0]]) {
+      if (std::find(plan.old_triangles.begin(), plan.old_triangles.end(), t) != plan.old_triangles.end()) continue;
+      auto c = s.triangles[t];
+      std::sort(c.begin(), c.end());
+      if (c == n) return false;
+    }
+  }
+  plan.triangle_count_at_planning = static_cast<Index>(s.triangles.size());
+  return true;
 }
 
 Surface<2> EditableMap::domain_surface(std::vector<Index>* domain_to_target_vertex) const {

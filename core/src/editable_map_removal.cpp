@@ -295,6 +295,9 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
         best_min = b.minCoeff();
         best = n;
         if (barycentric) *barycentric = b;
+        // Inside by more than the clearance: the new triangles do not overlap, so no other one
+        // can hold the point with all coordinates above it (rounding is far below 1e-9).
+        if (best_min > std::max(clearance, 1e-9)) break;
       }
     }
     return std::pair{best < 0 ? -1 : sh.first_new + best, best_min};
@@ -452,6 +455,7 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       plan.spare_edits.pop_back();
     }
     edit.target_edge = e;
+    edit.version_at_planning = s.polyline_version[e];
     auto push_point = [&edit, &p](int i) {
       edit.point_vertex.push_back(p.vertex[i]);
       edit.point_edge.push_back(p.edge[i]);
@@ -601,6 +605,14 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       if (min_x(pieces[b]) > max_x) break;
       if (std::max(pieces[b].from.y(), pieces[b].to.y()) < low_y || std::min(pieces[b].from.y(), pieces[b].to.y()) > high_y)
         continue;
+      // Most pairs that get here share an end (consecutive pieces of a polyline, pieces ending
+      // at one node): those cross only if they are collinear, which one orientation of b's
+      // other end decides (segments_cross_properly's answer, at a quarter of its predicates).
+      const Vec2 &p = pieces[a].from, &q = pieces[a].to, &r = pieces[b].from, &t = pieces[b].to;
+      if (p == r || p == t || q == r || q == t) {
+        const Vec2& other = (r == p || r == q) ? t : r;
+        if (orient2d(p, q, other) != 0) continue;
+      }
       if (segments_cross_properly(pieces[a].from, pieces[a].to, pieces[b].from, pieces[b].to))
         return refuse(RemovalRefusal::crossing_edges);
     }

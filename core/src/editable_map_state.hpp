@@ -52,6 +52,7 @@ struct EditableMap::Impl {
   std::unordered_map<std::uint64_t, std::vector<Index>> edge_vertices;
 
   std::vector<EdgePolyline> polylines;  ///< per S2 edge
+  std::vector<std::uint32_t> polyline_version;  ///< per S2 edge: how often apply() rewrote its polyline
   /// Per S1 triangle: the S2 vertices whose preimage is inside, and the S2 edges with a segment
   /// inside (an edge may be listed more than once).
   std::vector<std::vector<Index>> triangle_vertices;

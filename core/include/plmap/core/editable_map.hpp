@@ -34,6 +34,7 @@
 #include <Eigen/Geometry>
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <span>
@@ -133,6 +134,7 @@ struct VertexRemovalPlan {
     std::vector<double> point_edge_parameter;
     std::vector<double> point_target_parameter;
     std::vector<Index> segment_triangle;  ///< S1 triangle, or -(k + 1) for new triangle k
+    std::uint32_t version_at_planning = 0;  ///< the polyline's edit count when it was copied
   };
   std::vector<Relocation> relocations;
   std::vector<PolylineEdit> polyline_edits;
@@ -209,6 +211,16 @@ class EditableMap {
                                         PlanExtent extent = PlanExtent::full, VertexRemovalPlan storage = {}) const;
   /// Carries out an accepted plan made on the current state.
   void apply(const VertexRemovalPlan& plan);
+  /// Makes an accepted full plan of a closed star, made on an earlier state, applicable to the
+  /// current one, if the removals since changed nothing it copied: v's star (the same live
+  /// triangles), the S2 edge polylines it edits (each keeps an edit count), and no new S1 edge
+  /// or triangle joins its ring vertices where the plan puts one. Then the plan is the one
+  /// plan_vertex_removal would make now with the same flattening and triangulation (whether
+  /// those would still be chosen is the caller's to know: they depend on which S1 edges join
+  /// ring vertices). False, and the plan is unchanged, otherwise (and for feature-line plans).
+  /// A simplifier that queues a vertex again after planning it fully keeps the plan for the
+  /// next time the vertex comes up (a third of the full plans on CGAL's femur).
+  bool refresh_plan(VertexRemovalPlan& plan) const;
 
   /// The S1 surface of the current state (live vertices renumbered in increasing order, live
   /// triangles) and, for each of its vertices, the S2 vertex it is.
