@@ -650,6 +650,13 @@ void MapBuilder<d>::add_target_element(Index target_element) {
 
 template <int d>
   requires SurfaceDimension<d>
+void MapBuilder<d>::reserve(Index nodes, Index segments) {
+  if (nodes > 0) impl_->nodes.reserve(static_cast<std::size_t>(nodes));
+  if (segments > 0) impl_->segments.reserve(static_cast<std::size_t>(segments));
+}
+
+template <int d>
+  requires SurfaceDimension<d>
 std::optional<typename MapBuilder<d>::NodeHandle> MapBuilder<d>::vertex_preimage(Index target_vertex) const {
   impl_->check_s2_vertex(target_vertex);
   const Index n = impl_->preimage_of_target_vertex[target_vertex];
