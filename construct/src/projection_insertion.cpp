@@ -9,30 +9,10 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <utility>
 
 namespace plmap::projection {
-
-namespace {
-
-/// How many crossings of S2 edges with S1 edges (d = 2) to make room for: two edge networks
-/// over the same area cross about sqrt(|E1| |E2|) times a constant that depends on the meshes'
-/// shapes (4.3 on the jittered planes, 5.8 on the spheres); 8 covers both with a margin. Room
-/// that is never written costs address space only.
-template <int d>
-std::size_t expected_crossings(const Surface<d>& s1, const Surface<d>& s2) {
-  if constexpr (d == 1) {
-    return 0;  // curves cross at S1 vertices only: those are ghost nodes, counted as such
-  } else {
-    return static_cast<std::size_t>(8.0 * std::sqrt(static_cast<double>(s1.edge_count()) *
-                                                    static_cast<double>(s2.edge_count())));
-  }
-}
-
-}  // namespace
 
 template <int d>
 ProjectionInsertion<d>::ProjectionInsertion(const ProjectionContext<d>& ctx, ProjectionState<d>& state,
@@ -41,18 +21,12 @@ ProjectionInsertion<d>::ProjectionInsertion(const ProjectionContext<d>& ctx, Pro
   if constexpr (d == 2) used_first_.assign(ctx_.s1.edge_count(), invalid_index);
   crossed_vertex_.assign(ctx_.s1.vertex_count(), invalid_index);
   inserted_.assign(ctx_.s2.edge_count(), 0);
-  // The builder's nodes and segments, and the used parameters, grow to millions of entries one
-  // at a time; grown by doubling, every entry is copied about once more and every new block is
-  // first touched (page faults), which was a fifth of the insertion's time on the 1M circles.
-  // Nodes: at most one per S2 vertex and per S1 vertex, plus one per crossing inside an S1 edge
-  // (d = 2). Segments: one per S2 edge plus one per node an edge passes. Exact bounds for
-  // curves, an estimate for surfaces (a larger count only grows the arrays as before).
-  const std::size_t crossings = expected_crossings(ctx_.s1, ctx_.s2);
-  const auto nodes = static_cast<std::size_t>(ctx_.s1.vertex_count()) + static_cast<std::size_t>(ctx_.s2.vertex_count()) + crossings;
-  const auto segments = static_cast<std::size_t>(ctx_.s2.edge_count()) + static_cast<std::size_t>(ctx_.s1.vertex_count()) + crossings;
-  builder_.reserve(static_cast<Index>(std::min<std::size_t>(nodes, std::numeric_limits<Index>::max())),
-                   static_cast<Index>(std::min<std::size_t>(segments, std::numeric_limits<Index>::max())));
-  if constexpr (d == 2) used_parameters_.reserve(crossings + static_cast<std::size_t>(ctx_.s2.vertex_count()));
+  // One used parameter per crossing inside an S1 edge, grown to millions: room taken once, as
+  // the builder does for its nodes (MapBuilder::Impl::reserve_expected_sizes, which explains the
+  // estimate; room never written costs address space only).
+  if constexpr (d == 2)
+    used_parameters_.reserve(static_cast<std::size_t>(
+        8.0 * std::sqrt(static_cast<double>(ctx_.s1.edge_count()) * static_cast<double>(ctx_.s2.edge_count()))));
 }
 
 template <int d>

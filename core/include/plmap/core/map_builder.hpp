@@ -158,11 +158,6 @@ class MapBuilder {
   /// in one S1 element (use add_edge with crossings otherwise).
   void add_target_element(Index target_element);
 
-  /// Room for this many nodes and segments (pieces of edge preimages between two nodes), taken
-  /// at once instead of by repeated doubling: a hint, larger counts still work. Capacity that is
-  /// never written costs address space, not memory (its pages are never touched).
-  void reserve(Index nodes, Index segments);
-
   /// Node handle of the preimage of an S2 vertex, if entered.
   std::optional<NodeHandle> vertex_preimage(Index target_vertex) const;
   /// True if the preimage of this S2 edge (d = 2) / segment (d = 1) was inserted.
