@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <new>
 #include <utility>
 
 namespace plmap::projection {
@@ -24,9 +25,14 @@ ProjectionInsertion<d>::ProjectionInsertion(const ProjectionContext<d>& ctx, Pro
   // One used parameter per crossing inside an S1 edge, grown to millions: room taken once, as
   // the builder does for its nodes (MapBuilder::Impl::reserve_expected_sizes, which explains the
   // estimate; room never written costs address space only).
-  if constexpr (d == 2)
-    used_parameters_.reserve(static_cast<std::size_t>(
-        8.0 * std::sqrt(static_cast<double>(ctx_.s1.edge_count()) * static_cast<double>(ctx_.s2.edge_count()))));
+  if constexpr (d == 2) {
+    try {
+      used_parameters_.reserve(static_cast<std::size_t>(
+          8.0 * std::sqrt(static_cast<double>(ctx_.s1.edge_count()) * static_cast<double>(ctx_.s2.edge_count()))));
+    } catch (const std::bad_alloc&) {
+      // address space refused (strict overcommit, huge inputs): a hint only, the list grows as needed
+    }
+  }
 }
 
 template <int d>

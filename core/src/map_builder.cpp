@@ -23,6 +23,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <span>
 
 namespace plmap {
@@ -80,8 +81,15 @@ struct MapBuilder<d>::Impl {
       crossings = static_cast<std::size_t>(
           8.0 * std::sqrt(static_cast<double>(s1->edge_count()) * static_cast<double>(s2->edge_count())));
     const auto n1v = static_cast<std::size_t>(s1->vertex_count());
-    nodes.reserve(n1v + static_cast<std::size_t>(s2->vertex_count()) + crossings);
-    segments.reserve(static_cast<std::size_t>(s2->edge_count()) + n1v + crossings);
+    // A system that refuses address space it cannot back (strict or heuristic overcommit with
+    // huge inputs) refuses a hint, not the map: the arrays then grow as needed.
+    try {
+      nodes.reserve(n1v + static_cast<std::size_t>(s2->vertex_count()) + crossings);
+      segments.reserve(static_cast<std::size_t>(s2->edge_count()) + n1v + crossings);
+    } catch (const std::exception&) {  // std::bad_alloc, or std::length_error beyond max_size()
+      std::vector<BuilderNode<d>>().swap(nodes);
+      std::vector<Segment>().swap(segments);
+    }
   }
 
   double tol() const { return options.snap_tolerance; }
