@@ -25,8 +25,9 @@ void expect_same_measures_for_every_thread_count(const PlMap<d>& map) {
         << threads << " threads";
     ASSERT_EQ(many.per_target.size(), one.per_target.size());
     std::size_t differing = 0;
-    for (std::size_t i = 0; i < one.per_target.size(); ++i)
-      differing += std::bit_cast<std::uint64_t>(many.per_target[i]) != std::bit_cast<std::uint64_t>(one.per_target[i]);
+    for (std::size_t i = 0; i < one.per_target.size(); ++i) {
+      if (std::bit_cast<std::uint64_t>(many.per_target[i]) != std::bit_cast<std::uint64_t>(one.per_target[i])) ++differing;
+    }
     EXPECT_EQ(differing, 0u) << threads << " threads";
   }
 }
