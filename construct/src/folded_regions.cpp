@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace plmap::projection {
 
@@ -22,6 +23,10 @@ std::vector<Index> regions_with_folded_corners(const PlMap<d>& map, std::span<co
   std::vector<std::vector<Index>> found((n1 + chunk - 1) / chunk);
   parallel_for_chunks(n1, chunk, threads, [&](std::size_t begin, std::size_t end) {
     auto& list = found[begin / chunk];
+    // Per node of the element: not judged yet (-1), unfolded (0), folded (1). A node is a corner
+    // of up to six regions; its test (the image's world position, mu, maybe the focal
+    // polynomial) is made once.
+    std::vector<signed char> judged;
     for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) {
       if (map.regions_begin(t) == map.regions_end(t)) continue;
       std::array<WorldPoint<d>, d + 1> corners, nus;
@@ -40,8 +45,16 @@ std::vector<Index> regions_with_folded_corners(const PlMap<d>& map, std::span<co
         const double mu = (map.node_target_world(n) - map.node_domain_world(n)).dot(nu) / nn;
         return !(std::abs(mu) <= free) && !reaches_without_focal_point<d>(corners, nus, xi, mu);
       };
+      const Index first_node = map.nodes_begin(t);
+      judged.assign(static_cast<std::size_t>(map.nodes_end(t) - first_node), -1);
+      const auto folded_once = [&](Index n) {
+        const auto i = static_cast<std::size_t>(n - first_node);
+        if (n < first_node || i >= judged.size()) return folded(n);  // not this element's node
+        if (judged[i] < 0) judged[i] = folded(n) ? 1 : 0;
+        return judged[i] == 1;
+      };
       for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
-        if (std::any_of(m.region_corners[r].begin(), m.region_corners[r].end(), folded)) list.push_back(r);
+        if (std::any_of(m.region_corners[r].begin(), m.region_corners[r].end(), folded_once)) list.push_back(r);
     }
   });
   std::vector<Index> regions;

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <new>
 #include <utility>
 
 namespace plmap::projection {
@@ -21,6 +22,17 @@ ProjectionInsertion<d>::ProjectionInsertion(const ProjectionContext<d>& ctx, Pro
   if constexpr (d == 2) used_first_.assign(ctx_.s1.edge_count(), invalid_index);
   crossed_vertex_.assign(ctx_.s1.vertex_count(), invalid_index);
   inserted_.assign(ctx_.s2.edge_count(), 0);
+  // One used parameter per crossing inside an S1 edge, grown to millions: room taken once, as
+  // the builder does for its nodes (MapBuilder::Impl::reserve_expected_sizes, which explains the
+  // estimate; room never written costs address space only).
+  if constexpr (d == 2) {
+    try {
+      used_parameters_.reserve(static_cast<std::size_t>(
+          8.0 * std::sqrt(static_cast<double>(ctx_.s1.edge_count()) * static_cast<double>(ctx_.s2.edge_count()))));
+    } catch (const std::bad_alloc&) {
+      // address space refused (strict overcommit, huge inputs): a hint only, the list grows as needed
+    }
+  }
 }
 
 template <int d>

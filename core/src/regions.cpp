@@ -99,37 +99,60 @@ double local_target_measure(const PlMap<d>& map, Index r) {
 // Elements are affine, so a region's measure is its measure in local coordinates times its
 // element's, on either side: no world position of a corner is needed. Local measures are summed
 // per element first (S1: consecutive regions; S2: one running sum per S2 element) and scaled once.
-// With several threads the regions' local measures are computed first, in parallel, and then
-// summed in region order, as one thread sums them.
+// With several threads everything but the sums over elements is computed first, in parallel: the
+// regions' target measures, each S1 element's scaled domain measure and each S2 element's
+// measure (element_measure is a scaled cross product, not a lookup); then the sums run in the
+// order and with the operations of one thread, so the result is the same to the last bit.
 template <int d>
 ImageMeasures image_measures(const PlMap<d>& map, unsigned threads) {
   const auto& m = map.data();
+  const Surface<d>& s1 = map.domain();
   const Surface<d>& s2 = map.target();
-  const Index n1 = map.domain().element_count();
+  const Index n1 = s1.element_count(), n2 = s2.element_count();
   ImageMeasures out;
-  out.per_target.assign(static_cast<std::size_t>(s2.element_count()), 0.0);
-  std::vector<double> region_target_measure;
-  if (resolve_thread_count(threads) > 1) {
-    region_target_measure.resize(static_cast<std::size_t>(map.region_count()));
-    parallel_for_chunks(static_cast<std::size_t>(map.region_count()), 4096, threads, [&](std::size_t begin, std::size_t end) {
-      for (auto r = static_cast<Index>(begin); r < static_cast<Index>(end); ++r)
-        region_target_measure[static_cast<std::size_t>(r)] = local_target_measure(map, r);
-    });
+  out.per_target.assign(static_cast<std::size_t>(n2), 0.0);
+  const auto domain_part = [&](Index t) {
+    double local = 0.0;
+    for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) local += local_domain_measure(map, r);
+    return local * s1.element_measure(t);
+  };
+  if (resolve_thread_count(threads) <= 1) {
+    for (Index t = 0; t < n1; ++t) {
+      if (map.regions_begin(t) == map.regions_end(t)) continue;
+      for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
+        out.per_target[static_cast<std::size_t>(m.region_target[r])] += local_target_measure(map, r);
+      out.covered.domain += domain_part(t);
+    }
+    for (Index t2 = 0; t2 < n2; ++t2)
+      if (out.per_target[static_cast<std::size_t>(t2)] != 0.0)
+        out.covered.target += out.per_target[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
+    return out;
   }
+  std::vector<double> region_target_measure(static_cast<std::size_t>(map.region_count()));
+  std::vector<double> element_domain_measure(static_cast<std::size_t>(n1));
+  parallel_for_chunks(static_cast<std::size_t>(n1), 1024, threads, [&](std::size_t begin, std::size_t end) {
+    for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) {
+      if (map.regions_begin(t) == map.regions_end(t)) continue;
+      for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
+        region_target_measure[static_cast<std::size_t>(r)] = local_target_measure(map, r);
+      element_domain_measure[static_cast<std::size_t>(t)] = domain_part(t);
+    }
+  });
   for (Index t = 0; t < n1; ++t) {
     if (map.regions_begin(t) == map.regions_end(t)) continue;
-    double local = 0.0;
-    for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) {
-      local += local_domain_measure(map, r);
-      const double on_target = region_target_measure.empty() ? local_target_measure(map, r)
-                                                             : region_target_measure[static_cast<std::size_t>(r)];
-      out.per_target[static_cast<std::size_t>(m.region_target[r])] += on_target;
-    }
-    out.covered.domain += local * map.domain().element_measure(t);
+    for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
+      out.per_target[static_cast<std::size_t>(m.region_target[r])] += region_target_measure[static_cast<std::size_t>(r)];
+    out.covered.domain += element_domain_measure[static_cast<std::size_t>(t)];
   }
-  for (Index t2 = 0; t2 < s2.element_count(); ++t2)
-    if (out.per_target[static_cast<std::size_t>(t2)] != 0.0)
-      out.covered.target += out.per_target[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
+  std::vector<double>().swap(region_target_measure);
+  std::vector<double> target_part(static_cast<std::size_t>(n2), 0.0);
+  parallel_for_chunks(static_cast<std::size_t>(n2), 4096, threads, [&](std::size_t begin, std::size_t end) {
+    for (auto t2 = static_cast<Index>(begin); t2 < static_cast<Index>(end); ++t2)
+      if (out.per_target[static_cast<std::size_t>(t2)] != 0.0)
+        target_part[static_cast<std::size_t>(t2)] = out.per_target[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
+  });
+  for (Index t2 = 0; t2 < n2; ++t2)
+    if (out.per_target[static_cast<std::size_t>(t2)] != 0.0) out.covered.target += target_part[static_cast<std::size_t>(t2)];
   return out;
 }
 
