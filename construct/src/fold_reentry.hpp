@@ -12,8 +12,10 @@
 
 #include <plmap/core/types.hpp>
 
+#include <algorithm>
 #include <optional>
 #include <span>
+#include <vector>
 
 namespace plmap::projection {
 
@@ -26,19 +28,22 @@ struct FoldExitCandidate {
 
 /// Of the crossings that `solve(edge)` finds on the given S1 edges, the one nearest along the
 /// S2 edge beyond `after` (by more than `eta_slack`, and short of its end by as much) that
-/// `accept` takes. Candidates are judged nearest first, so `accept` (the fold test) runs on
-/// few of them.
+/// `accept` takes. Candidates are judged nearest first, so that `accept` (the fold test, the
+/// costly part) runs only until one passes. `found` is scratch.
 template <class Solve, class Accept>
 std::optional<FoldExitCandidate> nearest_fold_exit(double after, double eta_slack, std::span<const Index> domain_edges,
-                                                   Solve&& solve, Accept&& accept) {
-  std::optional<FoldExitCandidate> best;
-  for (Index edge : domain_edges) {
-    const std::optional<FoldExitCandidate> c = solve(edge);
-    if (!c || !(c->eta > after + eta_slack) || !(c->eta < 1.0 - eta_slack)) continue;
-    if (best && !(c->eta < best->eta)) continue;
-    if (accept(*c)) best = c;
-  }
-  return best;
+                                                   std::vector<FoldExitCandidate>& found, Solve&& solve,
+                                                   Accept&& accept) {
+  found.clear();
+  for (Index edge : domain_edges)
+    if (const std::optional<FoldExitCandidate> c = solve(edge); c && c->eta > after + eta_slack && c->eta < 1.0 - eta_slack)
+      found.push_back(*c);
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) {
+    return a.eta < b.eta || (a.eta == b.eta && a.domain_edge < b.domain_edge);
+  });
+  for (const FoldExitCandidate& c : found)
+    if (accept(c)) return c;
+  return std::nullopt;
 }
 
 }  // namespace plmap::projection

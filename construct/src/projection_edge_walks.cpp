@@ -439,6 +439,7 @@ class EdgeWalker {
     const WorldPoint<d> qa = ctx_.s2.vertex(tv[0]), qb = ctx_.s2.vertex(tv[1]);
     long long calls = 0, failures = 0;
     std::vector<Index> at_stop, near_edges, at_exit;
+    std::vector<FoldExitCandidate> exits;
     for (int round = 0; round < limits.fold_exits && stopped.end == WalkEnd::failed &&
                         stopped.reason == EdgeFailureReason::fold;
          ++round) {
@@ -448,16 +449,25 @@ class EdgeWalker {
       for (Index t : at_stop)
         for (int k = 0; k < 3; ++k) size = std::max(size, (ctx_.s1.corner(t, k) - ctx_.s1.corner(t, (k + 1) % 3)).norm());
       near_edges.clear();
-      for (Index t : ctx_.s1_index->within(ctx_.world_of(stopped.stop), limits.fold_exit_reach * size + ctx_.s1_index->radius))
+      // (centroids within one more element size: the index's own radius, the largest element's,
+      // would make the search as wide as that element everywhere)
+      for (Index t : ctx_.s1_index->within(ctx_.world_of(stopped.stop), (limits.fold_exit_reach + 1.0) * size))
         for (int k = 0; k < 3; ++k) near_edges.push_back(ctx_.s1.element_edge(t, k));
       std::sort(near_edges.begin(), near_edges.end());
       near_edges.erase(std::unique(near_edges.begin(), near_edges.end()), near_edges.end());
       const auto exit = nearest_fold_exit(
-          progress.covered_until, limits.edge_parameter_slack, near_edges,
+          progress.covered_until, limits.edge_parameter_slack, near_edges, exits,
           [&](Index edge) -> std::optional<FoldExitCandidate> {
-            const CrossingCandidate c = solve_crossing(edge, qa, qb, calls, failures);
-            if (!c.valid) return std::nullopt;
-            return FoldExitCandidate{edge, c.lambda, c.eta, c.mu};
+            // the closed-form root of eq. (4)'s quadratic, without the solver: dozens of S1
+            // edges are tried per search, and only the one chosen is solved (below)
+            const auto ev = ctx_.s1.edge_vertices(edge);
+            EdgeCrossingSystem sys;
+            sys.edge = {ctx_.s1.vertex(ev[0]), ctx_.s1.vertex(ev[1])};
+            sys.directions = {ctx_.vertex_directions[ev[0]], ctx_.vertex_directions[ev[1]]};
+            sys.target = {qa, qb};
+            const auto root = sys.root_on_the_edges();
+            if (!root || !ctx_.distance_ok((*root)(1), sys.scale())) return std::nullopt;
+            return FoldExitCandidate{edge, std::clamp((*root)(0), 0.0, 1.0), (*root)(2), (*root)(1)};
           },
           [&](const FoldExitCandidate& c) {
             // inside the S1 edge (an S1 vertex is a ghost node's or vertex preimage's place), and
@@ -468,11 +478,15 @@ class EdgeWalker {
             return unfolded_in_some_element(at_exit, [&](Index t) { return ctx_.unfolded_in_at(t, at, c.mu); });
           });
       if (!exit) break;
+      // the chosen crossing as the walks solve it
+      const CrossingCandidate c = solve_crossing(exit->domain_edge, qa, qb, calls, failures);
+      if (!c.valid || !(c.eta > progress.covered_until + limits.edge_parameter_slack)) break;
+      const Place<d> at = ctx_.edge_place(exit->domain_edge, c.lambda);
+      if (at.kind != PlaceKind::edge) break;
       auto& crossings = buffer.crossings;
       const std::size_t begin = crossings.size();
-      crossings.push_back(EdgeCrossing{exit->domain_edge, exit->lambda, exit->eta});
-      const Place<d> at = ctx_.edge_place(exit->domain_edge, exit->lambda);
-      stopped = walk(e, at, exit->eta, progress.second, WalkDirection::from_first_vertex, buffer);
+      crossings.push_back(EdgeCrossing{exit->domain_edge, c.lambda, c.eta});
+      stopped = walk(e, at, c.eta, progress.second, WalkDirection::from_first_vertex, buffer);
       const bool reached = stopped.end == WalkEnd::reached;
       if (stopped.crossing_count == 0 && !reached) {
         crossings.resize(begin);
