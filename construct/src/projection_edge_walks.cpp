@@ -2,6 +2,9 @@
 
 #include "projection_edge_walks.hpp"
 
+#include "fold_reentry.hpp"
+#include "walk_acceptance.hpp"
+
 #include <plmap/core/parallel_ranges.hpp>
 #include <plmap/solvers/projection_systems.hpp>
 #include <plmap/solvers/small_lu.hpp>
@@ -413,6 +416,7 @@ class EdgeWalker {
         crossings.resize(begin);
       progress.covered_until = w.eta;
       progress.first_walk_failed = true;
+      if constexpr (d == 2) walk_on_after_folds(e, w, progress, buffer);
     } else {
       const bool reached = w.end == WalkEnd::reached;
       progress.reached_second |= reached;
@@ -422,6 +426,78 @@ class EdgeWalker {
       else
         crossings.resize(begin);
     }
+  }
+
+  /// After the walk `stopped` along S2 edge e ended at a fold: new pieces from where the edge's
+  /// preimage comes out of the fold (fold_reentry.hpp), each walked on towards the second vertex,
+  /// up to search_limits.fold_exits times while they stop at folds again.
+  void walk_on_after_folds(Index e, WalkResult<d> stopped, EdgeProgress& progress, PlanBuffer<d>& buffer) const
+    requires(d == 2)
+  {
+    const auto& limits = ctx_.options.search_limits;
+    const auto tv = ctx_.target_edge_vertices(e);
+    const WorldPoint<d> qa = ctx_.s2.vertex(tv[0]), qb = ctx_.s2.vertex(tv[1]);
+    long long calls = 0, failures = 0;
+    std::vector<Index> at_stop, near_edges, at_exit;
+    std::vector<FoldExitCandidate> exits;
+    for (int round = 0; round < limits.fold_exits && stopped.end == WalkEnd::failed &&
+                        stopped.reason == EdgeFailureReason::fold;
+         ++round) {
+      // a fold band is a few elements wide: the S1 edges within fold_exit_reach element sizes
+      ctx_.elements_of(stopped.stop, at_stop);
+      double size = 0.0;
+      for (Index t : at_stop)
+        for (int k = 0; k < 3; ++k) size = std::max(size, (ctx_.s1.corner(t, k) - ctx_.s1.corner(t, (k + 1) % 3)).norm());
+      near_edges.clear();
+      // (centroids within one more element size: the index's own radius, the largest element's,
+      // would make the search as wide as that element everywhere)
+      for (Index t : ctx_.s1_index->within(ctx_.world_of(stopped.stop), (limits.fold_exit_reach + 1.0) * size))
+        for (int k = 0; k < 3; ++k) near_edges.push_back(ctx_.s1.element_edge(t, k));
+      std::sort(near_edges.begin(), near_edges.end());
+      near_edges.erase(std::unique(near_edges.begin(), near_edges.end()), near_edges.end());
+      const auto exit = nearest_fold_exit(
+          progress.covered_until, limits.edge_parameter_slack, near_edges, exits,
+          [&](Index edge) -> std::optional<FoldExitCandidate> {
+            // the closed-form root of eq. (4)'s quadratic, without the solver: dozens of S1
+            // edges are tried per search, and only the one chosen is solved (below)
+            const auto ev = ctx_.s1.edge_vertices(edge);
+            EdgeCrossingSystem sys;
+            sys.edge = {ctx_.s1.vertex(ev[0]), ctx_.s1.vertex(ev[1])};
+            sys.directions = {ctx_.vertex_directions[ev[0]], ctx_.vertex_directions[ev[1]]};
+            sys.target = {qa, qb};
+            const auto root = sys.root_on_the_edges();
+            if (!root || !ctx_.distance_ok((*root)(1), sys.scale())) return std::nullopt;
+            return FoldExitCandidate{edge, std::clamp((*root)(0), 0.0, 1.0), (*root)(2), (*root)(1)};
+          },
+          [&](const FoldExitCandidate& c) {
+            // inside the S1 edge (an S1 vertex is a ghost node's or vertex preimage's place), and
+            // unfolded in an element at it, as the walks judge a crossing
+            const Place<d> at = ctx_.edge_place(c.domain_edge, c.lambda);
+            if (at.kind != PlaceKind::edge) return false;
+            ctx_.elements_of(at, at_exit);
+            return unfolded_in_some_element(at_exit, [&](Index t) { return ctx_.unfolded_in_at(t, at, c.mu); });
+          });
+      if (!exit) break;
+      // the chosen crossing as the walks solve it
+      const CrossingCandidate c = solve_crossing(exit->domain_edge, qa, qb, calls, failures);
+      if (!c.valid || !(c.eta > progress.covered_until + limits.edge_parameter_slack)) break;
+      const Place<d> at = ctx_.edge_place(exit->domain_edge, c.lambda);
+      if (at.kind != PlaceKind::edge) break;
+      auto& crossings = buffer.crossings;
+      const std::size_t begin = crossings.size();
+      crossings.push_back(EdgeCrossing{exit->domain_edge, c.lambda, c.eta});
+      stopped = walk(e, at, c.eta, progress.second, WalkDirection::from_first_vertex, buffer);
+      const bool reached = stopped.end == WalkEnd::reached;
+      if (stopped.crossing_count == 0 && !reached) {
+        crossings.resize(begin);
+        break;
+      }
+      add_piece(buffer, begin, PieceStart::first_crossing, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing);
+      progress.covered_until = reached ? 1.0 : stopped.eta;
+      progress.reached_second |= reached;
+    }
+    ctx_.solver_calls += calls;
+    ctx_.solver_failures += failures;
   }
 
   /// The walks from the points where the edge enters S1 across its boundary, beyond what the

@@ -120,15 +120,23 @@ void ProjectionInsertion<d>::report_edges_dropped_by_finalize(const FinalizeRepo
     const Index e = dropped.dropped_edges[i];
     const Index pieces = static_cast<Index>(inserted_[e] & ~inserted_whole);
     if (inserted_[e] & inserted_whole) --report.edges_inserted;
-    if (pieces > 0) --report.edges_partly_inserted;
-    report.edge_pieces -= pieces;
+    if constexpr (d == 2) {
+      // only the stretch on the conflicting element(s) was dropped: the rest stays, in pieces
+      if (pieces == 0) ++report.edges_partly_inserted;
+    } else {
+      if (pieces > 0) --report.edges_partly_inserted;
+      report.edge_pieces -= pieces;
+    }
     EdgeNotInserted<d> f;
     f.target_edge = e;
     f.reason = EdgeFailureReason::overlap;
     f.domain_element = dropped.dropped_edge_element[i];
     f.domain_point = ctx_.s1.world_position(f.domain_element, LocalPoint<d>::Constant(1.0 / (d + 1)));
-    f.detail = "its preimage crosses another edge's preimage, runs through a node, or meets this S1 "
-               "element twice: the projection is not injective or not continuous there";
+    f.detail = d == 2 ? "its preimage crosses another edge's preimage, runs through a node, or meets this S1 "
+                        "element twice: the projection is not injective or not continuous there, and the "
+                        "stretch on this element is left out"
+                      : "its preimage crosses another edge's preimage, runs through a node, or meets this S1 "
+                        "element twice: the projection is not injective or not continuous there";
     report.edges_not_inserted.push_back(std::move(f));
   }
 }

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace plmap::detail {
@@ -82,29 +83,55 @@ struct BuilderContents {
   std::vector<char>& edge_inserted;  // per S2 edge (d = 1: S2 element), 0: not inserted
 };
 
-/// The S2 edges finalize() leaves out because their preimages conflict with others
-/// (BuilderOptions::drop_conflicting_edges): their segments and the intersection nodes they
-/// created are not part of the map.
+/// What finalize() leaves out because preimages conflict (BuilderOptions::drop_conflicting_edges):
+/// whole S2 edges (d = 1: their segments and the intersection nodes they created are not part of
+/// the map), or (d = 2) the stretch of an S2 edge's preimage on one S1 element — its segments
+/// inside the element and along its edges — while the rest of that preimage stays, ending at the
+/// crossings on the element's boundary as a partly inserted edge does.
 class DroppedEdges {
  public:
-  DroppedEdges(std::vector<char>& edge_inserted, FinalizeReport* report)
-      : dropped_(edge_inserted.size(), 0), edge_inserted_(edge_inserted), report_(report) {}
+  DroppedEdges(std::vector<char>& edge_inserted, FinalizeReport* report, std::size_t segment_count = 0)
+      : dropped_(edge_inserted.size(), 0), reported_(edge_inserted.size(), 0), segment_dropped_(segment_count, 0),
+        edge_inserted_(edge_inserted), report_(report) {}
   bool contains(Index e) const { return dropped_[static_cast<std::size_t>(e)] != 0; }
+  /// Whether segment s is left out: its S2 edge is dropped, or its stretch is.
+  bool drops_segment(Index s, Index target_edge) const {
+    return contains(target_edge) ||
+           (!segment_dropped_.empty() && segment_dropped_[static_cast<std::size_t>(s)] != 0);
+  }
   /// Drops S2 edge e, found in conflict on S1 element t, and reports it; false if it was dropped
   /// already.
   bool drop(Index e, Index t) {
     if (contains(e)) return false;
     dropped_[static_cast<std::size_t>(e)] = 1;
     edge_inserted_[static_cast<std::size_t>(e)] = edge_not_inserted;
-    if (report_) {
-      report_->dropped_edges.push_back(e);
-      report_->dropped_edge_element.push_back(t);
-    }
+    report(e, t);
     return true;
+  }
+  /// Drops the given segments (the stretch of S2 edge e on S1 element t) and reports e once;
+  /// false if none of them was still in the map.
+  bool drop_stretch(Index e, Index t, std::span<const Index> segments) {
+    bool any = false;
+    for (Index s : segments) {
+      char& flag = segment_dropped_[static_cast<std::size_t>(s)];
+      any = any || flag == 0;
+      flag = 1;
+    }
+    if (any) report(e, t);
+    return any;
   }
 
  private:
+  void report(Index e, Index t) {
+    if (reported_[static_cast<std::size_t>(e)] || !report_) return;
+    reported_[static_cast<std::size_t>(e)] = 1;
+    report_->dropped_edges.push_back(e);
+    report_->dropped_edge_element.push_back(t);
+  }
+
   std::vector<char> dropped_;
+  std::vector<char> reported_;
+  std::vector<char> segment_dropped_;
   std::vector<char>& edge_inserted_;
   FinalizeReport* report_;
 };

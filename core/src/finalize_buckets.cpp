@@ -39,13 +39,13 @@ void NodesAndSegmentsByPlace<d>::build(const BuilderContents<d>& in, const Dropp
       case 2:
         edge_segments.build(edges, segment_count, [&](Index s) {
           const auto& seg = in.segments[s];
-          return !dropped.contains(seg.target_edge) && seg.along_edge ? seg.where : -1;
+          return !dropped.drops_segment(s, seg.target_edge) && seg.along_edge ? seg.where : -1;
         });
         break;
       default:
         element_segments.build(elements, segment_count, [&](Index s) {
           const auto& seg = in.segments[s];
-          return !dropped.contains(seg.target_edge) && !seg.along_edge ? seg.where : -1;
+          return !dropped.drops_segment(s, seg.target_edge) && !seg.along_edge ? seg.where : -1;
         });
     }
   });

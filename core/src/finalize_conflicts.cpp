@@ -49,6 +49,17 @@ std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAn
   return edges;
 }
 
+bool drop_stretch_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index e, Index t,
+                             DroppedEdges& dropped) {
+  std::vector<Index> stretch;
+  for (Index s : where.element_segments[t])
+    if (in.segments[s].target_edge == e) stretch.push_back(s);
+  for (int k = 0; k < 3; ++k)
+    for (Index s : where.edge_segments[in.s1.element_edge(t, k)])
+      if (in.segments[s].target_edge == e) stretch.push_back(s);
+  return dropped.drop_stretch(e, t, stretch);
+}
+
 namespace {
 
 using Piece = std::pair<Index, std::array<Index, 2>>;  // (S2 edge, end nodes)
@@ -99,7 +110,7 @@ bool drop_split_preimages(const BuilderContents<2>& in, const NodesAndSegmentsBy
       std::sort(pieces.begin(), pieces.end());
       for (std::size_t i = 0, j = 0; i < pieces.size(); i = j) {
         for (j = i + 1; j < pieces.size() && pieces[j].first == pieces[i].first;) ++j;
-        if (j - i < 2 || dropped.contains(pieces[i].first)) continue;
+        if (j - i < 2) continue;
         if (!one_connected_piece(std::span<const Piece>(pieces.data() + i, j - i), reached))
           found.emplace_back(t, pieces[i].first);
       }
@@ -107,7 +118,7 @@ bool drop_split_preimages(const BuilderContents<2>& in, const NodesAndSegmentsBy
   });
   bool any = false;
   for (const auto& found : split)
-    for (const auto& [t, e] : found) any = dropped.drop(e, t) || any;
+    for (const auto& [t, e] : found) any = drop_stretch_on_element(in, where, e, t, dropped) || any;
   return any;
 }
 

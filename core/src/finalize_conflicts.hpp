@@ -1,8 +1,9 @@
 #pragma once
-// finalize(): which S2 edges to drop when BuilderOptions::drop_conflicting_edges asks for it. An
-// element whose graph cannot be closed (pieces that cross, or pass through a node) names the S2
-// edges involved; a preimage that meets an element in more than one piece breaks the minimal
-// embedding (DESIGN.md §4.3). Private to the builder.
+// finalize(): what to drop when BuilderOptions::drop_conflicting_edges asks for it. An element
+// whose graph cannot be closed (pieces that cross, or pass through a node) names the S2 edges
+// involved; a preimage that meets an element in more than one piece breaks the minimal
+// embedding (DESIGN.md §4.3). Either way only those edges' stretches on that element are
+// dropped. Private to the builder.
 
 #include "builder_nodes.hpp"
 #include "finalize_buckets.hpp"
@@ -15,9 +16,16 @@ namespace plmap::detail {
 /// each once.
 std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t);
 
-/// Drops every S2 edge whose preimage meets some S1 element in two or more separate pieces (where
-/// a projection is discontinuous a preimage can enter an element twice). Returns whether any was
-/// dropped (the buckets are then stale).
+/// Drops the stretch of S2 edge e's preimage on S1 element t (its segments inside t and along
+/// t's edges): the rest of the preimage stays and ends at the crossings on t's boundary, so a
+/// conflict costs the faces around that stretch, not the whole preimages of e's S2 triangles.
+/// Returns whether anything was still there to drop (the buckets are then stale).
+bool drop_stretch_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index e, Index t,
+                             DroppedEdges& dropped);
+
+/// Drops, on each S1 element that the preimage of an S2 edge meets in two or more separate
+/// pieces (where a projection is discontinuous a preimage can enter an element twice), that
+/// edge's stretch on the element. Returns whether any was dropped (the buckets are then stale).
 bool drop_split_preimages(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where,
                           DroppedEdges& dropped);
 

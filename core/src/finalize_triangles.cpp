@@ -137,17 +137,18 @@ int sampled_orientation(const BuilderContents<2>& in, const NodesAndSegmentsByPl
 
 MapData<2> finalize_triangles(BuilderContents<2>& in, FinalizeReport* report) {
   const Index n1 = in.s1.element_count();
-  DroppedEdges dropped(in.edge_inserted, report);
+  DroppedEdges dropped(in.edge_inserted, report, in.segments.size());
   NodesAndSegmentsByPlace<2> where;
   where.build(in, dropped);
   if (report) *report = FinalizeReport{};
   // An element whose graph has crossing edges (or an edge through another node) cannot be
-  // closed. Unless asked to drop the S2 edges involved, that is an error; otherwise they are
-  // dropped everywhere and the elements are closed again (each round removes at least one).
+  // closed. Unless asked to drop the S2 edges involved, that is an error; otherwise their
+  // stretches on that element are dropped and the elements are closed again (each round removes
+  // at least one segment). The rest of each preimage stays: it ends at the element's boundary.
   const bool drop = in.options.drop_conflicting_edges;
   // Minimal embedding (DESIGN §4.3): the preimage of an S2 edge meets an S1 element in at most
-  // one connected piece; with drop_conflicting_edges an edge that does not is dropped, like one
-  // that crosses another.
+  // one connected piece; with drop_conflicting_edges an edge that does not loses its stretch on
+  // that element, like one that crosses another.
   if (drop && drop_split_preimages(in, where, dropped)) where.build(in, dropped);
   // Only faces mapped with the map's orientation become regions, and that orientation is voted
   // on by all elements: the pass assembles with a guess (the vote of a sample of elements, or
@@ -161,7 +162,7 @@ MapData<2> finalize_triangles(BuilderContents<2>& in, FinalizeReport* report) {
     if (!drop || round == 16) std::rethrow_exception(failed.front().second);
     bool any = false;
     for (const auto& [t, error] : failed)
-      for (Index e : conflicting_edges(in, where, t)) any = dropped.drop(e, t) || any;
+      for (Index e : conflicting_edges(in, where, t)) any = drop_stretch_on_element(in, where, e, t, dropped) || any;
     if (!any) std::rethrow_exception(failed.front().second);
     where.build(in, dropped);
   }

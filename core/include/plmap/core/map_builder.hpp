@@ -48,15 +48,19 @@ struct BuilderOptions {
   unsigned threads = 1;
   /// What finalize() does when the preimages of S2 edges cross on an S1 element, or one passes
   /// through a node (inconsistent input, e.g. a projection that folds): false (default) throws
-  /// BuilderError naming the element; true drops every S2 edge involved, as if it had not been
-  /// entered, and lists it in the FinalizeReport. Faces next to a dropped edge are not regions.
+  /// BuilderError naming the element; true drops, for every S2 edge involved, the stretch of its
+  /// preimage on that element (d = 1: the whole S2 segment) and lists the edge in the
+  /// FinalizeReport. The rest of the preimage stays, ending at the element's boundary as a piece
+  /// does (add_edge_piece); faces next to a dropped stretch are not regions.
   bool drop_conflicting_edges = false;
 };
 
 /// What finalize() had to leave out.
 struct FinalizeReport {
-  std::vector<Index> dropped_edges;         ///< S2 edges dropped (drop_conflicting_edges)
-  std::vector<Index> dropped_edge_element;  ///< for each, an S1 element where it conflicted
+  /// S2 edges of which a stretch was dropped (drop_conflicting_edges; d = 1: the whole segment),
+  /// each once
+  std::vector<Index> dropped_edges;
+  std::vector<Index> dropped_edge_element;  ///< for each, the first S1 element where it conflicted
   /// Faces of the graph (d = 1: pieces between two nodes) that map into one S2 element but
   /// with the orientation opposite to the map's, or onto a degenerate image: they are not
   /// regions, so D has a hole there (the projection is folded).
