@@ -8,8 +8,6 @@
 #include <plmap/strategies/smoothing/uniform_weights.hpp>
 
 #include <Eigen/LU>
-#include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 
 #include <algorithm>
 #include <cmath>
@@ -250,9 +248,7 @@ QuadOutcome QuadSmoother::smooth(Index e) {
   for (int p = 0; p < static_cast<int>(pieces.size()); ++p)
     for (int end = 0; end < 2; ++end)
       if (pieces[p].unknown[end] >= 0) ring_of[pieces[p].unknown[end]].push_back({p, 1 - end});
-  thread_local std::vector<Eigen::Triplet<double>> triplets;
-  triplets.clear();
-  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
+  system_.reset(unknowns);
   for (int i = 0; i < unknowns; ++i) {
     const Index v = unknown_vertex[i];
     // S2's cyclic order of v's neighbours: next(x) = y for each S2 triangle (v, x, y)
@@ -288,32 +284,26 @@ QuadOutcome QuadSmoother::smooth(Index e) {
       w = UniformWeights{}.weights(s2_.vertex(v), ring);
       ++uniform_fallbacks_;
     }
-    triplets.emplace_back(i, i, 1.0);
+    system_.add(i, i, 1.0);
     for (std::size_t j = 0; j < ring.size(); ++j) {
       const auto [p, end] = ordered_ring[i][j];
       if (pieces[p].unknown[end] >= 0)
-        triplets.emplace_back(i, pieces[p].unknown[end], -(*w)[j]);
+        system_.add(i, pieces[p].unknown[end], -(*w)[j]);
       else
-        rhs.row(i) += (*w)[j] * pieces[p].fixed[end].transpose();
+        system_.add_rhs(i, (*w)[j] * pieces[p].fixed[end]);
     }
     if (g_.orientation < 0) {
       std::reverse(ordered_ring[i].begin(), ordered_ring[i].end());
       std::reverse(ring_world[i].begin(), ring_world[i].end());
     }
   }
-  Eigen::SparseMatrix<double> matrix(unknowns, unknowns);
-  matrix.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(matrix);
-  if (lu.info() != Eigen::Success) return refuse("solver");
-  const Eigen::MatrixX2d x = lu.solve(rhs);
-  if (lu.info() != Eigen::Success || !x.allFinite()) return refuse("solver");
+  if (!system_.solve()) return refuse("solver");
 
   // ---- checks ----
   std::vector<Vec2> position(unknown_vertex.size());
   std::vector<DomainPlace> new_place(unknown_vertex.size());
   for (int i = 0; i < unknowns; ++i) {
-    position[i] = x.row(i).transpose();
+    position[i] = system_.solution(i);
     const int side = orient2d(u.pa, u.pb, position[i]);
     if (side == 0) return refuse("node on the shared edge");
     const Index t = side > 0 ? u.t1 : u.t2;

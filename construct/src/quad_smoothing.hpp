@@ -7,7 +7,8 @@
 //     quadrilateral Q is one straight segment in it; the S2 vertex preimages inside T1, T2 or on
 //     e are the unknowns, every point on ∂Q is fixed;
 //  3. solve: each unknown is the convex combination of its S2 neighbours (the other ends of its
-//     segments, in S2's cyclic order) with weights from its star on S2; Eigen's SparseLU;
+//     segments, in S2's cyclic order) with weights from its star on S2; a dense LU for small systems, else Eigen's
+//     SparseLU (convex_combination_system.hpp);
 //  4. check, with exact predicates in the plane: Q is convex, every unknown is strictly inside
 //     Q and off e (by a relative clearance), no two segments meet except at a common end, and
 //     the segments around every unknown keep S2's cyclic order and wind once (no fold-over),
@@ -18,6 +19,7 @@
 //     the S2 edge, linearly along the segment: the map stays linear on it), each unknown goes to
 //     the triangle on its side of e. A refused step changes nothing.
 
+#include "convex_combination_system.hpp"
 #include "preimage_graph.hpp"
 
 #include <plmap/strategies/smoothing/smoothing_weights_registry.hpp>
@@ -48,6 +50,7 @@ class QuadSmoother {
   const Surface<2>& s2_;
   AnySmoothingWeights weights_;
   std::vector<std::vector<Index>> edges_in_element_;  ///< S2 edges with a segment in each S1 triangle
+  ConvexCombinationSystem system_;
   Index uniform_fallbacks_ = 0;
 };
 

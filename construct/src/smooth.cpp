@@ -2,6 +2,7 @@
 
 #include <plmap/construct/smooth.hpp>
 
+#include "convex_combination_system.hpp"
 #include "preimage_graph.hpp"
 #include "quad_smoothing.hpp"
 #include "region_condition.hpp"
@@ -14,8 +15,6 @@
 #include <plmap/strategies/smoothing/uniform_weights.hpp>
 
 #include <Eigen/Geometry>
-#include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -57,8 +56,7 @@ class ElementSmoother {
     for (Index r = rb; r < re; ++r)
       for (Index c : m_.region_corners[r]) ++incidence_[local(c)];
 
-    triplets_.clear();
-    Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
+    system_.reset(unknowns);
     for (Index n = nb; n < ne; ++n) {
       const int i = unknown_[local(n)];
       if (i < 0) continue;
@@ -74,28 +72,17 @@ class ElementSmoother {
         w = UniformWeights{}.weights(map_.node_target_world(n), ring_);
         if (count_nodes) ++report_.uniform_fallback_nodes;
       }
-      triplets_.emplace_back(i, i, 1.0);
+      system_.add(i, i, 1.0);
       for (std::size_t j = 0; j < ring_nodes.size(); ++j) {
         const Index q = ring_nodes[j];
         const int col = unknown_[local(q)];
         if (col >= 0)
-          triplets_.emplace_back(i, col, -(*w)[j]);
+          system_.add(i, col, -(*w)[j]);
         else
-          rhs.row(i) += (*w)[j] * m_.node_position[q].transpose();
+          system_.add_rhs(i, (*w)[j] * m_.node_position[q]);
       }
     }
-    // The matrix is an M-matrix (diagonally dominant, strictly in rows next to a fixed node) but
-    // not symmetric for geometric weights: a sparse LU, not a Cholesky factorization.
-    Eigen::SparseMatrix<double> a(unknowns, unknowns);
-    a.setFromTriplets(triplets_.begin(), triplets_.end());
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-    lu.compute(a);
-    if (lu.info() != Eigen::Success) {
-      out.skipped = "solver";
-      return out;
-    }
-    const Eigen::MatrixX2d x = lu.solve(rhs);
-    if (lu.info() != Eigen::Success || !x.allFinite()) {
+    if (!system_.solve()) {
       out.skipped = "solver";
       return out;
     }
@@ -103,7 +90,7 @@ class ElementSmoother {
     // positions part of the way there: 1/2, 1/4, ... of the move.
     std::vector<LocalPoint<2>> solved(m_.node_position.begin() + nb, m_.node_position.begin() + ne);
     for (Index n = nb; n < ne; ++n)
-      if (unknown_[local(n)] >= 0) solved[local(n)] = x.row(unknown_[local(n)]).transpose();
+      if (unknown_[local(n)] >= 0) solved[local(n)] = system_.solution(unknown_[local(n)]);
     const double worst_before = worst_condition(t, {m_.node_position.begin() + nb, m_.node_position.begin() + ne});
     const double allowed = std::max(worst_before, smoothing::free_condition);
     std::vector<LocalPoint<2>> candidate(solved.size());
@@ -168,7 +155,7 @@ class ElementSmoother {
   const AnySmoothingWeights& weights_;
   SmoothReport& report_;
   std::vector<int> unknown_, incidence_;
-  std::vector<Eigen::Triplet<double>> triplets_;
+  smoothing::ConvexCombinationSystem system_;
   std::vector<Eigen::Vector3d> ring_;
 };
 
