@@ -111,8 +111,12 @@ double ccw_angle(const Vec2& from, const Vec2& to) {
 }  // namespace
 
 QuadSmoother::QuadSmoother(PreimageGraph& graph, const Surface<2>& domain, const Surface<2>& target,
-                           AnySmoothingWeights weights)
+                           AnySmoothingWeights weights, const EdgesInElement* index)
     : g_(graph), s1_(domain), s2_(target), weights_(std::move(weights)) {
+  if (index != nullptr) {
+    edges_in_element_ = *index;
+    return;
+  }
   edges_in_element_.assign(static_cast<std::size_t>(domain.element_count()), {});
   for (Index e = 0; e < target.edge_count(); ++e) index_edge(e);
 }
@@ -133,7 +137,18 @@ bool QuadSmoother::has_quadrilateral(Index e) const {
                                 s1_.local_edge_is_forward(inc[1].element, inc[1].local_edge);
 }
 
-QuadOutcome QuadSmoother::smooth(Index e) {
+QuadOutcome QuadSmoother::smooth(Index e, QuadStepRecord* record) {
+  const Index fallbacks_at_start = uniform_fallbacks_;
+  if (record != nullptr) record->wrote = false;
+  const QuadOutcome out = step(e, record);
+  if (record != nullptr) {
+    record->outcome = out;
+    record->uniform_fallbacks = uniform_fallbacks_ - fallbacks_at_start;
+  }
+  return out;
+}
+
+QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   QuadOutcome out;
   const auto refuse = [&out](const char* why) {
     out = QuadOutcome{};
@@ -392,7 +407,78 @@ QuadOutcome QuadSmoother::smooth(Index e) {
   }
   for (Index t : {u.t1, u.t2}) edges_in_element_[t].clear();
   for (Index te : relevant) index_edge(te);
+  if (record != nullptr) {
+    record->wrote = true;
+    record->places.clear();
+    for (int i = 0; i < unknowns; ++i) record->places.emplace_back(unknown_vertex[i], new_place[i]);
+    record->relevant = relevant;
+    record->cuts.clear();
+    for (std::size_t p = 0; p < pieces.size(); ++p)
+      if (cut[p]) record->cuts.emplace_back(pieces[p].edge, *cut[p]);
+  }
   return out;
+}
+
+void QuadSmoother::replay(Index e, const QuadStepRecord& record) {
+  uniform_fallbacks_ += record.uniform_fallbacks;
+  if (!record.wrote) return;
+  for (const auto& [v, place] : record.places) g_.vertex[v] = place;
+  for (Index te : record.relevant) {
+    auto& list = g_.crossings[te];
+    std::erase_if(list, [e](const EdgeCrossing& c) { return c.domain_edge == e; });
+    for (const auto& [cut_edge, crossing] : record.cuts) {
+      if (cut_edge != te) continue;
+      const auto at = std::upper_bound(list.begin(), list.end(), crossing.target_parameter,
+                                       [](double t, const EdgeCrossing& c) { return t < c.target_parameter; });
+      list.insert(at, crossing);
+    }
+  }
+  for (const EdgeIncidence& inc : s1_.edge_elements(e)) edges_in_element_[inc.element].clear();
+  for (Index te : record.relevant) index_edge(te);
+}
+
+QuadPassTally run_quadrilateral_pass(QuadSmoother& smoother, const Surface<2>& domain, const std::vector<char>& frozen,
+                                     const std::vector<QuadStepRecord>* previous, const std::vector<char>* newly_frozen,
+                                     std::vector<QuadStepRecord>& records) {
+  QuadPassTally tally;
+  records.resize(static_cast<std::size_t>(domain.edge_count()));
+  // per S1 triangle: may differ from the previous pass at this point of the pass
+  std::vector<char> changed(static_cast<std::size_t>(domain.element_count()), 0);
+  for (Index e = 0; e < domain.edge_count(); ++e) {
+    const std::size_t ei = static_cast<std::size_t>(e);
+    QuadStepRecord& record = records[ei];
+    record.wrote = false;
+    record.outcome = QuadOutcome{};
+    record.uniform_fallbacks = 0;
+    if (!smoother.has_quadrilateral(e)) continue;
+    const auto inc = domain.edge_elements(e);
+    const std::size_t t1 = static_cast<std::size_t>(inc[0].element), t2 = static_cast<std::size_t>(inc[1].element);
+    if (frozen[ei]) {
+      ++tally.skipped_by_reason["would raise the worst condition number of the rebuilt map"];
+      if (previous != nullptr && (*newly_frozen)[ei] && (*previous)[ei].wrote) changed[t1] = changed[t2] = 1;
+      continue;
+    }
+    QuadOutcome o;
+    if (previous == nullptr || changed[t1] || changed[t2]) {
+      o = smoother.smooth(e, &record);
+      ++tally.solved;
+      if (previous != nullptr) changed[t1] = changed[t2] = 1;
+    } else {
+      smoother.replay(e, (*previous)[ei]);
+      record = (*previous)[ei];
+      o = record.outcome;
+      ++tally.replayed;
+    }
+    if (o.skipped != nullptr) {
+      ++tally.skipped_by_reason[o.skipped];
+      continue;
+    }
+    ++tally.smoothed;
+    tally.nodes_moved += o.nodes_moved;
+    tally.nodes_crossed += o.nodes_crossed;
+    tally.max_displacement = std::max(tally.max_displacement, o.max_displacement);
+  }
+  return tally;
 }
 
 }  // namespace plmap::smoothing

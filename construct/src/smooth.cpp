@@ -223,6 +223,9 @@ std::vector<double> neighbourhood_max(const Surface<2>& s1, const std::vector<do
 /// map is measured, the edges of every element whose worst region got worse than
 /// max(the worst before in it and its neighbours, free_condition) are frozen, and the pass is
 /// redone without them, a few times at most; then the pass is refused.
+/// A redone pass gives the result of a pass from scratch without the frozen edges, but solves
+/// only the steps near the newly frozen edges and replays the others from the previous attempt's
+/// records (run_quadrilateral_pass in quad_smoothing.hpp).
 void smooth_quadrilaterals(PlMap<2>& current, double worst_at_sweep_start, const AnySmoothingWeights& weights,
                            SmoothReport& report, SmoothSweepReport& sweep) {
   constexpr int max_attempts = 8;
@@ -234,36 +237,25 @@ void smooth_quadrilaterals(PlMap<2>& current, double worst_at_sweep_start, const
       std::max(worst_at_sweep_start, *std::max_element(worst_before.begin(), worst_before.end()));
   const double area = image_area(current);
   std::vector<char> frozen(static_cast<std::size_t>(s1.edge_count()), 0);
+  std::string why;
+  const std::optional<smoothing::PreimageGraph> start = smoothing::PreimageGraph::from_map(current, &why);
+  if (!start) {
+    report.quadrilaterals_not_applicable = why;
+    return;
+  }
+  std::optional<smoothing::EdgesInElement> start_index;
+  std::vector<smoothing::QuadStepRecord> previous, records;
+  std::vector<char> newly_frozen(static_cast<std::size_t>(s1.edge_count()), 0);
   for (int attempt = 0; attempt < max_attempts; ++attempt) {
-    SmoothSweepReport pass;
-    std::string why;
-    std::optional<smoothing::PreimageGraph> graph = smoothing::PreimageGraph::from_map(current, &why);
-    if (!graph) {
-      report.quadrilaterals_not_applicable = why;
-      return;
-    }
-    smoothing::QuadSmoother smoother(*graph, s1, current.target(), weights);
-    for (Index e = 0; e < s1.edge_count(); ++e) {
-      if (!smoother.has_quadrilateral(e)) continue;
-      if (frozen[static_cast<std::size_t>(e)]) {
-        ++pass.quadrilaterals_skipped_by_reason["would raise the worst condition number of the rebuilt map"];
-        continue;
-      }
-      const smoothing::QuadOutcome o = smoother.smooth(e);
-      if (o.skipped != nullptr) {
-        ++pass.quadrilaterals_skipped_by_reason[o.skipped];
-        continue;
-      }
-      ++pass.quadrilaterals_smoothed;
-      pass.quad_nodes_moved += o.nodes_moved;
-      pass.nodes_crossed += o.nodes_crossed;
-      pass.quad_max_displacement = std::max(pass.quad_max_displacement, o.max_displacement);
-    }
-    pass.quad_uniform_fallbacks = smoother.uniform_fallbacks();
+    smoothing::PreimageGraph graph = *start;
+    smoothing::QuadSmoother smoother(graph, s1, current.target(), weights, start_index ? &*start_index : nullptr);
+    if (!start_index) start_index = smoother.edges_in_element();
+    const smoothing::QuadPassTally pass = smoothing::run_quadrilateral_pass(
+        smoother, s1, frozen, attempt == 0 ? nullptr : &previous, &newly_frozen, records);
     std::optional<PlMap<2>> rebuilt;
     try {
       FinalizeReport built;
-      PlMap<2> map = graph->to_map(current.domain_ptr(), current.target_ptr(), &built);
+      PlMap<2> map = graph.to_map(current.domain_ptr(), current.target_ptr(), &built);
       // The same coverage of S2, up to rounding: guards against a map the graph form cannot hold
       // (e.g. an S2 edge whose preimage leaves D between two vertex preimages).
       if (built.reversed_faces == 0 && built.dropped_edges.empty() && map.region_count() > 0 &&
@@ -278,14 +270,16 @@ void smooth_quadrilaterals(PlMap<2>& current, double worst_at_sweep_start, const
     }
     const std::vector<double> worst = smoothing::worst_condition_per_element(*rebuilt);
     bool raised = false, beyond_repair = false;
+    std::fill(newly_frozen.begin(), newly_frozen.end(), 0);
     for (Index t = 0; t < s1.element_count(); ++t) {
       const std::size_t i = static_cast<std::size_t>(t);
       if (!(worst[i] > std::max(allowed[i], smoothing::free_condition))) continue;
       bool all_frozen = true;
       for (int k = 0; k < 3; ++k) {
-        auto& f = frozen[static_cast<std::size_t>(s1.element_edge(t, k))];
-        all_frozen = all_frozen && f;
-        f = 1;
+        const std::size_t edge = static_cast<std::size_t>(s1.element_edge(t, k));
+        all_frozen = all_frozen && frozen[edge];
+        if (!frozen[edge]) newly_frozen[edge] = 1;
+        frozen[edge] = 1;
       }
       raised = raised || !all_frozen;
       // No step touched t: MapBuilder triangulated its faces differently from the element pass's
@@ -293,13 +287,16 @@ void smooth_quadrilaterals(PlMap<2>& current, double worst_at_sweep_start, const
       if (all_frozen && worst[i] > std::max(global_allowed, smoothing::free_condition)) beyond_repair = true;
     }
     if (beyond_repair) break;
-    if (raised) continue;
-    sweep.quadrilaterals_smoothed = pass.quadrilaterals_smoothed;
-    sweep.quad_nodes_moved = pass.quad_nodes_moved;
+    if (raised) {
+      std::swap(previous, records);
+      continue;
+    }
+    sweep.quadrilaterals_smoothed = pass.smoothed;
+    sweep.quad_nodes_moved = pass.nodes_moved;
     sweep.nodes_crossed = pass.nodes_crossed;
-    sweep.quad_max_displacement = pass.quad_max_displacement;
-    sweep.quad_uniform_fallbacks = pass.quad_uniform_fallbacks;
-    sweep.quadrilaterals_skipped_by_reason = pass.quadrilaterals_skipped_by_reason;
+    sweep.quad_max_displacement = pass.max_displacement;
+    sweep.quad_uniform_fallbacks = smoother.uniform_fallbacks();
+    sweep.quadrilaterals_skipped_by_reason = pass.skipped_by_reason;
     sweep.quadrilateral_attempts = attempt + 1;
     current = std::move(*rebuilt);
     return;
