@@ -34,8 +34,10 @@ struct ElementOutcome {
 
 class ElementSmoother {
  public:
-  ElementSmoother(const PlMap<2>& map, const MapData<2>& m, const AnySmoothingWeights& weights, SmoothReport& report)
-      : map_(map), m_(m), weights_(weights), report_(report) {}
+  /// `worst_now`, if given, is worst_condition_per_element(map) (saves recomputing it per element).
+  ElementSmoother(const PlMap<2>& map, const MapData<2>& m, const AnySmoothingWeights& weights, SmoothReport& report,
+                  const std::vector<double>* worst_now)
+      : map_(map), m_(m), weights_(weights), report_(report), worst_now_(worst_now) {}
 
   ElementOutcome solve(Index t, bool count_nodes) {
     const Index nb = m_.node_begin[t], ne = m_.node_begin[t + 1];
@@ -91,7 +93,14 @@ class ElementSmoother {
     std::vector<LocalPoint<2>> solved(m_.node_position.begin() + nb, m_.node_position.begin() + ne);
     for (Index n = nb; n < ne; ++n)
       if (unknown_[local(n)] >= 0) solved[local(n)] = system_.solution(unknown_[local(n)]);
-    const double worst_before = worst_condition(t, {m_.node_position.begin() + nb, m_.node_position.begin() + ne});
+    // the images of t's region corners do not move: computed once for all the trials below
+    targets_.clear();
+    for (Index r = rb; r < re; ++r)
+      targets_.push_back({smoothing::region_corner_target_world(map_, r, 0), smoothing::region_corner_target_world(map_, r, 1),
+                          smoothing::region_corner_target_world(map_, r, 2)});
+    const double worst_before = worst_now_ != nullptr
+                                    ? (*worst_now_)[static_cast<std::size_t>(t)]
+                                    : worst_condition(t, {m_.node_position.begin() + nb, m_.node_position.begin() + ne});
     const double allowed = std::max(worst_before, smoothing::free_condition);
     std::vector<LocalPoint<2>> candidate(solved.size());
     bool embeds = false;
@@ -133,19 +142,17 @@ class ElementSmoother {
     return true;
   }
 
-  /// The largest κ_Ξ of t's regions with t's nodes at `positions` (their images unchanged):
-  /// exactly what the quality report measures on these regions.
-  double worst_condition(Index t, const std::vector<LocalPoint<2>>& positions) const {
+  /// The largest κ_Ξ of t's regions with t's nodes at `positions` (their images unchanged, in
+  /// targets_): exactly what the quality report measures on these regions.
+  double worst_condition(Index t, const std::vector<LocalPoint<2>>& positions) {
     const Index nb = m_.node_begin[t];
+    world_.resize(positions.size());
+    for (std::size_t i = 0; i < positions.size(); ++i) world_[i] = map_.domain().world_position(t, positions[i]);
     double worst = 1.0;
     for (Index r = m_.region_begin[t]; r < m_.region_begin[t + 1]; ++r) {
       const auto& c = m_.region_corners[r];
-      std::array<Eigen::Vector3d, 3> from, to;
-      for (int k = 0; k < 3; ++k) {
-        from[k] = map_.domain().world_position(t, positions[c[k] - nb]);
-        to[k] = smoothing::region_corner_target_world(map_, r, k);
-      }
-      worst = std::max(worst, smoothing::triangle_condition(from, to));
+      const std::array<Eigen::Vector3d, 3> from = {world_[c[0] - nb], world_[c[1] - nb], world_[c[2] - nb]};
+      worst = std::max(worst, smoothing::triangle_condition(from, targets_[static_cast<std::size_t>(r - m_.region_begin[t])]));
     }
     return worst;
   }
@@ -155,13 +162,16 @@ class ElementSmoother {
   const AnySmoothingWeights& weights_;
   SmoothReport& report_;
   std::vector<int> unknown_, incidence_;
+  const std::vector<double>* worst_now_;
   smoothing::ConvexCombinationSystem system_;
-  std::vector<Eigen::Vector3d> ring_;
+  std::vector<Eigen::Vector3d> ring_, world_;
+  std::vector<std::array<Eigen::Vector3d, 3>> targets_;  ///< per region of the element being solved
 };
 
 /// Writes the kept positions of element t into `out` and recomputes its regions' maps from them,
 /// the images (on each region's S2 element) unchanged.
-void apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>>& positions, MapData<2>& out,
+/// Returns whether a node moved.
+bool apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>>& positions, MapData<2>& out,
                    SmoothSweepReport& sweep) {
   const MapData<2>& old = map.data();
   const Index nb = old.node_begin[t];
@@ -175,7 +185,7 @@ void apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>
     out.node_position[n] = positions[i];
   }
   ++sweep.elements_smoothed;
-  if (!moved_any) return;
+  if (!moved_any) return false;
   for (Index r = old.region_begin[t]; r < old.region_begin[t + 1]; ++r) {
     const auto& c = old.region_corners[r];
     std::array<LocalPoint<2>, 3> from, to;
@@ -187,6 +197,7 @@ void apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>
     }
     out.region_map[r] = affine_through<2>(from, to);
   }
+  return true;
 }
 
 /// Total area of the region images on S2: smoothing re-places preimages, so it must not change.
@@ -216,7 +227,7 @@ std::vector<double> neighbourhood_max(const Surface<2>& s1, const std::vector<do
   return out;
 }
 
-/// The quadrilateral pass of one sweep: every S1 edge with two triangles, in index order, each
+/// The quadrilateral pass of one sweep (`worst_before`: worst_condition_per_element(current)): every S1 edge with two triangles, in index order, each
 /// step seeing the previous ones; then the map is rebuilt from the edited graph. Each step's own
 /// κ guard sees the spoke triangles, not the regions MapBuilder makes of the edited graph (it
 /// triangulates faces that include fixed points on the quadrilateral's boundary); so the rebuilt
@@ -226,11 +237,10 @@ std::vector<double> neighbourhood_max(const Surface<2>& s1, const std::vector<do
 /// A redone pass gives the result of a pass from scratch without the frozen edges, but solves
 /// only the steps near the newly frozen edges and replays the others from the previous attempt's
 /// records (run_quadrilateral_pass in quad_smoothing.hpp).
-void smooth_quadrilaterals(PlMap<2>& current, double worst_at_sweep_start, const AnySmoothingWeights& weights,
-                           SmoothReport& report, SmoothSweepReport& sweep) {
+void smooth_quadrilaterals(PlMap<2>& current, const std::vector<double>& worst_before, double worst_at_sweep_start,
+                           const AnySmoothingWeights& weights, SmoothReport& report, SmoothSweepReport& sweep) {
   constexpr int max_attempts = 8;
   const Surface<2>& s1 = current.domain();
-  const std::vector<double> worst_before = smoothing::worst_condition_per_element(current);
   const std::vector<double> allowed = neighbourhood_max(s1, worst_before);
   // the sweep's guarantee is against the map before its element pass, which only lowers κ
   const double global_allowed =
@@ -319,10 +329,13 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
   for (int s = 1; s <= options.sweeps; ++s) {
     report_progress(options.progress, "smoothing sweeps", static_cast<std::uint64_t>(s - 1), static_cast<std::uint64_t>(options.sweeps));
     SmoothSweepReport sweep;
-    const double worst_at_sweep_start =
-        options.quadrilaterals ? std::ranges::max(smoothing::worst_condition_per_element(current)) : 1.0;
+    // per element, its worst κ: the element pass's guard, then (updated where it moved nodes)
+    // the quadrilateral pass's
+    std::vector<double> worst = smoothing::worst_condition_per_element(current);
+    const double worst_at_sweep_start = std::ranges::max(worst);
+    std::vector<Index> moved;
     MapData<2> next = current.data();
-    ElementSmoother smoother(current, current.data(), weights, report);
+    ElementSmoother smoother(current, current.data(), weights, report, &worst);
     report.skipped_elements.clear();
     for (Index t = 0; t < (options.elements ? elements : 0); ++t) {
       ElementOutcome outcome = smoother.solve(t, s == 1);
@@ -332,10 +345,11 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
         continue;
       }
       if (outcome.shortened) ++sweep.elements_shortened;
-      if (!outcome.positions.empty()) apply_outcome(current, t, outcome.positions, next, sweep);
+      if (!outcome.positions.empty() && apply_outcome(current, t, outcome.positions, next, sweep)) moved.push_back(t);
     }
     current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next));
-    if (options.quadrilaterals) smooth_quadrilaterals(current, worst_at_sweep_start, weights, report, sweep);
+    for (Index t : moved) worst[static_cast<std::size_t>(t)] = smoothing::worst_condition_of_element(current, t);
+    if (options.quadrilaterals) smooth_quadrilaterals(current, worst, worst_at_sweep_start, weights, report, sweep);
     if (options.measure_kappa) sweep.kappa = options.measure_kappa(current);
     report.sweeps.push_back(sweep);
     if (options.after_sweep) options.after_sweep(s, current);
