@@ -112,7 +112,12 @@ double ccw_angle(const Vec2& from, const Vec2& to) {
 
 QuadSmoother::QuadSmoother(PreimageGraph& graph, const Surface<2>& domain, const Surface<2>& target,
                            AnySmoothingWeights weights, const EdgesInElement* index)
-    : g_(graph), s1_(domain), s2_(target), weights_(std::move(weights)) {
+    : g_(graph),
+      s1_(domain),
+      s2_(target),
+      weights_(std::move(weights)),
+      unknown_index_(static_cast<std::size_t>(target.vertex_count()), -1),
+      edge_seen_(static_cast<std::size_t>(target.edge_count()), 0) {
   if (index != nullptr) {
     edges_in_element_ = *index;
     return;
@@ -192,21 +197,29 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   // ---- merge: the pieces of S2 edges in the quadrilateral, and the unknowns ----
   // The step's working vectors live per thread: one sweep runs a step per S1 edge, and
   // allocating them per step was a tenth of the smoothing.
-  thread_local std::vector<Index> relevant;
-  relevant.assign(edges_in_element_[u.t1].begin(), edges_in_element_[u.t1].end());
-  for (Index x : edges_in_element_[u.t2])
-    if (std::find(relevant.begin(), relevant.end(), x) == relevant.end()) relevant.push_back(x);
+  // Members, not locals: the per-vertex and per-edge marks of the previous step are cleared
+  // through them (a late coarse quadrilateral has hundreds of unknowns and S2 edges, so looking
+  // them up by a linear search was quadratic).
+  for (Index x : relevant_) edge_seen_[static_cast<std::size_t>(x)] = 0;
+  for (Index v : unknown_vertex_) unknown_index_[static_cast<std::size_t>(v)] = -1;
+  std::vector<Index>& relevant = relevant_;
+  relevant.clear();
+  for (Index t : {u.t1, u.t2})
+    for (Index x : edges_in_element_[t])
+      if (!edge_seen_[static_cast<std::size_t>(x)]) edge_seen_[static_cast<std::size_t>(x)] = 1, relevant.push_back(x);
   const auto movable = [&](const DomainPlace& p) {
     return (p.kind == DomainPlace::Kind::element && (p.where == u.t1 || p.where == u.t2)) ||
            (p.kind == DomainPlace::Kind::edge && p.where == e);
   };
-  thread_local std::vector<Index> unknown_vertex;  // S2 vertex of each unknown
+  std::vector<Index>& unknown_vertex = unknown_vertex_;  // S2 vertex of each unknown
   unknown_vertex.clear();
   const auto unknown_of = [&](Index v) {
-    const auto it = std::find(unknown_vertex.begin(), unknown_vertex.end(), v);
-    if (it != unknown_vertex.end()) return static_cast<int>(it - unknown_vertex.begin());
-    unknown_vertex.push_back(v);
-    return static_cast<int>(unknown_vertex.size()) - 1;
+    int& index = unknown_index_[static_cast<std::size_t>(v)];
+    if (index < 0) {
+      index = static_cast<int>(unknown_vertex.size());
+      unknown_vertex.push_back(v);
+    }
+    return index;
   };
   thread_local std::vector<Piece> pieces;
   pieces.clear();
