@@ -456,7 +456,8 @@ QuadPassTally run_quadrilateral_pass(QuadSmoother& smoother, const Surface<2>& d
   QuadPassTally tally;
   records.resize(static_cast<std::size_t>(domain.edge_count()));
   // per S1 triangle: may differ from the previous pass at this point of the pass
-  std::vector<char> changed(static_cast<std::size_t>(domain.element_count()), 0);
+  std::vector<char>& changed = tally.changed;
+  changed.assign(static_cast<std::size_t>(domain.element_count()), 0);
   for (Index e = 0; e < domain.edge_count(); ++e) {
     const std::size_t ei = static_cast<std::size_t>(e);
     QuadStepRecord& record = records[ei];

@@ -93,6 +93,9 @@ struct QuadPassTally {
   std::map<std::string, Index> skipped_by_reason;
   Index solved = 0;    ///< steps solved
   Index replayed = 0;  ///< steps replayed from the previous pass's records
+  /// With previous records: per S1 triangle, 1 if its part of the graph may differ from the
+  /// previous pass's result (elsewhere it is the same, bit for bit).
+  std::vector<char> changed;
 };
 
 /// One pass: the step of every S1 edge with a quadrilateral, in index order, each seeing the

@@ -256,6 +256,8 @@ void smooth_quadrilaterals(PlMap<2>& current, const std::vector<double>& worst_b
   std::optional<smoothing::EdgesInElement> start_index;
   std::vector<smoothing::QuadStepRecord> previous, records;
   std::vector<char> newly_frozen(static_cast<std::size_t>(s1.edge_count()), 0);
+  std::vector<double> worst;  // per element, of the rebuilt map of the last run
+  std::optional<PlMap<2>> last_rebuilt;
   for (int attempt = 0; attempt < max_attempts; ++attempt) {
     smoothing::PreimageGraph graph = *start;
     smoothing::QuadSmoother smoother(graph, s1, current.target(), weights, start_index ? &*start_index : nullptr);
@@ -263,7 +265,12 @@ void smooth_quadrilaterals(PlMap<2>& current, const std::vector<double>& worst_b
     const smoothing::QuadPassTally pass = smoothing::run_quadrilateral_pass(
         smoother, s1, frozen, attempt == 0 ? nullptr : &previous, &newly_frozen, records);
     std::optional<PlMap<2>> rebuilt;
-    try {
+    // the same graph as the last run (its newly frozen edges had all refused): the same map
+    const bool reused = attempt > 0 && std::ranges::none_of(pass.changed, [](char c) { return c != 0; });
+    if (reused) {
+      rebuilt = std::move(last_rebuilt);
+      last_rebuilt.reset();
+    } else try {
       FinalizeReport built;
       PlMap<2> map = graph.to_map(current.domain_ptr(), current.target_ptr(), &built);
       // The same coverage of S2, up to rounding: guards against a map the graph form cannot hold
@@ -278,7 +285,14 @@ void smooth_quadrilaterals(PlMap<2>& current, const std::vector<double>& worst_b
       sweep.quadrilateral_pass_rejected = true;
       return;
     }
-    const std::vector<double> worst = smoothing::worst_condition_per_element(*rebuilt);
+    // MapBuilder closes each element from its own part of the graph, so where that part is the
+    // previous run's (pass.changed), so are the regions and their κ
+    if (attempt == 0) {
+      worst = smoothing::worst_condition_per_element(*rebuilt);
+    } else if (!reused) {
+      for (Index t = 0; t < s1.element_count(); ++t)
+        if (pass.changed[static_cast<std::size_t>(t)]) worst[static_cast<std::size_t>(t)] = smoothing::worst_condition_of_element(*rebuilt, t);
+    }
     bool raised = false, beyond_repair = false;
     std::fill(newly_frozen.begin(), newly_frozen.end(), 0);
     for (Index t = 0; t < s1.element_count(); ++t) {
@@ -299,6 +313,7 @@ void smooth_quadrilaterals(PlMap<2>& current, const std::vector<double>& worst_b
     if (beyond_repair) break;
     if (raised) {
       std::swap(previous, records);
+      last_rebuilt = std::move(rebuilt);
       continue;
     }
     sweep.quadrilaterals_smoothed = pass.smoothed;
