@@ -102,9 +102,11 @@ RC_GTEST_PROP(QuadrilateralPassReplay, RepeatedPassEqualsAPassFromScratch, ()) {
   FinalizeReport built;
   const PlMap<2> first_map = first.to_map(s.map.domain_ptr(), s.map.target_ptr(), &built);
   const PlMap<2> repeated_map = replayed.to_map(s.map.domain_ptr(), s.map.target_ptr(), &built);
-  for (Index t = 0; t < s1.element_count(); ++t)
-    if (!repeated.changed[static_cast<std::size_t>(t)])
+  for (Index t = 0; t < s1.element_count(); ++t) {
+    if (!repeated.changed[static_cast<std::size_t>(t)]) {
       RC_ASSERT(smoothing::worst_condition_of_element(first_map, t) == smoothing::worst_condition_of_element(repeated_map, t));
+    }
+  }
   // and the records it leaves serve the next repetition just as well
   for (std::size_t e = 0; e < edges; ++e) {
     RC_ASSERT(replay_records[e].wrote == scratch_records[e].wrote);
