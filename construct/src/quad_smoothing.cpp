@@ -126,6 +126,25 @@ QuadSmoother::QuadSmoother(PreimageGraph& graph, const Surface<2>& domain, const
   for (Index e = 0; e < target.edge_count(); ++e) index_edge(e);
 }
 
+void QuadSmoother::reindex_quadrilateral(Index t1, Index t2, const std::vector<Index>& relevant) {
+  // A step changes the graph only inside T1 ∪ T2, so only their lists can change; the S2 edges
+  // with a segment there are among `relevant`, and appending them in its order gives the lists
+  // index_edge would give.
+  edges_in_element_[t1].clear();
+  edges_in_element_[t2].clear();
+  for (Index te : relevant) {
+    const std::size_t n = polyline_size(g_, te);
+    bool in1 = false, in2 = false;
+    for (std::size_t i = 0; i + 1 < n && !(in1 && in2); ++i) {
+      const Index t = common_element(s1_, polyline_point(g_, s2_, te, i), polyline_point(g_, s2_, te, i + 1), nullptr);
+      in1 = in1 || t == t1;
+      in2 = in2 || t == t2;
+    }
+    if (in1) edges_in_element_[t1].push_back(te);
+    if (in2) edges_in_element_[t2].push_back(te);
+  }
+}
+
 void QuadSmoother::index_edge(Index target_edge) {
   const std::size_t n = polyline_size(g_, target_edge);
   for (std::size_t i = 0; i + 1 < n; ++i) {
@@ -418,8 +437,7 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     list.erase(first, first + static_cast<std::ptrdiff_t>(pieces[p].last - pieces[p].first - 1));
     if (cut[p]) list.insert(list.begin() + static_cast<std::ptrdiff_t>(pieces[p].first), *cut[p]);
   }
-  for (Index t : {u.t1, u.t2}) edges_in_element_[t].clear();
-  for (Index te : relevant) index_edge(te);
+  reindex_quadrilateral(u.t1, u.t2, relevant);
   if (record != nullptr) {
     record->wrote = true;
     record->places.clear();
@@ -446,8 +464,8 @@ void QuadSmoother::replay(Index e, const QuadStepRecord& record) {
       list.insert(at, crossing);
     }
   }
-  for (const EdgeIncidence& inc : s1_.edge_elements(e)) edges_in_element_[inc.element].clear();
-  for (Index te : record.relevant) index_edge(te);
+  const auto inc = s1_.edge_elements(e);
+  reindex_quadrilateral(inc[0].element, inc[1].element, record.relevant);
 }
 
 QuadPassTally run_quadrilateral_pass(QuadSmoother& smoother, const Surface<2>& domain, const std::vector<char>& frozen,

@@ -74,6 +74,7 @@ class QuadSmoother {
  private:
   QuadOutcome step(Index e, QuadStepRecord* record);
   void index_edge(Index target_edge);
+  void reindex_quadrilateral(Index t1, Index t2, const std::vector<Index>& relevant);
   PreimageGraph& g_;
   const Surface<2>& s1_;
   const Surface<2>& s2_;
