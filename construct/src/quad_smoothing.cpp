@@ -8,8 +8,6 @@
 #include <plmap/strategies/smoothing/uniform_weights.hpp>
 
 #include <Eigen/LU>
-#include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 
 #include <algorithm>
 #include <cmath>
@@ -113,10 +111,38 @@ double ccw_angle(const Vec2& from, const Vec2& to) {
 }  // namespace
 
 QuadSmoother::QuadSmoother(PreimageGraph& graph, const Surface<2>& domain, const Surface<2>& target,
-                           AnySmoothingWeights weights)
-    : g_(graph), s1_(domain), s2_(target), weights_(std::move(weights)) {
+                           AnySmoothingWeights weights, const EdgesInElement* index)
+    : g_(graph),
+      s1_(domain),
+      s2_(target),
+      weights_(std::move(weights)),
+      unknown_index_(static_cast<std::size_t>(target.vertex_count()), -1),
+      edge_seen_(static_cast<std::size_t>(target.edge_count()), 0) {
+  if (index != nullptr) {
+    edges_in_element_ = *index;
+    return;
+  }
   edges_in_element_.assign(static_cast<std::size_t>(domain.element_count()), {});
   for (Index e = 0; e < target.edge_count(); ++e) index_edge(e);
+}
+
+void QuadSmoother::reindex_quadrilateral(Index t1, Index t2, const std::vector<Index>& relevant) {
+  // A step changes the graph only inside T1 ∪ T2, so only their lists can change; the S2 edges
+  // with a segment there are among `relevant`, and appending them in its order gives the lists
+  // index_edge would give.
+  edges_in_element_[t1].clear();
+  edges_in_element_[t2].clear();
+  for (Index te : relevant) {
+    const std::size_t n = polyline_size(g_, te);
+    bool in1 = false, in2 = false;
+    for (std::size_t i = 0; i + 1 < n && !(in1 && in2); ++i) {
+      const Index t = common_element(s1_, polyline_point(g_, s2_, te, i), polyline_point(g_, s2_, te, i + 1), nullptr);
+      in1 = in1 || t == t1;
+      in2 = in2 || t == t2;
+    }
+    if (in1) edges_in_element_[t1].push_back(te);
+    if (in2) edges_in_element_[t2].push_back(te);
+  }
 }
 
 void QuadSmoother::index_edge(Index target_edge) {
@@ -135,7 +161,18 @@ bool QuadSmoother::has_quadrilateral(Index e) const {
                                 s1_.local_edge_is_forward(inc[1].element, inc[1].local_edge);
 }
 
-QuadOutcome QuadSmoother::smooth(Index e) {
+QuadOutcome QuadSmoother::smooth(Index e, QuadStepRecord* record) {
+  const Index fallbacks_at_start = uniform_fallbacks_;
+  if (record != nullptr) record->wrote = false;
+  const QuadOutcome out = step(e, record);
+  if (record != nullptr) {
+    record->outcome = out;
+    record->uniform_fallbacks = uniform_fallbacks_ - fallbacks_at_start;
+  }
+  return out;
+}
+
+QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   QuadOutcome out;
   const auto refuse = [&out](const char* why) {
     out = QuadOutcome{};
@@ -179,21 +216,29 @@ QuadOutcome QuadSmoother::smooth(Index e) {
   // ---- merge: the pieces of S2 edges in the quadrilateral, and the unknowns ----
   // The step's working vectors live per thread: one sweep runs a step per S1 edge, and
   // allocating them per step was a tenth of the smoothing.
-  thread_local std::vector<Index> relevant;
-  relevant.assign(edges_in_element_[u.t1].begin(), edges_in_element_[u.t1].end());
-  for (Index x : edges_in_element_[u.t2])
-    if (std::find(relevant.begin(), relevant.end(), x) == relevant.end()) relevant.push_back(x);
+  // Members, not locals: the per-vertex and per-edge marks of the previous step are cleared
+  // through them (a late coarse quadrilateral has hundreds of unknowns and S2 edges, so looking
+  // them up by a linear search was quadratic).
+  for (Index x : relevant_) edge_seen_[static_cast<std::size_t>(x)] = 0;
+  for (Index v : unknown_vertex_) unknown_index_[static_cast<std::size_t>(v)] = -1;
+  std::vector<Index>& relevant = relevant_;
+  relevant.clear();
+  for (Index t : {u.t1, u.t2})
+    for (Index x : edges_in_element_[t])
+      if (!edge_seen_[static_cast<std::size_t>(x)]) edge_seen_[static_cast<std::size_t>(x)] = 1, relevant.push_back(x);
   const auto movable = [&](const DomainPlace& p) {
     return (p.kind == DomainPlace::Kind::element && (p.where == u.t1 || p.where == u.t2)) ||
            (p.kind == DomainPlace::Kind::edge && p.where == e);
   };
-  thread_local std::vector<Index> unknown_vertex;  // S2 vertex of each unknown
+  std::vector<Index>& unknown_vertex = unknown_vertex_;  // S2 vertex of each unknown
   unknown_vertex.clear();
   const auto unknown_of = [&](Index v) {
-    const auto it = std::find(unknown_vertex.begin(), unknown_vertex.end(), v);
-    if (it != unknown_vertex.end()) return static_cast<int>(it - unknown_vertex.begin());
-    unknown_vertex.push_back(v);
-    return static_cast<int>(unknown_vertex.size()) - 1;
+    int& index = unknown_index_[static_cast<std::size_t>(v)];
+    if (index < 0) {
+      index = static_cast<int>(unknown_vertex.size());
+      unknown_vertex.push_back(v);
+    }
+    return index;
   };
   thread_local std::vector<Piece> pieces;
   pieces.clear();
@@ -250,9 +295,7 @@ QuadOutcome QuadSmoother::smooth(Index e) {
   for (int p = 0; p < static_cast<int>(pieces.size()); ++p)
     for (int end = 0; end < 2; ++end)
       if (pieces[p].unknown[end] >= 0) ring_of[pieces[p].unknown[end]].push_back({p, 1 - end});
-  thread_local std::vector<Eigen::Triplet<double>> triplets;
-  triplets.clear();
-  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
+  system_.reset(unknowns);
   for (int i = 0; i < unknowns; ++i) {
     const Index v = unknown_vertex[i];
     // S2's cyclic order of v's neighbours: next(x) = y for each S2 triangle (v, x, y)
@@ -288,32 +331,26 @@ QuadOutcome QuadSmoother::smooth(Index e) {
       w = UniformWeights{}.weights(s2_.vertex(v), ring);
       ++uniform_fallbacks_;
     }
-    triplets.emplace_back(i, i, 1.0);
+    system_.add(i, i, 1.0);
     for (std::size_t j = 0; j < ring.size(); ++j) {
       const auto [p, end] = ordered_ring[i][j];
       if (pieces[p].unknown[end] >= 0)
-        triplets.emplace_back(i, pieces[p].unknown[end], -(*w)[j]);
+        system_.add(i, pieces[p].unknown[end], -(*w)[j]);
       else
-        rhs.row(i) += (*w)[j] * pieces[p].fixed[end].transpose();
+        system_.add_rhs(i, (*w)[j] * pieces[p].fixed[end]);
     }
     if (g_.orientation < 0) {
       std::reverse(ordered_ring[i].begin(), ordered_ring[i].end());
       std::reverse(ring_world[i].begin(), ring_world[i].end());
     }
   }
-  Eigen::SparseMatrix<double> matrix(unknowns, unknowns);
-  matrix.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(matrix);
-  if (lu.info() != Eigen::Success) return refuse("solver");
-  const Eigen::MatrixX2d x = lu.solve(rhs);
-  if (lu.info() != Eigen::Success || !x.allFinite()) return refuse("solver");
+  if (!system_.solve()) return refuse("solver");
 
   // ---- checks ----
   std::vector<Vec2> position(unknown_vertex.size());
   std::vector<DomainPlace> new_place(unknown_vertex.size());
   for (int i = 0; i < unknowns; ++i) {
-    position[i] = x.row(i).transpose();
+    position[i] = system_.solution(i);
     const int side = orient2d(u.pa, u.pb, position[i]);
     if (side == 0) return refuse("node on the shared edge");
     const Index t = side > 0 ? u.t1 : u.t2;
@@ -400,9 +437,80 @@ QuadOutcome QuadSmoother::smooth(Index e) {
     list.erase(first, first + static_cast<std::ptrdiff_t>(pieces[p].last - pieces[p].first - 1));
     if (cut[p]) list.insert(list.begin() + static_cast<std::ptrdiff_t>(pieces[p].first), *cut[p]);
   }
-  for (Index t : {u.t1, u.t2}) edges_in_element_[t].clear();
-  for (Index te : relevant) index_edge(te);
+  reindex_quadrilateral(u.t1, u.t2, relevant);
+  if (record != nullptr) {
+    record->wrote = true;
+    record->places.clear();
+    for (int i = 0; i < unknowns; ++i) record->places.emplace_back(unknown_vertex[i], new_place[i]);
+    record->relevant = relevant;
+    record->cuts.clear();
+    for (std::size_t p = 0; p < pieces.size(); ++p)
+      if (cut[p]) record->cuts.emplace_back(pieces[p].edge, *cut[p]);
+  }
   return out;
+}
+
+void QuadSmoother::replay(Index e, const QuadStepRecord& record) {
+  uniform_fallbacks_ += record.uniform_fallbacks;
+  if (!record.wrote) return;
+  for (const auto& [v, place] : record.places) g_.vertex[v] = place;
+  for (Index te : record.relevant) {
+    auto& list = g_.crossings[te];
+    std::erase_if(list, [e](const EdgeCrossing& c) { return c.domain_edge == e; });
+    for (const auto& [cut_edge, crossing] : record.cuts) {
+      if (cut_edge != te) continue;
+      const auto at = std::upper_bound(list.begin(), list.end(), crossing.target_parameter,
+                                       [](double t, const EdgeCrossing& c) { return t < c.target_parameter; });
+      list.insert(at, crossing);
+    }
+  }
+  const auto inc = s1_.edge_elements(e);
+  reindex_quadrilateral(inc[0].element, inc[1].element, record.relevant);
+}
+
+QuadPassTally run_quadrilateral_pass(QuadSmoother& smoother, const Surface<2>& domain, const std::vector<char>& frozen,
+                                     const std::vector<QuadStepRecord>* previous, const std::vector<char>* newly_frozen,
+                                     std::vector<QuadStepRecord>& records) {
+  QuadPassTally tally;
+  records.resize(static_cast<std::size_t>(domain.edge_count()));
+  // per S1 triangle: may differ from the previous pass at this point of the pass
+  std::vector<char>& changed = tally.changed;
+  changed.assign(static_cast<std::size_t>(domain.element_count()), 0);
+  for (Index e = 0; e < domain.edge_count(); ++e) {
+    const std::size_t ei = static_cast<std::size_t>(e);
+    QuadStepRecord& record = records[ei];
+    record.wrote = false;
+    record.outcome = QuadOutcome{};
+    record.uniform_fallbacks = 0;
+    if (!smoother.has_quadrilateral(e)) continue;
+    const auto inc = domain.edge_elements(e);
+    const std::size_t t1 = static_cast<std::size_t>(inc[0].element), t2 = static_cast<std::size_t>(inc[1].element);
+    if (frozen[ei]) {
+      ++tally.skipped_by_reason["would raise the worst condition number of the rebuilt map"];
+      if (previous != nullptr && (*newly_frozen)[ei] && (*previous)[ei].wrote) changed[t1] = changed[t2] = 1;
+      continue;
+    }
+    QuadOutcome o;
+    if (previous == nullptr || changed[t1] || changed[t2]) {
+      o = smoother.smooth(e, &record);
+      ++tally.solved;
+      if (previous != nullptr) changed[t1] = changed[t2] = 1;
+    } else {
+      smoother.replay(e, (*previous)[ei]);
+      record = (*previous)[ei];
+      o = record.outcome;
+      ++tally.replayed;
+    }
+    if (o.skipped != nullptr) {
+      ++tally.skipped_by_reason[o.skipped];
+      continue;
+    }
+    ++tally.smoothed;
+    tally.nodes_moved += o.nodes_moved;
+    tally.nodes_crossed += o.nodes_crossed;
+    tally.max_displacement = std::max(tally.max_displacement, o.max_displacement);
+  }
+  return tally;
 }
 
 }  // namespace plmap::smoothing

@@ -74,13 +74,30 @@ inline double region_condition(const PlMap<2>& map, Index r) {
                              region_corner_target_world(map, r, 2)});
 }
 
+/// The largest κ of the regions of S1 element t (1 for an element without regions): exactly
+/// max(region_condition(map, r)) over them, with each node's world position computed once
+/// instead of once per region corner (a node is a corner of about six regions).
+inline double worst_condition_of_element(const PlMap<2>& map, Index t) {
+  const auto& m = map.data();
+  const Index nb = m.node_begin[t], ne = m.node_begin[t + 1];
+  thread_local std::vector<Eigen::Vector3d> world;
+  world.resize(static_cast<std::size_t>(ne - nb));
+  for (Index n = nb; n < ne; ++n) world[static_cast<std::size_t>(n - nb)] = map.domain().world_position(t, m.node_position[n]);
+  double worst = 1.0;
+  for (Index r = m.region_begin[t]; r < m.region_begin[t + 1]; ++r) {
+    const auto& c = m.region_corners[r];
+    const auto at = [&](int k) { return world[static_cast<std::size_t>(c[k] - nb)]; };
+    worst = std::max(worst, triangle_condition({at(0), at(1), at(2)},
+                                               {region_corner_target_world(map, r, 0), region_corner_target_world(map, r, 1),
+                                                region_corner_target_world(map, r, 2)}));
+  }
+  return worst;
+}
+
 /// Per S1 element, the largest κ of its regions (1 for an element without regions).
 inline std::vector<double> worst_condition_per_element(const PlMap<2>& map) {
-  const auto& m = map.data();
   std::vector<double> worst(static_cast<std::size_t>(map.domain().element_count()), 1.0);
-  for (Index t = 0; t < map.domain().element_count(); ++t)
-    for (Index r = m.region_begin[t]; r < m.region_begin[t + 1]; ++r)
-      worst[static_cast<std::size_t>(t)] = std::max(worst[static_cast<std::size_t>(t)], region_condition(map, r));
+  for (Index t = 0; t < map.domain().element_count(); ++t) worst[static_cast<std::size_t>(t)] = worst_condition_of_element(map, t);
   return worst;
 }
 

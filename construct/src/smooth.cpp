@@ -2,6 +2,7 @@
 
 #include <plmap/construct/smooth.hpp>
 
+#include "convex_combination_system.hpp"
 #include "preimage_graph.hpp"
 #include "quad_smoothing.hpp"
 #include "region_condition.hpp"
@@ -14,8 +15,6 @@
 #include <plmap/strategies/smoothing/uniform_weights.hpp>
 
 #include <Eigen/Geometry>
-#include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -35,8 +34,10 @@ struct ElementOutcome {
 
 class ElementSmoother {
  public:
-  ElementSmoother(const PlMap<2>& map, const MapData<2>& m, const AnySmoothingWeights& weights, SmoothReport& report)
-      : map_(map), m_(m), weights_(weights), report_(report) {}
+  /// `worst_now`, if given, is worst_condition_per_element(map) (saves recomputing it per element).
+  ElementSmoother(const PlMap<2>& map, const MapData<2>& m, const AnySmoothingWeights& weights, SmoothReport& report,
+                  const std::vector<double>* worst_now)
+      : map_(map), m_(m), weights_(weights), report_(report), worst_now_(worst_now) {}
 
   ElementOutcome solve(Index t, bool count_nodes) {
     const Index nb = m_.node_begin[t], ne = m_.node_begin[t + 1];
@@ -57,8 +58,7 @@ class ElementSmoother {
     for (Index r = rb; r < re; ++r)
       for (Index c : m_.region_corners[r]) ++incidence_[local(c)];
 
-    triplets_.clear();
-    Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(unknowns, 2);
+    system_.reset(unknowns);
     for (Index n = nb; n < ne; ++n) {
       const int i = unknown_[local(n)];
       if (i < 0) continue;
@@ -74,28 +74,17 @@ class ElementSmoother {
         w = UniformWeights{}.weights(map_.node_target_world(n), ring_);
         if (count_nodes) ++report_.uniform_fallback_nodes;
       }
-      triplets_.emplace_back(i, i, 1.0);
+      system_.add(i, i, 1.0);
       for (std::size_t j = 0; j < ring_nodes.size(); ++j) {
         const Index q = ring_nodes[j];
         const int col = unknown_[local(q)];
         if (col >= 0)
-          triplets_.emplace_back(i, col, -(*w)[j]);
+          system_.add(i, col, -(*w)[j]);
         else
-          rhs.row(i) += (*w)[j] * m_.node_position[q].transpose();
+          system_.add_rhs(i, (*w)[j] * m_.node_position[q]);
       }
     }
-    // The matrix is an M-matrix (diagonally dominant, strictly in rows next to a fixed node) but
-    // not symmetric for geometric weights: a sparse LU, not a Cholesky factorization.
-    Eigen::SparseMatrix<double> a(unknowns, unknowns);
-    a.setFromTriplets(triplets_.begin(), triplets_.end());
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-    lu.compute(a);
-    if (lu.info() != Eigen::Success) {
-      out.skipped = "solver";
-      return out;
-    }
-    const Eigen::MatrixX2d x = lu.solve(rhs);
-    if (lu.info() != Eigen::Success || !x.allFinite()) {
+    if (!system_.solve()) {
       out.skipped = "solver";
       return out;
     }
@@ -103,8 +92,15 @@ class ElementSmoother {
     // positions part of the way there: 1/2, 1/4, ... of the move.
     std::vector<LocalPoint<2>> solved(m_.node_position.begin() + nb, m_.node_position.begin() + ne);
     for (Index n = nb; n < ne; ++n)
-      if (unknown_[local(n)] >= 0) solved[local(n)] = x.row(unknown_[local(n)]).transpose();
-    const double worst_before = worst_condition(t, {m_.node_position.begin() + nb, m_.node_position.begin() + ne});
+      if (unknown_[local(n)] >= 0) solved[local(n)] = system_.solution(unknown_[local(n)]);
+    // the images of t's region corners do not move: computed once for all the trials below
+    targets_.clear();
+    for (Index r = rb; r < re; ++r)
+      targets_.push_back({smoothing::region_corner_target_world(map_, r, 0), smoothing::region_corner_target_world(map_, r, 1),
+                          smoothing::region_corner_target_world(map_, r, 2)});
+    const double worst_before = worst_now_ != nullptr
+                                    ? (*worst_now_)[static_cast<std::size_t>(t)]
+                                    : worst_condition(t, {m_.node_position.begin() + nb, m_.node_position.begin() + ne});
     const double allowed = std::max(worst_before, smoothing::free_condition);
     std::vector<LocalPoint<2>> candidate(solved.size());
     bool embeds = false;
@@ -146,19 +142,17 @@ class ElementSmoother {
     return true;
   }
 
-  /// The largest κ_Ξ of t's regions with t's nodes at `positions` (their images unchanged):
-  /// exactly what the quality report measures on these regions.
-  double worst_condition(Index t, const std::vector<LocalPoint<2>>& positions) const {
+  /// The largest κ_Ξ of t's regions with t's nodes at `positions` (their images unchanged, in
+  /// targets_): exactly what the quality report measures on these regions.
+  double worst_condition(Index t, const std::vector<LocalPoint<2>>& positions) {
     const Index nb = m_.node_begin[t];
+    world_.resize(positions.size());
+    for (std::size_t i = 0; i < positions.size(); ++i) world_[i] = map_.domain().world_position(t, positions[i]);
     double worst = 1.0;
     for (Index r = m_.region_begin[t]; r < m_.region_begin[t + 1]; ++r) {
       const auto& c = m_.region_corners[r];
-      std::array<Eigen::Vector3d, 3> from, to;
-      for (int k = 0; k < 3; ++k) {
-        from[k] = map_.domain().world_position(t, positions[c[k] - nb]);
-        to[k] = smoothing::region_corner_target_world(map_, r, k);
-      }
-      worst = std::max(worst, smoothing::triangle_condition(from, to));
+      const std::array<Eigen::Vector3d, 3> from = {world_[c[0] - nb], world_[c[1] - nb], world_[c[2] - nb]};
+      worst = std::max(worst, smoothing::triangle_condition(from, targets_[static_cast<std::size_t>(r - m_.region_begin[t])]));
     }
     return worst;
   }
@@ -168,13 +162,16 @@ class ElementSmoother {
   const AnySmoothingWeights& weights_;
   SmoothReport& report_;
   std::vector<int> unknown_, incidence_;
-  std::vector<Eigen::Triplet<double>> triplets_;
-  std::vector<Eigen::Vector3d> ring_;
+  const std::vector<double>* worst_now_;
+  smoothing::ConvexCombinationSystem system_;
+  std::vector<Eigen::Vector3d> ring_, world_;
+  std::vector<std::array<Eigen::Vector3d, 3>> targets_;  ///< per region of the element being solved
 };
 
 /// Writes the kept positions of element t into `out` and recomputes its regions' maps from them,
 /// the images (on each region's S2 element) unchanged.
-void apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>>& positions, MapData<2>& out,
+/// Returns whether a node moved.
+bool apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>>& positions, MapData<2>& out,
                    SmoothSweepReport& sweep) {
   const MapData<2>& old = map.data();
   const Index nb = old.node_begin[t];
@@ -188,7 +185,7 @@ void apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>
     out.node_position[n] = positions[i];
   }
   ++sweep.elements_smoothed;
-  if (!moved_any) return;
+  if (!moved_any) return false;
   for (Index r = old.region_begin[t]; r < old.region_begin[t + 1]; ++r) {
     const auto& c = old.region_corners[r];
     std::array<LocalPoint<2>, 3> from, to;
@@ -200,6 +197,7 @@ void apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>
     }
     out.region_map[r] = affine_through<2>(from, to);
   }
+  return true;
 }
 
 /// Total area of the region images on S2: smoothing re-places preimages, so it must not change.
@@ -229,54 +227,52 @@ std::vector<double> neighbourhood_max(const Surface<2>& s1, const std::vector<do
   return out;
 }
 
-/// The quadrilateral pass of one sweep: every S1 edge with two triangles, in index order, each
+/// The quadrilateral pass of one sweep (`worst_before`: worst_condition_per_element(current)): every S1 edge with two triangles, in index order, each
 /// step seeing the previous ones; then the map is rebuilt from the edited graph. Each step's own
 /// κ guard sees the spoke triangles, not the regions MapBuilder makes of the edited graph (it
 /// triangulates faces that include fixed points on the quadrilateral's boundary); so the rebuilt
 /// map is measured, the edges of every element whose worst region got worse than
 /// max(the worst before in it and its neighbours, free_condition) are frozen, and the pass is
 /// redone without them, a few times at most; then the pass is refused.
-void smooth_quadrilaterals(PlMap<2>& current, double worst_at_sweep_start, const AnySmoothingWeights& weights,
-                           SmoothReport& report, SmoothSweepReport& sweep) {
+/// A redone pass gives the result of a pass from scratch without the frozen edges, but solves
+/// only the steps near the newly frozen edges and replays the others from the previous attempt's
+/// records (run_quadrilateral_pass in quad_smoothing.hpp).
+void smooth_quadrilaterals(PlMap<2>& current, const std::vector<double>& worst_before, double worst_at_sweep_start,
+                           const AnySmoothingWeights& weights, SmoothReport& report, SmoothSweepReport& sweep) {
   constexpr int max_attempts = 8;
   const Surface<2>& s1 = current.domain();
-  const std::vector<double> worst_before = smoothing::worst_condition_per_element(current);
   const std::vector<double> allowed = neighbourhood_max(s1, worst_before);
   // the sweep's guarantee is against the map before its element pass, which only lowers κ
   const double global_allowed =
       std::max(worst_at_sweep_start, *std::max_element(worst_before.begin(), worst_before.end()));
   const double area = image_area(current);
   std::vector<char> frozen(static_cast<std::size_t>(s1.edge_count()), 0);
+  std::string why;
+  const std::optional<smoothing::PreimageGraph> start = smoothing::PreimageGraph::from_map(current, &why);
+  if (!start) {
+    report.quadrilaterals_not_applicable = why;
+    return;
+  }
+  std::optional<smoothing::EdgesInElement> start_index;
+  std::vector<smoothing::QuadStepRecord> previous, records;
+  std::vector<char> newly_frozen(static_cast<std::size_t>(s1.edge_count()), 0);
+  std::vector<double> worst;  // per element, of the rebuilt map of the last run
+  std::optional<PlMap<2>> last_rebuilt;
   for (int attempt = 0; attempt < max_attempts; ++attempt) {
-    SmoothSweepReport pass;
-    std::string why;
-    std::optional<smoothing::PreimageGraph> graph = smoothing::PreimageGraph::from_map(current, &why);
-    if (!graph) {
-      report.quadrilaterals_not_applicable = why;
-      return;
-    }
-    smoothing::QuadSmoother smoother(*graph, s1, current.target(), weights);
-    for (Index e = 0; e < s1.edge_count(); ++e) {
-      if (!smoother.has_quadrilateral(e)) continue;
-      if (frozen[static_cast<std::size_t>(e)]) {
-        ++pass.quadrilaterals_skipped_by_reason["would raise the worst condition number of the rebuilt map"];
-        continue;
-      }
-      const smoothing::QuadOutcome o = smoother.smooth(e);
-      if (o.skipped != nullptr) {
-        ++pass.quadrilaterals_skipped_by_reason[o.skipped];
-        continue;
-      }
-      ++pass.quadrilaterals_smoothed;
-      pass.quad_nodes_moved += o.nodes_moved;
-      pass.nodes_crossed += o.nodes_crossed;
-      pass.quad_max_displacement = std::max(pass.quad_max_displacement, o.max_displacement);
-    }
-    pass.quad_uniform_fallbacks = smoother.uniform_fallbacks();
+    smoothing::PreimageGraph graph = *start;
+    smoothing::QuadSmoother smoother(graph, s1, current.target(), weights, start_index ? &*start_index : nullptr);
+    if (!start_index) start_index = smoother.edges_in_element();
+    const smoothing::QuadPassTally pass = smoothing::run_quadrilateral_pass(
+        smoother, s1, frozen, attempt == 0 ? nullptr : &previous, &newly_frozen, records);
     std::optional<PlMap<2>> rebuilt;
-    try {
+    // the same graph as the last run (its newly frozen edges had all refused): the same map
+    const bool reused = attempt > 0 && std::ranges::none_of(pass.changed, [](char c) { return c != 0; });
+    if (reused) {
+      rebuilt = std::move(last_rebuilt);
+      last_rebuilt.reset();
+    } else try {
       FinalizeReport built;
-      PlMap<2> map = graph->to_map(current.domain_ptr(), current.target_ptr(), &built);
+      PlMap<2> map = graph.to_map(current.domain_ptr(), current.target_ptr(), &built);
       // The same coverage of S2, up to rounding: guards against a map the graph form cannot hold
       // (e.g. an S2 edge whose preimage leaves D between two vertex preimages).
       if (built.reversed_faces == 0 && built.dropped_edges.empty() && map.region_count() > 0 &&
@@ -289,16 +285,25 @@ void smooth_quadrilaterals(PlMap<2>& current, double worst_at_sweep_start, const
       sweep.quadrilateral_pass_rejected = true;
       return;
     }
-    const std::vector<double> worst = smoothing::worst_condition_per_element(*rebuilt);
+    // MapBuilder closes each element from its own part of the graph, so where that part is the
+    // previous run's (pass.changed), so are the regions and their κ
+    if (attempt == 0) {
+      worst = smoothing::worst_condition_per_element(*rebuilt);
+    } else if (!reused) {
+      for (Index t = 0; t < s1.element_count(); ++t)
+        if (pass.changed[static_cast<std::size_t>(t)]) worst[static_cast<std::size_t>(t)] = smoothing::worst_condition_of_element(*rebuilt, t);
+    }
     bool raised = false, beyond_repair = false;
+    std::fill(newly_frozen.begin(), newly_frozen.end(), 0);
     for (Index t = 0; t < s1.element_count(); ++t) {
       const std::size_t i = static_cast<std::size_t>(t);
       if (!(worst[i] > std::max(allowed[i], smoothing::free_condition))) continue;
       bool all_frozen = true;
       for (int k = 0; k < 3; ++k) {
-        auto& f = frozen[static_cast<std::size_t>(s1.element_edge(t, k))];
-        all_frozen = all_frozen && f;
-        f = 1;
+        const std::size_t edge = static_cast<std::size_t>(s1.element_edge(t, k));
+        all_frozen = all_frozen && frozen[edge];
+        if (!frozen[edge]) newly_frozen[edge] = 1;
+        frozen[edge] = 1;
       }
       raised = raised || !all_frozen;
       // No step touched t: MapBuilder triangulated its faces differently from the element pass's
@@ -306,13 +311,17 @@ void smooth_quadrilaterals(PlMap<2>& current, double worst_at_sweep_start, const
       if (all_frozen && worst[i] > std::max(global_allowed, smoothing::free_condition)) beyond_repair = true;
     }
     if (beyond_repair) break;
-    if (raised) continue;
-    sweep.quadrilaterals_smoothed = pass.quadrilaterals_smoothed;
-    sweep.quad_nodes_moved = pass.quad_nodes_moved;
+    if (raised) {
+      std::swap(previous, records);
+      last_rebuilt = std::move(rebuilt);
+      continue;
+    }
+    sweep.quadrilaterals_smoothed = pass.smoothed;
+    sweep.quad_nodes_moved = pass.nodes_moved;
     sweep.nodes_crossed = pass.nodes_crossed;
-    sweep.quad_max_displacement = pass.quad_max_displacement;
-    sweep.quad_uniform_fallbacks = pass.quad_uniform_fallbacks;
-    sweep.quadrilaterals_skipped_by_reason = pass.quadrilaterals_skipped_by_reason;
+    sweep.quad_max_displacement = pass.max_displacement;
+    sweep.quad_uniform_fallbacks = smoother.uniform_fallbacks();
+    sweep.quadrilaterals_skipped_by_reason = pass.skipped_by_reason;
     sweep.quadrilateral_attempts = attempt + 1;
     current = std::move(*rebuilt);
     return;
@@ -335,10 +344,13 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
   for (int s = 1; s <= options.sweeps; ++s) {
     report_progress(options.progress, "smoothing sweeps", static_cast<std::uint64_t>(s - 1), static_cast<std::uint64_t>(options.sweeps));
     SmoothSweepReport sweep;
-    const double worst_at_sweep_start =
-        options.quadrilaterals ? std::ranges::max(smoothing::worst_condition_per_element(current)) : 1.0;
+    // per element, its worst κ: the element pass's guard, then (updated where it moved nodes)
+    // the quadrilateral pass's
+    std::vector<double> worst = smoothing::worst_condition_per_element(current);
+    const double worst_at_sweep_start = std::ranges::max(worst);
+    std::vector<Index> moved;
     MapData<2> next = current.data();
-    ElementSmoother smoother(current, current.data(), weights, report);
+    ElementSmoother smoother(current, current.data(), weights, report, &worst);
     report.skipped_elements.clear();
     for (Index t = 0; t < (options.elements ? elements : 0); ++t) {
       ElementOutcome outcome = smoother.solve(t, s == 1);
@@ -348,10 +360,11 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
         continue;
       }
       if (outcome.shortened) ++sweep.elements_shortened;
-      if (!outcome.positions.empty()) apply_outcome(current, t, outcome.positions, next, sweep);
+      if (!outcome.positions.empty() && apply_outcome(current, t, outcome.positions, next, sweep)) moved.push_back(t);
     }
     current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next));
-    if (options.quadrilaterals) smooth_quadrilaterals(current, worst_at_sweep_start, weights, report, sweep);
+    for (Index t : moved) worst[static_cast<std::size_t>(t)] = smoothing::worst_condition_of_element(current, t);
+    if (options.quadrilaterals) smooth_quadrilaterals(current, worst, worst_at_sweep_start, weights, report, sweep);
     if (options.measure_kappa) sweep.kappa = options.measure_kappa(current);
     report.sweeps.push_back(sweep);
     if (options.after_sweep) options.after_sweep(s, current);

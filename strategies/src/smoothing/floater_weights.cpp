@@ -12,27 +12,30 @@ namespace plmap {
 
 namespace {
 
-/// Floater's geodesic polar map of the star: lengths kept, angles scaled to sum to 2π.
-std::optional<std::vector<Eigen::Vector2d>> flatten_star(const Eigen::Vector3d& center,
-                                                         std::span<const Eigen::Vector3d> ring) {
+/// Floater's geodesic polar map of the star into `flat`: lengths kept, angles scaled to sum to
+/// 2π. False if the star is degenerate. The buffers live per thread: a smoothing sweep asks for
+/// the weights of every free node once per solve, and allocating them was a third of the cost.
+bool flatten_star(const Eigen::Vector3d& center, std::span<const Eigen::Vector3d> ring, std::vector<Eigen::Vector2d>& flat) {
   const std::size_t k = ring.size();
-  std::vector<double> angle(k), length(k);
+  thread_local std::vector<double> angle, length;
+  angle.resize(k);
+  length.resize(k);
   double total = 0.0;
   for (std::size_t j = 0; j < k; ++j) {
     const Eigen::Vector3d a = ring[j] - center, b = ring[(j + 1) % k] - center;
     length[j] = a.norm();
     angle[j] = std::atan2(a.cross(b).norm(), a.dot(b));
-    if (!(length[j] > 0.0) || !(angle[j] > 0.0)) return std::nullopt;
+    if (!(length[j] > 0.0) || !(angle[j] > 0.0)) return false;
     total += angle[j];
   }
   const double scale = 2.0 * std::numbers::pi / total;
-  std::vector<Eigen::Vector2d> flat(k);
+  flat.resize(k);
   double phi = 0.0;
   for (std::size_t j = 0; j < k; ++j) {
     flat[j] = length[j] * Eigen::Vector2d(std::cos(phi), std::sin(phi));
     phi += scale * angle[j];
   }
-  return flat;
+  return true;
 }
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
@@ -43,9 +46,8 @@ std::optional<std::vector<double>> FloaterWeights::weights(const Eigen::Vector3d
                                                            std::span<const Eigen::Vector3d> ring) const {
   const std::size_t k = ring.size();
   if (k < 3) return std::nullopt;
-  const auto flat = flatten_star(center, ring);
-  if (!flat) return std::nullopt;
-  const auto& p = *flat;
+  thread_local std::vector<Eigen::Vector2d> p;
+  if (!flatten_star(center, ring, p)) return std::nullopt;
   std::vector<double> w(k, 0.0);
   for (std::size_t j = 0; j < k; ++j) {
     // The triangle (p_j, p_r, p_{r+1}) that contains the origin: the one whose smallest
