@@ -2,8 +2,10 @@
 // number, in map files too), so building the edges faster must not renumber them: edges in
 // (smaller vertex, larger vertex) order, each edge's incidences in element order. Compared here
 // with the plain definition (one sort of all (a, b, element, local edge) records) on grids,
-// Delaunay triangulations and non-manifold surfaces with fins.
+// Delaunay triangulations and non-manifold surfaces with fins. Duplicate triangles, now found
+// through the edges, must be reported as sorting all triangles reported them.
 
+#include <plmap/core/errors.hpp>
 #include <plmap/core/surface.hpp>
 #include <plmap/verify/generators/random_surfaces.hpp>
 
@@ -11,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -61,6 +64,50 @@ TEST(SurfaceEdgeNumbering, IsTheSortedOrderOfVertexPairsAndElements) {
     expect_edges_by_definition(generators::add_fins(sheet, 3, rng));  // edges of 3+ triangles
     generators::DelaunayOptions delaunay;
     expect_edges_by_definition(generators::delaunay_triangulation(delaunay, rng));
+  }
+}
+
+/// The message of duplicate triangles by its definition: the elements sorted by their sorted
+/// vertex triple (then number), the first two equal neighbours.
+std::string duplicate_message_by_definition(const std::vector<ElementCorners<2>>& elements) {
+  std::vector<std::pair<std::array<Index, 3>, Index>> keys;
+  for (Index t = 0; t < static_cast<Index>(elements.size()); ++t) {
+    auto k = elements[t];
+    std::sort(k.begin(), k.end());
+    keys.push_back({k, t});
+  }
+  std::sort(keys.begin(), keys.end());
+  for (std::size_t i = 1; i < keys.size(); ++i) {
+    if (keys[i].first == keys[i - 1].first) {
+      return "elements " + std::to_string(keys[i - 1].second) + " and " + std::to_string(keys[i].second) +
+             " have the same three vertices";
+    }
+  }
+  return "";
+}
+
+TEST(SurfaceEdgeNumbering, DuplicateTrianglesAreReportedAsBySortingThem) {
+  generators::Rng rng(5);
+  generators::GridOptions grid;
+  grid.cells = 6;
+  const Surface<2> sheet = generators::grid_triangulation(grid, rng);
+  // Copies (in either orientation) of elements of several groups, some twice, appended in an
+  // order that differs from their vertex order.
+  const std::vector<std::vector<Index>> copies = {{40}, {40, 3}, {3, 40, 3}, {17, 5, 30}, {70, 2}};
+  for (const auto& copy : copies) {
+    std::vector<ElementCorners<2>> elements = sheet.elements();
+    for (const Index t : copy) {
+      const ElementCorners<2> e = elements[t];
+      elements.push_back(elements.size() % 2 == 0 ? e : ElementCorners<2>{e[1], e[0], e[2]});
+    }
+    const std::string expected = duplicate_message_by_definition(elements);
+    ASSERT_FALSE(expected.empty());
+    try {
+      const Surface<2> s(sheet.vertices(), elements);
+      ADD_FAILURE() << "duplicate triangles were accepted";
+    } catch (const InvalidSurfaceError& e) {
+      EXPECT_EQ(std::string(e.what()), expected);
+    }
   }
 }
 
