@@ -1,7 +1,6 @@
 #include "plmap/core/io/map_file.hpp"
 
 #include "plmap/core/errors.hpp"
-#include "plmap/core/huge_page_allocator.hpp"
 #include "plmap/core/io/atomic_file.hpp"
 #include "plmap/core/io/map_file_binary.hpp"
 #include "plmap/core/surface_fingerprint.hpp"
@@ -471,15 +470,10 @@ PlMap<d> read_map_body(MapFileReader& r, int orientation) {
 
 /// The whole file in one read: a binary map is a few large arrays, and a text map is parsed
 /// from memory; either way this is the one copy of the bytes (no zero-filling, no stream
-/// buffering). The buffer comes in 2 MiB pages where the system gives them (huge_page_allocator.hpp):
-/// a few hundred page faults instead of tens of thousands for a large map.
-struct ReleaseFileBytes {
-  std::size_t size = 0;
-  void operator()(char* p) const { HugePageAllocator<char>().deallocate(p, size); }
-};
-
+/// buffering). Not in huge pages: on the virtual machines measured (docs/benchmarks.md, "Binary
+/// map files"), first touches of fresh 2 MiB pages cost several times the 4 KiB faults they save.
 struct FileBytes {
-  std::unique_ptr<char[], ReleaseFileBytes> data;
+  std::unique_ptr<char[]> data;
   std::size_t size = 0;
   std::string_view view() const { return {data.get(), size}; }
 };
@@ -496,8 +490,7 @@ FileBytes read_whole_file(const std::filesystem::path& path) {
   in.seekg(0);
   FileBytes bytes;
   bytes.size = static_cast<std::size_t>(size);
-  bytes.data = std::unique_ptr<char[], ReleaseFileBytes>(HugePageAllocator<char>().allocate(bytes.size),
-                                                         ReleaseFileBytes{bytes.size});
+  bytes.data = std::make_unique_for_overwrite<char[]>(bytes.size);
   in.read(bytes.data.get(), size);
   if (in.gcount() != size) throw ParseError(path.string(), "", "read error (the file changed while being read?)");
   return bytes;
