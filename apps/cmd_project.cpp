@@ -3,6 +3,8 @@
 
 #include "cli_common.hpp"
 #include "progress_bar.hpp"
+#include "release_at_exit.hpp"
+#include "surface_pair.hpp"
 
 #include <plmap/construct/project.hpp>
 #include <plmap/core/errors.hpp>
@@ -84,7 +86,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
 
   ProgressBar bar(o.progress);
   options.progress = bar.callback();
-  const ProjectionResult<d> result = project<d>(s1, s2, options);
+  ProjectionResult<d> result = project<d>(s1, s2, options);
   save_map(o.output, result.map, bar.callback());
   bar.finish();
   hint_if_large_text_map(o.output);
@@ -132,14 +134,14 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
                            {"insertion", r.seconds.insertion},
                            {"finalize", r.seconds.finalize}};
   print_result(j, o.json);
+  release_at_exit(std::move(result));
   return exit_code::success;
 }
 
 int run_project(const ProjectCommand& o) {
   check_output_file(o.output, OutputKind::map,
                     {{"S1", o.s1}, {"S2", o.s2}, {"--directions", o.directions_file}});
-  AnySurface a = read_any_surface(o.s1, o.dimension);
-  AnySurface b = read_any_surface(o.s2, o.dimension == 0 ? static_cast<int>(a.index()) + 1 : o.dimension);
+  auto [a, b] = read_surface_pair(o.s1, o.s2, o.dimension);
   if (a.index() != b.index())
     throw Error(fmt::format("{} is a {}-dimensional surface but {} is {}-dimensional", o.s1,
                             a.index() + 1, o.s2, b.index() + 1));

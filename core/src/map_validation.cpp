@@ -1,5 +1,6 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/map_validation.hpp>
+#include <plmap/core/parallel_ranges.hpp>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -109,15 +110,23 @@ void validate_regions(const PlMap<d>& map, Index t) {
 
 }  // namespace
 
+/// Elements per piece of the parallel validation: the pieces depend only on the element count,
+/// and the first defective piece's exception wins (parallel_ranges.hpp), so the element named is
+/// the lowest-numbered defective one for every thread count.
+constexpr std::size_t elements_per_validation_piece = 4096;
+
 template <int d>
-void validate_map_structure(const PlMap<d>& map) {
-  for (Index t = 0; t < map.domain().element_count(); ++t) {
-    validate_nodes(map, t);
-    validate_regions(map, t);
-  }
+void validate_map_structure(const PlMap<d>& map, unsigned threads) {
+  const auto elements = static_cast<std::size_t>(map.domain().element_count());
+  parallel_for_chunks(elements, elements_per_validation_piece, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) {
+      validate_nodes(map, static_cast<Index>(t));
+      validate_regions(map, static_cast<Index>(t));
+    }
+  });
 }
 
-template void validate_map_structure<1>(const PlMap<1>&);
-template void validate_map_structure<2>(const PlMap<2>&);
+template void validate_map_structure<1>(const PlMap<1>&, unsigned);
+template void validate_map_structure<2>(const PlMap<2>&, unsigned);
 
 }  // namespace plmap

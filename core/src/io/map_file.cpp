@@ -470,7 +470,9 @@ PlMap<d> read_map_body(MapFileReader& r, int orientation) {
 
 /// The whole file in one read: a binary map is a few large arrays, and a text map is parsed
 /// from memory; either way this is the one copy of the bytes (no zero-filling, no stream
-/// buffering).
+/// buffering). Not in huge pages: on the virtual machine measured (docs/benchmarks.md, "Binary
+/// map files"), first touches of fresh 2 MiB pages cost more system time than the 4 KiB faults
+/// they save.
 struct FileBytes {
   std::unique_ptr<char[]> data;
   std::size_t size = 0;

@@ -11,12 +11,15 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <span>
+#include <thread>
+#include <type_traits>
 
 namespace plmap {
 namespace {
@@ -225,11 +228,11 @@ void require_finite(const double* values, std::size_t count, std::string_view ar
 /// the whole array so that the reader can confirm its recomputation; if most regions differ,
 /// the array is stored whole.
 template <int d>
-void add_region_maps(const PlMap<d>& map, std::vector<OutArray>& a, nlohmann::json& toc) {
+void add_region_maps(const PlMap<d>& map, std::vector<OutArray>& a, nlohmann::json& toc, unsigned threads) {
   const MapData<d>& m = map.data();
   const std::size_t R = m.region_map.size();
   std::vector<unsigned char> exact(R);
-  parallel_ranges(R, 0, [&](std::size_t begin, std::size_t end) {
+  parallel_ranges(R, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t r = begin; r < end; ++r) {
       const std::optional<AffineMap<d>> derived = binary::derived_region_map(m, map.target(), r);
       exact[r] = derived && std::memcmp(derived->data(), m.region_map[r].data(), sizeof(AffineMap<d>)) == 0;
@@ -245,7 +248,7 @@ void add_region_maps(const PlMap<d>& map, std::vector<OutArray>& a, nlohmann::js
     return;
   }
   toc["region_map"] = {{"derived", true},
-                       {"crc32", binary::crc32_of(m.region_map.data(), R * sizeof(AffineMap<d>))}};
+                       {"crc32", binary::crc32_parallel(m.region_map.data(), R * sizeof(AffineMap<d>), threads)}};
   OutArray values;
   values.name = "region_map_exception";
   values.dtype = "<f8";
@@ -268,7 +271,7 @@ void add_region_maps(const PlMap<d>& map, std::vector<OutArray>& a, nlohmann::js
 }
 
 template <int d>
-std::vector<OutArray> map_arrays(const PlMap<d>& map, nlohmann::json& toc) {
+std::vector<OutArray> map_arrays(const PlMap<d>& map, nlohmann::json& toc, unsigned threads) {
   const MapData<d>& m = map.data();
   const auto T = static_cast<std::uint64_t>(map.domain().element_count());
   const std::uint64_t N = m.node_type.size(), R = m.region_target.size();
@@ -335,7 +338,7 @@ std::vector<OutArray> map_arrays(const PlMap<d>& map, nlohmann::json& toc) {
                           R * (d + 1), [&](auto&& f) { groups.region_neighbors(f); }));
   a.push_back(raw_array("region_target", "<i4", {R}, m.region_target));
   // Eigen stores [A | b] column by column: the file's shape (R, d+1, d) is its columns.
-  add_region_maps(map, a, toc);
+  add_region_maps(map, a, toc, threads);
   a.push_back(local_array("start_region", "region_begin", {T}, m.start_region.data(), T,
                           [&](auto&& f) { groups.start_region(f); }));
   return a;
@@ -349,7 +352,8 @@ std::vector<OutArray> map_arrays(const PlMap<d>& map, nlohmann::json& toc) {
 /// and encoding before it copies or decodes.
 class MapArrayReader {
  public:
-  MapArrayReader(const Container& c, const MapReadOptions& options) : c_(c), options_(options) {}
+  MapArrayReader(const Container& c, const MapReadOptions& options)
+      : c_(c), options_(options), caller_(std::this_thread::get_id()) {}
 
   const InArray& get(const std::string& name, std::initializer_list<std::uint64_t> shape_tail,
                      std::uint64_t rows) {
@@ -360,9 +364,10 @@ class MapArrayReader {
       for (std::uint64_t x : shape_tail) expected += fmt::format(", {}", x);
       c_.fail(a, fmt::format("shape is ({}), expected ({})", fmt::join(a.shape, ", "), expected));
     }
-    if (options_.verify_checksums) c_.verify_checksum(a);
-    done_ += a.bytes;
-    report_progress(options_.progress, "reading map", done_, c_.file_bytes());
+    // The checksums were verified all at once (Container::verify_all_checksums). Progress is
+    // reported from the caller's thread only (progress.hpp): the arrays are read side by side.
+    const std::uint64_t done = done_ += a.bytes;
+    if (std::this_thread::get_id() == caller_) report_progress(options_.progress, "reading map", done, c_.file_bytes());
     return a;
   }
 
@@ -384,8 +389,20 @@ class MapArrayReader {
   template <class T>
   void raw(const InArray& a, std::string_view dtype, std::vector<T>& out) {
     expect(a, dtype, "raw");
-    out.resize(a.bytes / sizeof(T));
-    if (a.bytes != 0) std::memcpy(static_cast<void*>(out.data()), a.data, a.bytes);
+    const std::size_t count = a.bytes / sizeof(T);
+    if constexpr (std::is_trivially_copyable_v<T>) {
+      if (reinterpret_cast<std::uintptr_t>(a.data) % alignof(T) == 0) {
+        // One pass that allocates and copies: resize would zero-fill every page first. (Eigen
+        // vectors are not trivially copyable, but their resize leaves the memory untouched.)
+        const T* first = reinterpret_cast<const T*>(a.data);
+        out.assign(first, first + count);
+        return;
+      }
+    }
+    {
+      out.resize(count);
+      if (a.bytes != 0) std::memcpy(static_cast<void*>(out.data()), a.data, a.bytes);
+    }
   }
 
   /// A begin array, stored raw or as counts.
@@ -459,23 +476,33 @@ class MapArrayReader {
  private:
   const Container& c_;
   const MapReadOptions& options_;
-  std::uint64_t done_ = 0;
+  std::thread::id caller_;
+  std::atomic<std::uint64_t> done_ = 0;
 };
 
 template <int d>
-std::shared_ptr<const Surface<d>> read_surface(const Container& c, MapArrayReader& r, const char* prefix) {
+std::shared_ptr<const Surface<d>> read_surface(const Container& c, MapArrayReader& r, const char* prefix,
+                                               const MapReadOptions& options) {
   const std::string vertices_name = fmt::format("{}_vertices", prefix);
   const std::string elements_name = fmt::format("{}_elements", prefix);
   std::vector<WorldPoint<d>> vertices;
   std::vector<ElementCorners<d>> elements;
   r.raw(r.get(vertices_name, {d + 1}, r.rows(vertices_name)), "<f8", vertices);
   r.raw(r.get(elements_name, {d + 1}, r.rows(elements_name)), "<i4", elements);
+  std::shared_ptr<const Surface<d>> surface;
   try {
-    auto surface = std::make_shared<const Surface<d>>(std::move(vertices), std::move(elements));
-    return surface;
+    surface = std::make_shared<const Surface<d>>(std::move(vertices), std::move(elements));
   } catch (const InvalidSurfaceError& e) {
     throw InvalidSurfaceError(fmt::format("{}: {} surface: {}", c.file(), prefix, e.what()));
   }
+  if (options.verify_checksums) {
+    const auto it = c.toc().find(fmt::format("{}_fingerprint", prefix));
+    if (it == c.toc().end() || !it->is_string() || *it != fingerprint_hex(surface_fingerprint(*surface))) {
+      c.fail(fmt::format("the {} surface does not match the fingerprint in the table of contents "
+                         "(the file is damaged)", prefix));
+    }
+  }
+  return surface;
 }
 
 void check_begin(MapArrayReader& r, const InArray& a, const std::vector<Index>& begin, std::uint64_t size,
@@ -507,7 +534,7 @@ void read_derived_region_maps(const Container& c, MapArrayReader& r, const Surfa
   if (!corners_ok) r.fail(c.array("region_corners"), "a region corner is not a node of the map");
   m.region_map.resize(R);
   std::vector<unsigned char> failed(R, 0);
-  parallel_ranges(R, 0, [&](std::size_t begin, std::size_t end) {
+  parallel_ranges(R, options.threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t q = begin; q < end; ++q) {
       const std::optional<AffineMap<d>> derived = binary::derived_region_map(m, target, q);
       if (derived) {
@@ -535,33 +562,18 @@ void read_derived_region_maps(const Container& c, MapArrayReader& r, const Surfa
     m.region_map[regions[i]] = values[i];
   }
   if (options.verify_checksums &&
-      binary::crc32_of(m.region_map.data(), R * sizeof(AffineMap<d>)) != (*info)["crc32"].get<std::uint64_t>()) {
+      binary::crc32_parallel(m.region_map.data(), R * sizeof(AffineMap<d>), options.threads) !=
+          (*info)["crc32"].get<std::uint64_t>()) {
     c.fail("the region maps recomputed from the nodes differ from the writer's (CRC-32 mismatch): the file "
            "is damaged, or was written on a machine whose floating-point arithmetic differs from this one's");
   }
 }
 
+/// Decodes the map's arrays (everything but the surfaces and the derived region maps) into `m`;
+/// `T` is the number of S1 elements.
 template <int d>
-PlMap<d> read_map(const Container& c, int orientation, const MapReadOptions& options) {
-  MapArrayReader r(c, options);
-  auto domain = read_surface<d>(c, r, "domain");
-  auto target = read_surface<d>(c, r, "target");
-  if (options.verify_checksums) {
-    auto check = [&](const Surface<d>& s, const char* which) {
-      const auto it = c.toc().find(fmt::format("{}_fingerprint", which));
-      if (it == c.toc().end() || !it->is_string() || *it != fingerprint_hex(surface_fingerprint(s))) {
-        c.fail(fmt::format("the {} surface does not match the fingerprint in the table of contents "
-                           "(the file is damaged)", which));
-      }
-    };
-    check(*domain, "domain");
-    check(*target, "target");
-  }
-  const std::uint64_t T = static_cast<std::uint64_t>(domain->element_count());
+void read_map_arrays(const Container& c, MapArrayReader& r, std::uint64_t T, MapData<d>& m) {
   constexpr std::uint64_t D = d;
-
-  MapData<d> m;
-  m.orientation = orientation;
   {
     const InArray& a = r.get("node_begin", {}, r.rows("node_begin"));
     m.node_begin = r.begin_array(a);
@@ -630,19 +642,38 @@ PlMap<d> read_map(const Container& c, int orientation, const MapReadOptions& opt
   r.indices(r.get("region_neighbors", {D + 1}, R), "region_begin", scalars<Index>(m.region_neighbors),
             [&](auto&& f) { groups.region_neighbors(f); });
   r.raw(r.get("region_target", {}, R), "<i4", m.region_target);
-  if (c.has("region_map")) {
-    r.raw(r.get("region_map", {D + 1, D}, R), "<f8", m.region_map);
-  } else {
-    read_derived_region_maps(c, r, *target, m, options);
-  }
+  if (c.has("region_map")) r.raw(r.get("region_map", {D + 1, D}, R), "<f8", m.region_map);
   m.start_region.resize(T);
   r.indices(r.get("start_region", {}, T), "region_begin", m.start_region.data(),
             [&](auto&& f) { groups.start_region(f); });
+}
+
+template <int d>
+PlMap<d> read_map(const Container& c, int orientation, const MapReadOptions& options) {
+  if (options.verify_checksums) c.verify_all_checksums(options.threads);
+  MapArrayReader r(c, options);
+  std::shared_ptr<const Surface<d>> domain, target;
+  MapData<d> m;
+  m.orientation = orientation;
+  // The two surfaces (checks, adjacency, fingerprint) and the map's arrays are independent work,
+  // done side by side. If several are damaged, the error that reaches the caller is the first in
+  // this order (domain, target, arrays), whatever the thread count.
+  const std::uint64_t T = r.rows("domain_elements");
+  parallel_for_pieces_of_size(3, 1, options.threads, [&](std::size_t piece, std::size_t, std::size_t) {
+    if (piece == 0) {
+      domain = read_surface<d>(c, r, "domain", options);
+    } else if (piece == 1) {
+      target = read_surface<d>(c, r, "target", options);
+    } else {
+      read_map_arrays<d>(c, r, T, m);
+    }
+  });
+  if (!c.has("region_map")) read_derived_region_maps(c, r, *target, m, options);
 
   // From here on the checks of a text map: the same constructor and structural validation.
   try {
     PlMap<d> map(std::move(domain), std::move(target), std::move(m));
-    validate_map_structure(map);
+    validate_map_structure(map, options.threads);
     return map;
   } catch (const InvalidMapError& e) {
     throw InvalidMapError(fmt::format("{}: {}", c.file(), e.what()));
@@ -690,8 +721,8 @@ void write_binary_map(std::ostream& out, const PlMap<d>& map, const MapWriteOpti
                         {"orientation", map.data().orientation},
                         {"domain_fingerprint", fingerprint_hex(surface_fingerprint(map.domain()))},
                         {"target_fingerprint", fingerprint_hex(surface_fingerprint(map.target()))}};
-  const std::vector<OutArray> arrays = map_arrays(map, toc);
-  binary::write_container(out, std::move(toc), arrays, options.progress);
+  const std::vector<OutArray> arrays = map_arrays(map, toc, options.threads);
+  binary::write_container(out, std::move(toc), arrays, options.progress, options.threads);
 }
 
 AnyPlMap parse_binary_map(std::string_view content, const std::string& source_name, const MapReadOptions& options) {

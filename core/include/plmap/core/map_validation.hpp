@@ -26,11 +26,13 @@
 namespace plmap {
 
 /// Throws InvalidMapError naming the S1 element (and the node or region) of the first defect
-/// found. Linear in the size of the map; see docs/robustness.md for its cost.
+/// found. Linear in the size of the map; see docs/robustness.md for its cost. The elements are
+/// checked on up to `threads` threads (0: all cores); the defect reported is the one of the
+/// lowest-numbered defective element, whatever the thread count.
 template <int d>
-void validate_map_structure(const PlMap<d>& map);
+void validate_map_structure(const PlMap<d>& map, unsigned threads = 0);
 
-extern template void validate_map_structure<1>(const PlMap<1>&);
-extern template void validate_map_structure<2>(const PlMap<2>&);
+extern template void validate_map_structure<1>(const PlMap<1>&, unsigned);
+extern template void validate_map_structure<2>(const PlMap<2>&, unsigned);
 
 }  // namespace plmap

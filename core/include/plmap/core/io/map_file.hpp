@@ -38,6 +38,9 @@ using AnyPlMap = std::variant<PlMap<1>, PlMap<2>>;
 struct MapWriteOptions {
   /// Called now and then with the bytes written so far (phase "writing map").
   ProgressCallback progress;
+  /// Binary files: threads that compute the checksums and derive the stored arrays (0: all
+  /// cores). The file is the same, byte for byte, for every thread count.
+  unsigned threads = 0;
 };
 
 /// Options of reading a map file (either format).
@@ -48,6 +51,10 @@ struct MapReadOptions {
   /// turns this off, so that its mutations reach the decoders behind the checksums (which must
   /// be safe on their own).
   bool verify_checksums = true;
+  /// Binary files: threads that check, decode and validate the arrays, and build the two
+  /// surfaces side by side (0: all cores). The map, and the error a damaged file gives, are the
+  /// same for every thread count.
+  unsigned threads = 0;
 };
 
 /// Writes the map file to `out`. Throws InvalidMapError if the map holds a non-finite number
