@@ -1,6 +1,7 @@
 #include "map_graph_derivation.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace plmap::detail {
 
@@ -8,24 +9,60 @@ namespace {
 
 bool in_range(Index i, Index begin, Index end) { return i >= begin && i < end; }
 
-/// Whether nodes x and y lie on one edge of S2 element t2: both S2 vertices of t2, a vertex and
-/// an intersection node of an edge through it, or two intersection nodes of one edge. Indices
-/// out of range (a corrupt file) answer false: the element then keeps its stored graph.
-bool on_common_target_edge(const MapData<2>& m, const Surface<2>& target, Index t2, Index x, Index y) {
-  const NodeType tx = m.node_type[x], ty = m.node_type[y];
-  if (tx == NodeType::ghost || ty == NodeType::ghost) return false;
-  const Index gx = m.node_target[x], gy = m.node_target[y];
-  const bool ex = tx == NodeType::intersection, ey = ty == NodeType::intersection;
-  if (!in_range(gx, 0, ex ? target.edge_count() : target.vertex_count()) ||
-      !in_range(gy, 0, ey ? target.edge_count() : target.vertex_count()))
-    return false;
-  if (ex && ey) return gx == gy;
-  if (ex || ey) {
-    const auto ends = target.edge_vertices(ex ? gx : gy);
-    const Index vertex = ex ? gy : gx;
-    return vertex == ends[0] || vertex == ends[1];
+/// The S2 vertex a node maps to (one entry), or the S2 edge it maps into (two entries, smaller
+/// first), or nothing: vertex nodes give their vertex, intersection nodes their edge, ghost
+/// nodes the edge their image lies on when one barycentric weight is exactly zero (the snapping
+/// rule makes it so). Indices out of range (a corrupt file) give nothing: the element then keeps
+/// its stored graph.
+struct Carrier {
+  int size = 0;
+  std::array<Index, 2> vertex{invalid_index, invalid_index};
+};
+
+Carrier carrier_of(const MapData<2>& m, const Surface<2>& target, Index n) {
+  Carrier c;
+  const NodeType type = m.node_type[n];
+  const Index g = m.node_target[n];
+  if (type == NodeType::intersection) {
+    if (!in_range(g, 0, target.edge_count())) return c;
+    c.size = 2;
+    c.vertex = target.edge_vertices(g);
+  } else if (type == NodeType::ghost) {
+    const auto& image = m.node_image[n];
+    if (!in_range(image.element, 0, target.element_count())) return c;
+    const std::array<double, 3> weight{1.0 - image.local(0) - image.local(1), image.local(0), image.local(1)};
+    const auto& corners = target.element(image.element);
+    int zero = -1;
+    for (int j = 0; j < 3; ++j)
+      if (weight[static_cast<std::size_t>(j)] == 0.0) {
+        if (zero >= 0) return c;  // on a vertex: not a ghost node's image
+        zero = j;
+      }
+    if (zero < 0) return c;
+    const Index a = corners[static_cast<std::size_t>((zero + 1) % 3)], b = corners[static_cast<std::size_t>((zero + 2) % 3)];
+    c.size = 2;
+    c.vertex = {std::min(a, b), std::max(a, b)};
+  } else {
+    if (!in_range(g, 0, target.vertex_count())) return c;
+    c.size = 1;
+    c.vertex[0] = g;
   }
-  return gx != gy && target.local_corner(t2, gx) >= 0 && target.local_corner(t2, gy) >= 0;
+  return c;
+}
+
+/// Whether nodes x and y lie on one edge of S2 (whose preimage then contains the side x-y):
+/// two vertices of the region's S2 element t2, a vertex and an edge through it, or one edge.
+bool on_common_target_edge(const MapData<2>& m, const Surface<2>& target, Index t2, Index x, Index y) {
+  const Carrier cx = carrier_of(m, target, x), cy = carrier_of(m, target, y);
+  if (cx.size == 0 || cy.size == 0) return false;
+  if (cx.size == 2 && cy.size == 2) return cx.vertex == cy.vertex;
+  if (cx.size == 2 || cy.size == 2) {
+    const Carrier& edge = cx.size == 2 ? cx : cy;
+    const Index vertex = cx.size == 2 ? cy.vertex[0] : cx.vertex[0];
+    return vertex == edge.vertex[0] || vertex == edge.vertex[1];
+  }
+  return cx.vertex[0] != cy.vertex[0] && target.local_corner(t2, cx.vertex[0]) >= 0 &&
+         target.local_corner(t2, cy.vertex[0]) >= 0;
 }
 
 }  // namespace

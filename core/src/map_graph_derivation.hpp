@@ -42,7 +42,8 @@ bool derive_region_neighbors(const MapData<2>& m, Index t, std::span<std::array<
 /// `region_neighbors` are element t's (from derive_region_neighbors).
 /// A side is the preimage of an S2 edge if the regions on its two sides map into different S2
 /// elements, or, with no region across, if its two nodes lie on one edge of S2 (vertices of the
-/// region's S2 element, or intersection nodes of that edge); otherwise it is a closure edge.
+/// region's S2 element, intersection nodes of that edge, ghost nodes whose image lies on it);
+/// otherwise it is a closure edge.
 bool derive_neighbor_lists(const MapData<2>& m, const Surface<2>& target, Index t,
                            std::span<const std::array<Index, 3>> region_neighbors,
                            std::vector<Index>& count, std::vector<Index>& neighbor,

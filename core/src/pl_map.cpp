@@ -266,6 +266,7 @@ void PlMap<d>::derive_graph() const {
     prefix(edge_count, m.edge_node_begin);
     m.neighbor.shrink_to_fit();
     m.neighbor_edge_kind.shrink_to_fit();
+    m.edge_node.shrink_to_fit();
   }
 }
 
