@@ -160,6 +160,13 @@ std::string describe_failures(const ProjectionReport<d>& r) {
   return s.str();
 }
 
+/// How many S2 edges (segments) the report lists as not inserted for `reason`.
+template <int d>
+std::ptrdiff_t count_failures(const ProjectionReport<d>& r, EdgeFailureReason reason) {
+  return std::count_if(r.edges_not_inserted.begin(), r.edges_not_inserted.end(),
+                       [reason](const auto& f) { return f.reason == reason; });
+}
+
 /// Area of the intersection of two axis-parallel rectangles given as {x0, x1, y0, y1}.
 inline double rectangle_overlap(const std::array<double, 4>& a, const std::array<double, 4>& b) {
   const double w = std::min(a[1], b[1]) - std::max(a[0], b[0]);

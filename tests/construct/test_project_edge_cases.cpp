@@ -224,8 +224,7 @@ TEST(ProjectEdgeCases, ARayBeyondTheFocalLineOfATroughIsAFold) {
     SCOPED_TRACE(solver);
     const auto r = project<2>(trough, plane, {.solver = solver});
     expect_sound(r, *plane);
-    const auto folded = std::count_if(r.report.edges_not_inserted.begin(), r.report.edges_not_inserted.end(),
-                                      [](const auto& f) { return f.reason == EdgeFailureReason::fold; });
+    const auto folded = count_failures(r.report, EdgeFailureReason::fold);
     EXPECT_GT(folded, 0) << describe_failures(r.report);
     // only the half before the focal line is mapped
     // (near y = 1/2 the rays meet the plane close to their focal line, where the image of the

@@ -54,9 +54,7 @@ TEST(ProjectSearchLimitSlacks, AWideEndSlackStopsWalksShortOfTheSecondVertex) {
     ProjectionOptions o;
     o.search_limits.end_parameter_slack = slack;
     const auto r = project<2>(s1, s2, o);
-    return std::count_if(r.report.edges_not_inserted.begin(), r.report.edges_not_inserted.end(), [](const auto& f) {
-      return f.reason == EdgeFailureReason::endpoint_without_preimage;
-    });
+    return count_failures(r.report, EdgeFailureReason::endpoint_without_preimage);
   };
   EXPECT_EQ(endpoint_failures(1e-12), 0);
   EXPECT_GT(endpoint_failures(0.4), 0);

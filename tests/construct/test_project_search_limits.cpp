@@ -45,8 +45,7 @@ TEST(ProjectSearchLimits, AnEdgeWalkCutShortIsReportedAsWalkLimit) {
     ProjectionOptions o;
     o.search_limits.edge_walk_steps = steps;
     const auto r = project<2>(s1, s2, o);
-    return std::count_if(r.report.edges_not_inserted.begin(), r.report.edges_not_inserted.end(),
-                         [](const auto& f) { return f.reason == EdgeFailureReason::walk_limit; });
+    return count_failures(r.report, EdgeFailureReason::walk_limit);
   };
   EXPECT_EQ(walk_limits(0), 0);
   EXPECT_GT(walk_limits(2), 0);

@@ -4,6 +4,8 @@
 
 #include <plmap/core/predicates.hpp>
 
+#include "apex_table_listing.hpp"
+
 #include <algorithm>
 #include <array>
 #include <vector>
@@ -122,19 +124,8 @@ bool canonical_order(int n, Workspace& w, HoleTriangles& t) {
   }
   const std::size_t count = t.size();
   t.clear();
-  std::vector<std::array<int, 2>>& stack = w.stack;
-  stack.assign(1, {0, n - 1});
-  while (!stack.empty()) {
-    const auto [i, j] = stack.back();
-    stack.pop_back();
-    if (j - i < 2) continue;
-    const int m = split[i * n + j];
-    if (m < 0) return false;  // never expected: a triangulation of the polygon has every chord's apex
-    t.push_back({i, m, j});
-    stack.push_back({i, m});
-    stack.push_back({m, j});
-  }
-  return t.size() == count;
+  // (a missing apex is never expected: a triangulation of the polygon has every chord's apex)
+  return detail::list_from_apex_table(split, n, w.stack, t) && t.size() == count;
 }
 
 }  // namespace

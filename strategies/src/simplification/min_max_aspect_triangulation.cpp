@@ -2,6 +2,8 @@
 
 #include <plmap/core/predicates.hpp>
 
+#include "apex_table_listing.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -111,17 +113,7 @@ std::optional<HoleTriangles> MinMaxAspectTriangulation::triangulate(std::span<co
   if (split[n - 1] < 0) return std::nullopt;
   HoleTriangles out;
   out.reserve(static_cast<std::size_t>(n - 2));
-  std::vector<std::array<int, 2>>& stack = tables.stack;
-  stack.assign(1, {0, n - 1});
-  while (!stack.empty()) {
-    const auto [i, j] = stack.back();
-    stack.pop_back();
-    if (j - i < 2) continue;
-    const int m = split[i * n + j];
-    out.push_back({i, m, j});
-    stack.push_back({i, m});
-    stack.push_back({m, j});
-  }
+  if (!detail::list_from_apex_table(split, n, tables.stack, out)) return std::nullopt;
   return out;
 }
 
