@@ -451,41 +451,60 @@ class EdgeWalker {
     auto tv = ctx_.target_edge_vertices(e);
     if (direction == WalkDirection::from_second_vertex) std::swap(tv[0], tv[1]);
     const WorldPoint<d> qa = ctx_.s2.vertex(tv[0]), qb = ctx_.s2.vertex(tv[1]);
-    std::vector<Index> at_stop, near_edges, at_exit;
+    std::vector<Index> ring, next_ring, seen_elements, seen_edges, ring_edges, at_exit;
     std::vector<FoldExitCandidate> exits;
-    // a fold band is a few elements wide: the S1 edges within fold_exit_reach element sizes
-    ctx_.elements_of(stopped.stop, at_stop);
-    double size = 0.0;
-    for (Index t : at_stop)
-      for (int k = 0; k < 3; ++k) size = std::max(size, (ctx_.s1.corner(t, k) - ctx_.s1.corner(t, (k + 1) % 3)).norm());
-    // (centroids within one more element size: the index's own radius, the largest element's,
-    // would make the search as wide as that element everywhere)
-    for (Index t : ctx_.s1_index->within(ctx_.world_of(stopped.stop), (limits.fold_exit_reach + 1.0) * size))
-      for (int k = 0; k < 3; ++k) near_edges.push_back(ctx_.s1.element_edge(t, k));
-    std::sort(near_edges.begin(), near_edges.end());
-    near_edges.erase(std::unique(near_edges.begin(), near_edges.end()), near_edges.end());
-    const auto exit = nearest_fold_exit(
-        stopped.eta, before, limits.edge_parameter_slack, near_edges, exits,
-        [&](Index edge) -> std::optional<FoldExitCandidate> {
-          // the closed-form root of eq. (4)'s quadratic, without the solver: dozens of S1
-          // edges are tried per search, and only the one chosen is solved (below)
-          const auto ev = ctx_.s1.edge_vertices(edge);
-          EdgeCrossingSystem sys;
-          sys.edge = {ctx_.s1.vertex(ev[0]), ctx_.s1.vertex(ev[1])};
-          sys.directions = {ctx_.vertex_directions[ev[0]], ctx_.vertex_directions[ev[1]]};
-          sys.target = {qa, qb};
-          const auto root = sys.root_on_the_edges();
-          if (!root || !ctx_.distance_ok((*root)(1), sys.scale())) return std::nullopt;
-          return FoldExitCandidate{edge, std::clamp((*root)(0), 0.0, 1.0), (*root)(2), (*root)(1)};
-        },
-        [&](const FoldExitCandidate& c) {
-          // inside the S1 edge (an S1 vertex is a ghost node's or vertex preimage's place), and
-          // unfolded in an element at it, as the walks judge a crossing
-          const Place<d> at = ctx_.edge_place(c.domain_edge, c.lambda);
-          if (at.kind != PlaceKind::edge) return false;
-          ctx_.elements_of(at, at_exit);
-          return unfolded_in_some_element(at_exit, [&](Index t) { return ctx_.unfolded_in_at(t, at, c.mu); });
-        });
+    auto solve = [&](Index edge) -> std::optional<FoldExitCandidate> {
+      // the closed-form root of eq. (4)'s quadratic, without the solver: dozens of S1 edges
+      // are tried per search, and only the one chosen is solved (below)
+      const auto ev = ctx_.s1.edge_vertices(edge);
+      EdgeCrossingSystem sys;
+      sys.edge = {ctx_.s1.vertex(ev[0]), ctx_.s1.vertex(ev[1])};
+      sys.directions = {ctx_.vertex_directions[ev[0]], ctx_.vertex_directions[ev[1]]};
+      sys.target = {qa, qb};
+      const auto root = sys.root_on_the_edges();
+      if (!root || !ctx_.distance_ok((*root)(1), sys.scale())) return std::nullopt;
+      return FoldExitCandidate{edge, std::clamp((*root)(0), 0.0, 1.0), (*root)(2), (*root)(1)};
+    };
+    auto accept = [&](const FoldExitCandidate& c) {
+      // inside the S1 edge (an S1 vertex is a ghost node's or vertex preimage's place), and
+      // unfolded in an element at it, as the walks judge a crossing
+      const Place<d> at = ctx_.edge_place(c.domain_edge, c.lambda);
+      if (at.kind != PlaceKind::edge) return false;
+      ctx_.elements_of(at, at_exit);
+      return unfolded_in_some_element(at_exit, [&](Index t) { return ctx_.unfolded_in_at(t, at, c.mu); });
+    };
+    // A fold band is a few elements wide: the exit is looked for ring by ring around the stop
+    // (ring 0: the elements at it; ring r + 1: the elements sharing a vertex with ring r, not
+    // seen yet; one element size per ring), up to fold_exit_reach rings, and the first ring whose S1 edges give an exit ends the search. A
+    // crossing in a nearer ring is, but for a preimage that doubles back, also the nearer one
+    // along the S2 edge, and most stops have their exit in the first two rings: far fewer
+    // edges are solved than by a search of every element within the reach.
+    ctx_.elements_of(stopped.stop, ring);
+    seen_elements = ring;
+    const int rings = static_cast<int>(std::ceil(limits.fold_exit_reach));
+    std::optional<FoldExitCandidate> exit;
+    for (int r = 0; r <= rings && !ring.empty(); ++r) {
+      ring_edges.clear();
+      for (Index t : ring)
+        for (int k = 0; k < 3; ++k)
+          if (const Index edge = ctx_.s1.element_edge(t, k);
+              std::find(seen_edges.begin(), seen_edges.end(), edge) == seen_edges.end()) {
+            seen_edges.push_back(edge);
+            ring_edges.push_back(edge);
+          }
+      std::sort(ring_edges.begin(), ring_edges.end());
+      exit = nearest_fold_exit(stopped.eta, before, limits.edge_parameter_slack, ring_edges, exits, solve, accept);
+      if (exit || r == rings) break;
+      next_ring.clear();
+      for (Index t : ring)
+        for (Index v : ctx_.s1.element(t))
+          for (Index n : ctx_.s1.vertex_elements(v))
+            if (std::find(seen_elements.begin(), seen_elements.end(), n) == seen_elements.end()) {
+              seen_elements.push_back(n);
+              next_ring.push_back(n);
+            }
+      std::swap(ring, next_ring);
+    }
     if (!exit) return std::nullopt;
     // the chosen crossing as the walks solve it
     const CrossingCandidate c = solve_crossing(exit->domain_edge, qa, qb, calls, failures);
