@@ -9,7 +9,9 @@
 // `next_to_fold` class of the ray check). So after a walk stops at a fold, the S1 edges near
 // the stop are solved for crossings of the S2 edge (eq. 4) farther along it, and the nearest
 // one along the S2 edge whose ray is unfolded starts a new piece, as a boundary entry does.
-// Every walk that stops at a fold is restarted so: the walk from the first vertex, the walks
+// The same holds where a walk stops because the edge passes behind S1 or beyond the distance
+// limit (a ridge of S1 through S2), or finds no continuation: it may come out again beyond.
+// Every walk that stops so is restarted: the walk from the first vertex, the walks
 // from boundary entries (both on towards the second vertex) and the walks backwards from the
 // second vertex or from where the edge leaves S1 (on towards the first vertex, short of what
 // the forward walks covered), since each of them may be the only walk that reaches a stretch.

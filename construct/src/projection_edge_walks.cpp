@@ -24,6 +24,13 @@ namespace {
 
 enum class WalkEnd : std::uint8_t { reached, left_boundary, failed };
 
+/// Walks that stop for these reasons are restarted where the S2 edge's preimage comes out again
+/// (fold_reentry.hpp): beyond a fold, beyond a stretch where the edge passes behind S1 or out of
+/// the distance limit (distance_limit), or beyond a place where no continuation was found.
+bool restartable(EdgeFailureReason r) {
+  return r == EdgeFailureReason::fold || r == EdgeFailureReason::discontinuity || r == EdgeFailureReason::distance_limit;
+}
+
 /// Which way a walk runs along its S2 edge; backwards, every edge parameter it gives is measured
 /// from the second vertex.
 enum class WalkDirection : std::uint8_t { from_first_vertex, from_second_vertex };
@@ -325,8 +332,9 @@ class EdgeWalker {
     const std::size_t begin = crossings.size();
     const WalkResult<d> w = walk(e, exit.place, 1.0 - exit.eta, std::nullopt, WalkDirection::from_second_vertex, buffer);
     const double back_to = 1.0 - w.eta;  // in the edge's direction
-    // a walk that stops at a fold gives the stretch from there to the exit (partial insertion)
-    const bool at_fold = w.end == WalkEnd::failed && w.reason == EdgeFailureReason::fold;
+    // a walk that stops at a fold (or another restartable place) gives the stretch from there to
+    // the exit (partial insertion)
+    const bool at_fold = w.end == WalkEnd::failed && restartable(w.reason);
     if ((w.end != WalkEnd::left_boundary && !at_fold) || w.crossing_count == 0 ||
         !(back_to >= covered_until - piece_slack)) {
       crossings.resize(begin);  // nothing over S1 before the exit, or not a clean piece
@@ -516,15 +524,15 @@ class EdgeWalker {
   }
 
   /// After the walk `stopped` from the first vertex or a boundary entry of S2 edge e ended at a
-  /// fold: new pieces from where the edge's preimage comes out of the fold, each walked on
-  /// towards the second vertex, up to search_limits.fold_exits times while they stop at folds
-  /// again.
+  /// fold (or another restartable place): new pieces from where the edge's preimage comes out
+  /// of it, each walked on towards the second vertex, up to search_limits.fold_exits times while
+  /// they stop so again.
   void walk_on_after_folds(Index e, WalkResult<d> stopped, EdgeProgress& progress, PlanBuffer<d>& buffer) const
     requires(d == 2)
   {
     long long calls = 0, failures = 0;
     for (int round = 0; round < ctx_.options.search_limits.fold_exits && stopped.end == WalkEnd::failed &&
-                        stopped.reason == EdgeFailureReason::fold;
+                        restartable(stopped.reason);
          ++round) {
       stopped.eta = std::max(stopped.eta, progress.covered_until);
       const std::optional<FoldExit> exit = find_fold_exit(e, stopped, 1.0, WalkDirection::from_first_vertex, calls, failures);
@@ -547,10 +555,10 @@ class EdgeWalker {
   }
 
   /// After the walk `stopped` backwards from the second vertex, or from where the edge leaves
-  /// S1, of S2 edge e ended at a fold (its parameters measured from the second vertex): new
-  /// pieces from where the edge's preimage comes out of the fold, each walked on towards the
-  /// first vertex and kept only short of what the forward walks covered (`covered_until`),
-  /// up to search_limits.fold_exits times while they stop at folds again.
+  /// S1, of S2 edge e ended at a fold or another restartable place (its parameters measured
+  /// from the second vertex): new pieces from where the edge's preimage comes out of it, each
+  /// walked on towards the first vertex and kept only short of what the forward walks covered
+  /// (`covered_until`), up to search_limits.fold_exits times while they stop so again.
   void walk_back_after_folds(Index e, WalkResult<d> stopped, double covered_until, PlanBuffer<d>& buffer) const
     requires(d == 2)
   {
@@ -560,7 +568,7 @@ class EdgeWalker {
     long long calls = 0, failures = 0;
     auto& crossings = buffer.crossings;
     for (int round = 0; round < ctx_.options.search_limits.fold_exits && stopped.end == WalkEnd::failed &&
-                        stopped.reason == EdgeFailureReason::fold;
+                        restartable(stopped.reason);
          ++round) {
       const std::optional<FoldExit> exit = find_fold_exit(e, stopped, before, WalkDirection::from_second_vertex, calls, failures);
       if (!exit) break;
@@ -680,8 +688,8 @@ class EdgeWalker {
           w.reason != EdgeFailureReason::endpoint_without_preimage)
         buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
     }
-    // a fold on the way back: the stretch between it and what the forward walks covered may be
-    // reached from nowhere else
+    // a fold (or another restartable stop) on the way back: the stretch between it and what the
+    // forward walks covered may be reached from nowhere else
     if constexpr (d == 2) {
       if (w.end == WalkEnd::failed && !progress.second_reached_from_entry)
         walk_back_after_folds(e, w, progress.covered_until, buffer);
