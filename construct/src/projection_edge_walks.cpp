@@ -15,6 +15,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <optional>
 
@@ -487,30 +488,35 @@ class EdgeWalker {
     // crossing in a nearer ring is, but for a preimage that doubles back, also the nearer one
     // along the S2 edge, and most stops have their exit in the first two rings: far fewer
     // edges are solved than by a search of every element within the reach.
-    ctx_.elements_of(stopped.stop, ring);
-    seen_elements = ring;
+    // `fresh` := the values of `candidates` not in `seen`, which takes them in; both kept sorted
+    // (a linear search per value cost more than the quadratics on the femur pair)
+    std::vector<Index> merged;
+    auto take_unseen = [&merged](std::vector<Index>& candidates, std::vector<Index>& seen, std::vector<Index>& fresh) {
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+      fresh.clear();
+      std::set_difference(candidates.begin(), candidates.end(), seen.begin(), seen.end(), std::back_inserter(fresh));
+      merged.clear();
+      std::merge(seen.begin(), seen.end(), fresh.begin(), fresh.end(), std::back_inserter(merged));
+      std::swap(seen, merged);
+    };
+    std::vector<Index> candidates;
+    ctx_.elements_of(stopped.stop, candidates);
+    take_unseen(candidates, seen_elements, ring);
     const int rings = static_cast<int>(std::ceil(limits.fold_exit_reach));
     std::optional<FoldExitCandidate> exit;
     for (int r = 0; r <= rings && !ring.empty(); ++r) {
-      ring_edges.clear();
+      candidates.clear();
       for (Index t : ring)
-        for (int k = 0; k < 3; ++k)
-          if (const Index edge = ctx_.s1.element_edge(t, k);
-              std::find(seen_edges.begin(), seen_edges.end(), edge) == seen_edges.end()) {
-            seen_edges.push_back(edge);
-            ring_edges.push_back(edge);
-          }
-      std::sort(ring_edges.begin(), ring_edges.end());
+        for (int k = 0; k < 3; ++k) candidates.push_back(ctx_.s1.element_edge(t, k));
+      take_unseen(candidates, seen_edges, ring_edges);
       exit = nearest_fold_exit(stopped.eta, before, limits.edge_parameter_slack, ring_edges, exits, solve, accept);
       if (exit || r == rings) break;
-      next_ring.clear();
+      candidates.clear();
       for (Index t : ring)
         for (Index v : ctx_.s1.element(t))
-          for (Index n : ctx_.s1.vertex_elements(v))
-            if (std::find(seen_elements.begin(), seen_elements.end(), n) == seen_elements.end()) {
-              seen_elements.push_back(n);
-              next_ring.push_back(n);
-            }
+          for (Index n : ctx_.s1.vertex_elements(v)) candidates.push_back(n);
+      take_unseen(candidates, seen_elements, next_ring);
       std::swap(ring, next_ring);
     }
     if (!exit) return std::nullopt;
