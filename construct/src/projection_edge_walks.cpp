@@ -446,8 +446,8 @@ class EdgeWalker {
   /// Where the preimage of S2 edge e comes out of the fold at which the walk `stopped` ended
   /// (fold_reentry.hpp): the nearest unfolded crossing in (stopped.eta, before) along the walk's
   /// `direction`, inside an S1 edge, as the walks solve it; its parameters are measured in that
-  /// direction. Searched in the S1 elements within search_limits.fold_exit_reach element sizes of
-  /// the stop.
+  /// direction. Searched in the S1 elements within search_limits.fold_exit_reach rings around
+  /// the stop (see below).
   struct FoldExit {
     Place<d> place;
     CrossingCandidate crossing;
