@@ -15,6 +15,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <optional>
 
@@ -23,6 +24,13 @@ namespace plmap::projection {
 namespace {
 
 enum class WalkEnd : std::uint8_t { reached, left_boundary, failed };
+
+/// Walks that stop for these reasons are restarted where the S2 edge's preimage comes out again
+/// (fold_reentry.hpp): beyond a fold, beyond a stretch where the edge passes behind S1 or out of
+/// the distance limit (distance_limit), or beyond a place where no continuation was found.
+bool restartable(EdgeFailureReason r) {
+  return r == EdgeFailureReason::fold || r == EdgeFailureReason::discontinuity || r == EdgeFailureReason::distance_limit;
+}
 
 /// Which way a walk runs along its S2 edge; backwards, every edge parameter it gives is measured
 /// from the second vertex.
@@ -325,7 +333,11 @@ class EdgeWalker {
     const std::size_t begin = crossings.size();
     const WalkResult<d> w = walk(e, exit.place, 1.0 - exit.eta, std::nullopt, WalkDirection::from_second_vertex, buffer);
     const double back_to = 1.0 - w.eta;  // in the edge's direction
-    if (w.end != WalkEnd::left_boundary || w.crossing_count == 0 || !(back_to >= covered_until - piece_slack)) {
+    // a walk that stops at a fold (or another restartable place) gives the stretch from there to
+    // the exit (partial insertion)
+    const bool at_fold = w.end == WalkEnd::failed && restartable(w.reason);
+    if ((w.end != WalkEnd::left_boundary && !at_fold) || w.crossing_count == 0 ||
+        !(back_to >= covered_until - piece_slack)) {
       crossings.resize(begin);  // nothing over S1 before the exit, or not a clean piece
       return false;
     }
@@ -336,6 +348,9 @@ class EdgeWalker {
     crossings.push_back(exit.crossing);
     buffer.pieces.push_back({static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(crossings.size()),
                              PieceStart::first_crossing, PieceEnd::last_crossing});
+    if constexpr (d == 2) {
+      if (at_fold) walk_back_after_folds(e, w, covered_until, buffer);
+    }
     return true;
   }
 
@@ -428,65 +443,110 @@ class EdgeWalker {
     }
   }
 
-  /// After the walk `stopped` along S2 edge e ended at a fold: new pieces from where the edge's
-  /// preimage comes out of the fold (fold_reentry.hpp), each walked on towards the second vertex,
-  /// up to search_limits.fold_exits times while they stop at folds again.
-  void walk_on_after_folds(Index e, WalkResult<d> stopped, EdgeProgress& progress, PlanBuffer<d>& buffer) const
+  /// Where the preimage of S2 edge e comes out of the fold at which the walk `stopped` ended
+  /// (fold_reentry.hpp): the nearest unfolded crossing in (stopped.eta, before) along the walk's
+  /// `direction`, inside an S1 edge, as the walks solve it; its parameters are measured in that
+  /// direction. Searched in the S1 elements within search_limits.fold_exit_reach rings around
+  /// the stop (see below).
+  struct FoldExit {
+    Place<d> place;
+    CrossingCandidate crossing;
+  };
+  std::optional<FoldExit> find_fold_exit(Index e, const WalkResult<d>& stopped, double before, WalkDirection direction,
+                                         long long& calls, long long& failures) const
     requires(d == 2)
   {
     const auto& limits = ctx_.options.search_limits;
-    const auto tv = ctx_.target_edge_vertices(e);
+    auto tv = ctx_.target_edge_vertices(e);
+    if (direction == WalkDirection::from_second_vertex) std::swap(tv[0], tv[1]);
     const WorldPoint<d> qa = ctx_.s2.vertex(tv[0]), qb = ctx_.s2.vertex(tv[1]);
-    long long calls = 0, failures = 0;
-    std::vector<Index> at_stop, near_edges, at_exit;
+    std::vector<Index> ring, next_ring, seen_elements, seen_edges, ring_edges, at_exit;
     std::vector<FoldExitCandidate> exits;
-    for (int round = 0; round < limits.fold_exits && stopped.end == WalkEnd::failed &&
-                        stopped.reason == EdgeFailureReason::fold;
+    auto solve = [&](Index edge) -> std::optional<FoldExitCandidate> {
+      // the closed-form root of eq. (4)'s quadratic, without the solver: dozens of S1 edges
+      // are tried per search, and only the one chosen is solved (below)
+      const auto ev = ctx_.s1.edge_vertices(edge);
+      EdgeCrossingSystem sys;
+      sys.edge = {ctx_.s1.vertex(ev[0]), ctx_.s1.vertex(ev[1])};
+      sys.directions = {ctx_.vertex_directions[ev[0]], ctx_.vertex_directions[ev[1]]};
+      sys.target = {qa, qb};
+      const auto root = sys.root_on_the_edges();
+      if (!root || !ctx_.distance_ok((*root)(1), sys.scale())) return std::nullopt;
+      return FoldExitCandidate{edge, std::clamp((*root)(0), 0.0, 1.0), (*root)(2), (*root)(1)};
+    };
+    auto accept = [&](const FoldExitCandidate& c) {
+      // inside the S1 edge (an S1 vertex is a ghost node's or vertex preimage's place), and
+      // unfolded in an element at it, as the walks judge a crossing
+      const Place<d> at = ctx_.edge_place(c.domain_edge, c.lambda);
+      if (at.kind != PlaceKind::edge) return false;
+      ctx_.elements_of(at, at_exit);
+      return unfolded_in_some_element(at_exit, [&](Index t) { return ctx_.unfolded_in_at(t, at, c.mu); });
+    };
+    // A fold band is a few elements wide: the exit is looked for ring by ring around the stop
+    // (ring 0: the elements at it; ring r + 1: the elements sharing a vertex with ring r, not
+    // seen yet; one element size per ring), up to fold_exit_reach rings, and the first ring whose S1 edges give an exit ends the search. A
+    // crossing in a nearer ring is, but for a preimage that doubles back, also the nearer one
+    // along the S2 edge, and most stops have their exit in the first two rings: far fewer
+    // edges are solved than by a search of every element within the reach.
+    // `fresh` := the values of `candidates` not in `seen`, which takes them in; both kept sorted
+    // (a linear search per value cost more than the quadratics on the femur pair)
+    std::vector<Index> merged;
+    auto take_unseen = [&merged](std::vector<Index>& candidates, std::vector<Index>& seen, std::vector<Index>& fresh) {
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+      fresh.clear();
+      std::set_difference(candidates.begin(), candidates.end(), seen.begin(), seen.end(), std::back_inserter(fresh));
+      merged.clear();
+      std::merge(seen.begin(), seen.end(), fresh.begin(), fresh.end(), std::back_inserter(merged));
+      std::swap(seen, merged);
+    };
+    std::vector<Index> candidates;
+    ctx_.elements_of(stopped.stop, candidates);
+    take_unseen(candidates, seen_elements, ring);
+    const int rings = static_cast<int>(std::ceil(limits.fold_exit_reach));
+    std::optional<FoldExitCandidate> exit;
+    for (int r = 0; r <= rings && !ring.empty(); ++r) {
+      candidates.clear();
+      for (Index t : ring)
+        for (int k = 0; k < 3; ++k) candidates.push_back(ctx_.s1.element_edge(t, k));
+      take_unseen(candidates, seen_edges, ring_edges);
+      exit = nearest_fold_exit(stopped.eta, before, limits.edge_parameter_slack, ring_edges, exits, solve, accept);
+      if (exit || r == rings) break;
+      candidates.clear();
+      for (Index t : ring)
+        for (Index v : ctx_.s1.element(t))
+          for (Index n : ctx_.s1.vertex_elements(v)) candidates.push_back(n);
+      take_unseen(candidates, seen_elements, next_ring);
+      std::swap(ring, next_ring);
+    }
+    if (!exit) return std::nullopt;
+    // the chosen crossing as the walks solve it
+    const CrossingCandidate c = solve_crossing(exit->domain_edge, qa, qb, calls, failures);
+    const double slack = limits.edge_parameter_slack;
+    if (!c.valid || !(c.eta > stopped.eta + slack) || !(c.eta < before - slack)) return std::nullopt;
+    const Place<d> at = ctx_.edge_place(exit->domain_edge, c.lambda);
+    if (at.kind != PlaceKind::edge) return std::nullopt;
+    return FoldExit{at, c};
+  }
+
+  /// After the walk `stopped` from the first vertex or a boundary entry of S2 edge e ended at a
+  /// fold (or another restartable place): new pieces from where the edge's preimage comes out
+  /// of it, each walked on towards the second vertex, up to search_limits.fold_exits times while
+  /// they stop so again.
+  void walk_on_after_folds(Index e, WalkResult<d> stopped, EdgeProgress& progress, PlanBuffer<d>& buffer) const
+    requires(d == 2)
+  {
+    long long calls = 0, failures = 0;
+    for (int round = 0; round < ctx_.options.search_limits.fold_exits && stopped.end == WalkEnd::failed &&
+                        restartable(stopped.reason);
          ++round) {
-      // a fold band is a few elements wide: the S1 edges within fold_exit_reach element sizes
-      ctx_.elements_of(stopped.stop, at_stop);
-      double size = 0.0;
-      for (Index t : at_stop)
-        for (int k = 0; k < 3; ++k) size = std::max(size, (ctx_.s1.corner(t, k) - ctx_.s1.corner(t, (k + 1) % 3)).norm());
-      near_edges.clear();
-      // (centroids within one more element size: the index's own radius, the largest element's,
-      // would make the search as wide as that element everywhere)
-      for (Index t : ctx_.s1_index->within(ctx_.world_of(stopped.stop), (limits.fold_exit_reach + 1.0) * size))
-        for (int k = 0; k < 3; ++k) near_edges.push_back(ctx_.s1.element_edge(t, k));
-      std::sort(near_edges.begin(), near_edges.end());
-      near_edges.erase(std::unique(near_edges.begin(), near_edges.end()), near_edges.end());
-      const auto exit = nearest_fold_exit(
-          progress.covered_until, limits.edge_parameter_slack, near_edges, exits,
-          [&](Index edge) -> std::optional<FoldExitCandidate> {
-            // the closed-form root of eq. (4)'s quadratic, without the solver: dozens of S1
-            // edges are tried per search, and only the one chosen is solved (below)
-            const auto ev = ctx_.s1.edge_vertices(edge);
-            EdgeCrossingSystem sys;
-            sys.edge = {ctx_.s1.vertex(ev[0]), ctx_.s1.vertex(ev[1])};
-            sys.directions = {ctx_.vertex_directions[ev[0]], ctx_.vertex_directions[ev[1]]};
-            sys.target = {qa, qb};
-            const auto root = sys.root_on_the_edges();
-            if (!root || !ctx_.distance_ok((*root)(1), sys.scale())) return std::nullopt;
-            return FoldExitCandidate{edge, std::clamp((*root)(0), 0.0, 1.0), (*root)(2), (*root)(1)};
-          },
-          [&](const FoldExitCandidate& c) {
-            // inside the S1 edge (an S1 vertex is a ghost node's or vertex preimage's place), and
-            // unfolded in an element at it, as the walks judge a crossing
-            const Place<d> at = ctx_.edge_place(c.domain_edge, c.lambda);
-            if (at.kind != PlaceKind::edge) return false;
-            ctx_.elements_of(at, at_exit);
-            return unfolded_in_some_element(at_exit, [&](Index t) { return ctx_.unfolded_in_at(t, at, c.mu); });
-          });
+      stopped.eta = std::max(stopped.eta, progress.covered_until);
+      const std::optional<FoldExit> exit = find_fold_exit(e, stopped, 1.0, WalkDirection::from_first_vertex, calls, failures);
       if (!exit) break;
-      // the chosen crossing as the walks solve it
-      const CrossingCandidate c = solve_crossing(exit->domain_edge, qa, qb, calls, failures);
-      if (!c.valid || !(c.eta > progress.covered_until + limits.edge_parameter_slack)) break;
-      const Place<d> at = ctx_.edge_place(exit->domain_edge, c.lambda);
-      if (at.kind != PlaceKind::edge) break;
       auto& crossings = buffer.crossings;
       const std::size_t begin = crossings.size();
-      crossings.push_back(EdgeCrossing{exit->domain_edge, c.lambda, c.eta});
-      stopped = walk(e, at, c.eta, progress.second, WalkDirection::from_first_vertex, buffer);
+      crossings.push_back(EdgeCrossing{exit->place.index, exit->crossing.lambda, exit->crossing.eta});
+      stopped = walk(e, exit->place, exit->crossing.eta, progress.second, WalkDirection::from_first_vertex, buffer);
       const bool reached = stopped.end == WalkEnd::reached;
       if (stopped.crossing_count == 0 && !reached) {
         crossings.resize(begin);
@@ -495,6 +555,47 @@ class EdgeWalker {
       add_piece(buffer, begin, PieceStart::first_crossing, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing);
       progress.covered_until = reached ? 1.0 : stopped.eta;
       progress.reached_second |= reached;
+    }
+    ctx_.solver_calls += calls;
+    ctx_.solver_failures += failures;
+  }
+
+  /// After the walk `stopped` backwards from the second vertex, or from where the edge leaves
+  /// S1, of S2 edge e ended at a fold or another restartable place (its parameters measured
+  /// from the second vertex): new pieces from where the edge's preimage comes out of it, each
+  /// walked on towards the first vertex and kept only short of what the forward walks covered
+  /// (`covered_until`), up to search_limits.fold_exits times while they stop so again.
+  void walk_back_after_folds(Index e, WalkResult<d> stopped, double covered_until, PlanBuffer<d>& buffer) const
+    requires(d == 2)
+  {
+    const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
+    // the forward walks' end, measured from the second vertex
+    const double before = 1.0 - std::max(covered_until, 0.0);
+    long long calls = 0, failures = 0;
+    auto& crossings = buffer.crossings;
+    for (int round = 0; round < ctx_.options.search_limits.fold_exits && stopped.end == WalkEnd::failed &&
+                        restartable(stopped.reason);
+         ++round) {
+      const std::optional<FoldExit> exit = find_fold_exit(e, stopped, before, WalkDirection::from_second_vertex, calls, failures);
+      if (!exit) break;
+      const std::size_t begin = crossings.size();
+      crossings.push_back(EdgeCrossing{exit->place.index, exit->crossing.lambda, exit->crossing.eta});
+      stopped = walk(e, exit->place, exit->crossing.eta, std::nullopt, WalkDirection::from_second_vertex, buffer);
+      // a walk that comes into the stretch the forward walks covered stops short of it
+      std::size_t end = begin;
+      while (end < crossings.size() && crossings[end].target_parameter < before - piece_slack) ++end;
+      const bool cut = end < crossings.size();
+      crossings.resize(end);
+      if (end - begin < 2) {  // no stretch beyond the exit crossing itself
+        crossings.resize(begin);
+        break;
+      }
+      // measured from the first vertex again, in the edge's direction, ending at the exit
+      std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(begin), crossings.end());
+      for (std::size_t i = begin; i < crossings.size(); ++i)
+        crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
+      add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::last_crossing);
+      if (cut) break;
     }
     ctx_.solver_calls += calls;
     ctx_.solver_failures += failures;
@@ -516,6 +617,7 @@ class EdgeWalker {
         if (w.crossing_count > 0) {  // partial insertion, as for the walk from the first vertex
           buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
           add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::last_crossing);
+          if constexpr (d == 2) walk_on_after_folds(e, w, progress, buffer);
           continue;
         }
         crossings.resize(begin);
@@ -591,6 +693,12 @@ class EdgeWalker {
       if (w.end == WalkEnd::failed && !progress.second_reached_from_entry && !progress.first_walk_failed &&
           w.reason != EdgeFailureReason::endpoint_without_preimage)
         buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
+    }
+    // a fold (or another restartable stop) on the way back: the stretch between it and what the
+    // forward walks covered may be reached from nowhere else
+    if constexpr (d == 2) {
+      if (w.end == WalkEnd::failed && !progress.second_reached_from_entry)
+        walk_back_after_folds(e, w, progress.covered_until, buffer);
     }
   }
 

@@ -58,10 +58,13 @@ struct ProjectionSearchLimits {
   /// A crossing whose S2 edge parameter lies within this of 1 is at the image of the edge's
   /// second vertex: the walk has reached it without finding its preimage.
   double end_parameter_slack = 1e-12;
-  /// After a walk along an S2 edge stops at a fold, the S1 edges within fold_exit_reach times
-  /// the longest edge of the elements at the stop are searched for the point where the edge's
+  /// After a walk along an S2 edge stops at a fold, where the edge passes behind S1 or beyond
+  /// max_distance, or where it finds no continuation (any walk: from the first vertex or a boundary
+  /// entry forwards, from the second vertex or where the edge leaves S1 backwards), the S1 edges
+  /// of the elements within fold_exit_reach rings around the stop (ring r + 1: the elements
+  /// sharing a vertex with ring r) are searched, ring by ring, for the point where the edge's
   /// preimage comes out of the fold, and a new piece is walked from there; at most fold_exits
-  /// such restarts per S2 edge (0: none).
+  /// such restarts per walk (0: none).
   int fold_exits = 4;
   double fold_exit_reach = 3.0;
 };
