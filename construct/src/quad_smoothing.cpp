@@ -1,6 +1,7 @@
 // One quadrilateral smoothing step; see quad_smoothing.hpp for the method.
 
 #include "quad_smoothing.hpp"
+#include "piece_crossings.hpp"
 #include "region_condition.hpp"
 
 #include <plmap/core/predicates.hpp>
@@ -364,7 +365,8 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   thread_local std::vector<PlanarSegment> segments;
   segments.clear();
   for (const Piece& p : pieces) segments.push_back({end_position(p, 0), end_position(p, 1)});
-  if (any_segments_cross(segments)) return refuse("fold-over");
+  thread_local std::vector<PieceBox> boxes;
+  if (any_pieces_meet(segments, boxes)) return refuse("fold-over");
   for (int i = 0; i < unknowns; ++i) {
     double turn = 0.0;
     const auto& ring = ordered_ring[i];

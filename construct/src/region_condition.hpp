@@ -12,7 +12,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -23,13 +25,25 @@ namespace plmap::smoothing {
 /// every guard allows κ up to max(its old value, free_condition).
 constexpr double free_condition = 3.0;
 
+/// power_of_two_scale<2>({u, v}) (core/scaled_geometry.hpp), the same value without the library
+/// calls ilogb and ldexp: for a normal largest coordinate the power of two at or below it is the
+/// number with its mantissa bits cleared. κ is evaluated for every region a few times per sweep,
+/// and the two calls were a twentieth of the smoothing.
+inline double frame_scale(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  const double largest = std::max(u.cwiseAbs().maxCoeff(), v.cwiseAbs().maxCoeff());
+  if (!(largest >= std::numeric_limits<double>::min()) || !std::isfinite(largest))
+    return power_of_two_scale<2>({u, v});  // zero, subnormal, not finite: the general path
+  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(largest) & 0x7ff0000000000000ULL);
+}
+
 /// The edge vectors p1 - p0, p2 - p0 of a triangle in an orthonormal frame of its plane (first
 /// axis along p1 - p0, second towards p2): upper triangular. Scaled by a power of two first, so
 /// that the squares inside the norms stay in range. The same frame as verify's quality report,
 /// so that a guard here and the reported κ agree even on slivers, where rounding dominates.
 inline Eigen::Matrix2d frame_coordinates(const std::array<Eigen::Vector3d, 3>& p) {
-  const double scale = power_of_two_scale<2>({p[1] - p[0], p[2] - p[0]});
-  const Eigen::Vector3d u = (p[1] - p[0]) / scale, v = (p[2] - p[0]) / scale;
+  const Eigen::Vector3d du = p[1] - p[0], dv = p[2] - p[0];
+  const double scale = frame_scale(du, dv);
+  const Eigen::Vector3d u = du / scale, v = dv / scale;
   Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
   const double lu = u.norm();
   if (lu == 0.0) return m;

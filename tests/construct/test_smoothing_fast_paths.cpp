@@ -1,0 +1,83 @@
+// The smoothing's fast paths must answer exactly what the general code answers:
+// pieces_meet / any_pieces_meet (construct/src/piece_crossings.hpp) against
+// segments_cross_properly over all pairs, and frame_scale (construct/src/region_condition.hpp)
+// against power_of_two_scale, bit for bit.
+
+#include "piece_crossings.hpp"
+#include "region_condition.hpp"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace plmap::smoothing {
+namespace {
+
+bool all_pairs_meet(const std::vector<PlanarSegment>& s) {
+  for (std::size_t a = 0; a < s.size(); ++a)
+    for (std::size_t b = a + 1; b < s.size(); ++b)
+      if (segments_cross_properly(s[a][0], s[a][1], s[b][0], s[b][1])) return true;
+  return false;
+}
+
+TEST(PieceCrossings, SharedEndpointCases) {
+  using V = Eigen::Vector2d;
+  // each way two segments can share an end, apart, overlapping beyond it, and touching the other
+  EXPECT_FALSE(pieces_meet(V(0, 0), V(2, 0), V(0, 0), V(0, 2)));
+  EXPECT_FALSE(pieces_meet(V(0, 0), V(2, 0), V(0, 2), V(0, 0)));
+  EXPECT_FALSE(pieces_meet(V(2, 0), V(0, 0), V(0, 0), V(0, 2)));
+  EXPECT_FALSE(pieces_meet(V(2, 0), V(0, 0), V(0, 2), V(0, 0)));
+  EXPECT_TRUE(pieces_meet(V(0, 0), V(2, 0), V(0, 0), V(1, 0)));   // collinear, overlapping
+  EXPECT_TRUE(pieces_meet(V(2, 0), V(0, 0), V(1, 0), V(0, 0)));
+  EXPECT_FALSE(pieces_meet(V(0, 0), V(2, 0), V(2, 0), V(3, 0)));  // collinear, end to end
+  EXPECT_TRUE(pieces_meet(V(0, 0), V(2, 0), V(1, 0), V(1, 1)));   // T-junction
+  EXPECT_TRUE(pieces_meet(V(0, 0), V(2, 2), V(0, 2), V(2, 0)));   // proper crossing
+  EXPECT_FALSE(pieces_meet(V(0, 0), V(1, 0), V(0, 1), V(1, 1)));  // parallel
+}
+
+// Points on a small integer grid, so that shared endpoints, collinear pieces and touching points
+// are frequent: every pair answer and the sweep's answer equal segments_cross_properly's.
+RC_GTEST_PROP(PieceCrossings, AgreesWithSegmentsCrossProperly, ()) {
+  const auto coordinate = rc::gen::inRange(0, 5);
+  const int n = *rc::gen::inRange(0, 12);
+  std::vector<PlanarSegment> segments;
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector2d p(*coordinate, *coordinate), q(*coordinate, *coordinate);
+    if (p == q) q.y() += 1.0;
+    segments.push_back({p, q});
+  }
+  for (std::size_t a = 0; a < segments.size(); ++a)
+    for (std::size_t b = 0; b < segments.size(); ++b) {
+      if (a == b) continue;
+      const auto& s = segments[a];
+      const auto& o = segments[b];
+      RC_ASSERT(pieces_meet(s[0], s[1], o[0], o[1]) == segments_cross_properly(s[0], s[1], o[0], o[1]));
+    }
+  std::vector<PieceBox> boxes;
+  RC_ASSERT(any_pieces_meet(segments, boxes) == all_pairs_meet(segments));
+}
+
+TEST(FrameScale, EqualsPowerOfTwoScale) {
+  const double tiny = std::numeric_limits<double>::denorm_min();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<Eigen::Vector3d> cases = {
+      {0, 0, 0}, {1, 0, 0}, {-3, 0.5, 2}, {0.75, -1e-300, 0}, {1e300, 1, -1e308}, {tiny, 0, 0},
+      {4 * tiny, -tiny, 0}, {std::numeric_limits<double>::min(), 0, 0}, {inf, 1, 0}, {std::nan(""), 1, 0}};
+  for (const auto& u : cases)
+    for (const auto& v : cases) EXPECT_EQ(frame_scale(u, v), power_of_two_scale<2>({u, v})) << u.transpose() << " / " << v.transpose();
+}
+
+RC_GTEST_PROP(FrameScale, EqualsPowerOfTwoScaleOnRandomVectors, ()) {
+  const auto component = [] {
+    const double mantissa = *rc::gen::inRange(-1000000, 1000000) / 1e6;
+    return std::ldexp(mantissa, *rc::gen::inRange(-1070, 1020));
+  };
+  const Eigen::Vector3d u(component(), component(), component()), v(component(), component(), component());
+  RC_ASSERT(frame_scale(u, v) == power_of_two_scale<2>({u, v}));
+}
+
+}  // namespace
+}  // namespace plmap::smoothing
