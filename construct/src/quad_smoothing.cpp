@@ -103,11 +103,6 @@ double condition(const std::array<Vec2, 3>& p, const std::array<Eigen::Vector3d,
   return std::sqrt((mean + gap) / smallest);
 }
 
-double ccw_angle(const Vec2& from, const Vec2& to) {
-  double a = std::atan2(from.x() * to.y() - from.y() * to.x(), from.dot(to));
-  if (a <= 0.0) a += 2.0 * std::numbers::pi;
-  return a;
-}
 
 }  // namespace
 
@@ -368,16 +363,21 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   thread_local std::vector<PieceBox> boxes;
   if (any_pieces_meet(segments, boxes)) return refuse("fold-over");
   for (int i = 0; i < unknowns; ++i) {
-    double turn = 0.0;
+    // Each turn from one segment's direction to the next, counter-clockwise, is in (0, 2π]; they
+    // add up to 2π times the number of turns that pass the +x direction, so the segments wind
+    // once iff exactly one does (decided exactly, where a sum of atan2 angles was 6 % of a step).
+    int wraps = 0;
     const auto& ring = ordered_ring[i];
     for (std::size_t j = 0; j < ring.size(); ++j) {
       const Vec2 d0 = end_position(pieces[ring[j].first], ring[j].second) - position[i];
       const auto& nx = ring[(j + 1) % ring.size()];
       const Vec2 d1 = end_position(pieces[nx.first], nx.second) - position[i];
-      if (orient2d(Vec2::Zero(), d0, d1) == 0 && d0.dot(d1) > 0.0) return refuse("fold-over");
-      turn += ccw_angle(d0, d1);
+      if (d0 == Vec2::Zero()) return refuse("fold-over");  // a segment of length zero
+      const int turn = orient2d(Vec2::Zero(), d0, d1);
+      if (turn == 0 && d0.dot(d1) > 0.0) return refuse("fold-over");
+      if (!direction_precedes(d0, d1, turn)) ++wraps;
     }
-    if (std::abs(turn - 2.0 * std::numbers::pi) > 1e-6) return refuse("fold-over");
+    if (wraps != 1) return refuse("fold-over");
   }
   // The worst spoke triangle (v, neighbour j, neighbour j + 1) against its image: a step that
   // would make it worse is refused, so that sweeps do not trade the quadrilateral's worst piece
@@ -400,7 +400,9 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   };
   std::vector<Vec2> old_position(unknown_vertex.size());
   for (int i = 0; i < unknowns; ++i) old_position[i] = *u.place(s1_, g_.vertex[unknown_vertex[i]]);
-  if (worst_spoke(position) > std::max(worst_spoke(old_position), free_condition))
+  // the old positions' worst is needed only if the new one is above free_condition
+  if (const double worst_new = worst_spoke(position);
+      worst_new > free_condition && worst_new > std::max(worst_spoke(old_position), free_condition))
     return refuse("would raise the worst condition number");
 
   // new crossings with e

@@ -1,7 +1,8 @@
 // The smoothing's fast paths must answer exactly what the general code answers:
 // pieces_meet / any_pieces_meet (construct/src/piece_crossings.hpp) against
 // segments_cross_properly over all pairs, and frame_scale (construct/src/region_condition.hpp)
-// against power_of_two_scale, bit for bit.
+// against power_of_two_scale, bit for bit; the exact winding count (direction_precedes) against
+// the sum of atan2 turning angles it replaced.
 
 #include "piece_crossings.hpp"
 #include "region_condition.hpp"
@@ -11,6 +12,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <vector>
 
 namespace plmap::smoothing {
@@ -77,6 +79,31 @@ RC_GTEST_PROP(FrameScale, EqualsPowerOfTwoScaleOnRandomVectors, ()) {
   };
   const Eigen::Vector3d u(component(), component(), component()), v(component(), component(), component());
   RC_ASSERT(frame_scale(u, v) == power_of_two_scale<2>({u, v}));
+}
+
+// Random directions on a small integer grid (no zero direction, no two consecutive ones equal):
+// exactly one turn fails direction_precedes iff the counter-clockwise turning angles sum to 2π.
+RC_GTEST_PROP(DirectionOrder, CountsTheWindingOfTheTurningAngles, ()) {
+  const int k = *rc::gen::inRange(2, 9);
+  std::vector<Eigen::Vector2d> d;
+  for (int i = 0; i < k; ++i) {
+    Eigen::Vector2d v(*rc::gen::inRange(-3, 4), *rc::gen::inRange(-3, 4));
+    if (v == Eigen::Vector2d::Zero()) v.x() = 1.0;
+    d.push_back(v);
+  }
+  int wraps = 0;
+  double turning = 0.0;
+  for (int i = 0; i < k; ++i) {
+    const Eigen::Vector2d& a = d[static_cast<std::size_t>(i)];
+    const Eigen::Vector2d& b = d[static_cast<std::size_t>((i + 1) % k)];
+    const int turn = orient2d(Eigen::Vector2d::Zero(), a, b);
+    RC_PRE(!(turn == 0 && a.dot(b) > 0.0));  // the step refuses equal directions before
+    if (!direction_precedes(a, b, turn)) ++wraps;
+    double angle = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+    if (angle <= 0.0) angle += 2.0 * std::numbers::pi;
+    turning += angle;
+  }
+  RC_ASSERT(std::abs(turning - 2.0 * std::numbers::pi * wraps) < 1e-9);
 }
 
 }  // namespace
