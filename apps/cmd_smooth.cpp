@@ -29,8 +29,9 @@ struct SmoothCommand {
   ProgressMode progress = ProgressMode::automatic;
 };
 
-/// κ_Ξ's distribution through verify's quality report (construct/ cannot compute it).
-KappaSummary measure_kappa(const PlMap<2>& map) { return kappa_summary(compute_quality(map)); }
+/// κ_Ξ's distribution from the smoothing's own per-region κ, with verify's statistics
+/// (construct/ does not depend on verify/).
+KappaSummary summarize_kappa(std::span<const double> region_kappas) { return kappa_summary(kappa_statistics(region_kappas)); }
 
 int run_smooth(const SmoothCommand& o) {
   // A bad name is a bad command line, refused before the map is read.
@@ -55,7 +56,7 @@ int run_smooth(const SmoothCommand& o) {
   options.weights = o.weights;
   options.quadrilaterals = !o.no_quadrilaterals;
   options.elements = !o.no_element_pass;
-  options.measure_kappa = measure_kappa;
+  options.summarize_kappa = summarize_kappa;
   options.progress = bar.callback();
   const SmoothResult result = smooth(map, options);
   save_map(o.output, result.map, bar.callback());

@@ -88,10 +88,11 @@ inline double region_condition(const PlMap<2>& map, Index r) {
                              region_corner_target_world(map, r, 2)});
 }
 
-/// The largest κ of the regions of S1 element t (1 for an element without regions): exactly
-/// max(region_condition(map, r)) over them, with each node's world position computed once
-/// instead of once per region corner (a node is a corner of about six regions).
-inline double worst_condition_of_element(const PlMap<2>& map, Index t) {
+/// The κ of each region of S1 element t into `out` (if given; indexed by region - region_begin[t])
+/// and the largest of them (1 for an element without regions): exactly region_condition(map, r)
+/// for each, with each node's world position computed once instead of once per region corner (a
+/// node is a corner of about six regions).
+inline double region_conditions_of_element(const PlMap<2>& map, Index t, double* out) {
   const auto& m = map.data();
   const Index nb = m.node_begin[t], ne = m.node_begin[t + 1];
   thread_local std::vector<Eigen::Vector3d> world;
@@ -101,12 +102,17 @@ inline double worst_condition_of_element(const PlMap<2>& map, Index t) {
   for (Index r = m.region_begin[t]; r < m.region_begin[t + 1]; ++r) {
     const auto& c = m.region_corners[r];
     const auto at = [&](int k) { return world[static_cast<std::size_t>(c[k] - nb)]; };
-    worst = std::max(worst, triangle_condition({at(0), at(1), at(2)},
-                                               {region_corner_target_world(map, r, 0), region_corner_target_world(map, r, 1),
-                                                region_corner_target_world(map, r, 2)}));
+    const double kappa = triangle_condition({at(0), at(1), at(2)},
+                                            {region_corner_target_world(map, r, 0), region_corner_target_world(map, r, 1),
+                                             region_corner_target_world(map, r, 2)});
+    if (out != nullptr) out[r - m.region_begin[t]] = kappa;
+    worst = std::max(worst, kappa);
   }
   return worst;
 }
+
+/// The largest κ of the regions of S1 element t (1 for an element without regions).
+inline double worst_condition_of_element(const PlMap<2>& map, Index t) { return region_conditions_of_element(map, t, nullptr); }
 
 /// Per S1 element, the largest κ of its regions (1 for an element without regions).
 inline std::vector<double> worst_condition_per_element(const PlMap<2>& map) {
@@ -114,5 +120,45 @@ inline std::vector<double> worst_condition_per_element(const PlMap<2>& map) {
   for (Index t = 0; t < map.domain().element_count(); ++t) worst[static_cast<std::size_t>(t)] = worst_condition_of_element(map, t);
   return worst;
 }
+
+/// κ of every region of a map (region order) and, per S1 element, the largest of its regions':
+/// what the smoothing's guards read, kept up to date as elements change, and handed out so that
+/// a caller's κ report need not evaluate the map again (SmoothOptions::summarize_kappa).
+struct MapConditions {
+  std::vector<double> region;   ///< per region
+  std::vector<double> element;  ///< per S1 element: max(1, its regions')
+
+  static MapConditions of(const PlMap<2>& map) {
+    MapConditions c;
+    c.region.assign(static_cast<std::size_t>(map.region_count()), 1.0);
+    c.element.assign(static_cast<std::size_t>(map.domain().element_count()), 1.0);
+    for (Index t = 0; t < map.domain().element_count(); ++t) c.update(map, t);
+    return c;
+  }
+  /// Element t of `map` changed, its regions' indices did not.
+  void update(const PlMap<2>& map, Index t) {
+    element[static_cast<std::size_t>(t)] =
+        region_conditions_of_element(map, t, region.data() + map.data().region_begin[t]);
+  }
+  /// The values for `map`, whose elements marked in `changed` differ from those of `old_map`
+  /// (for which these values are) and whose other elements have the same regions, possibly at
+  /// other indices.
+  MapConditions moved_to(const PlMap<2>& old_map, const PlMap<2>& map, const std::vector<char>& changed) const {
+    MapConditions c;
+    c.region.assign(static_cast<std::size_t>(map.region_count()), 1.0);
+    c.element = element;
+    const auto& from = old_map.data().region_begin;
+    const auto& to = map.data().region_begin;
+    for (Index t = 0; t < map.domain().element_count(); ++t) {
+      // (a region count that differs means the element did change: recomputed, never misread)
+      if (changed[static_cast<std::size_t>(t)] || from[t + 1] - from[t] != to[t + 1] - to[t]) {
+        c.update(map, t);
+        continue;
+      }
+      std::copy(region.begin() + from[t], region.begin() + from[t + 1], c.region.begin() + to[t]);
+    }
+    return c;
+  }
+};
 
 }  // namespace plmap::smoothing
