@@ -113,7 +113,9 @@ QuadSmoother::QuadSmoother(PreimageGraph& graph, const Surface<2>& domain, const
       s2_(target),
       weights_(std::move(weights)),
       unknown_index_(static_cast<std::size_t>(target.vertex_count()), -1),
-      edge_seen_(static_cast<std::size_t>(target.edge_count()), 0) {
+      edge_seen_(static_cast<std::size_t>(target.edge_count()), 0),
+      s2_ring_known_(static_cast<std::size_t>(target.vertex_count()), 0),
+      s2_ring_edges_(static_cast<std::size_t>(target.vertex_count())) {
   if (index != nullptr) {
     edges_in_element_ = *index;
     return;
@@ -149,6 +151,35 @@ void QuadSmoother::index_edge(Index target_edge) {
     auto& list = edges_in_element_[t];
     if (std::find(list.begin(), list.end(), target_edge) == list.end()) list.push_back(target_edge);
   }
+}
+
+const std::vector<Index>* QuadSmoother::s2_ring_edges(Index v) {
+  signed char& known = s2_ring_known_[static_cast<std::size_t>(v)];
+  if (known == 0) {
+    // S2's cyclic order of v's neighbours: next(x) = y for each S2 triangle (v, x, y)
+    known = -1;
+    const auto star = s2_.vertex_elements(v);
+    if (star.empty()) return nullptr;
+    thread_local std::vector<std::pair<Index, Index>> next;
+    next.clear();
+    for (Index s : star) {
+      const int k = s2_.local_corner(s, v);
+      next.push_back({s2_.element(s)[(k + 1) % 3], s2_.element(s)[(k + 2) % 3]});
+    }
+    thread_local std::vector<Index> cycle;
+    cycle.assign(1, next.front().first);
+    while (cycle.size() <= next.size()) {
+      const auto it = std::find_if(next.begin(), next.end(), [&](const auto& xy) { return xy.first == cycle.back(); });
+      if (it == next.end()) return nullptr;
+      if (it->second == cycle.front()) break;
+      cycle.push_back(it->second);
+    }
+    if (cycle.size() != next.size()) return nullptr;
+    std::vector<Index>& edges = s2_ring_edges_[static_cast<std::size_t>(v)];
+    for (Index x : cycle) edges.push_back(s2_.find_edge(v, x));
+    known = 1;
+  }
+  return known > 0 ? &s2_ring_edges_[static_cast<std::size_t>(v)] : nullptr;
 }
 
 bool QuadSmoother::has_quadrilateral(Index e) const {
@@ -294,27 +325,11 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   system_.reset(unknowns);
   for (int i = 0; i < unknowns; ++i) {
     const Index v = unknown_vertex[i];
-    // S2's cyclic order of v's neighbours: next(x) = y for each S2 triangle (v, x, y)
-    const auto star = s2_.vertex_elements(v);
-    thread_local std::vector<std::pair<Index, Index>> next;
-    next.clear();
-    for (Index s : star) {
-      const int k = s2_.local_corner(s, v);
-      next.push_back({s2_.element(s)[(k + 1) % 3], s2_.element(s)[(k + 2) % 3]});
-    }
-    thread_local std::vector<Index> cycle;
-    cycle.assign(1, next.front().first);
-    while (cycle.size() <= next.size()) {
-      const auto it = std::find_if(next.begin(), next.end(), [&](const auto& xy) { return xy.first == cycle.back(); });
-      if (it == next.end()) return refuse("vertex preimage with an open S2 star");
-      if (it->second == cycle.front()) break;
-      cycle.push_back(it->second);
-    }
-    if (cycle.size() != next.size() || ring_of[i].size() != cycle.size()) return refuse("vertex preimage with an open S2 star");
+    const std::vector<Index>* cycle = s2_ring_edges(v);
+    if (cycle == nullptr || ring_of[i].size() != cycle->size()) return refuse("vertex preimage with an open S2 star");
     std::vector<Eigen::Vector3d>& ring = ring_world[i];
     ring.clear();
-    for (Index x : cycle) {
-      const Index te = s2_.find_edge(v, x);
+    for (Index te : *cycle) {
       const auto it = std::find_if(ring_of[i].begin(), ring_of[i].end(), [&](const auto& pe) { return pieces[pe.first].edge == te; });
       if (it == ring_of[i].end()) return refuse("vertex preimage with an open S2 star");
       ordered_ring[i].push_back(*it);
