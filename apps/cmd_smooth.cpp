@@ -25,17 +25,21 @@ struct SmoothCommand {
   std::string weights = "floater";
   bool json = false;
   bool no_quadrilaterals = false;
+  bool no_element_pass = false;
   ProgressMode progress = ProgressMode::automatic;
 };
 
-/// κ_Ξ's distribution through verify's quality report (construct/ cannot compute it).
-KappaSummary measure_kappa(const PlMap<2>& map) { return kappa_summary(compute_quality(map)); }
+/// κ_Ξ's distribution from the smoothing's own per-region κ, with verify's statistics
+/// (construct/ does not depend on verify/).
+KappaSummary summarize_kappa(std::span<const double> region_kappas) { return kappa_summary(kappa_statistics(region_kappas)); }
 
 int run_smooth(const SmoothCommand& o) {
   // A bad name is a bad command line, refused before the map is read.
   const auto names = smoothing_weights_names();
   if (std::find(names.begin(), names.end(), o.weights) == names.end())
     throw UsageError(fmt::format("--weights: unknown smoothing weights '{}' (valid: {})", o.weights, fmt::join(names, ", ")));
+  if (o.no_quadrilaterals && o.no_element_pass)
+    throw UsageError("--no-quadrilaterals and --no-element-pass together leave nothing to smooth");
   check_output_file(o.output, OutputKind::map, {{"MAP", o.map}});
   require_readable_file(o.map);
   ProgressBar bar(o.progress);
@@ -51,7 +55,8 @@ int run_smooth(const SmoothCommand& o) {
   options.sweeps = o.sweeps;
   options.weights = o.weights;
   options.quadrilaterals = !o.no_quadrilaterals;
-  options.measure_kappa = measure_kappa;
+  options.elements = !o.no_element_pass;
+  options.summarize_kappa = summarize_kappa;
   options.progress = bar.callback();
   const SmoothResult result = smooth(map, options);
   save_map(o.output, result.map, bar.callback());
@@ -83,6 +88,7 @@ int run_smooth(const SmoothCommand& o) {
   j["after"] = sweeps.back();
   j["sweeps"] = sweeps;
   j["quadrilaterals"] = options.quadrilaterals;
+  j["element_pass"] = options.elements;
   if (!r.quadrilaterals_not_applicable.empty()) j["quadrilaterals_not_applicable"] = r.quadrilaterals_not_applicable;
   j["free_nodes"] = r.free_nodes;
   j["uniform_fallback_nodes"] = r.uniform_fallback_nodes;
@@ -112,6 +118,8 @@ void register_smooth(CLI::App& app, Action& action) {
   cmd->add_option("--weights", o->weights, "Smoothing weights: floater, mean-value or uniform")->capture_default_str();
   cmd->add_flag("--no-quadrilaterals", o->no_quadrilaterals,
                 "Smooth inside each element only (the preimages never cross an S1 edge)");
+  cmd->add_flag("--no-element-pass", o->no_element_pass,
+                "Smooth over the quadrilaterals only (they re-place every preimage inside them)");
   add_progress_options(*cmd, o->progress);
   cmd->add_flag("--json", o->json, "Print the summary as JSON");
   cmd->callback([o, &action] { action = [o] { return run_smooth(*o); }; });

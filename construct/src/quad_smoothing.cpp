@@ -1,6 +1,7 @@
 // One quadrilateral smoothing step; see quad_smoothing.hpp for the method.
 
 #include "quad_smoothing.hpp"
+#include "piece_crossings.hpp"
 #include "region_condition.hpp"
 
 #include <plmap/core/predicates.hpp>
@@ -102,11 +103,6 @@ double condition(const std::array<Vec2, 3>& p, const std::array<Eigen::Vector3d,
   return std::sqrt((mean + gap) / smallest);
 }
 
-double ccw_angle(const Vec2& from, const Vec2& to) {
-  double a = std::atan2(from.x() * to.y() - from.y() * to.x(), from.dot(to));
-  if (a <= 0.0) a += 2.0 * std::numbers::pi;
-  return a;
-}
 
 }  // namespace
 
@@ -117,7 +113,9 @@ QuadSmoother::QuadSmoother(PreimageGraph& graph, const Surface<2>& domain, const
       s2_(target),
       weights_(std::move(weights)),
       unknown_index_(static_cast<std::size_t>(target.vertex_count()), -1),
-      edge_seen_(static_cast<std::size_t>(target.edge_count()), 0) {
+      edge_seen_(static_cast<std::size_t>(target.edge_count()), 0),
+      s2_ring_known_(static_cast<std::size_t>(target.vertex_count()), 0),
+      s2_ring_edges_(static_cast<std::size_t>(target.vertex_count())) {
   if (index != nullptr) {
     edges_in_element_ = *index;
     return;
@@ -153,6 +151,35 @@ void QuadSmoother::index_edge(Index target_edge) {
     auto& list = edges_in_element_[t];
     if (std::find(list.begin(), list.end(), target_edge) == list.end()) list.push_back(target_edge);
   }
+}
+
+const std::vector<Index>* QuadSmoother::s2_ring_edges(Index v) {
+  signed char& known = s2_ring_known_[static_cast<std::size_t>(v)];
+  if (known == 0) {
+    // S2's cyclic order of v's neighbours: next(x) = y for each S2 triangle (v, x, y)
+    known = -1;
+    const auto star = s2_.vertex_elements(v);
+    if (star.empty()) return nullptr;
+    thread_local std::vector<std::pair<Index, Index>> next;
+    next.clear();
+    for (Index s : star) {
+      const int k = s2_.local_corner(s, v);
+      next.push_back({s2_.element(s)[(k + 1) % 3], s2_.element(s)[(k + 2) % 3]});
+    }
+    thread_local std::vector<Index> cycle;
+    cycle.assign(1, next.front().first);
+    while (cycle.size() <= next.size()) {
+      const auto it = std::find_if(next.begin(), next.end(), [&](const auto& xy) { return xy.first == cycle.back(); });
+      if (it == next.end()) return nullptr;
+      if (it->second == cycle.front()) break;
+      cycle.push_back(it->second);
+    }
+    if (cycle.size() != next.size()) return nullptr;
+    std::vector<Index>& edges = s2_ring_edges_[static_cast<std::size_t>(v)];
+    for (Index x : cycle) edges.push_back(s2_.find_edge(v, x));
+    known = 1;
+  }
+  return known > 0 ? &s2_ring_edges_[static_cast<std::size_t>(v)] : nullptr;
 }
 
 bool QuadSmoother::has_quadrilateral(Index e) const {
@@ -298,27 +325,11 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   system_.reset(unknowns);
   for (int i = 0; i < unknowns; ++i) {
     const Index v = unknown_vertex[i];
-    // S2's cyclic order of v's neighbours: next(x) = y for each S2 triangle (v, x, y)
-    const auto star = s2_.vertex_elements(v);
-    thread_local std::vector<std::pair<Index, Index>> next;
-    next.clear();
-    for (Index s : star) {
-      const int k = s2_.local_corner(s, v);
-      next.push_back({s2_.element(s)[(k + 1) % 3], s2_.element(s)[(k + 2) % 3]});
-    }
-    thread_local std::vector<Index> cycle;
-    cycle.assign(1, next.front().first);
-    while (cycle.size() <= next.size()) {
-      const auto it = std::find_if(next.begin(), next.end(), [&](const auto& xy) { return xy.first == cycle.back(); });
-      if (it == next.end()) return refuse("vertex preimage with an open S2 star");
-      if (it->second == cycle.front()) break;
-      cycle.push_back(it->second);
-    }
-    if (cycle.size() != next.size() || ring_of[i].size() != cycle.size()) return refuse("vertex preimage with an open S2 star");
+    const std::vector<Index>* cycle = s2_ring_edges(v);
+    if (cycle == nullptr || ring_of[i].size() != cycle->size()) return refuse("vertex preimage with an open S2 star");
     std::vector<Eigen::Vector3d>& ring = ring_world[i];
     ring.clear();
-    for (Index x : cycle) {
-      const Index te = s2_.find_edge(v, x);
+    for (Index te : *cycle) {
       const auto it = std::find_if(ring_of[i].begin(), ring_of[i].end(), [&](const auto& pe) { return pieces[pe.first].edge == te; });
       if (it == ring_of[i].end()) return refuse("vertex preimage with an open S2 star");
       ordered_ring[i].push_back(*it);
@@ -364,18 +375,24 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   thread_local std::vector<PlanarSegment> segments;
   segments.clear();
   for (const Piece& p : pieces) segments.push_back({end_position(p, 0), end_position(p, 1)});
-  if (any_segments_cross(segments)) return refuse("fold-over");
+  thread_local std::vector<PieceBox> boxes;
+  if (any_pieces_meet(segments, boxes)) return refuse("fold-over");
   for (int i = 0; i < unknowns; ++i) {
-    double turn = 0.0;
+    // Each turn from one segment's direction to the next, counter-clockwise, is in (0, 2π]; they
+    // add up to 2π times the number of turns that pass the +x direction, so the segments wind
+    // once iff exactly one does (decided exactly, where a sum of atan2 angles was 6 % of a step).
+    int wraps = 0;
     const auto& ring = ordered_ring[i];
     for (std::size_t j = 0; j < ring.size(); ++j) {
       const Vec2 d0 = end_position(pieces[ring[j].first], ring[j].second) - position[i];
       const auto& nx = ring[(j + 1) % ring.size()];
       const Vec2 d1 = end_position(pieces[nx.first], nx.second) - position[i];
-      if (orient2d(Vec2::Zero(), d0, d1) == 0 && d0.dot(d1) > 0.0) return refuse("fold-over");
-      turn += ccw_angle(d0, d1);
+      if (d0 == Vec2::Zero()) return refuse("fold-over");  // a segment of length zero
+      const int turn = orient2d(Vec2::Zero(), d0, d1);
+      if (turn == 0 && d0.dot(d1) > 0.0) return refuse("fold-over");
+      if (!direction_precedes(d0, d1, turn)) ++wraps;
     }
-    if (std::abs(turn - 2.0 * std::numbers::pi) > 1e-6) return refuse("fold-over");
+    if (wraps != 1) return refuse("fold-over");
   }
   // The worst spoke triangle (v, neighbour j, neighbour j + 1) against its image: a step that
   // would make it worse is refused, so that sweeps do not trade the quadrilateral's worst piece
@@ -398,7 +415,9 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   };
   std::vector<Vec2> old_position(unknown_vertex.size());
   for (int i = 0; i < unknowns; ++i) old_position[i] = *u.place(s1_, g_.vertex[unknown_vertex[i]]);
-  if (worst_spoke(position) > std::max(worst_spoke(old_position), free_condition))
+  // the old positions' worst is needed only if the new one is above free_condition
+  if (const double worst_new = worst_spoke(position);
+      worst_new > free_condition && worst_new > std::max(worst_spoke(old_position), free_condition))
     return refuse("would raise the worst condition number");
 
   // new crossings with e

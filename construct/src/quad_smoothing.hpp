@@ -75,6 +75,10 @@ class QuadSmoother {
   QuadOutcome step(Index e, QuadStepRecord* record);
   void index_edge(Index target_edge);
   void reindex_quadrilateral(Index t1, Index t2, const std::vector<Index>& relevant);
+  /// The S2 edges at S2 vertex v in S2's cyclic order around v (following its triangles), or
+  /// nullptr if v's triangles do not close one fan around it. Computed once per vertex (S2 does
+  /// not change; every step with v among its unknowns asked again: a tenth of a step).
+  const std::vector<Index>* s2_ring_edges(Index v);
   PreimageGraph& g_;
   const Surface<2>& s1_;
   const Surface<2>& s2_;
@@ -84,6 +88,8 @@ class QuadSmoother {
   std::vector<Index> relevant_, unknown_vertex_;  ///< of the current step: S2 edges in T1 ∪ T2, unknowns
   std::vector<int> unknown_index_;                ///< per S2 vertex: its unknown in the current step, or -1
   std::vector<char> edge_seen_;                   ///< per S2 edge: in relevant_
+  std::vector<signed char> s2_ring_known_;        ///< per S2 vertex: 0 not yet, 1 closed fan, -1 open
+  std::vector<std::vector<Index>> s2_ring_edges_; ///< per S2 vertex with a closed fan: s2_ring_edges
   Index uniform_fallbacks_ = 0;
 };
 

@@ -12,7 +12,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -23,13 +25,25 @@ namespace plmap::smoothing {
 /// every guard allows κ up to max(its old value, free_condition).
 constexpr double free_condition = 3.0;
 
+/// power_of_two_scale<2>({u, v}) (core/scaled_geometry.hpp), the same value without the library
+/// calls ilogb and ldexp: for a normal largest coordinate the power of two at or below it is the
+/// number with its mantissa bits cleared. κ is evaluated for every region a few times per sweep,
+/// and the two calls were a twentieth of the smoothing.
+inline double frame_scale(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  const double largest = std::max(u.cwiseAbs().maxCoeff(), v.cwiseAbs().maxCoeff());
+  if (!(largest >= std::numeric_limits<double>::min()) || !std::isfinite(largest))
+    return power_of_two_scale<2>({u, v});  // zero, subnormal, not finite: the general path
+  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(largest) & 0x7ff0000000000000ULL);
+}
+
 /// The edge vectors p1 - p0, p2 - p0 of a triangle in an orthonormal frame of its plane (first
 /// axis along p1 - p0, second towards p2): upper triangular. Scaled by a power of two first, so
 /// that the squares inside the norms stay in range. The same frame as verify's quality report,
 /// so that a guard here and the reported κ agree even on slivers, where rounding dominates.
 inline Eigen::Matrix2d frame_coordinates(const std::array<Eigen::Vector3d, 3>& p) {
-  const double scale = power_of_two_scale<2>({p[1] - p[0], p[2] - p[0]});
-  const Eigen::Vector3d u = (p[1] - p[0]) / scale, v = (p[2] - p[0]) / scale;
+  const Eigen::Vector3d du = p[1] - p[0], dv = p[2] - p[0];
+  const double scale = frame_scale(du, dv);
+  const Eigen::Vector3d u = du / scale, v = dv / scale;
   Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
   const double lu = u.norm();
   if (lu == 0.0) return m;
@@ -74,10 +88,11 @@ inline double region_condition(const PlMap<2>& map, Index r) {
                              region_corner_target_world(map, r, 2)});
 }
 
-/// The largest κ of the regions of S1 element t (1 for an element without regions): exactly
-/// max(region_condition(map, r)) over them, with each node's world position computed once
-/// instead of once per region corner (a node is a corner of about six regions).
-inline double worst_condition_of_element(const PlMap<2>& map, Index t) {
+/// The κ of each region of S1 element t into `out` (if given; indexed by region - region_begin[t])
+/// and the largest of them (1 for an element without regions): exactly region_condition(map, r)
+/// for each, with each node's world position computed once instead of once per region corner (a
+/// node is a corner of about six regions).
+inline double region_conditions_of_element(const PlMap<2>& map, Index t, double* out) {
   const auto& m = map.data();
   const Index nb = m.node_begin[t], ne = m.node_begin[t + 1];
   thread_local std::vector<Eigen::Vector3d> world;
@@ -87,12 +102,17 @@ inline double worst_condition_of_element(const PlMap<2>& map, Index t) {
   for (Index r = m.region_begin[t]; r < m.region_begin[t + 1]; ++r) {
     const auto& c = m.region_corners[r];
     const auto at = [&](int k) { return world[static_cast<std::size_t>(c[k] - nb)]; };
-    worst = std::max(worst, triangle_condition({at(0), at(1), at(2)},
-                                               {region_corner_target_world(map, r, 0), region_corner_target_world(map, r, 1),
-                                                region_corner_target_world(map, r, 2)}));
+    const double kappa = triangle_condition({at(0), at(1), at(2)},
+                                            {region_corner_target_world(map, r, 0), region_corner_target_world(map, r, 1),
+                                             region_corner_target_world(map, r, 2)});
+    if (out != nullptr) out[r - m.region_begin[t]] = kappa;
+    worst = std::max(worst, kappa);
   }
   return worst;
 }
+
+/// The largest κ of the regions of S1 element t (1 for an element without regions).
+inline double worst_condition_of_element(const PlMap<2>& map, Index t) { return region_conditions_of_element(map, t, nullptr); }
 
 /// Per S1 element, the largest κ of its regions (1 for an element without regions).
 inline std::vector<double> worst_condition_per_element(const PlMap<2>& map) {
@@ -100,5 +120,45 @@ inline std::vector<double> worst_condition_per_element(const PlMap<2>& map) {
   for (Index t = 0; t < map.domain().element_count(); ++t) worst[static_cast<std::size_t>(t)] = worst_condition_of_element(map, t);
   return worst;
 }
+
+/// κ of every region of a map (region order) and, per S1 element, the largest of its regions':
+/// what the smoothing's guards read, kept up to date as elements change, and handed out so that
+/// a caller's κ report need not evaluate the map again (SmoothOptions::summarize_kappa).
+struct MapConditions {
+  std::vector<double> region;   ///< per region
+  std::vector<double> element;  ///< per S1 element: max(1, its regions')
+
+  static MapConditions of(const PlMap<2>& map) {
+    MapConditions c;
+    c.region.assign(static_cast<std::size_t>(map.region_count()), 1.0);
+    c.element.assign(static_cast<std::size_t>(map.domain().element_count()), 1.0);
+    for (Index t = 0; t < map.domain().element_count(); ++t) c.update(map, t);
+    return c;
+  }
+  /// Element t of `map` changed, its regions' indices did not.
+  void update(const PlMap<2>& map, Index t) {
+    element[static_cast<std::size_t>(t)] =
+        region_conditions_of_element(map, t, region.data() + map.data().region_begin[t]);
+  }
+  /// The values for `map`, whose elements marked in `changed` differ from those of `old_map`
+  /// (for which these values are) and whose other elements have the same regions, possibly at
+  /// other indices.
+  MapConditions moved_to(const PlMap<2>& old_map, const PlMap<2>& map, const std::vector<char>& changed) const {
+    MapConditions c;
+    c.region.assign(static_cast<std::size_t>(map.region_count()), 1.0);
+    c.element = element;
+    const auto& from = old_map.data().region_begin;
+    const auto& to = map.data().region_begin;
+    for (Index t = 0; t < map.domain().element_count(); ++t) {
+      // (a region count that differs means the element did change: recomputed, never misread)
+      if (changed[static_cast<std::size_t>(t)] || from[t + 1] - from[t] != to[t + 1] - to[t]) {
+        c.update(map, t);
+        continue;
+      }
+      std::copy(region.begin() + from[t], region.begin() + from[t + 1], c.region.begin() + to[t]);
+    }
+    return c;
+  }
+};
 
 }  // namespace plmap::smoothing

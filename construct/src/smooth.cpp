@@ -237,9 +237,11 @@ std::vector<double> neighbourhood_max(const Surface<2>& s1, const std::vector<do
 /// A redone pass gives the result of a pass from scratch without the frozen edges, but solves
 /// only the steps near the newly frozen edges and replays the others from the previous attempt's
 /// records (run_quadrilateral_pass in quad_smoothing.hpp).
-void smooth_quadrilaterals(PlMap<2>& current, const std::vector<double>& worst_before, double worst_at_sweep_start,
+/// `conditions` are those of `current` and, if the pass is kept, become those of the new map.
+void smooth_quadrilaterals(PlMap<2>& current, smoothing::MapConditions& conditions, double worst_at_sweep_start,
                            const AnySmoothingWeights& weights, SmoothReport& report, SmoothSweepReport& sweep) {
   constexpr int max_attempts = 8;
+  const std::vector<double>& worst_before = conditions.element;
   const Surface<2>& s1 = current.domain();
   const std::vector<double> allowed = neighbourhood_max(s1, worst_before);
   // the sweep's guarantee is against the map before its element pass, which only lowers κ
@@ -256,7 +258,8 @@ void smooth_quadrilaterals(PlMap<2>& current, const std::vector<double>& worst_b
   std::optional<smoothing::EdgesInElement> start_index;
   std::vector<smoothing::QuadStepRecord> previous, records;
   std::vector<char> newly_frozen(static_cast<std::size_t>(s1.edge_count()), 0);
-  std::vector<double> worst;  // per element, of the rebuilt map of the last run
+  smoothing::MapConditions rebuilt_conditions;  // of the rebuilt map of the last run
+  const std::vector<double>& worst = rebuilt_conditions.element;
   std::optional<PlMap<2>> last_rebuilt;
   for (int attempt = 0; attempt < max_attempts; ++attempt) {
     smoothing::PreimageGraph graph = *start;
@@ -287,12 +290,10 @@ void smooth_quadrilaterals(PlMap<2>& current, const std::vector<double>& worst_b
     }
     // MapBuilder closes each element from its own part of the graph, so where that part is the
     // previous run's (pass.changed), so are the regions and their κ
-    if (attempt == 0) {
-      worst = smoothing::worst_condition_per_element(*rebuilt);
-    } else if (!reused) {
-      for (Index t = 0; t < s1.element_count(); ++t)
-        if (pass.changed[static_cast<std::size_t>(t)]) worst[static_cast<std::size_t>(t)] = smoothing::worst_condition_of_element(*rebuilt, t);
-    }
+    if (attempt == 0)
+      rebuilt_conditions = smoothing::MapConditions::of(*rebuilt);
+    else if (!reused)
+      rebuilt_conditions = rebuilt_conditions.moved_to(*last_rebuilt, *rebuilt, pass.changed);
     bool raised = false, beyond_repair = false;
     std::fill(newly_frozen.begin(), newly_frozen.end(), 0);
     for (Index t = 0; t < s1.element_count(); ++t) {
@@ -324,6 +325,7 @@ void smooth_quadrilaterals(PlMap<2>& current, const std::vector<double>& worst_b
     sweep.quadrilaterals_skipped_by_reason = pass.skipped_by_reason;
     sweep.quadrilateral_attempts = attempt + 1;
     current = std::move(*rebuilt);
+    conditions = std::move(rebuilt_conditions);
     return;
   }
   sweep.quadrilateral_pass_refused_by_kappa = true;
@@ -340,17 +342,19 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
   report.weights = options.weights;
   PlMap<2> current(map.domain_ptr(), map.target_ptr(), map.data());
   if (options.measure_kappa) report.kappa_before = options.measure_kappa(current);
+  // κ of every region of `current`, kept up to date through the sweeps
+  smoothing::MapConditions conditions = smoothing::MapConditions::of(current);
+  if (!options.measure_kappa && options.summarize_kappa) report.kappa_before = options.summarize_kappa(conditions.region);
   const Index elements = map.domain().element_count();
   for (int s = 1; s <= options.sweeps; ++s) {
     report_progress(options.progress, "smoothing sweeps", static_cast<std::uint64_t>(s - 1), static_cast<std::uint64_t>(options.sweeps));
     SmoothSweepReport sweep;
     // per element, its worst κ: the element pass's guard, then (updated where it moved nodes)
     // the quadrilateral pass's
-    std::vector<double> worst = smoothing::worst_condition_per_element(current);
-    const double worst_at_sweep_start = std::ranges::max(worst);
+    const double worst_at_sweep_start = std::ranges::max(conditions.element);
     std::vector<Index> moved;
     MapData<2> next = current.data();
-    ElementSmoother smoother(current, current.data(), weights, report, &worst);
+    ElementSmoother smoother(current, current.data(), weights, report, &conditions.element);
     report.skipped_elements.clear();
     for (Index t = 0; t < (options.elements ? elements : 0); ++t) {
       ElementOutcome outcome = smoother.solve(t, s == 1);
@@ -363,9 +367,12 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
       if (!outcome.positions.empty() && apply_outcome(current, t, outcome.positions, next, sweep)) moved.push_back(t);
     }
     current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next));
-    for (Index t : moved) worst[static_cast<std::size_t>(t)] = smoothing::worst_condition_of_element(current, t);
-    if (options.quadrilaterals) smooth_quadrilaterals(current, worst, worst_at_sweep_start, weights, report, sweep);
-    if (options.measure_kappa) sweep.kappa = options.measure_kappa(current);
+    for (Index t : moved) conditions.update(current, t);
+    if (options.quadrilaterals) smooth_quadrilaterals(current, conditions, worst_at_sweep_start, weights, report, sweep);
+    if (options.measure_kappa)
+      sweep.kappa = options.measure_kappa(current);
+    else if (options.summarize_kappa)
+      sweep.kappa = options.summarize_kappa(conditions.region);
     report.sweeps.push_back(sweep);
     if (options.after_sweep) options.after_sweep(s, current);
     report_progress(options.progress, "smoothing sweeps", static_cast<std::uint64_t>(s), static_cast<std::uint64_t>(options.sweeps));

@@ -88,40 +88,34 @@ RegionConditioning triangle_conditioning(const std::array<WorldPoint<2>, 3>& dom
   return c;
 }
 
-template <int d>
-QualityReport compute_quality(const PlMap<d>& map) {
+QualityReport kappa_statistics(std::span<const double> region_kappas) {
   QualityReport report;
-  report.region_count = map.region_count();
+  report.region_count = static_cast<Index>(region_kappas.size());
   report.quantile_levels = {0.5, 0.9, 0.99, 0.999, 1.0};
   report.histogram.assign(17, 0);  // log10 kappa in steps of 0.25 up to 4, then open-ended
   std::vector<double> kappas;
-  kappas.reserve(static_cast<std::size_t>(map.region_count()));
+  kappas.reserve(region_kappas.size());
   double sum = 0.0;
-  report.stretch_min = std::numeric_limits<double>::infinity();
-  report.stretch_max = 0.0;
   report.kappa_max = 0.0;
-  for (Index r = 0; r < map.region_count(); ++r) {
-    const RegionConditioning c = region_conditioning(map, r);
-    if (!std::isfinite(c.kappa)) {
+  for (Index r = 0; r < report.region_count; ++r) {
+    const double kappa = region_kappas[static_cast<std::size_t>(r)];
+    if (!std::isfinite(kappa)) {
       ++report.degenerate_count;
       report.kappa_max = std::numeric_limits<double>::infinity();
       report.kappa_max_region = r;
       continue;
     }
-    kappas.push_back(c.kappa);
-    sum += c.kappa;
-    if (c.kappa > report.kappa_max && std::isfinite(report.kappa_max)) {
-      report.kappa_max = c.kappa;
+    kappas.push_back(kappa);
+    sum += kappa;
+    if (kappa > report.kappa_max && std::isfinite(report.kappa_max)) {
+      report.kappa_max = kappa;
       report.kappa_max_region = r;
     }
-    report.stretch_min = std::min(report.stretch_min, c.sigma_min);
-    report.stretch_max = std::max(report.stretch_max, c.sigma_max);
-    const double bin = std::log10(std::max(c.kappa, 1.0)) / report.histogram_bin_width;
+    const double bin = std::log10(std::max(kappa, 1.0)) / report.histogram_bin_width;
     const auto index = std::min<std::size_t>(static_cast<std::size_t>(bin), report.histogram.size() - 1);
     ++report.histogram[index];
   }
   if (kappas.empty()) {
-    report.stretch_min = report.stretch_max = 1.0;
     if (report.degenerate_count == 0) report.kappa_max = 1.0;
     report.quantiles.assign(report.quantile_levels.size(), report.kappa_max);
     return report;
@@ -133,6 +127,25 @@ QualityReport compute_quality(const PlMap<d>& map) {
     std::nth_element(kappas.begin(), kappas.begin() + static_cast<std::ptrdiff_t>(index), kappas.end());
     report.quantiles.push_back(kappas[index]);
   }
+  return report;
+}
+
+template <int d>
+QualityReport compute_quality(const PlMap<d>& map) {
+  std::vector<double> kappas(static_cast<std::size_t>(map.region_count()));
+  double stretch_min = std::numeric_limits<double>::infinity(), stretch_max = 0.0;
+  bool any_finite = false;
+  for (Index r = 0; r < map.region_count(); ++r) {
+    const RegionConditioning c = region_conditioning(map, r);
+    kappas[static_cast<std::size_t>(r)] = c.kappa;
+    if (!std::isfinite(c.kappa)) continue;
+    any_finite = true;
+    stretch_min = std::min(stretch_min, c.sigma_min);
+    stretch_max = std::max(stretch_max, c.sigma_max);
+  }
+  QualityReport report = kappa_statistics(kappas);
+  report.stretch_min = any_finite ? stretch_min : 1.0;
+  report.stretch_max = any_finite ? stretch_max : 1.0;
   return report;
 }
 

@@ -28,6 +28,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 
 namespace plmap {
@@ -61,6 +62,12 @@ struct SmoothOptions {
   /// If given, κ_Ξ is measured before the first sweep and after each one, into the report
   /// (e.g. from verify's compute_quality, as `plmap smooth` does).
   std::function<KappaSummary(const PlMap<2>&)> measure_kappa;
+  /// Used instead of measure_kappa when that is not given: the smoothing hands over the κ_Ξ of
+  /// every region (region order; infinite for a degenerate region) of the input and of the map
+  /// after each sweep, which its guards compute anyway, the same values as verify's
+  /// region_conditioning (e.g. `plmap smooth` passes them to verify's kappa_statistics), so that
+  /// the report costs no second evaluation of the map.
+  std::function<KappaSummary(std::span<const double> region_kappas)> summarize_kappa;
   /// Called after each sweep with its number (1-based) and the map so far; e.g. the CLI computes
   /// κ with verify/ there, which construct/ does not depend on. Optional.
   std::function<void(int sweep, const PlMap<2>&)> after_sweep;
@@ -78,7 +85,7 @@ struct SmoothSweepReport {
   /// part of the move (1/2, 1/4, ... 1/64) was kept (elements refused outright are counted in
   /// SmoothReport::skipped_by_reason["would raise the worst condition number"]).
   Index elements_shortened = 0;
-  /// κ_Ξ after this sweep (when SmoothOptions::measure_kappa is given).
+  /// κ_Ξ after this sweep (when SmoothOptions::measure_kappa or summarize_kappa is given).
   std::optional<KappaSummary> kappa;
 
   // ---- the quadrilateral pass ----
@@ -107,7 +114,7 @@ struct SmoothSweepReport {
 
 struct SmoothReport {
   std::vector<SmoothSweepReport> sweeps;
-  /// κ_Ξ of the input (when SmoothOptions::measure_kappa is given).
+  /// κ_Ξ of the input (when SmoothOptions::measure_kappa or summarize_kappa is given).
   std::optional<KappaSummary> kappa_before;
   Index free_nodes = 0;  ///< interior nodes (the unknowns), counted once
   /// Nodes whose weights model refused their star (degenerate: a zero spoke or angle); they were

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 namespace plmap {
@@ -58,5 +59,10 @@ RegionConditioning triangle_conditioning(const std::array<WorldPoint<2>, 3>& dom
 /// selection, not a full sort).
 template <int d>
 QualityReport compute_quality(const PlMap<d>& map);
+
+/// compute_quality's κ statistics (all but the stretch, left at 1) from the κ of every region, in
+/// region order (infinite for a degenerate region), for callers that have them already (the
+/// smoothing computes them for its guards: SmoothOptions::summarize_kappa).
+QualityReport kappa_statistics(std::span<const double> region_kappas);
 
 }  // namespace plmap
