@@ -59,6 +59,14 @@ class ElementBoxIndex {
       if (!(r > smallest)) return 0;
       return std::min(max_classes - 1, static_cast<int>(std::log2(r / smallest)));
     };
+    int lowest = max_classes, highest = -1;
+    for (Index t = 0; t < n; ++t) {
+      lowest = std::min(lowest, class_of(reach[t]));
+      highest = std::max(highest, class_of(reach[t]));
+    }
+    // Reaches within a factor 4 of each other: the one wide query is about as tight as the
+    // classes would be, and building them would cost more than they save (L5 spheres).
+    if (highest - lowest < 2) return;
     classes_.resize(max_classes);
     for (Index t = 0; t < n; ++t) {
       SizeClass& sc = classes_[class_of(reach[t])];
@@ -70,6 +78,10 @@ class ElementBoxIndex {
     for (SizeClass& sc : classes_)
       sc.tree = std::make_unique<KdTree<d + 1>>(d + 1, sc.centroids, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   }
+
+  /// Whether the element sizes are uneven enough for the classes (else visit_near must not be
+  /// called: the caller asks the centroid tree).
+  bool has_classes() const { return !classes_.empty(); }
 
   const Box& box(Index t) const { return boxes_[t]; }
 

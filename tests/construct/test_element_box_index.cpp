@@ -32,6 +32,7 @@ template <int d>
 std::size_t expect_superset(const Surface<d>& s, const WorldPoint<d>& low, const WorldPoint<d>& high, double largest,
                             std::uint32_t seed) {
   const ElementBoxIndex<d> index(s);
+  EXPECT_TRUE(index.has_classes());  // uneven sizes: the classes are what is tested
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::size_t extra = 0;
@@ -74,13 +75,14 @@ TEST(ElementBoxIndex, NamesEveryElementWhoseBoxIsNearOnAGradedZigzag) {
 }
 
 TEST(ElementBoxIndex, NamesEveryElementWhoseBoxIsNearOnAGradedGrid) {
-  // a 40 x 40 grid whose columns shrink geometrically towards x = 0 (cells from 1e-5 to 0.1 wide),
-  // with long slivers along the last column
+  // a 40 x 40 grid whose columns and rows shrink geometrically towards x = 0 and y = 0 (cells
+  // from 1e-5 to 0.1 wide and high, slivers where a wide column meets a low row)
   const int n = 40;
   std::vector<WorldPoint<2>> v;
   std::vector<ElementCorners<2>> e;
   for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) v.emplace_back(std::pow(10.0, -5.0 + 4.0 * i / n) - 1e-5, 0.025 * j, 0.01 * std::sin(i + j));
+    for (int i = 0; i <= n; ++i) v.emplace_back(std::pow(10.0, -5.0 + 4.0 * i / n) - 1e-5, std::pow(10.0, -5.0 + 4.0 * j / n) - 1e-5,
+                     0.01 * std::sin(i + j));
   auto id = [&](int i, int j) { return j * (n + 1) + i; };
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
