@@ -64,9 +64,10 @@ class ElementBoxIndex {
       lowest = std::min(lowest, class_of(reach[t]));
       highest = std::max(highest, class_of(reach[t]));
     }
-    // Reaches within a factor 4 of each other: the one wide query is about as tight as the
-    // classes would be, and building them would cost more than they save (L5 spheres).
-    if (highest - lowest < 2) return;
+    // One class (reaches within a factor 2: the spheres): the one wide query is as tight, and
+    // building the class would cost more than it saves. A few odd elements are enough to make
+    // the classes pay (the 200k planes: 19 elements in a second class).
+    if (highest == lowest) return;
     classes_.resize(max_classes);
     for (Index t = 0; t < n; ++t) {
       SizeClass& sc = classes_[class_of(reach[t])];

@@ -98,21 +98,19 @@ class VertexPreimageSearch {
     // the wide centroid query.
     const double reach = nearest + ctx_.s1_index->radius;
     std::vector<std::pair<double, Index>> added;
-    auto consider = [&](Index t, double squared) {
+    auto consider = [&](Index t) {
       if (std::find(seeds.begin(), seeds.begin() + count, static_cast<std::uint32_t>(t)) != seeds.begin() + count)
         return;
       const auto& box = ctx_.s1_boxes->box(t);
       const double box_distance = (x.cwiseMax(box.low).cwiseMin(box.high) - x).norm();
-      if (box_distance < nearest) added.emplace_back(squared, t);
+      if (box_distance < nearest) added.emplace_back(ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t)), t);
     };
     if (ctx_.s1_boxes->has_classes()) {
       ctx_.s1_boxes->visit_near(x, nearest, [&](Index t) {
-        const double squared = ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t));
-        if (squared < reach * reach) consider(t, squared);
+        if (ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t)) < reach * reach) consider(t);
       });
     } else {
-      for (Index t : ctx_.s1_index->within(x, reach))
-        consider(t, ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t)));
+      for (Index t : ctx_.s1_index->within(x, reach)) consider(t);
     }
     std::sort(added.begin(), added.end());
     for (const auto& [unused, t] : added) {
