@@ -30,8 +30,11 @@ ProjectionContext<d>::ProjectionContext(std::shared_ptr<const Surface<d>> s1_sur
   if (!(distance_limit >= 0.0)) throw Error(fmt::format("max_distance {} is not >= 0", options.max_distance));
   seed_count = std::clamp(options.search_seeds, 1, max_search_seeds);
   threads = resolve_thread_count(options.threads);
-  parallel_for_pieces(2, 2, threads, [&](std::size_t k, std::size_t, std::size_t) {  // two independent kd-trees
-    (k == 0 ? s1_index : s2_index) = std::make_unique<ElementIndex<d>>(k == 0 ? s1 : s2);
+  parallel_for_pieces(3, 3, threads, [&](std::size_t k, std::size_t, std::size_t) {  // independent indexes
+    if (k == 2)
+      s1_boxes = std::make_unique<ElementBoxIndex<d>>(s1);
+    else
+      (k == 0 ? s1_index : s2_index) = std::make_unique<ElementIndex<d>>(k == 0 ? s1 : s2);
   });
   const ProjectionSearchLimits& limits = options.search_limits;
   if (!(limits.seed_walk_steps > 0) || !(limits.edge_walk_steps >= 0) || !(limits.inside_tolerance >= 0.0) ||
@@ -68,6 +71,7 @@ template <int d>
 void ProjectionContext<d>::release_search_data() {
   s1_index.reset();
   s2_index.reset();
+  s1_boxes.reset();
   auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
   release(focal_free_reach);
   release(vertex_directions);

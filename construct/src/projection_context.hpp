@@ -10,6 +10,7 @@
 //   4. edge walks (projection_edge_walks): the preimages of the S2 edges, walked across S1;
 //   5. insertion (projection_insertion): everything entered into the MapBuilder, in index order.
 
+#include "element_box_index.hpp"
 #include "element_index.hpp"
 #include "walk_acceptance.hpp"
 
@@ -118,6 +119,8 @@ struct ProjectionContext {
   /// from |T1|).
   int edge_walk_steps = 16;
   std::unique_ptr<ElementIndex<d>> s1_index, s2_index;
+  /// S1's elements by their bounding boxes, for the long elements a vertex preimage search adds.
+  std::unique_ptr<ElementBoxIndex<d>> s1_boxes;
   mutable std::atomic<long long> solver_calls{0}, solver_failures{0};
 
   /// Frees the search data (indexes, directions, focal distances) once the walks are done.

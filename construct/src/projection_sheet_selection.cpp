@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <span>
+#include <utility>
 
 namespace plmap::projection {
 
@@ -73,7 +74,7 @@ void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, unsigned threads, P
   const std::vector<Index> farther = farther_overlapping_regions(map, images);
   if (farther.empty()) return;
   FaceRemovalReport removal;
-  map = remove_faces(map, std::span<const Index>(farther), &removal);
+  map = remove_faces(std::move(map), std::span<const Index>(farther), &removal);
   report.occluded_faces = removal.removed_faces;
   report.occluded_regions = removal.removed_regions;
   images = image_measures(map, threads);

@@ -92,17 +92,25 @@ class VertexPreimageSearch {
     // The seeds are the nearest centroids: if they reach beyond that bound, or are all there are,
     // every candidate is a seed already (the usual case, at the cost of no tree query).
     if (count >= ctx_.s1_index->size() || std::sqrt(farthest) > nearest + ctx_.s1_index->radius) return count;
+    // The candidates are the elements whose centroid lies within nearest + radius of x (every
+    // element whose box lies within `nearest` has its centroid there, up to the box's corners)
+    // and whose box lies nearer than `nearest`; the box index names a superset of them without
+    // the wide centroid query.
+    const double reach = nearest + ctx_.s1_index->radius;
     std::vector<std::pair<double, Index>> added;
-    for (Index t : ctx_.s1_index->within(x, nearest + ctx_.s1_index->radius)) {
+    auto consider = [&](Index t) {
       if (std::find(seeds.begin(), seeds.begin() + count, static_cast<std::uint32_t>(t)) != seeds.begin() + count)
-        continue;
-      WorldPoint<d> low = ctx_.s1.corner(t, 0), high = low;
-      for (int k = 1; k <= d; ++k) {
-        low = low.cwiseMin(ctx_.s1.corner(t, k));
-        high = high.cwiseMax(ctx_.s1.corner(t, k));
-      }
-      const double box_distance = (x.cwiseMax(low).cwiseMin(high) - x).norm();
+        return;
+      const auto& box = ctx_.s1_boxes->box(t);
+      const double box_distance = (x.cwiseMax(box.low).cwiseMin(box.high) - x).norm();
       if (box_distance < nearest) added.emplace_back(ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t)), t);
+    };
+    if (ctx_.s1_boxes->has_classes()) {
+      ctx_.s1_boxes->visit_near(x, nearest, [&](Index t) {
+        if (ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t)) < reach * reach) consider(t);
+      });
+    } else {
+      for (Index t : ctx_.s1_index->within(x, reach)) consider(t);
     }
     std::sort(added.begin(), added.end());
     for (const auto& [unused, t] : added) {

@@ -5,7 +5,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace plmap {
@@ -74,12 +77,112 @@ void mark_faces(const PlMap<d>& map, std::span<const Index> regions, std::vector
   }
 }
 
+/// The entries (indices into MapData::neighbor) that leave with the removed regions: closure
+/// edges (d = 1: the graph edge of a region) on a side of a removed region that no kept region of
+/// the same element has. Found per element from its own regions, so the cost follows what is
+/// removed, not the size of the map.
+template <int d>
+std::vector<Index> entries_leaving(const MapData<d>& m, Index element_count, const std::vector<char>& removed) {
+  std::vector<Index> leaving;
+  auto has_side = [](const std::array<Index, d + 1>& c, Index a, Index b) {
+    for (int i = 0; i <= d; ++i) {
+      const Index x = c[i], y = c[(i + 1) % (d + 1)];
+      if ((x == a && y == b) || (x == b && y == a)) return true;
+    }
+    return false;
+  };
+  for (Index t = 0; t < element_count; ++t) {
+    const Index begin = m.region_begin[t], end = m.region_begin[t + 1];
+    for (Index r = begin; r < end; ++r) {
+      if (!removed[r]) continue;
+      const auto& c = m.region_corners[r];
+      for (int i = 0; i <= d; ++i) {
+        const Index a = c[i], b = c[(i + 1) % (d + 1)];
+        bool kept_side = false;
+        for (Index other = begin; other < end && !kept_side; ++other)
+          kept_side = !removed[other] && has_side(m.region_corners[other], a, b);
+        if (kept_side) continue;
+        for (const Index e : {neighbor_entry(m, a, b), neighbor_entry(m, b, a)})
+          if (e != invalid_index && (d == 1 || m.neighbor_edge_kind[e] == GraphEdgeKind::closure)) leaving.push_back(e);
+      }
+    }
+  }
+  std::sort(leaving.begin(), leaving.end());
+  leaving.erase(std::unique(leaving.begin(), leaving.end()), leaving.end());
+  return leaving;
+}
+
+/// Drops the removed regions from m's region arrays in place, keeping the order of the rest,
+/// and renumbers the neighbours and start regions. Returns how many regions are kept.
+template <int d>
+Index compact_regions(MapData<d>& m, Index element_count, const std::vector<char>& removed) {
+  const auto nr = static_cast<Index>(m.region_corners.size());
+  std::vector<Index> renumbered(static_cast<std::size_t>(nr), invalid_index);
+  Index kept = 0, old_begin = 0;
+  for (Index t = 0; t < element_count; ++t) {
+    const Index old_end = m.region_begin[t + 1];
+    for (Index r = old_begin; r < old_end; ++r)
+      if (!removed[r]) renumbered[r] = kept++;
+    m.region_begin[t + 1] = kept;
+    old_begin = old_end;
+  }
+  for (Index r = 0; r < nr; ++r) {
+    const Index to = renumbered[r];
+    if (to == invalid_index) continue;
+    std::array<Index, d + 1> across = m.region_neighbors[r];
+    for (Index& g : across) g = g == invalid_index ? invalid_index : renumbered[g];
+    m.region_corners[to] = m.region_corners[r];
+    m.region_neighbors[to] = across;
+    m.region_target[to] = m.region_target[r];
+    m.region_map[to] = m.region_map[r];
+  }
+  m.region_corners.resize(kept);
+  m.region_neighbors.resize(kept);
+  m.region_target.resize(kept);
+  m.region_map.resize(kept);
+  // A walk starts from the old start region if it is kept, else from any region of the element.
+  for (Index t = 0; t < element_count; ++t) {
+    const Index s = m.start_region[t];
+    if (s != invalid_index && !removed[s])
+      m.start_region[t] = renumbered[s];
+    else
+      m.start_region[t] = m.region_begin[t] < m.region_begin[t + 1] ? m.region_begin[t] : invalid_index;
+  }
+  return kept;
+}
+
+/// Drops the given entries (sorted, each once) from m's neighbour lists in place.
+template <int d>
+void compact_neighbors(MapData<d>& m, const std::vector<Index>& leaving) {
+  if (leaving.empty()) return;
+  // the lists before the first node that loses an entry stay where they are
+  const auto first = static_cast<std::size_t>(
+      std::upper_bound(m.neighbor_begin.begin(), m.neighbor_begin.end(), leaving.front()) - m.neighbor_begin.begin() - 1);
+  std::size_t written = static_cast<std::size_t>(m.neighbor_begin[first]), next = 0;
+  Index old_begin = m.neighbor_begin[first];
+  for (std::size_t n = first; n + 1 < m.neighbor_begin.size(); ++n) {
+    const Index old_end = m.neighbor_begin[n + 1];
+    for (Index i = old_begin; i < old_end; ++i) {
+      if (next < leaving.size() && leaving[next] == i) {
+        ++next;
+        continue;
+      }
+      m.neighbor[written] = m.neighbor[i];
+      m.neighbor_edge_kind[written] = m.neighbor_edge_kind[i];
+      ++written;
+    }
+    m.neighbor_begin[n + 1] = static_cast<Index>(written);
+    old_begin = old_end;
+  }
+  m.neighbor.resize(written);
+  m.neighbor_edge_kind.resize(written);
+}
+
 }  // namespace
 
 template <int d>
   requires SurfaceDimension<d>
-PlMap<d> remove_faces(const PlMap<d>& map, std::span<const Index> regions, FaceRemovalReport* report) {
-  const MapData<d>& m = map.data();
+PlMap<d> remove_faces(PlMap<d>&& map, std::span<const Index> regions, FaceRemovalReport* report) {
   const Index nr = map.region_count();
   const Index nt = map.domain().element_count();
   for (Index r : regions)
@@ -89,82 +192,26 @@ PlMap<d> remove_faces(const PlMap<d>& map, std::span<const Index> regions, FaceR
   FaceRemovalReport rep;
   std::vector<char> removed(static_cast<std::size_t>(nr), 0);
   mark_faces(map, regions, removed, rep);
-
-  MapData<d> out;
-  out.orientation = m.orientation;
-  out.node_begin = m.node_begin;
-  out.node_position = m.node_position;
-  out.node_type = m.node_type;
-  out.node_location = m.node_location;
-  out.node_image = m.node_image;
-  out.node_target = m.node_target;
-  out.edge_node_begin = m.edge_node_begin;
-  out.edge_node = m.edge_node;
-
-  // Regions: the kept ones, renumbered in order.
-  std::vector<Index> renumbered(static_cast<std::size_t>(nr), invalid_index);
-  out.region_begin.assign(static_cast<std::size_t>(nt) + 1, 0);
-  out.start_region.assign(static_cast<std::size_t>(nt), invalid_index);
-  Index kept = 0;
-  for (Index t = 0; t < nt; ++t) {
-    for (Index r = m.region_begin[t]; r < m.region_begin[t + 1]; ++r)
-      if (!removed[r]) renumbered[r] = kept++;
-    out.region_begin[t + 1] = kept;
-  }
-  rep.removed_regions = nr - kept;
-  out.region_corners.reserve(kept);
-  out.region_neighbors.reserve(kept);
-  out.region_target.reserve(kept);
-  out.region_map.reserve(kept);
-  for (Index r = 0; r < nr; ++r) {
-    if (removed[r]) continue;
-    std::array<Index, d + 1> across = m.region_neighbors[r];
-    for (Index& g : across) g = g == invalid_index ? invalid_index : renumbered[g];
-    out.region_corners.push_back(m.region_corners[r]);
-    out.region_neighbors.push_back(across);
-    out.region_target.push_back(m.region_target[r]);
-    out.region_map.push_back(m.region_map[r]);
-  }
-  // A walk starts from the old start region if it is kept, else from any region of the element.
-  for (Index t = 0; t < nt; ++t) {
-    const Index s = m.start_region[t];
-    if (s != invalid_index && !removed[s])
-      out.start_region[t] = renumbered[s];
-    else if (out.region_begin[t] < out.region_begin[t + 1])
-      out.start_region[t] = out.region_begin[t];
-  }
-
-  // Neighbours: graph edges of d = 2 stay; closure edges (and, for d = 1, the graph edge of a
-  // region) stay only while a kept region borders them.
-  std::vector<char> keep_entry(m.neighbor.size(), 0);
-  if constexpr (d == 2)
-    for (std::size_t i = 0; i < m.neighbor.size(); ++i)
-      keep_entry[i] = m.neighbor_edge_kind[i] == GraphEdgeKind::target_edge;
-  for (Index r = 0; r < nr; ++r) {
-    if (removed[r]) continue;
-    const auto& c = m.region_corners[r];
-    for (int i = 0; i <= d; ++i) {
-      const Index a = c[i], b = c[(i + 1) % (d + 1)];
-      if (const Index e = neighbor_entry(m, a, b); e != invalid_index) keep_entry[e] = 1;
-      if (const Index e = neighbor_entry(m, b, a); e != invalid_index) keep_entry[e] = 1;
-    }
-  }
-  out.neighbor_begin.reserve(m.neighbor_begin.size());
-  out.neighbor_begin.push_back(0);
-  for (Index n = 0; n + 1 < static_cast<Index>(m.neighbor_begin.size()); ++n) {
-    for (Index i = m.neighbor_begin[n]; i < m.neighbor_begin[n + 1]; ++i)
-      if (keep_entry[i]) {
-        out.neighbor.push_back(m.neighbor[i]);
-        out.neighbor_edge_kind.push_back(m.neighbor_edge_kind[i]);
-      }
-    out.neighbor_begin.push_back(static_cast<Index>(out.neighbor.size()));
-  }
-
+  std::shared_ptr<const Surface<d>> domain = map.domain_ptr(), target = map.target_ptr();
+  // The map's arrays are changed in place: nodes, graph edges and edge arrays stay as they are,
+  // and only the regions and the entries that leave with them are taken out.
+  MapData<d> m = std::move(map).release_data();
+  const std::vector<Index> leaving = entries_leaving(m, nt, removed);
+  rep.removed_regions = nr - compact_regions(m, nt, removed);
+  compact_neighbors(m, leaving);
   if (report) *report = rep;
-  return PlMap<d>(map.domain_ptr(), map.target_ptr(), std::move(out));
+  return PlMap<d>(std::move(domain), std::move(target), std::move(m));
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+PlMap<d> remove_faces(const PlMap<d>& map, std::span<const Index> regions, FaceRemovalReport* report) {
+  return remove_faces(PlMap<d>(map), regions, report);
 }
 
 template PlMap<1> remove_faces<1>(const PlMap<1>&, std::span<const Index>, FaceRemovalReport*);
 template PlMap<2> remove_faces<2>(const PlMap<2>&, std::span<const Index>, FaceRemovalReport*);
+template PlMap<1> remove_faces<1>(PlMap<1>&&, std::span<const Index>, FaceRemovalReport*);
+template PlMap<2> remove_faces<2>(PlMap<2>&&, std::span<const Index>, FaceRemovalReport*);
 
 }  // namespace plmap
