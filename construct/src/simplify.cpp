@@ -65,6 +65,7 @@ class Simplifier {
     const Surface<2>& s = *fine;
     for (const auto& [name, weight] : options.oracles.named_weights())
       if (name == "hausdorff") hausdorff_weight_ += weight;
+      else if (name == "aspect-ratio") aspect_weight_ += weight;
     double total = 0.0;
     for (Index e = 0; e < s.edge_count(); ++e) {
       const auto ab = s.edge_vertices(e);
@@ -313,8 +314,11 @@ class Simplifier {
       if (hole.has_full_plan) give_back(std::move(hole.full_plan));
       hole.has_full_plan = false;
       hole.sheet.ring.clear();
-      const double distance = estimate_.distance(v, line_neighbours_[v]);
-      queue_.push({hausdorff_weight_ * distance / length_scale_, v, stamp_[v], true});
+      const auto e = estimate_.estimate(v, line_neighbours_[v]);
+      // The aspect-ratio oracle's cost (worst new minus worst old aspect ratio, at least -1e3)
+      // is at least this: a star of thin triangles comes up early, as with the exact ranking.
+      const double aspect = std::max(e.best_new_aspect - e.worst_star_aspect, -1e3);
+      queue_.push({hausdorff_weight_ * e.distance / length_scale_ + aspect_weight_ * aspect, v, stamp_[v], true});
       return;
     }
     Attempt a = attempt(v, PlanExtent::ranking_bound);
@@ -455,6 +459,7 @@ class Simplifier {
   detail::SimplifyRankingEstimate estimate_;
   bool estimated_ = false;          ///< options.ranking == "estimate"
   double hausdorff_weight_ = 0.0;   ///< the summed weight of the Hausdorff oracles, for the estimate
+  double aspect_weight_ = 0.0;      ///< the summed weight of the aspect-ratio oracles, for the estimate
   double length_scale_ = 1.0;
   Index ranking_plans_ = 0;
   Index requeued_ = 0;  ///< by confirm_estimate
