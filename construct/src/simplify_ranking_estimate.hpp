@@ -80,61 +80,80 @@ class SimplifyRankingEstimate {
   /// The estimate of removing v; `line` holds v's two neighbours along its feature line, or
   /// invalid_index if v is not on one.
   Estimate estimate(Index v, std::array<Index, 2> line) const {
+    // v's neighbours, each once, with their positions, and per star triangle the neighbour
+    // indices of its two corners other than v (counter-clockwise).
     const Eigen::Vector3d& x = map_.position(v);
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero(), mean = Eigen::Vector3d::Zero();
-    double carried = 0.0, worst_aspect = 1.0;
-    int corners = 0;
-    for (Index t : map_.vertex_triangles(v)) {
-      const auto& c = map_.triangle(t);
-      const Eigen::Vector3d& a = map_.position(c[0]);
-      normal += (map_.position(c[1]) - a).cross(map_.position(c[2]) - a);
-      for (Index w : c)
-        if (w != v) {
-          mean += map_.position(w);
-          ++corners;
-        }
-      carried = std::max(carried, carried_[static_cast<std::size_t>(t)]);
-      worst_aspect = std::max(worst_aspect, aspect_ratio(a, map_.position(c[1]), map_.position(c[2])));
-    }
-    // The neighbours of v (each once) and the bound on the new triangles' aspect ratios.
     neighbours_.clear();
-    for (Index t : map_.vertex_triangles(v))
-      for (Index w : map_.triangle(t))
-        if (w != v && std::find(neighbours_.begin(), neighbours_.end(), w) == neighbours_.end()) neighbours_.push_back(w);
-    double best_new_aspect = 1.0;
+    positions_.clear();
+    outer_edges_.clear();
+    double carried = 0.0;
+    const auto neighbour_index = [&](Index w) {
+      for (std::size_t i = 0; i < neighbours_.size(); ++i)
+        if (neighbours_[i] == w) return static_cast<int>(i);
+      neighbours_.push_back(w);
+      positions_.push_back(map_.position(w));
+      return static_cast<int>(neighbours_.size() - 1);
+    };
     for (Index t : map_.vertex_triangles(v)) {
       const auto& c = map_.triangle(t);
       const int k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
-      const Index a = c[(k + 1) % 3], b = c[(k + 2) % 3];
+      outer_edges_.push_back({neighbour_index(c[(k + 1) % 3]), neighbour_index(c[(k + 2) % 3])});
+      carried = std::max(carried, carried_[static_cast<std::size_t>(t)]);
+    }
+    const int n = static_cast<int>(neighbours_.size());
+    // Distances between neighbours and to v, each computed once.
+    lengths_.assign(static_cast<std::size_t>(n * n), 0.0);
+    spoke_.resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+      spoke_[i] = (positions_[i] - x).norm();
+      for (int j = i + 1; j < n; ++j) lengths_[i * n + j] = lengths_[j * n + i] = (positions_[i] - positions_[j]).norm();
+    }
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero(), mean = Eigen::Vector3d::Zero();
+    double worst_aspect_squared = 1.0, best_new_aspect_squared = 1.0;
+    for (const auto& [a, b] : outer_edges_) {
+      const Eigen::Vector3d ab = positions_[b] - positions_[a];
+      const Eigen::Vector3d star_normal = (positions_[a] - x).cross(positions_[b] - x);
+      normal += star_normal;
+      mean += positions_[a] + positions_[b];
+      worst_aspect_squared = std::max(
+          worst_aspect_squared, aspect_squared(spoke_[a], spoke_[b], lengths_[a * n + b], star_normal.squaredNorm()));
+      // The new triangle on the outer edge ab has its third corner among the other neighbours.
       double best = std::numeric_limits<double>::infinity();
-      for (Index w : neighbours_)
-        if (w != a && w != b) best = std::min(best, aspect_ratio(map_.position(a), map_.position(b), map_.position(w)));
-      if (std::isfinite(best)) best_new_aspect = std::max(best_new_aspect, best);
+      for (int w = 0; w < n; ++w)
+        if (w != a && w != b)
+          best = std::min(best, aspect_squared(lengths_[a * n + w], lengths_[b * n + w], lengths_[a * n + b],
+                                               ab.cross(positions_[w] - positions_[a]).squaredNorm()));
+      if (std::isfinite(best)) best_new_aspect_squared = std::max(best_new_aspect_squared, best);
     }
     double height = 0.0;
-    const double n = normal.norm();
-    if (corners > 0 && n > 0.0) height = std::abs((x - mean / corners).dot(normal / n));
+    const double normal_length = normal.norm();
+    if (!outer_edges_.empty() && normal_length > 0.0)
+      height = std::abs((x - mean / (2.0 * static_cast<double>(outer_edges_.size()))).dot(normal / normal_length));
     if (line[0] != invalid_index) {
       const Eigen::Vector3d p = map_.position(line[0]), d = map_.position(line[1]) - p;
       const double s = d.squaredNorm() > 0.0 ? std::clamp((x - p).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
       height = std::max(height, (x - (p + s * d)).norm());
     }
-    return {std::max(carried, height), worst_aspect, best_new_aspect};
+    return {std::max(carried, height), std::sqrt(worst_aspect_squared), std::sqrt(best_new_aspect_squared)};
   }
 
  private:
-  /// Longest edge × perimeter / (4√3 × area), 1 for the equilateral triangle (the aspect-ratio
-  /// oracle's measure).
-  static double aspect_ratio(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-    const double la = (b - c).norm(), lb = (c - a).norm(), lc = (a - b).norm();
-    const double area = 0.5 * (b - a).cross(c - a).norm();
-    if (!(area > 0.0)) return std::numeric_limits<double>::infinity();
-    return std::max({la, lb, lc}) * (la + lb + lc) / (4.0 * std::sqrt(3.0) * area);
+  /// The square of the aspect-ratio oracle's measure, longest edge × perimeter / (4√3 × area)
+  /// (1 for the equilateral triangle), from the edge lengths and the squared norm of twice the
+  /// area vector: squares spare a root per candidate triangle.
+  static double aspect_squared(double l0, double l1, double l2, double twice_area_squared) {
+    if (!(twice_area_squared > 0.0)) return std::numeric_limits<double>::infinity();
+    const double product = std::max({l0, l1, l2}) * (l0 + l1 + l2);
+    return product * product / (12.0 * twice_area_squared);
   }
 
   const EditableMap& map_;
   std::vector<double> carried_;  ///< per S1 triangle slot
-  mutable std::vector<Index> neighbours_;  ///< working list of estimate()
+  // Working lists of estimate().
+  mutable std::vector<Index> neighbours_;
+  mutable std::vector<Eigen::Vector3d> positions_;
+  mutable std::vector<std::array<int, 2>> outer_edges_;
+  mutable std::vector<double> lengths_, spoke_;
 };
 
 }  // namespace plmap::detail
