@@ -61,6 +61,7 @@ void check_simplification(const Case& c, const std::string& ranking) {
   VerifyOptions v;
   v.expect_parametrization = true;
   const VerificationReport report = verify(result.map, v);
+  RC_LOG() << summary(report) << "\n";
   RC_ASSERT_FALSE(!report.ok());
   RC_ASSERT(simplify_test::vertices_without_one_preimage(result.map).empty());
   const double area = s2.measure();
