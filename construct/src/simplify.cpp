@@ -63,9 +63,10 @@ class Simplifier {
         estimate_(map_),
         estimated_(options.ranking == "estimate") {
     const Surface<2>& s = *fine;
-    for (const auto& [name, weight] : options.oracles.named_weights())
+    for (const auto& [name, weight] : options.oracles.named_weights()) {
       if (name == "hausdorff") hausdorff_weight_ += weight;
-      else if (name == "aspect-ratio") aspect_weight_ += weight;
+      if (name == "aspect-ratio") aspect_weight_ += weight;
+    }
     double total = 0.0;
     for (Index e = 0; e < s.edge_count(); ++e) {
       const auto ab = s.edge_vertices(e);
