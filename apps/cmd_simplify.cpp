@@ -25,7 +25,7 @@ struct SimplifyCommand {
   double max_error = std::numeric_limits<double>::infinity();
   std::vector<std::string> oracles;
   double feature_angle = 60.0;
-  std::string flattening = "polar-map", hole_triangulation = "constrained-delaunay";
+  std::string flattening = "polar-map", hole_triangulation = "constrained-delaunay", ranking = "exact";
   unsigned threads = 0;
   bool json = false;
   ProgressMode progress = ProgressMode::automatic;
@@ -50,6 +50,7 @@ int run_simplify(const SimplifyCommand& o) {
   options.feature_angle_degrees = o.feature_angle;
   options.flattening = o.flattening;
   options.hole_triangulation = o.hole_triangulation;
+  options.ranking = o.ranking;
   options.builder.threads = o.threads;
   for (const std::string& spec : o.oracles) options.oracles.add_spec(spec);
   // Strategy names are checked before the (possibly long) run.
@@ -115,6 +116,12 @@ int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const S
   j["oracles"] = r.oracles;
   j["flattening"] = r.flattening;
   j["hole_triangulation"] = r.hole_triangulation;
+  if (!r.ranking.empty()) {  // surfaces only: a curve's removals are ranked exactly
+    j["ranking"] = r.ranking;
+    j["full_plans"] = r.full_plans;
+    j["requeued"] = r.requeued;
+    j["ranking_plans"] = r.ranking_plans;
+  }
   j["feature_angle"] = o.feature_angle;
   j["threads"] = resolved_threads(o.threads);
   j["seconds"] = r.seconds_total;
@@ -155,6 +162,11 @@ void register_simplify(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--hole-triangulation", o->hole_triangulation,
                   "Re-triangulation: constrained-delaunay or min-max-aspect")
+      ->capture_default_str();
+  cmd->add_option("--ranking", o->ranking,
+                  "Queue removal candidates by their exact ranking plan (exact) or by a cheap "
+                  "Hausdorff estimate corrected when they come up (estimate)")
+      ->check(CLI::IsMember({"exact", "estimate"}))
       ->capture_default_str();
   add_threads_option(*cmd, o->threads, "Threads of the final closure");
   add_progress_options(*cmd, o->progress);

@@ -4,6 +4,7 @@
 
 #include <plmap/construct/simplify.hpp>
 #include "simplify_option_checks.hpp"
+#include "simplify_ranking_estimate.hpp"
 
 #include <plmap/core/errors.hpp>
 #include <plmap/strategies/simplification/simplification_registry.hpp>
@@ -58,8 +59,14 @@ class Simplifier {
         map_(fine, options.edit),
         flatten_(make_star_flattening(options.flattening)),
         flatten_half_(make_half_star_flattening(options.flattening)),
-        triangulate_(make_hole_triangulation(options.hole_triangulation)) {
+        triangulate_(make_hole_triangulation(options.hole_triangulation)),
+        estimate_(map_),
+        estimated_(options.ranking == "estimate") {
     const Surface<2>& s = *fine;
+    for (const auto& [name, weight] : options.oracles.named_weights()) {
+      if (name == "hausdorff") hausdorff_weight_ += weight;
+      if (name == "aspect-ratio") aspect_weight_ += weight;
+    }
     double total = 0.0;
     for (Index e = 0; e < s.edge_count(); ++e) {
       const auto ab = s.edge_vertices(e);
@@ -300,9 +307,25 @@ class Simplifier {
   void rank(Index v) {
     ++stamp_[v];
     if (!map_.is_live_vertex(v) || is_corner(v)) return;
+    if (estimated_) {
+      // Ranked by the estimate alone (simplify_ranking_estimate.hpp): whether v can be removed
+      // at all is found when it comes up. A plan kept for v is stale now.
+      last_refusal_[v].clear();
+      PreparedHole& hole = prepared_[v];
+      if (hole.has_full_plan) give_back(std::move(hole.full_plan));
+      hole.has_full_plan = false;
+      hole.sheet.ring.clear();
+      const auto e = estimate_.estimate(v, line_neighbours_[v]);
+      // The aspect-ratio oracle's cost (worst new minus worst old aspect ratio, at least -1e3)
+      // is at least this: a star of thin triangles comes up early, as with the exact ranking.
+      const double aspect = std::max(e.best_new_aspect - e.worst_star_aspect, -1e3);
+      queue_.push({hausdorff_weight_ * e.distance / length_scale_ + aspect_weight_ * aspect, v, stamp_[v], true});
+      return;
+    }
     Attempt a = attempt(v, PlanExtent::ranking_bound);
+    ++ranking_plans_;
     last_refusal_[v] = a.refusal;
-    if (a.refusal.empty()) queue_.push({a.verdict.cost, v, stamp_[v]});
+    if (a.refusal.empty()) queue_.push({a.verdict.cost, v, stamp_[v], false});
     give_back(std::move(a.plan));
   }
 
@@ -322,14 +345,20 @@ class Simplifier {
       // cost is a lower bound of its vertex's full cost, so a vertex whose full cost is not
       // above its queued cost is the cheapest of all (the order of ranking every candidate
       // fully); otherwise it goes back with its full cost.
+      if (top.estimated && !confirm_estimate(top.vertex)) continue;
       Attempt a = attempt(top.vertex, PlanExtent::full);
+      ++report.full_plans;
       last_refusal_[top.vertex] = a.refusal;
       if (!a.refusal.empty()) {
         ++stamp_[top.vertex];
         give_back(std::move(a.plan));
         continue;
       }
-      if (a.verdict.cost > top.cost) {
+      // With the estimate ranking the queued cost is no bound: the vertex is removed if its
+      // full cost is not above the next queued cost (it is still the cheapest known), otherwise
+      // it goes back with its full cost, which is exact from then on.
+      if (estimated_ ? a.verdict.cost > next_queued_cost() : a.verdict.cost > top.cost) {
+        ++report.requeued;
         // Its full cost is above its queued cost: queue it again at the right place. Exactly,
         // without a tolerance: on flat pieces (a cube's faces) costs tie within rounding, and
         // removing a vertex whose full cost is a rounding error above the next one's changes the
@@ -337,7 +366,7 @@ class Simplifier {
         // deterministic, so a vertex queued with its full cost passes this test when popped
         // on an unchanged map.
         ++stamp_[top.vertex];
-        queue_.push({a.verdict.cost, top.vertex, stamp_[top.vertex]});
+        queue_.push({a.verdict.cost, top.vertex, stamp_[top.vertex], false});
         PreparedHole& hole = prepared_[top.vertex];
         hole.stamp = stamp_[top.vertex];  // the map did not change: its hole stays, and so does the plan
         if (!hole.sheet.ring.empty()) {
@@ -351,6 +380,7 @@ class Simplifier {
       }
       map_.apply(a.plan);
       options_.oracles.on_applied(map_, a.plan);
+      if (estimated_) estimate_.on_applied(a.plan);
       join_line_neighbours(top.vertex);
       ++report.removed_vertices;
       if (a.plan.line_edge[0] != invalid_index) ++report.removed_along_lines;
@@ -363,6 +393,30 @@ class Simplifier {
         report_removals(report, false);
     }
     report.target_reached = target_reached();
+    report.ranking_plans = ranking_plans_;
+    report.requeued += requeued_;
+  }
+
+  /// A vertex queued by its estimate came up: its ranking plan (whose flattening and hole the
+  /// full plan then reuses) decides. False if it cannot be removed or its ranking cost is above
+  /// the next queued cost; then it went back into the queue with that cost, a lower bound of the
+  /// full cost like those of the exact ranking.
+  bool confirm_estimate(Index v) {
+    Attempt a = attempt(v, PlanExtent::ranking_bound);
+    ++ranking_plans_;
+    last_refusal_[v] = a.refusal;
+    const bool refused = !a.refusal.empty();
+    const bool above = !refused && a.verdict.cost > next_queued_cost();
+    give_back(std::move(a.plan));
+    if (!refused && !above) return true;
+    ++stamp_[v];
+    if (above) {
+      ++requeued_;
+      queue_.push({a.verdict.cost, v, stamp_[v], false});
+      PreparedHole& hole = prepared_[v];
+      if (!hole.sheet.ring.empty()) hole.stamp = stamp_[v];  // the map did not change: its hole stays
+    }
+    return false;
   }
 
   /// The "removing vertices" progress (see SimplifyOptions::progress); `finished`: the phase
@@ -383,10 +437,19 @@ class Simplifier {
   }
 
  private:
+  /// The cost of the cheapest current queue entry (stale ones are dropped), or infinity.
+  double next_queued_cost() {
+    while (!queue_.empty() &&
+           (queue_.top().stamp != stamp_[queue_.top().vertex] || !map_.is_live_vertex(queue_.top().vertex)))
+      queue_.pop();
+    return queue_.empty() ? std::numeric_limits<double>::infinity() : queue_.top().cost;
+  }
+
   struct Entry {
     double cost;
     Index vertex;
     std::uint32_t stamp;
+    bool estimated;  ///< queued by the estimate ranking, not by a plan
     bool operator>(const Entry& o) const { return cost > o.cost || (cost == o.cost && vertex > o.vertex); }
   };
   SimplifyOptions& options_;
@@ -394,7 +457,13 @@ class Simplifier {
   AnyStarFlattening flatten_;
   AnyStarFlattening flatten_half_;
   AnyHoleTriangulation triangulate_;
+  detail::SimplifyRankingEstimate estimate_;
+  bool estimated_ = false;          ///< options.ranking == "estimate"
+  double hausdorff_weight_ = 0.0;   ///< the summed weight of the Hausdorff oracles, for the estimate
+  double aspect_weight_ = 0.0;      ///< the summed weight of the aspect-ratio oracles, for the estimate
   double length_scale_ = 1.0;
+  Index ranking_plans_ = 0;
+  Index requeued_ = 0;  ///< by confirm_estimate
   std::vector<char> feature_vertex_;
   std::vector<char> corner_;  ///< feature corners: never removed
   /// Per vertex on a feature line, its two neighbours along the line in S1 (invalid if none).
@@ -427,6 +496,8 @@ SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions 
   if (!fine) throw Error("simplify: no surface given");
   const Surface<2>& s = *fine;
   detail::check_simplify_options(options, s.element_count(), s.vertex_count(), "surface", "triangles");
+  if (options.ranking != "exact" && options.ranking != "estimate")
+    throw Error(fmt::format("simplify: unknown ranking '{}' (exact or estimate)", options.ranking));
   if (options.oracles.empty()) options.oracles.add("hausdorff", 1.0).add("aspect-ratio", 0.05).add("normal-deviation", 0.5);
 
   SimplifyReport report;
@@ -435,6 +506,7 @@ SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions 
   report.oracles = options.oracles.description();
   report.flattening = options.flattening;
   report.hole_triangulation = options.hole_triangulation;
+  report.ranking = options.ranking;
 
   Simplifier simplifier(fine, options);
   report.feature_edges = simplifier.feature_edge_count();

@@ -23,6 +23,7 @@ const char* to_string(RemovalRefusal reason) {
     case RemovalRefusal::edge_along_new_edge: return "edge_along_new_edge";
     case RemovalRefusal::crossing_edges: return "crossing_edges";
     case RemovalRefusal::single_triangle_side: return "single_triangle_side";
+    case RemovalRefusal::edge_reenters_triangle: return "edge_reenters_triangle";
   }
   return "unknown";
 }

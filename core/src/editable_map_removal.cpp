@@ -585,6 +585,15 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       push_point(run_end + 1);
       i = run_end + 1;
     }
+    // The preimage must meet each new triangle in one straight piece (a minimal embedding): a
+    // polyline that leaves the star and comes back, or bends at the old spokes, can reach one new
+    // triangle twice, in pieces that are not consecutive.
+    for (std::size_t k = 1; k < edit.segment_triangle.size(); ++k) {
+      const Index t = edit.segment_triangle[k];
+      if (t >= 0 || t == edit.segment_triangle[k - 1]) continue;
+      for (std::size_t j = 0; j + 1 < k; ++j)
+        if (edit.segment_triangle[j] == t) return refuse(RemovalRefusal::edge_reenters_triangle);
+    }
     plan.polyline_edits.push_back(std::move(edit));
   }
 

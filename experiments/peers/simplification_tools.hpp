@@ -23,6 +23,8 @@ struct SimplificationRequest {
   Index target_elements = 500;
   /// plmap's error oracles, "NAME[:WEIGHT]" each.
   std::vector<std::string> oracles = {"hausdorff:1", "aspect-ratio:1"};
+  /// plmap's queueing of removal candidates (SimplifyOptions::ranking): "exact" or "estimate".
+  std::string ranking = "exact";
   /// plmap: dihedral angle above which an edge is a feature line (180: none, as PSurface sees a
   /// mesh without feature-line marks).
   double feature_angle_degrees = 180.0;

@@ -38,6 +38,7 @@ SimplificationOutcome simplify_with_plmap(const SimplificationRequest& request, 
   options.target_elements = request.target_elements;
   options.feature_angle_degrees = request.feature_angle_degrees;
   for (const auto& spec : request.oracles) options.oracles.add_spec(spec);
+  options.ranking = request.ranking;
   SmoothOptions smoothing;
   smoothing.sweeps = std::max(1, request.smooth_sweeps);
   smoothing.weights = request.smoothing_weights;
@@ -66,6 +67,9 @@ SimplificationOutcome simplify_with_plmap(const SimplificationRequest& request, 
     f["vertices"] = map.domain().vertex_count();
     f["nodes"] = map.node_count();
     f["regions"] = map.region_count();
+    f["ranking"] = r.ranking;
+    f["ranking_plans"] = r.ranking_plans;
+    f["full_plans"] = r.full_plans;
     f["hausdorff_before_smoothing"] = node_hausdorff(map) / diagonal;
     f["hausdorff"] = node_hausdorff(final_map) / diagonal;
     f["kappa_before"] = kappa_summary(region_kappas(map));

@@ -68,6 +68,9 @@ std::vector<BadCase> bad_cases() {
     cases.push_back({"unknown hole triangulation",
                      kExperiment + kGrid + "[[pipeline]]\nstep = \"simplify\"\nhole_triangulation = \"ear\"\n",
                      "pipeline[0].hole_triangulation", "unknown hole triangulation"});
+    cases.push_back({"unknown ranking",
+                     kExperiment + kGrid + "[[pipeline]]\nstep = \"simplify\"\nranking = \"psychic\"\n",
+                     "pipeline[0].ranking", "unknown ranking"});
     cases.push_back({"swept unknown oracle",
                      kExperiment + kGrid + "[[pipeline]]\nstep = \"simplify\"\n[sweep]\n\"simplify.oracles\" = [\"hausdorff\", \"nope\"]\n",
                      "sweep.\"simplify.oracles\"[1]", "nope"});

@@ -321,6 +321,7 @@ class Pipeline {
     options.feature_angle_degrees = p.real("feature_angle");
     options.flattening = p.text("flattening");
     options.hole_triangulation = p.text("hole_triangulation");
+    options.ranking = p.text("ranking");
     peers::Measurement clock;
     clock.start();
     SimplifyResult result = plmap::simplify(s1_, options);
@@ -392,6 +393,7 @@ class Pipeline {
                                      "--psurface-aspect-ratio", fmt::format("{}", p.real("psurface_aspect_ratio")),
                                      "--psurface-hausdorff", fmt::format("{}", p.real("psurface_hausdorff"))};
     for (const auto& spec : detail::split_oracles(p.text("oracles"))) argv.insert(argv.end(), {"--oracle", spec});
+    argv.insert(argv.end(), {"--ranking", p.text("ranking")});
     const auto outcome = detail::run_peer_benchmark("peer_simplify", argv, p.real("timeout_seconds"), true);
     m.metrics[prefix + "ok"] = outcome.ok;
     m.metrics[prefix + "error"] = outcome.error;

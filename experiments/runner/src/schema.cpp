@@ -278,7 +278,10 @@ const std::vector<ParameterSpec>& step_schema(const std::string& kind) {
       real("feature_angle", 60.0, 0.0, 180.0, "edges with a larger dihedral angle (degrees) are feature lines"),
       choice("flattening", "polar-map", names_of(star_flattening_names()), "star flattening", "flattening of a star"),
       choice("hole_triangulation", "constrained-delaunay", names_of(hole_triangulation_names()), "hole triangulation",
-             "re-triangulation of the hole")};
+             "re-triangulation of the hole"),
+      choice("ranking", "exact", {"exact", "estimate"}, "ranking",
+             "how removal candidates are queued: by their ranking plan, or by a Hausdorff estimate corrected when "
+             "they come up")};
   static const std::vector<ParameterSpec> smooth = {
       integer("sweeps", 1, 1, 1000, "passes over all elements"),
       choice("weights", "floater", names_of(smoothing_weights_names()), "smoothing weights",
@@ -291,6 +294,7 @@ const std::vector<ParameterSpec>& step_schema(const std::string& kind) {
              "(the floor, no map), run by experiments/peers' bench_simplification_peers in a child process"),
       integer("target_elements", 500, 1, 1e9, "triangles to simplify to"),
       text("oracles", "hausdorff:1,aspect-ratio:1", "plmap's error oracles NAME[:WEIGHT], comma-separated"),
+      choice("ranking", "exact", {"exact", "estimate"}, "ranking", "plmap's queueing of removal candidates"),
       real("feature_angle", 180.0, 0.0, 180.0,
            "plmap's feature-line angle (180: no sharp features, as PSurface sees an unmarked mesh)"),
       real("psurface_aspect_ratio", 0.5, 0.0, unbounded, "PSurface's QualityRequest aspect-ratio weight"),

@@ -56,6 +56,7 @@ enum class RemovalRefusal {
   edge_along_new_edge,    ///< an S2 edge's preimage would run along, or touch, a new edge
   crossing_edges,         ///< straightened S2 edge preimages would cross inside a new triangle
   single_triangle_side,   ///< a side of the feature line is one triangle: it would collapse onto the new edge
+  edge_reenters_triangle, ///< an S2 edge's preimage would pass through one new triangle twice
 };
 
 const char* to_string(RemovalRefusal reason);
