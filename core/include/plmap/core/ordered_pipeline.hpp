@@ -133,8 +133,7 @@ void produce_in_parallel_consume_in_order(std::size_t n, std::size_t block, std:
     for (std::size_t b = state.claim(true); b != detail::OrderedPipelineState::none; b = state.claim(true))
       produce_block(b);
   };
-  tbb::task_arena arena(static_cast<int>(threads));
-  arena.execute([&] {
+  detail::execute_in_arena(threads, [&] {
     tbb::task_group producers;
     for (unsigned w = 1; w < threads; ++w) producers.run(producer);
     try {

@@ -20,11 +20,64 @@
 #include <atomic>
 #include <cstddef>
 #include <exception>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 namespace plmap {
+
+namespace detail {
+
+/// How deep the calling thread is in plmap's arenas (0: outside every one of them).
+inline thread_local unsigned arena_depth = 0;
+
+/// The arena of the calling thread for `threads` threads at its current depth, created on first
+/// use and then kept for the life of the process.
+///
+/// Why kept: an arena created and destroyed per call (as plmap did first) leaves oneTBB's worker
+/// threads behind on a loaded machine. After a few hundred short-lived arenas, a new arena's
+/// work waited seconds for a worker, so the second thread did nothing (measured: a 2-thread
+/// arena on the 2-core machine with six busy processes, after 300 create-use-destroy cycles,
+/// got no worker within 5 s; with one arena reused, within a millisecond). Why per thread and
+/// depth: a thread never shares an arena's caller slot with another thread (so nobody waits for
+/// a slot), and work started inside a piece runs in an arena of its own, isolated from the
+/// enclosing one as before (the thread cannot pick up an unrelated outer piece while it waits).
+/// The arenas live in one registry that is never destroyed, keyed by thread id (a thread that
+/// starts after another ended may reuse its arenas): there are at most a few per thread, and
+/// destroying them at a worker thread's exit would race with oneTBB's own shutdown.
+inline tbb::task_arena& reusable_arena(unsigned threads) {
+  struct Key {
+    std::thread::id thread;
+    unsigned threads, depth;
+    bool operator<(const Key& o) const {
+      return std::tie(thread, threads, depth) < std::tie(o.thread, o.threads, o.depth);
+    }
+  };
+  static std::mutex mutex;
+  static auto* const arenas = new std::map<Key, std::unique_ptr<tbb::task_arena>>();
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto& arena = (*arenas)[Key{std::this_thread::get_id(), threads, arena_depth}];
+  if (!arena) arena = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
+  return *arena;
+}
+
+/// Runs f in the calling thread's arena for `threads` threads (see reusable_arena).
+template <class F>
+void execute_in_arena(unsigned threads, F&& f) {
+  reusable_arena(threads).execute([&] {
+    struct Depth {
+      Depth() { ++arena_depth; }
+      ~Depth() { --arena_depth; }
+    } depth;
+    f();
+  });
+}
+
+}  // namespace detail
 
 /// The thread count that `threads == 0` stands for: all hardware threads.
 inline unsigned resolve_thread_count(unsigned threads) {
@@ -56,8 +109,7 @@ void parallel_for_pieces_of_size(std::size_t n, std::size_t size, unsigned threa
       }
     }
   };
-  tbb::task_arena arena(static_cast<int>(std::min<std::size_t>(threads, pieces)));
-  arena.execute([&] {
+  detail::execute_in_arena(static_cast<unsigned>(std::min<std::size_t>(threads, pieces)), [&] {
     tbb::parallel_for(
         tbb::blocked_range<std::size_t>(0, pieces, 1),
         [&](const tbb::blocked_range<std::size_t>& r) {
