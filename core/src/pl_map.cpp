@@ -1,5 +1,8 @@
 #include <plmap/core/errors.hpp>
+#include <plmap/core/parallel_ranges.hpp>
 #include <plmap/core/pl_map.hpp>
+
+#include "map_graph_derivation.hpp"
 
 #include <fmt/format.h>
 
@@ -85,6 +88,230 @@ PlMap<d>::PlMap(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const 
   require(indices_ok, "edge node index");
   for (const auto& img : m.node_image) indices_ok &= below(img.element, n2);
   require(indices_ok, "node image element out of range");
+  if constexpr (d == 2) keep_only_underived_graph();
+}
+
+namespace {
+
+template <class T>
+void release(std::vector<T>& v) {
+  std::vector<T>().swap(v);
+}
+
+/// The graph arrays that a triangle map derives instead of storing.
+template <class Visit>
+void for_each_graph_array(MapData<2>& m, Visit&& visit) {
+  visit(m.neighbor_begin);
+  visit(m.neighbor);
+  visit(m.neighbor_edge_kind);
+  visit(m.edge_node_begin);
+  visit(m.edge_node);
+  visit(m.region_neighbors);
+}
+
+template <class T>
+bool slice_equals(const std::vector<T>& derived, const std::vector<T>& given, std::size_t begin) {
+  return begin + derived.size() <= given.size() &&
+         std::equal(derived.begin(), derived.end(), given.begin() + static_cast<std::ptrdiff_t>(begin));
+}
+
+}  // namespace
+
+template <int d>
+  requires SurfaceDimension<d>
+void PlMap<d>::keep_only_underived_graph() {
+  if constexpr (d == 2) {
+    MapData<2>& m = data_;
+    const Index nt = domain_->element_count();
+    // Whether each element's graph is what the derivation gives: a pure per-element comparison,
+    // so it runs on all cores (it costs ~100 ns per node, which a 2-million-node map would
+    // otherwise pay serially at every construction and load). The rare elements that differ are
+    // gathered afterwards, in element order, on one thread.
+    std::vector<unsigned char> derivable_element(static_cast<std::size_t>(nt), 0);
+    parallel_for_chunks(static_cast<std::size_t>(nt), 2048, 0, [&](std::size_t begin, std::size_t end) {
+      detail::GraphDerivationScratch scratch;
+      std::vector<std::array<Index, 3>> region_neighbors;
+      std::vector<Index> count, neighbor, edge_count, edge_node;
+      std::vector<GraphEdgeKind> kind;
+      for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) {
+        const Index nb = m.node_begin[t];
+        const Index rb = m.region_begin[t], re = m.region_begin[t + 1];
+        region_neighbors.resize(static_cast<std::size_t>(re - rb));
+        count.clear();
+        neighbor.clear();
+        kind.clear();
+        edge_count.clear();
+        edge_node.clear();
+        bool derivable = detail::derive_region_neighbors(m, t, region_neighbors, scratch) &&
+                         slice_equals(region_neighbors, m.region_neighbors, static_cast<std::size_t>(rb)) &&
+                         detail::derive_neighbor_lists(m, *target_, t, region_neighbors, count, neighbor, kind, scratch);
+        for (std::size_t i = 0; derivable && i < count.size(); ++i)
+          derivable = count[i] == m.neighbor_begin[static_cast<std::size_t>(nb) + i + 1] -
+                                      m.neighbor_begin[static_cast<std::size_t>(nb) + i];
+        const auto entries = static_cast<std::size_t>(m.neighbor_begin[static_cast<std::size_t>(nb)]);
+        derivable = derivable && slice_equals(neighbor, m.neighbor, entries) &&
+                    slice_equals(kind, m.neighbor_edge_kind, entries);
+        if (derivable) {
+          detail::derive_edge_nodes(m, t, edge_count, edge_node);
+          for (int k = 0; derivable && k < 3; ++k)
+            derivable = edge_count[static_cast<std::size_t>(k)] ==
+                        m.edge_node_begin[3 * static_cast<std::size_t>(t) + static_cast<std::size_t>(k) + 1] -
+                            m.edge_node_begin[3 * static_cast<std::size_t>(t) + static_cast<std::size_t>(k)];
+          derivable = derivable && slice_equals(edge_node, m.edge_node,
+                                                static_cast<std::size_t>(m.edge_node_begin[3 * static_cast<std::size_t>(t)]));
+        }
+        derivable_element[static_cast<std::size_t>(t)] = derivable ? 1 : 0;
+      }
+    });
+    detail::StoredGraphElements& kept = stored_graph_;
+    for (Index t = 0; t < nt; ++t) {
+      if (derivable_element[static_cast<std::size_t>(t)]) continue;
+      const Index nb = m.node_begin[t], ne = m.node_begin[t + 1];
+      const Index rb = m.region_begin[t], re = m.region_begin[t + 1];
+      kept.element.push_back(t);
+      for (Index n = nb; n < ne; ++n) {
+        kept.neighbor_count.push_back(m.neighbor_begin[n + 1] - m.neighbor_begin[n]);
+        for (Index j = m.neighbor_begin[n]; j < m.neighbor_begin[n + 1]; ++j) {
+          kept.neighbor.push_back(m.neighbor[j]);
+          kept.neighbor_edge_kind.push_back(m.neighbor_edge_kind[j]);
+        }
+      }
+      for (std::size_t i = 3 * static_cast<std::size_t>(t); i < 3 * static_cast<std::size_t>(t) + 3; ++i) {
+        kept.edge_node_count.push_back(m.edge_node_begin[i + 1] - m.edge_node_begin[i]);
+        for (Index j = m.edge_node_begin[i]; j < m.edge_node_begin[i + 1]; ++j) kept.edge_node.push_back(m.edge_node[j]);
+      }
+      for (Index r = rb; r < re; ++r) kept.region_neighbors.push_back(m.region_neighbors[r]);
+    }
+    for_each_graph_array(m, [](auto& v) { release(v); });
+  }
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+PlMap<d>::PlMap(const PlMap& other)
+    : domain_(other.domain_), target_(other.target_), data_(other.data_), stored_graph_(other.stored_graph_) {
+  if constexpr (d == 2) for_each_graph_array(data_, [](auto& v) { release(v); });
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+PlMap<d>& PlMap<d>::operator=(const PlMap& other) {
+  if (this != &other) *this = PlMap(other);
+  return *this;
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+PlMap<d>::~PlMap() = default;
+
+template <int d>
+  requires SurfaceDimension<d>
+void PlMap<d>::derive_region_neighbors() const {
+  if constexpr (d == 2) {
+    MapData<2>& m = data_;
+    const Index nt = domain_->element_count();
+    m.region_neighbors.resize(m.region_target.size());
+    detail::GraphDerivationScratch scratch;
+    std::size_t kept = 0, kept_region = 0;
+    for (Index t = 0; t < nt; ++t) {
+      const auto rb = static_cast<std::size_t>(m.region_begin[t]), re = static_cast<std::size_t>(m.region_begin[t + 1]);
+      if (kept < stored_graph_.element.size() && stored_graph_.element[kept] == t) {
+        std::copy_n(stored_graph_.region_neighbors.begin() + static_cast<std::ptrdiff_t>(kept_region), re - rb,
+                    m.region_neighbors.begin() + static_cast<std::ptrdiff_t>(rb));
+        kept_region += re - rb;
+        ++kept;
+        continue;
+      }
+      // the constructor checked that this derivation gives back the arrays it was handed
+      detail::derive_region_neighbors(m, t, std::span(m.region_neighbors).subspan(rb, re - rb), scratch);
+    }
+  }
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void PlMap<d>::derive_graph() const {
+  if constexpr (d == 2) {
+    region_neighbors();
+    MapData<2>& m = data_;
+    m.neighbor.clear();
+    m.neighbor_edge_kind.clear();
+    m.edge_node.clear();
+    const detail::StoredGraphElements& kept = stored_graph_;
+    const Index nt = domain_->element_count();
+    const std::size_t nn = m.node_type.size();
+    std::vector<Index> count, edge_count;
+    count.reserve(nn);
+    edge_count.reserve(3 * static_cast<std::size_t>(nt));
+    m.neighbor.reserve(6 * nn);
+    m.neighbor_edge_kind.reserve(6 * nn);
+    detail::GraphDerivationScratch scratch;
+    std::size_t e = 0, node = 0, entry = 0, edge = 0, edge_entry = 0;
+    for (Index t = 0; t < nt; ++t) {
+      if (e < kept.element.size() && kept.element[e] == t) {
+        for (Index n = m.node_begin[t]; n < m.node_begin[t + 1]; ++n) {
+          const Index c = kept.neighbor_count[node++];
+          count.push_back(c);
+          for (Index j = 0; j < c; ++j, ++entry) {
+            m.neighbor.push_back(kept.neighbor[entry]);
+            m.neighbor_edge_kind.push_back(kept.neighbor_edge_kind[entry]);
+          }
+        }
+        for (int k = 0; k < 3; ++k) {
+          const Index c = kept.edge_node_count[edge++];
+          edge_count.push_back(c);
+          for (Index j = 0; j < c; ++j) m.edge_node.push_back(kept.edge_node[edge_entry++]);
+        }
+        ++e;
+        continue;
+      }
+      const auto rb = static_cast<std::size_t>(m.region_begin[t]), re = static_cast<std::size_t>(m.region_begin[t + 1]);
+      detail::derive_neighbor_lists(m, *target_, t, std::span<const std::array<Index, 3>>(m.region_neighbors).subspan(rb, re - rb),
+                                    count, m.neighbor, m.neighbor_edge_kind, scratch);
+      detail::derive_edge_nodes(m, t, edge_count, m.edge_node);
+    }
+    auto prefix = [](const std::vector<Index>& c, std::vector<Index>& begin) {
+      begin.resize(c.size() + 1);
+      begin[0] = 0;
+      for (std::size_t i = 0; i < c.size(); ++i) begin[i + 1] = begin[i] + c[i];
+    };
+    prefix(count, m.neighbor_begin);
+    prefix(edge_count, m.edge_node_begin);
+    m.neighbor.shrink_to_fit();
+    m.neighbor_edge_kind.shrink_to_fit();
+    m.edge_node.shrink_to_fit();
+  }
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+const MapData<d>& PlMap<d>::data() const {
+  if constexpr (d == 2) {
+    if (!derived_->graph_ready.load(std::memory_order_acquire)) {
+      std::call_once(derived_->graph, [this] { derive_graph(); });
+      derived_->graph_ready.store(true, std::memory_order_release);
+    }
+  }
+  return data_;
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+std::span<const std::array<Index, d + 1>> PlMap<d>::region_neighbors() const {
+  if constexpr (d == 2) {
+    if (!derived_->region_neighbors_ready.load(std::memory_order_acquire)) {
+      std::call_once(derived_->region_neighbors, [this] { derive_region_neighbors(); });
+      derived_->region_neighbors_ready.store(true, std::memory_order_release);
+    }
+  }
+  return data_.region_neighbors;
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+MapData<d> PlMap<d>::release_data() && {
+  data();
+  return std::move(data_);
 }
 
 template <int d>
@@ -111,12 +338,25 @@ template <int d>
   requires SurfaceDimension<d>
 std::size_t PlMap<d>::memory_bytes() const {
   const auto& m = data_;
+  const std::size_t graph = bytes_of(m.neighbor_begin) + bytes_of(m.neighbor) + bytes_of(m.neighbor_edge_kind) +
+                            bytes_of(m.edge_node_begin) + bytes_of(m.edge_node) + bytes_of(m.region_neighbors);
+  const auto& g = stored_graph_;
+  const std::size_t kept = bytes_of(g.element) + bytes_of(g.neighbor_count) + bytes_of(g.neighbor) +
+                           bytes_of(g.neighbor_edge_kind) + bytes_of(g.edge_node_count) + bytes_of(g.edge_node) +
+                           bytes_of(g.region_neighbors);
   return bytes_of(m.node_begin) + bytes_of(m.node_position) + bytes_of(m.node_type) +
          bytes_of(m.node_location) + bytes_of(m.node_image) + bytes_of(m.node_target) +
-         bytes_of(m.neighbor_begin) + bytes_of(m.neighbor) + bytes_of(m.neighbor_edge_kind) +
-         bytes_of(m.edge_node_begin) + bytes_of(m.edge_node) + bytes_of(m.region_begin) +
-         bytes_of(m.region_corners) + bytes_of(m.region_neighbors) + bytes_of(m.region_target) +
-         bytes_of(m.region_map) + bytes_of(m.start_region);
+         bytes_of(m.region_begin) + bytes_of(m.region_corners) + bytes_of(m.region_target) +
+         bytes_of(m.region_map) + bytes_of(m.start_region) + kept + (d == 2 ? 0 : graph);
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+std::size_t PlMap<d>::derived_bytes() const {
+  if constexpr (d == 1) return 0;
+  const auto& m = data_;
+  return bytes_of(m.neighbor_begin) + bytes_of(m.neighbor) + bytes_of(m.neighbor_edge_kind) +
+         bytes_of(m.edge_node_begin) + bytes_of(m.edge_node) + bytes_of(m.region_neighbors);
 }
 
 template class PlMap<1>;
