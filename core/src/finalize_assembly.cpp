@@ -5,6 +5,7 @@
 #include "map_arrays.hpp"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace plmap::detail {
 
@@ -80,8 +81,11 @@ Index number_regions(const ClosureWorkspace& w, int orientation, AssemblyCursor&
 }
 
 /// The element's nodes with their neighbours: graph edges, and closure edges that border a
-/// region (virtual corners are not nodes).
-void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, MapData<2>& part, AssemblyCursor& at) {
+/// region (virtual corners are not nodes). An element its regions tile gets no neighbour
+/// entries: PlMap derives them from the regions (hand_over_stored_form), and an element with
+/// entries is one that stores its graph.
+void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, bool tiled, MapData<2>& part,
+                 AssemblyCursor& at) {
   const ElementTriangulation& et = w.et;
   const auto base = static_cast<Index>(at.nodes);
   const int ns = static_cast<int>(et.slots.size());
@@ -94,7 +98,7 @@ void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, MapDat
     part.node_location[n] = et.location[i];
     part.node_image[n] = {bn.image.element, support_local<2>(in.s2, bn.image, bn.image.element)};
     part.node_target[n] = bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target;
-    visit_ring(w.closure, i, w.ring_start[i], [&](const RingEntry& entry) {
+    if (!tiled) visit_ring(w.closure, i, w.ring_start[i], [&](const RingEntry& entry) {
       if (entry.vertex >= ns || (!entry.graph && !is_region(entry.before) && !is_region(entry.after))) return;
       part.neighbor[at.entries] = base + entry.vertex;
       part.neighbor_edge_kind[at.entries++] = entry.graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure;
@@ -159,7 +163,9 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
   make_room(part.region_map, at.regions + nf);
   const Index region_count = number_regions(w, orientation, at);
   const auto base = static_cast<Index>(at.nodes);
-  write_nodes(in, w, part, at);
+  // Tiled: every face of the closure is a region, so the graph follows from the regions.
+  const bool tiled = nf > 0 && static_cast<std::size_t>(region_count) == nf;
+  write_nodes(in, w, tiled, part, at);
   write_regions(w, base, region_count, part, at);
   ++at.elements;
 }
@@ -171,6 +177,33 @@ void trim_part(const AssemblyCursor& at, MapData<2>& part) {
   part.region_neighbors.resize(at.regions);
   part.region_target.resize(at.regions);
   part.region_map.resize(at.regions);
+}
+
+StoredGraph hand_over_stored_form(MapData<2>& m) {
+  StoredGraph g;
+  const std::size_t nt = m.node_begin.size() - 1;
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Index nb = m.node_begin[t], ne = m.node_begin[t + 1];
+    if (m.neighbor_begin[nb] == m.neighbor_begin[ne]) continue;  // tiled (or without any edge)
+    g.element.push_back(static_cast<Index>(t));
+    for (Index n = nb; n < ne; ++n) g.neighbor_count.push_back(m.neighbor_begin[n + 1] - m.neighbor_begin[n]);
+    g.neighbor.insert(g.neighbor.end(), m.neighbor.begin() + m.neighbor_begin[nb], m.neighbor.begin() + m.neighbor_begin[ne]);
+    g.neighbor_edge_kind.insert(g.neighbor_edge_kind.end(), m.neighbor_edge_kind.begin() + m.neighbor_begin[nb],
+                                m.neighbor_edge_kind.begin() + m.neighbor_begin[ne]);
+    for (std::size_t k = 3 * t; k < 3 * t + 3; ++k) g.edge_node_count.push_back(m.edge_node_begin[k + 1] - m.edge_node_begin[k]);
+    g.edge_node.insert(g.edge_node.end(), m.edge_node.begin() + m.edge_node_begin[3 * t],
+                       m.edge_node.begin() + m.edge_node_begin[3 * t + 3]);
+    g.region_neighbors.insert(g.region_neighbors.end(), m.region_neighbors.begin() + m.region_begin[t],
+                              m.region_neighbors.begin() + m.region_begin[t + 1]);
+  }
+  auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
+  release(m.neighbor_begin);
+  release(m.neighbor);
+  release(m.neighbor_edge_kind);
+  release(m.edge_node_begin);
+  release(m.edge_node);
+  release(m.region_neighbors);
+  return g;
 }
 
 }  // namespace plmap::detail

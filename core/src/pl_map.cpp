@@ -29,16 +29,10 @@ template <int d>
 PlMap<d>::PlMap(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
                 MapData<d> data)
     : domain_(std::move(domain)), target_(std::move(target)), data_(std::move(data)) {
-  require(domain_ && target_, "missing surface");
+  check_stored_arrays();
   const auto& m = data_;
   const std::size_t nt = static_cast<std::size_t>(domain_->element_count());
-  require(m.node_begin.size() == nt + 1 && m.node_begin.front() == 0, "node_begin size");
-  require(std::is_sorted(m.node_begin.begin(), m.node_begin.end()), "node_begin order");
-  const std::size_t nn = static_cast<std::size_t>(m.node_begin.back());
-  require(m.node_position.size() == nn && m.node_type.size() == nn &&
-              m.node_location.size() == nn && m.node_image.size() == nn &&
-              m.node_target.size() == nn,
-          "node array sizes");
+  const std::size_t nn = m.node_type.size(), nr = m.region_target.size();
   require(m.neighbor_begin.size() == nn + 1 && m.neighbor_begin.front() == 0, "neighbor_begin");
   require(std::is_sorted(m.neighbor_begin.begin(), m.neighbor_begin.end()), "neighbor_begin order");
   require(m.neighbor.size() == static_cast<std::size_t>(m.neighbor_begin.back()) &&
@@ -52,43 +46,123 @@ PlMap<d>::PlMap(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const 
     require(m.edge_node.size() == static_cast<std::size_t>(m.edge_node_begin.back()),
             "edge_node size");
   }
+  require(m.region_neighbors.size() == nr, "region array sizes");
+  auto below = [](Index i, std::size_t n) { return static_cast<std::size_t>(static_cast<std::uint32_t>(i)) < n; };
+  bool neighbors_ok = true;
+  for (const auto& rn : m.region_neighbors)
+    for (Index q : rn) neighbors_ok &= (q == invalid_index) | below(q, nr);
+  require(neighbors_ok, "region neighbor out of range");
+  bool indices_ok = true;
+  for (Index x : m.neighbor) indices_ok &= below(x, nn);
+  require(indices_ok, "neighbor index");
+  for (Index x : m.edge_node) indices_ok &= below(x, nn);
+  require(indices_ok, "edge node index");
+  if constexpr (d == 2) keep_only_underived_graph();
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+PlMap<d>::PlMap(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
+                MapData<d> stored, StoredGraph graph)
+  requires(d == 2)
+    : domain_(std::move(domain)), target_(std::move(target)), data_(std::move(stored)), stored_graph_(std::move(graph)) {
+  const auto& m = data_;
+  require(m.neighbor_begin.empty() && m.neighbor.empty() && m.neighbor_edge_kind.empty() &&
+              m.edge_node_begin.empty() && m.edge_node.empty() && m.region_neighbors.empty(),
+          "the stored form holds graph arrays (they belong in StoredGraph)");
+  check_stored_arrays();
+  check_stored_graph();
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void PlMap<d>::check_stored_arrays() const {
+  require(domain_ && target_, "missing surface");
+  const auto& m = data_;
+  const std::size_t nt = static_cast<std::size_t>(domain_->element_count());
+  require(m.node_begin.size() == nt + 1 && m.node_begin.front() == 0, "node_begin size");
+  require(std::is_sorted(m.node_begin.begin(), m.node_begin.end()), "node_begin order");
+  const std::size_t nn = static_cast<std::size_t>(m.node_begin.back());
+  require(m.node_position.size() == nn && m.node_type.size() == nn &&
+              m.node_location.size() == nn && m.node_image.size() == nn &&
+              m.node_target.size() == nn,
+          "node array sizes");
   require(m.region_begin.size() == nt + 1 && m.region_begin.front() == 0, "region_begin size");
   require(std::is_sorted(m.region_begin.begin(), m.region_begin.end()), "region_begin order");
   const std::size_t nr = static_cast<std::size_t>(m.region_begin.back());
-  require(m.region_corners.size() == nr && m.region_neighbors.size() == nr &&
-              m.region_target.size() == nr && m.region_map.size() == nr,
+  require(m.region_corners.size() == nr && m.region_target.size() == nr && m.region_map.size() == nr,
           "region array sizes");
   require(m.start_region.size() == nt, "start_region size");
   require(m.orientation == 1 || m.orientation == -1, "orientation must be +1 or -1");
   // Indices that queries dereference must be in range, so that a corrupt file cannot make an
   // evaluation read out of bounds. verify/ checks everything else. These loops run over every
-  // region, node and neighbour of maps with millions of them, so each check is a branch-free
-  // reduction (an index i is in [0, n) exactly when it is below n as an unsigned number).
+  // region and node of maps with millions of them, so each check is a branch-free reduction (an
+  // index i is in [0, n) exactly when it is below n as an unsigned number).
   const auto n2 = static_cast<std::uint32_t>(target_->element_count());
   auto below = [](Index i, std::size_t n) { return static_cast<std::size_t>(static_cast<std::uint32_t>(i)) < n; };
-  bool targets_ok = true, corners_ok = true, neighbors_ok = true;
+  bool targets_ok = true, corners_ok = true;
   for (std::size_t r = 0; r < nr; ++r) {
     targets_ok &= below(m.region_target[r], n2);
     for (Index c : m.region_corners[r]) corners_ok &= below(c, nn);
-    for (Index q : m.region_neighbors[r]) neighbors_ok &= (q == invalid_index) | below(q, nr);
   }
   require(targets_ok, "region_target out of range");
   require(corners_ok, "region corner out of range");
-  require(neighbors_ok, "region neighbor out of range");
   for (std::size_t t = 0; t < nt; ++t) {
     const Index s = m.start_region[t];
     require(s == invalid_index ? m.region_begin[t] == m.region_begin[t + 1]
                                : (s >= m.region_begin[t] && s < m.region_begin[t + 1]),
             "start_region outside its element");
   }
+  bool images_ok = true;
+  for (const auto& img : m.node_image) images_ok &= below(img.element, n2);
+  require(images_ok, "node image element out of range");
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void PlMap<d>::check_stored_graph() const {
+  const StoredGraph& g = stored_graph_;
+  const auto& m = data_;
+  if constexpr (d == 1) {
+    require(g == StoredGraph{}, "a segment map stores its graph in its arrays");
+    return;
+  }
+  const Index nt = domain_->element_count();
+  const std::size_t nn = m.node_type.size(), nr = m.region_target.size();
+  auto below = [](Index i, std::size_t n) { return static_cast<std::size_t>(static_cast<std::uint32_t>(i)) < n; };
+  std::size_t nodes = 0, regions = 0;
+  for (std::size_t e = 0; e < g.element.size(); ++e) {
+    const Index t = g.element[e];
+    require(t >= 0 && t < nt && (e == 0 || g.element[e - 1] < t), "stored graph elements out of order or range");
+    nodes += static_cast<std::size_t>(m.node_begin[t + 1] - m.node_begin[t]);
+    regions += static_cast<std::size_t>(m.region_begin[t + 1] - m.region_begin[t]);
+  }
+  require(g.neighbor_count.size() == nodes && g.edge_node_count.size() == 3 * g.element.size() &&
+              g.region_neighbors.size() == regions,
+          "stored graph sizes");
+  std::size_t entries = 0, edge_entries = 0;
+  bool counts_ok = true;
+  for (Index c : g.neighbor_count) {
+    counts_ok &= c >= 0;
+    entries += static_cast<std::size_t>(c);
+  }
+  for (Index c : g.edge_node_count) {
+    counts_ok &= c >= 0;
+    edge_entries += static_cast<std::size_t>(c);
+  }
+  require(counts_ok && g.neighbor.size() == entries && g.neighbor_edge_kind.size() == entries &&
+              g.edge_node.size() == edge_entries,
+          "stored graph sizes");
   bool indices_ok = true;
-  for (Index x : m.neighbor) indices_ok &= below(x, nn);
+  for (Index x : g.neighbor) indices_ok &= below(x, nn);
   require(indices_ok, "neighbor index");
-  for (Index x : m.edge_node) indices_ok &= below(x, nn);
+  for (GraphEdgeKind k : g.neighbor_edge_kind) indices_ok &= static_cast<int>(k) <= 1;
+  require(indices_ok, "neighbor edge kind");
+  for (Index x : g.edge_node) indices_ok &= below(x, nn);
   require(indices_ok, "edge node index");
-  for (const auto& img : m.node_image) indices_ok &= below(img.element, n2);
-  require(indices_ok, "node image element out of range");
-  if constexpr (d == 2) keep_only_underived_graph();
+  for (const auto& rn : g.region_neighbors)
+    for (Index q : rn) indices_ok &= (q == invalid_index) | below(q, nr);
+  require(indices_ok, "region neighbor out of range");
 }
 
 namespace {
@@ -163,7 +237,7 @@ void PlMap<d>::keep_only_underived_graph() {
         derivable_element[static_cast<std::size_t>(t)] = derivable ? 1 : 0;
       }
     });
-    detail::StoredGraphElements& kept = stored_graph_;
+    StoredGraph& kept = stored_graph_;
     for (Index t = 0; t < nt; ++t) {
       if (derivable_element[static_cast<std::size_t>(t)]) continue;
       const Index nb = m.node_begin[t], ne = m.node_begin[t + 1];
@@ -183,6 +257,7 @@ void PlMap<d>::keep_only_underived_graph() {
       for (Index r = rb; r < re; ++r) kept.region_neighbors.push_back(m.region_neighbors[r]);
     }
     for_each_graph_array(m, [](auto& v) { release(v); });
+    check_stored_graph();
   }
 }
 
@@ -222,8 +297,12 @@ void PlMap<d>::derive_region_neighbors() const {
         ++kept;
         continue;
       }
-      // the constructor checked that this derivation gives back the arrays it was handed
-      detail::derive_region_neighbors(m, t, std::span(m.region_neighbors).subspan(rb, re - rb), scratch);
+      // Elements that store no graph are tiled by their regions, so the derivation succeeds;
+      // where a damaged file says otherwise, the element's regions get no neighbours (verify
+      // reports the element, and walks stay inside the element's regions).
+      const auto out = std::span(m.region_neighbors).subspan(rb, re - rb);
+      if (!detail::derive_region_neighbors(m, t, out, scratch))
+        std::fill(out.begin(), out.end(), std::array<Index, 3>{invalid_index, invalid_index, invalid_index});
     }
   }
 }
@@ -237,7 +316,7 @@ void PlMap<d>::derive_graph() const {
     m.neighbor.clear();
     m.neighbor_edge_kind.clear();
     m.edge_node.clear();
-    const detail::StoredGraphElements& kept = stored_graph_;
+    const StoredGraph& kept = stored_graph_;
     const Index nt = domain_->element_count();
     const std::size_t nn = m.node_type.size();
     std::vector<Index> count, edge_count;
@@ -266,8 +345,16 @@ void PlMap<d>::derive_graph() const {
         continue;
       }
       const auto rb = static_cast<std::size_t>(m.region_begin[t]), re = static_cast<std::size_t>(m.region_begin[t + 1]);
-      detail::derive_neighbor_lists(m, *target_, t, std::span<const std::array<Index, 3>>(m.region_neighbors).subspan(rb, re - rb),
-                                    count, m.neighbor, m.neighbor_edge_kind, scratch);
+      const std::size_t counted = count.size(), entries = m.neighbor.size();
+      if (!detail::derive_neighbor_lists(m, *target_, t,
+                                         std::span<const std::array<Index, 3>>(m.region_neighbors).subspan(rb, re - rb),
+                                         count, m.neighbor, m.neighbor_edge_kind, scratch)) {
+        // a damaged file (see derive_region_neighbors above): no neighbour lists on this element
+        count.resize(counted);
+        count.resize(counted + static_cast<std::size_t>(m.node_begin[t + 1] - m.node_begin[t]), 0);
+        m.neighbor.resize(entries);
+        m.neighbor_edge_kind.resize(entries);
+      }
       detail::derive_edge_nodes(m, t, edge_count, m.edge_node);
     }
     auto prefix = [](const std::vector<Index>& c, std::vector<Index>& begin) {

@@ -1,7 +1,7 @@
 // A triangle map stores its graph arrays (neighbour lists with edge kinds, edge arrays, region
-// neighbours) only where they do not follow from its regions, and derives the rest on demand:
-// the derived arrays must be exactly what the builder wrote, and arrays that do not follow from
-// the regions (a corrupt file, a hand-made map) must come back unchanged.
+// neighbours) only on the elements its regions do not tile, and derives the rest on demand: a
+// map handed its full arrays keeps them where they do not follow from the regions (a corrupt
+// file, a hand-made map), so data() gives them back unchanged.
 
 #include <plmap/core/pl_map.hpp>
 #include <plmap/verify/generators/random_maps.hpp>
@@ -50,14 +50,15 @@ RC_GTEST_PROP(DerivedGraph, RefinementMapsDeriveTheBuildersGraph, ()) {
 }
 
 RC_GTEST_PROP(DerivedGraph, OverlayMapsGiveBackTheBuildersGraph, ()) {
-  // Intersection and ghost nodes, graph edges through S1 vertices. Some elements of these maps
-  // keep their graph (the derivation does not yet reproduce every ring there; see
-  // docs/data-model.md); whatever is stored or derived, data() is what the builder wrote.
+  // Intersection and ghost nodes, graph edges through S1 vertices; elements partly outside D
+  // keep their graph. Whatever is stored or derived, handing data() over again gives it back.
   const auto c = *rc::gen::scale(0.6, generators::overlay_maps<2>());
   const MapData<2> full = c.map->data();
   const PlMap<2> again = rebuilt(*c.map, full);
   RC_ASSERT(again.data() == full);
-  RC_ASSERT(again.elements_with_stored_graph() == c.map->elements_with_stored_graph());
+  // the builder stores the graph of every element its regions do not tile, the comparison only
+  // of those whose graph the derivation does not give back
+  RC_ASSERT(again.elements_with_stored_graph() <= c.map->elements_with_stored_graph());
   RC_ASSERT(again.memory_bytes() < full_bytes(full));
   RC_CLASSIFY(c.map->elements_with_stored_graph() == 0, "graph derived on every element");
 }
@@ -84,7 +85,8 @@ TEST(DerivedGraph, HolesInTheDomainKeepEveryArray) {
   const MapData<2> full = c.map->data();
   const PlMap<2> again = rebuilt(*c.map, full);
   EXPECT_EQ(again.data(), full);
-  EXPECT_EQ(again.elements_with_stored_graph(), c.map->elements_with_stored_graph());
+  EXPECT_LE(again.elements_with_stored_graph(), c.map->elements_with_stored_graph());
+  EXPECT_GT(c.map->elements_with_stored_graph(), 0);
 }
 
 TEST(DerivedGraph, ArraysThatDoNotFollowFromTheRegionsAreKeptAsGiven) {

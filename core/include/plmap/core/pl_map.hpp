@@ -14,10 +14,12 @@
 /// nodes and the regions with their affine maps, everything evaluation reads. The graph arrays
 /// that only graph walkers read — neighbour lists with their edge kinds, edge arrays, region
 /// neighbours — follow from the regions and are derived on first use (data(), neighbors(),
-/// edge_nodes(), region_neighbors()); the constructor checks, element by element, that the
-/// derivation gives back exactly the arrays it was handed, and stores them only for the elements
-/// where it does not (partly covered elements, dangling edge pieces, a corrupt file), so nothing
-/// is ever lost. Segment maps (d = 1) store everything.
+/// edge_nodes(), region_neighbors()), except on the elements that store them (StoredGraph):
+/// those the regions do not tile (parts outside D, dangling edge pieces). MapBuilder and the
+/// binary file hand over exactly that stored form, so building or loading a map derives and
+/// compares nothing; a map handed its full arrays (the text file, a hand-made map) has each
+/// element's graph compared with the derivation once and keeps it where they differ, so
+/// data() gives back what it was handed. Segment maps (d = 1) store everything.
 
 #include <plmap/core/node_type.hpp>
 #include <plmap/core/surface.hpp>
@@ -94,10 +96,9 @@ struct MapData {
   friend bool operator==(const MapData&, const MapData&) = default;
 };
 
-namespace detail {
-/// The graph arrays of the elements whose graph does not follow from their regions (see PlMap),
-/// element by element in increasing order.
-struct StoredGraphElements {
+/// The graph arrays of the elements of a triangle map that store them (see PlMap), element by
+/// element in increasing order; indices are global, as in MapData.
+struct StoredGraph {
   std::vector<Index> element;
   std::vector<Index> neighbor_count;  ///< per node of these elements
   std::vector<Index> neighbor;
@@ -105,9 +106,8 @@ struct StoredGraphElements {
   std::vector<Index> edge_node_count;  ///< three per element
   std::vector<Index> edge_node;
   std::vector<std::array<Index, 3>> region_neighbors;  ///< per region of these elements
-  friend bool operator==(const StoredGraphElements&, const StoredGraphElements&) = default;
+  friend bool operator==(const StoredGraph&, const StoredGraph&) = default;
 };
-}  // namespace detail
 
 template <int d>
   requires SurfaceDimension<d>
@@ -120,6 +120,13 @@ class PlMap {
   /// validate_map_structure (map_validation.hpp); verify/ does the full check.
   PlMap(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
         MapData<d> data);
+  /// A triangle map in its stored form: `stored` without the graph arrays (they must be empty),
+  /// `graph` the graph arrays of the elements that keep them; every other element's graph is
+  /// derived on first use. Nothing is compared: this is how MapBuilder and the binary file hand
+  /// a map over. Throws InvalidMapError like the constructor above.
+  PlMap(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
+        MapData<d> stored, StoredGraph graph)
+    requires(d == 2);
   PlMap(const PlMap& other);
   PlMap& operator=(const PlMap& other);
   PlMap(PlMap&&) noexcept = default;
@@ -180,8 +187,15 @@ class PlMap {
   Index elements_with_stored_graph() const {
     return static_cast<Index>(stored_graph_.element.size());
   }
+  /// The graph arrays of the elements that store them (empty for d = 1, which stores all of
+  /// them in stored()).
+  const StoredGraph& stored_graph() const { return stored_graph_; }
 
  private:
+  /// The cheap structural checks of the arrays every map stores (sizes, ranges of the indices
+  /// that queries dereference), and of the stored graph.
+  void check_stored_arrays() const;
+  void check_stored_graph() const;
   /// Checks element by element that the graph arrays follow from the regions; releases them and
   /// keeps (in stored_graph_) only those of the elements where they do not.
   void keep_only_underived_graph();
@@ -192,7 +206,7 @@ class PlMap {
   std::shared_ptr<const Surface<d>> target_;
   /// The stored arrays; the derived graph arrays are written into it once, under the flags.
   mutable MapData<d> data_;
-  detail::StoredGraphElements stored_graph_;
+  StoredGraph stored_graph_;
   struct DerivationFlags {
     std::once_flag region_neighbors, graph;
     // set after the call_once above, so that the walks' per-query check is one load
