@@ -42,8 +42,20 @@ std::set<std::string> array_names(const std::string& bytes) {
 /// A builder-made map whose domain has holes: elements partly outside D keep their graph.
 const PlMap<2>& map_with_holes() {
   static const auto c = generators::subdivision_map(generators::bumpy_grid(3), 4, 0.1, 3,
-                                                    [](Index t, int sub) { return (t + sub) % 5 == 0; });
+                                                    [](Index t, int sub) { return t % 3 == 0 && sub == 0; });
   return *c.map;
+}
+
+/// The map's stored arrays without the graph arrays data() may have derived into them.
+MapData<2> stored_only(const PlMap<2>& map) {
+  MapData<2> m = map.stored();
+  m.neighbor_begin.clear();
+  m.neighbor.clear();
+  m.neighbor_edge_kind.clear();
+  m.edge_node_begin.clear();
+  m.edge_node.clear();
+  m.region_neighbors.clear();
+  return m;
 }
 
 TEST(MapFileBinaryStoredForm, TriangleMapsStoreOnlyTheGraphOfTheElementsThatKeepIt) {
@@ -91,18 +103,18 @@ TEST(MapFileBinaryStoredForm, TheStoredFormRefusesGraphArraysAndDamagedStoredGra
       EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
     }
   };
-  MapData<2> with_graph = map.stored();
+  MapData<2> with_graph = stored_only(map);
   with_graph.region_neighbors.assign(with_graph.region_target.size(), {invalid_index, invalid_index, invalid_index});
   expect_refused(with_graph, map.stored_graph(), "holds graph arrays");
   StoredGraph out_of_order = map.stored_graph();
   std::swap(out_of_order.element.front(), out_of_order.element.back());
-  expect_refused(map.stored(), out_of_order, "out of order");
+  expect_refused(stored_only(map), out_of_order, "out of order");
   StoredGraph short_lists = map.stored_graph();
   short_lists.neighbor.pop_back();
-  expect_refused(map.stored(), short_lists, "stored graph sizes");
+  expect_refused(stored_only(map), short_lists, "stored graph sizes");
   StoredGraph far_neighbor = map.stored_graph();
   far_neighbor.neighbor.front() = map.node_count();
-  expect_refused(map.stored(), far_neighbor, "neighbor index");
+  expect_refused(stored_only(map), far_neighbor, "neighbor index");
 }
 
 TEST(MapFileBinaryStoredForm, ValidationNamesTheElementOfAStoredNeighbourFromAnotherElement) {
@@ -111,12 +123,12 @@ TEST(MapFileBinaryStoredForm, ValidationNamesTheElementOfAStoredNeighbourFromAno
   const Index t = graph.element.front();
   // a node of another element, in range: only the structural validation can see it
   graph.neighbor.front() = t == 0 ? map.nodes_begin(1) : 0;
-  const PlMap<2> bad(map.domain_ptr(), map.target_ptr(), map.stored(), graph);
+  const PlMap<2> bad(map.domain_ptr(), map.target_ptr(), stored_only(map), graph);
   try {
     validate_map_structure(bad, 1);
     FAIL();
   } catch (const InvalidMapError& e) {
-    EXPECT_NE(std::string(e.what()).find(fmt::format("at S1 element {}:", t)), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("at S1 element " + std::to_string(t) + ":"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("which is not another node of element"), std::string::npos) << e.what();
   }
 }
