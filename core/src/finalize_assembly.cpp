@@ -163,8 +163,13 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
   make_room(part.region_map, at.regions + nf);
   const Index region_count = number_regions(w, orientation, at);
   const auto base = static_cast<Index>(at.nodes);
-  // Tiled: every face of the closure is a region, so the graph follows from the regions.
-  const bool tiled = nf > 0 && static_cast<std::size_t>(region_count) == nf;
+  // Tiled: every face of the closure is a region, so the graph follows from the regions. An
+  // element with a ghost node stores its graph all the same: whether a side at a ghost node is a
+  // piece of an S2 edge is derived from an exactly zero weight of the ghost's image, which the
+  // rounding of the input's scale decides either way, where the builder knows it.
+  const bool tiled = nf > 0 && static_cast<std::size_t>(region_count) == nf &&
+                     std::none_of(et.slots.begin(), et.slots.end(),
+                                  [&](auto slot) { return in.nodes[slot].kind == BuilderNodeKind::ghost; });
   write_nodes(in, w, tiled, part, at);
   write_regions(w, base, region_count, part, at);
   ++at.elements;
