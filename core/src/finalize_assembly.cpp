@@ -3,6 +3,7 @@
 #include "finalize_assembly.hpp"
 
 #include "map_arrays.hpp"
+#include "map_graph_derivation.hpp"
 
 #include <algorithm>
 #include <type_traits>
@@ -114,6 +115,35 @@ void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, bool t
   }
 }
 
+/// Whether every side at a ghost node of the element just written (nodes [nb, ne), regions
+/// [rb, re) of the part) has the kind the derivation gives it (map_graph_derivation.hpp): the
+/// regions' S2 elements differ across it, or, with no region across, its nodes lie on one S2
+/// edge.
+bool ghost_sides_derive_as_written(const Surface<2>& s2, const MapData<2>& part, Index nb, Index ne, std::size_t rb,
+                                   std::size_t re) {
+  for (Index n = nb; n < ne; ++n) {
+    if (part.node_type[n] != NodeType::ghost) continue;
+    for (Index j = part.neighbor_begin[n]; j < part.neighbor_begin[n + 1]; ++j) {
+      const Index y = part.neighbor[j];
+      Index sides[2] = {invalid_index, invalid_index};
+      int count = 0;
+      for (std::size_t r = rb; r < re && count < 3; ++r) {
+        const auto& c = part.region_corners[r];
+        const bool has_n = c[0] == n || c[1] == n || c[2] == n, has_y = c[0] == y || c[1] == y || c[2] == y;
+        if (has_n && has_y) {
+          if (count < 2) sides[count] = static_cast<Index>(r);
+          ++count;
+        }
+      }
+      if (count == 0 || count > 2) return false;
+      const bool target_edge = count == 2 ? part.region_target[sides[0]] != part.region_target[sides[1]]
+                                          : on_common_target_edge(part, s2, part.region_target[sides[0]], n, y);
+      if (target_edge != (part.neighbor_edge_kind[j] == GraphEdgeKind::target_edge)) return false;
+    }
+  }
+  return true;
+}
+
 /// The element's regions, and the region a point-location walk starts from.
 void write_regions(const ClosureWorkspace& w, Index base, Index region_count, MapData<2>& part, AssemblyCursor& at) {
   const ElementTriangulation& et = w.et;
@@ -163,15 +193,21 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
   make_room(part.region_map, at.regions + nf);
   const Index region_count = number_regions(w, orientation, at);
   const auto base = static_cast<Index>(at.nodes);
-  // Tiled: every face of the closure is a region, so the graph follows from the regions. An
-  // element with a ghost node stores its graph all the same: whether a side at a ghost node is a
-  // piece of an S2 edge is derived from an exactly zero weight of the ghost's image, which the
-  // rounding of the input's scale decides either way, where the builder knows it.
-  const bool tiled = nf > 0 && static_cast<std::size_t>(region_count) == nf &&
-                     std::none_of(et.slots.begin(), et.slots.end(),
-                                  [&](auto slot) { return in.nodes[slot].kind == BuilderNodeKind::ghost; });
-  write_nodes(in, w, tiled, part, at);
+  // Tiled: every face of the closure is a region, so the graph follows from the regions. At a
+  // ghost node the derived kind of a side with no region across rests on an exactly zero weight
+  // of the ghost's image, which the rounding of the input's scale can decide either way: such an
+  // element is written with its neighbour entries and keeps them if the derivation would differ.
+  const bool tiled = nf > 0 && static_cast<std::size_t>(region_count) == nf;
+  const bool has_ghost = std::any_of(et.slots.begin(), et.slots.end(),
+                                     [&](auto slot) { return in.nodes[slot].kind == BuilderNodeKind::ghost; });
+  const std::size_t first_entry = at.entries;
+  write_nodes(in, w, tiled && !has_ghost, part, at);
   write_regions(w, base, region_count, part, at);
+  if (tiled && has_ghost && ghost_sides_derive_as_written(in.s2, part, base, static_cast<Index>(at.nodes),
+                                                         at.regions - static_cast<std::size_t>(region_count), at.regions)) {
+    at.entries = first_entry;  // the derivation gives these entries back: drop them
+    for (auto n = static_cast<std::size_t>(base); n < at.nodes; ++n) part.neighbor_begin[n + 1] = static_cast<Index>(first_entry);
+  }
   ++at.elements;
 }
 

@@ -50,8 +50,9 @@ Carrier carrier_of(const MapData<2>& m, const Surface<2>& target, Index n) {
   return c;
 }
 
-/// Whether nodes x and y lie on one edge of S2 (whose preimage then contains the side x-y):
-/// two vertices of the region's S2 element t2, a vertex and an edge through it, or one edge.
+
+}  // namespace
+
 bool on_common_target_edge(const MapData<2>& m, const Surface<2>& target, Index t2, Index x, Index y) {
   const Carrier cx = carrier_of(m, target, x), cy = carrier_of(m, target, y);
   if (cx.size == 0 || cy.size == 0) return false;
@@ -64,8 +65,6 @@ bool on_common_target_edge(const MapData<2>& m, const Surface<2>& target, Index 
   return cx.vertex[0] != cy.vertex[0] && target.local_corner(t2, cx.vertex[0]) >= 0 &&
          target.local_corner(t2, cy.vertex[0]) >= 0;
 }
-
-}  // namespace
 
 bool derive_region_neighbors(const MapData<2>& m, Index t, std::span<std::array<Index, 3>> out,
                              GraphDerivationScratch& scratch) {

@@ -31,6 +31,12 @@ struct GraphDerivationScratch {
   std::vector<Index> incidence_fill;
 };
 
+/// Whether nodes x and y lie on one edge of S2 (whose preimage then contains the side x-y): two
+/// vertices of the region's S2 element t2, a vertex and an edge through it, or one edge (a ghost
+/// node's edge: the one its image lies on with an exactly zero weight). The kind of a side with
+/// no region across.
+bool on_common_target_edge(const MapData<2>& m, const Surface<2>& target, Index t2, Index x, Index y);
+
 /// Region neighbours of element t: out[r - region_begin[t]][i] is the region of t across the side
 /// of r opposite corner i, or invalid_index.
 bool derive_region_neighbors(const MapData<2>& m, Index t, std::span<std::array<Index, 3>> out,
