@@ -18,6 +18,18 @@ std::size_t bytes_of(const std::vector<T>& v) {
   return v.capacity() * sizeof(T);
 }
 
+/// The stored graph holds exactly what it needs, whichever path filled it (memory_bytes() is
+/// then the same for a map built, loaded from either format or copied).
+void shrink_stored_graph(StoredGraph& g) {
+  g.element.shrink_to_fit();
+  g.neighbor_count.shrink_to_fit();
+  g.neighbor.shrink_to_fit();
+  g.neighbor_edge_kind.shrink_to_fit();
+  g.edge_node_count.shrink_to_fit();
+  g.edge_node.shrink_to_fit();
+  g.region_neighbors.shrink_to_fit();
+}
+
 void require(bool ok, const char* what) {
   if (!ok) throw InvalidMapError(fmt::format("map arrays are inconsistent: {}", what));
 }
@@ -72,6 +84,7 @@ PlMap<d>::PlMap(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const 
           "the stored form holds graph arrays (they belong in StoredGraph)");
   check_stored_arrays();
   check_stored_graph();
+  shrink_stored_graph(stored_graph_);
 }
 
 template <int d>
@@ -117,6 +130,7 @@ void PlMap<d>::check_stored_arrays() const {
   for (const auto& img : m.node_image) images_ok &= below(img.element, n2);
   require(images_ok, "node image element out of range");
 }
+
 
 template <int d>
   requires SurfaceDimension<d>
@@ -258,6 +272,7 @@ void PlMap<d>::keep_only_underived_graph() {
     }
     for_each_graph_array(m, [](auto& v) { release(v); });
     check_stored_graph();
+    shrink_stored_graph(kept);
   }
 }
 
