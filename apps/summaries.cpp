@@ -86,12 +86,12 @@ template <int d>
 Json map_summary(const PlMap<d>& map, bool with_quality) {
   Json j;
   j["dimension"] = d;
-  j["orientation"] = map.data().orientation;
+  j["orientation"] = map.stored().orientation;
   j["domain"] = surface_summary(map.domain());
   j["target"] = surface_summary(map.target());
   Json by_type;
   std::array<Index, node_type_count> counts{};
-  for (const NodeType t : map.data().node_type) ++counts[static_cast<std::size_t>(t)];
+  for (const NodeType t : map.stored().node_type) ++counts[static_cast<std::size_t>(t)];
   for (int t = 0; t < node_type_count; ++t)
     by_type[std::string(to_string(static_cast<NodeType>(t)))] = counts[static_cast<std::size_t>(t)];
   j["nodes"] = {{"total", map.node_count()}, {"by_type", by_type}};

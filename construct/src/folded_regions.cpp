@@ -17,7 +17,7 @@ template <int d>
 std::vector<Index> regions_with_folded_corners(const PlMap<d>& map, std::span<const WorldPoint<d>> directions,
                                                std::span<const double> focal_free_reach, unsigned threads) {
   const Surface<d>& s1 = map.domain();
-  const auto& m = map.data();
+  const auto& m = map.stored();
   constexpr std::size_t chunk = 4096;
   const auto n1 = static_cast<std::size_t>(s1.element_count());
   std::vector<std::vector<Index>> found((n1 + chunk - 1) / chunk);

@@ -28,7 +28,7 @@ struct Image {
 /// through shared S2 vertices and edges, as covered_measure and remote_intersection do.
 template <int d>
 std::array<LocalPoint<d>, d + 1> image_corners(const PlMap<d>& map, Index r) {
-  const auto& m = map.data();
+  const auto& m = map.stored();
   std::array<LocalPoint<d>, d + 1> y;
   for (int i = 0; i <= d; ++i) {
     const Index n = m.region_corners[r][i];
@@ -51,7 +51,7 @@ double signed_local_measure(const std::array<LocalPoint<d>, d + 1>& y) {
 
 template <int d>
 Image<d> image_of(const PlMap<d>& map, Index element, Index r) {
-  const auto& m = map.data();
+  const auto& m = map.stored();
   Image<d> im;
   im.region = r;
   im.corner = image_corners(map, r);
@@ -108,7 +108,7 @@ void for_each_neighbour(const Surface<d>& s, Index t, auto&& f) {
 /// passes cuts it: those elements are then checked pairwise for nothing).
 template <int d>
 void mark_disconnected_preimages(const PlMap<d>& map, std::vector<char>& crowded) {
-  const auto& m = map.data();
+  const auto& m = map.stored();
   const Surface<d>& s1 = map.domain();
   const Index n2 = map.target().element_count(), nt = s1.element_count();
   // per S2 element, the S1 elements with a region on it (each once: regions of one element are
@@ -163,7 +163,7 @@ template <int d>
   requires SurfaceDimension<d>
 std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageMeasures& images,
                                                const OverlapTolerances& tolerances) {
-  const auto& m = map.data();
+  const auto& m = map.stored();
   const Index n2 = map.target().element_count();
   const Index nt = map.domain().element_count();
 

@@ -23,7 +23,7 @@ bool contains(std::span<const Index> list, Index x) { return std::find(list.begi
 }  // namespace
 
 std::optional<PreimageGraph> PreimageGraph::from_map(const PlMap<2>& map, std::string* why) {
-  const MapData<2>& m = map.data();
+  const MapData<2>& m = map.stored();
   const Surface<2>& s1 = map.domain();
   const Surface<2>& s2 = map.target();
   PreimageGraph g;

@@ -73,7 +73,7 @@ inline double triangle_condition(const std::array<Eigen::Vector3d, 3>& from, con
 /// image moved onto the region's S2 element exactly where it can be (a vertex, an edge), else
 /// the region's affine map at the corner (remote_intersection in core/regions.hpp).
 inline Eigen::Vector3d region_corner_target_world(const PlMap<2>& map, Index r, int k) {
-  const auto& m = map.data();
+  const auto& m = map.stored();
   const Index n = m.region_corners[r][k];
   const LocalPoint<2> at = transfer_to_element(map.target(), m.node_image[n], m.region_target[r])
                                .value_or(apply<2>(m.region_map[r], m.node_position[n]));
@@ -82,7 +82,7 @@ inline Eigen::Vector3d region_corner_target_world(const PlMap<2>& map, Index r, 
 
 /// κ of region r of a surface map.
 inline double region_condition(const PlMap<2>& map, Index r) {
-  const auto& c = map.data().region_corners[r];
+  const auto& c = map.stored().region_corners[r];
   return triangle_condition({map.node_domain_world(c[0]), map.node_domain_world(c[1]), map.node_domain_world(c[2])},
                             {region_corner_target_world(map, r, 0), region_corner_target_world(map, r, 1),
                              region_corner_target_world(map, r, 2)});
@@ -93,7 +93,7 @@ inline double region_condition(const PlMap<2>& map, Index r) {
 /// for each, with each node's world position computed once instead of once per region corner (a
 /// node is a corner of about six regions).
 inline double region_conditions_of_element(const PlMap<2>& map, Index t, double* out) {
-  const auto& m = map.data();
+  const auto& m = map.stored();
   const Index nb = m.node_begin[t], ne = m.node_begin[t + 1];
   thread_local std::vector<Eigen::Vector3d> world;
   world.resize(static_cast<std::size_t>(ne - nb));
@@ -138,7 +138,7 @@ struct MapConditions {
   /// Element t of `map` changed, its regions' indices did not.
   void update(const PlMap<2>& map, Index t) {
     element[static_cast<std::size_t>(t)] =
-        region_conditions_of_element(map, t, region.data() + map.data().region_begin[t]);
+        region_conditions_of_element(map, t, region.data() + map.stored().region_begin[t]);
   }
   /// The values for `map`, whose elements marked in `changed` differ from those of `old_map`
   /// (for which these values are) and whose other elements have the same regions, possibly at
@@ -147,8 +147,8 @@ struct MapConditions {
     MapConditions c;
     c.region.assign(static_cast<std::size_t>(map.region_count()), 1.0);
     c.element = element;
-    const auto& from = old_map.data().region_begin;
-    const auto& to = map.data().region_begin;
+    const auto& from = old_map.stored().region_begin;
+    const auto& to = map.stored().region_begin;
     for (Index t = 0; t < map.domain().element_count(); ++t) {
       // (a region count that differs means the element did change: recomputed, never misread)
       if (changed[static_cast<std::size_t>(t)] || from[t + 1] - from[t] != to[t + 1] - to[t]) {

@@ -3,8 +3,10 @@
 #include "finalize_assembly.hpp"
 
 #include "map_arrays.hpp"
+#include "map_graph_derivation.hpp"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace plmap::detail {
 
@@ -80,8 +82,11 @@ Index number_regions(const ClosureWorkspace& w, int orientation, AssemblyCursor&
 }
 
 /// The element's nodes with their neighbours: graph edges, and closure edges that border a
-/// region (virtual corners are not nodes).
-void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, MapData<2>& part, AssemblyCursor& at) {
+/// region (virtual corners are not nodes). An element its regions tile gets no neighbour
+/// entries: PlMap derives them from the regions (hand_over_stored_form), and an element with
+/// entries is one that stores its graph.
+void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, bool tiled, MapData<2>& part,
+                 AssemblyCursor& at) {
   const ElementTriangulation& et = w.et;
   const auto base = static_cast<Index>(at.nodes);
   const int ns = static_cast<int>(et.slots.size());
@@ -94,7 +99,7 @@ void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, MapDat
     part.node_location[n] = et.location[i];
     part.node_image[n] = {bn.image.element, support_local<2>(in.s2, bn.image, bn.image.element)};
     part.node_target[n] = bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target;
-    visit_ring(w.closure, i, w.ring_start[i], [&](const RingEntry& entry) {
+    if (!tiled) visit_ring(w.closure, i, w.ring_start[i], [&](const RingEntry& entry) {
       if (entry.vertex >= ns || (!entry.graph && !is_region(entry.before) && !is_region(entry.after))) return;
       part.neighbor[at.entries] = base + entry.vertex;
       part.neighbor_edge_kind[at.entries++] = entry.graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure;
@@ -108,6 +113,35 @@ void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, MapDat
       part.edge_node[at.edge_nodes++] = base + et.edge_slots[q];
     part.edge_node_begin[3 * at.elements + static_cast<std::size_t>(k) + 1] = static_cast<Index>(at.edge_nodes);
   }
+}
+
+/// Whether every side at a ghost node of the element just written (nodes [nb, ne), regions
+/// [rb, re) of the part) has the kind the derivation gives it (map_graph_derivation.hpp): the
+/// regions' S2 elements differ across it, or, with no region across, its nodes lie on one S2
+/// edge.
+bool ghost_sides_derive_as_written(const Surface<2>& s2, const MapData<2>& part, Index nb, Index ne, std::size_t rb,
+                                   std::size_t re) {
+  for (Index n = nb; n < ne; ++n) {
+    if (part.node_type[n] != NodeType::ghost) continue;
+    for (Index j = part.neighbor_begin[n]; j < part.neighbor_begin[n + 1]; ++j) {
+      const Index y = part.neighbor[j];
+      Index sides[2] = {invalid_index, invalid_index};
+      int count = 0;
+      for (std::size_t r = rb; r < re && count < 3; ++r) {
+        const auto& c = part.region_corners[r];
+        const bool has_n = c[0] == n || c[1] == n || c[2] == n, has_y = c[0] == y || c[1] == y || c[2] == y;
+        if (has_n && has_y) {
+          if (count < 2) sides[count] = static_cast<Index>(r);
+          ++count;
+        }
+      }
+      if (count == 0 || count > 2) return false;
+      const bool target_edge = count == 2 ? part.region_target[sides[0]] != part.region_target[sides[1]]
+                                          : on_common_target_edge(part, s2, part.region_target[sides[0]], n, y);
+      if (target_edge != (part.neighbor_edge_kind[j] == GraphEdgeKind::target_edge)) return false;
+    }
+  }
+  return true;
 }
 
 /// The element's regions, and the region a point-location walk starts from.
@@ -159,8 +193,21 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
   make_room(part.region_map, at.regions + nf);
   const Index region_count = number_regions(w, orientation, at);
   const auto base = static_cast<Index>(at.nodes);
-  write_nodes(in, w, part, at);
+  // Tiled: every face of the closure is a region, so the graph follows from the regions. At a
+  // ghost node the derived kind of a side with no region across rests on an exactly zero weight
+  // of the ghost's image, which the rounding of the input's scale can decide either way: such an
+  // element is written with its neighbour entries and keeps them if the derivation would differ.
+  const bool tiled = nf > 0 && static_cast<std::size_t>(region_count) == nf;
+  const bool has_ghost = std::any_of(et.slots.begin(), et.slots.end(),
+                                     [&](auto slot) { return in.nodes[slot].kind == BuilderNodeKind::ghost; });
+  const std::size_t first_entry = at.entries;
+  write_nodes(in, w, tiled && !has_ghost, part, at);
   write_regions(w, base, region_count, part, at);
+  if (tiled && has_ghost && ghost_sides_derive_as_written(in.s2, part, base, static_cast<Index>(at.nodes),
+                                                         at.regions - static_cast<std::size_t>(region_count), at.regions)) {
+    at.entries = first_entry;  // the derivation gives these entries back: drop them
+    for (auto n = static_cast<std::size_t>(base); n < at.nodes; ++n) part.neighbor_begin[n + 1] = static_cast<Index>(first_entry);
+  }
   ++at.elements;
 }
 
@@ -171,6 +218,33 @@ void trim_part(const AssemblyCursor& at, MapData<2>& part) {
   part.region_neighbors.resize(at.regions);
   part.region_target.resize(at.regions);
   part.region_map.resize(at.regions);
+}
+
+StoredGraph hand_over_stored_form(MapData<2>& m) {
+  StoredGraph g;
+  const std::size_t nt = m.node_begin.size() - 1;
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Index nb = m.node_begin[t], ne = m.node_begin[t + 1];
+    if (m.neighbor_begin[nb] == m.neighbor_begin[ne]) continue;  // tiled (or without any edge)
+    g.element.push_back(static_cast<Index>(t));
+    for (Index n = nb; n < ne; ++n) g.neighbor_count.push_back(m.neighbor_begin[n + 1] - m.neighbor_begin[n]);
+    g.neighbor.insert(g.neighbor.end(), m.neighbor.begin() + m.neighbor_begin[nb], m.neighbor.begin() + m.neighbor_begin[ne]);
+    g.neighbor_edge_kind.insert(g.neighbor_edge_kind.end(), m.neighbor_edge_kind.begin() + m.neighbor_begin[nb],
+                                m.neighbor_edge_kind.begin() + m.neighbor_begin[ne]);
+    for (std::size_t k = 3 * t; k < 3 * t + 3; ++k) g.edge_node_count.push_back(m.edge_node_begin[k + 1] - m.edge_node_begin[k]);
+    g.edge_node.insert(g.edge_node.end(), m.edge_node.begin() + m.edge_node_begin[3 * t],
+                       m.edge_node.begin() + m.edge_node_begin[3 * t + 3]);
+    g.region_neighbors.insert(g.region_neighbors.end(), m.region_neighbors.begin() + m.region_begin[t],
+                              m.region_neighbors.begin() + m.region_begin[t + 1]);
+  }
+  auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
+  release(m.neighbor_begin);
+  release(m.neighbor);
+  release(m.neighbor_edge_kind);
+  release(m.edge_node_begin);
+  release(m.edge_node);
+  release(m.region_neighbors);
+  return g;
 }
 
 }  // namespace plmap::detail

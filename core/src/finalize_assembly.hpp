@@ -38,4 +38,10 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
 /// Cuts the arrays sized ahead back to what was written.
 void trim_part(const AssemblyCursor& at, MapData<2>& part);
 
+/// The joined map's hand-over to PlMap in its stored form (PlMap's second constructor): the
+/// graph arrays of the elements that have neighbour entries (those their regions do not tile,
+/// write_nodes) move into the returned StoredGraph, and all graph arrays of `m` are released.
+/// Nothing is derived or compared: that is what keeps finalize as fast as before.
+StoredGraph hand_over_stored_form(MapData<2>& m);
+
 }  // namespace plmap::detail

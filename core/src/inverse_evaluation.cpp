@@ -154,7 +154,7 @@ InverseIndex<d>::InverseIndex(const PlMap<d>& map, InverseOptions options) : map
   if (!(options_.tolerance >= 0.0 && options_.tolerance < 1.0 / (d + 1)))
     throw Error("inverse evaluation: tolerance must lie in [0, 1/" + std::to_string(d + 1) + "), not " +
                 std::to_string(options_.tolerance));
-  const MapData<d>& m = map.data();
+  const MapData<d>& m = map.stored();
   const Index targets = map.target().element_count();
   begin_.assign(static_cast<std::size_t>(targets) + 1, 0);
   for (Index t : m.region_target) ++begin_[static_cast<std::size_t>(t) + 1];

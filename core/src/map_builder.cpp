@@ -8,6 +8,7 @@
 // re-expressed on any of those elements without rounding.
 
 #include "builder_nodes.hpp"
+#include "finalize_assembly.hpp"
 #include "finalize_phases.hpp"
 #include "map_arrays.hpp"
 
@@ -716,13 +717,17 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
   auto& im = *impl;
   detail::BuilderContents<d> contents{*im.s1, *im.s2, im.options, im.nodes, im.node_at_domain_vertex,
                                       im.segments, im.edge_inserted};
-  MapData<d> m;
-  if constexpr (d == 1)
-    m = detail::finalize_polylines(contents, report);
-  else
-    m = detail::finalize_triangles(contents, report);
-  detail::shrink_to_fit(m);
-  return PlMap<d>(im.s1, im.s2, std::move(m));
+  if constexpr (d == 1) {
+    MapData<1> m = detail::finalize_polylines(contents, report);
+    detail::shrink_to_fit(m);
+    return PlMap<1>(im.s1, im.s2, std::move(m));
+  } else {
+    // The stored form: the graph arrays only of the elements whose regions do not tile them.
+    MapData<2> m = detail::finalize_triangles(contents, report);
+    StoredGraph graph = detail::hand_over_stored_form(m);
+    detail::shrink_to_fit(m);
+    return PlMap<2>(im.s1, im.s2, std::move(m), std::move(graph));
+  }
 }
 
 template class MapBuilder<1>;

@@ -16,7 +16,7 @@ namespace {
 /// remote_intersection() for a region whose S1 element is already known.
 template <int d>
 RemoteIntersection<d> remote_intersection_on(const PlMap<d>& map, Index element, Index region) {
-  const auto& m = map.data();
+  const auto& m = map.stored();
   RemoteIntersection<d> ri;
   ri.region = region;
   ri.domain_element = element;
@@ -48,7 +48,7 @@ double RemoteIntersection<d>::target_measure() const {
 
 template <int d>
 RemoteIntersection<d> remote_intersection(const PlMap<d>& map, Index region) {
-  return remote_intersection_on(map, map.node_element(map.data().region_corners[region][0]), region);
+  return remote_intersection_on(map, map.node_element(map.stored().region_corners[region][0]), region);
 }
 
 // The lists run element by element, so no region needs the search for its element.
@@ -76,7 +76,7 @@ double local_simplex_measure(const std::array<LocalPoint<d>, d + 1>& x) {
 /// d! times the measure of region r in its element's local coordinates.
 template <int d>
 double local_domain_measure(const PlMap<d>& map, Index r) {
-  const auto& m = map.data();
+  const auto& m = map.stored();
   std::array<LocalPoint<d>, d + 1> x;
   for (int i = 0; i <= d; ++i) x[i] = m.node_position[m.region_corners[r][i]];
   return local_simplex_measure<d>(x);
@@ -86,7 +86,7 @@ double local_domain_measure(const PlMap<d>& map, Index r) {
 /// corners moved onto that element exactly, as remote_intersection does).
 template <int d>
 double local_target_measure(const PlMap<d>& map, Index r) {
-  const auto& m = map.data();
+  const auto& m = map.stored();
   const Index target = m.region_target[r];
   std::array<LocalPoint<d>, d + 1> y;
   for (int i = 0; i <= d; ++i) {
@@ -105,7 +105,7 @@ double local_target_measure(const PlMap<d>& map, Index r) {
 // order and with the operations of one thread, so the result is the same to the last bit.
 template <int d>
 ImageMeasures image_measures(const PlMap<d>& map, unsigned threads) {
-  const auto& m = map.data();
+  const auto& m = map.stored();
   const Surface<d>& s1 = map.domain();
   const Surface<d>& s2 = map.target();
   const Index n1 = s1.element_count(), n2 = s2.element_count();

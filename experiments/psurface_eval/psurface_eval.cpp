@@ -434,17 +434,53 @@ Json run_case(const Case& c, std::size_t query_count) {
                  {"plmap_bytes_per_node", double(map.memory_bytes()) / map.node_count()},
                  {"plmap_bytes_per_region", double(map.memory_bytes()) / map.region_count()}};
   {
-    // memory_bytes() counts capacity; by size, the per-node arrays (the graph) and the
-    // per-region arrays (what evaluation reads), both per node.
-    const auto& m = map.data();
+    // memory_bytes() counts the capacity of what the map stores; by size, the stored per-node
+    // arrays and the stored per-region arrays, both per node; then every array by size, the
+    // derived graph arrays included (data() derives them here, after memory_bytes() was read).
+    const auto& s = map.stored();
     auto b = [](const auto& v) { return double(v.size() * sizeof(v[0])); };
-    const double graph = b(m.node_begin) + b(m.node_position) + b(m.node_type) + b(m.node_location) +
-                         b(m.node_image) + b(m.node_target) + b(m.neighbor_begin) + b(m.neighbor) +
-                         b(m.neighbor_edge_kind) + b(m.edge_node_begin) + b(m.edge_node);
-    const double regions = b(m.region_begin) + b(m.region_corners) + b(m.region_neighbors) +
-                           b(m.region_target) + b(m.region_map) + b(m.start_region);
-    result["plmap_graph_size_bytes_per_node"] = graph / map.node_count();
+    const double nodes = b(s.node_begin) + b(s.node_position) + b(s.node_type) + b(s.node_location) +
+                         b(s.node_image) + b(s.node_target);
+    const double regions = b(s.region_begin) + b(s.region_corners) + b(s.region_target) + b(s.region_map) +
+                           b(s.start_region);
+    result["plmap_graph_size_bytes_per_node"] = nodes / map.node_count();
     result["plmap_region_size_bytes_per_node"] = regions / map.node_count();
+    result["plmap_elements_with_stored_graph"] = map.elements_with_stored_graph();
+    const auto& m = map.data();
+    result["plmap_derived_bytes_per_node"] = double(map.derived_bytes()) / map.node_count();
+    Json arrays = Json::array();
+    auto add = [&](const char* name, const auto& v) {
+      arrays.push_back({{"array", name}, {"bytes_per_node", b(v) / map.node_count()}});
+    };
+    add("node_begin", m.node_begin);
+    add("node_position", m.node_position);
+    add("node_type", m.node_type);
+    add("node_location", m.node_location);
+    add("node_image", m.node_image);
+    add("node_target", m.node_target);
+    add("neighbor_begin", m.neighbor_begin);
+    add("neighbor", m.neighbor);
+    add("neighbor_edge_kind", m.neighbor_edge_kind);
+    add("edge_node_begin", m.edge_node_begin);
+    add("edge_node", m.edge_node);
+    add("region_begin", m.region_begin);
+    add("region_corners", m.region_corners);
+    add("region_neighbors", m.region_neighbors);
+    add("region_target", m.region_target);
+    add("region_map", m.region_map);
+    add("start_region", m.start_region);
+    result["plmap_arrays"] = arrays;
+    // What storing less costs: the constructor's check that the graph follows from the regions
+    // (it derives every element's graph once), and deriving it again on demand (data()).
+    const MapData<2> full = m;
+    double check_seconds = 0, derive_seconds = 0;
+    check_seconds = median_cpu_seconds([&] { PlMap<2> again(map.domain_ptr(), map.target_ptr(), full); });
+    derive_seconds = median_cpu_seconds([&] {
+      PlMap<2> again(map.domain_ptr(), map.target_ptr(), full);
+      again.data();
+    }) - check_seconds;
+    result["plmap_construct_ns_per_node"] = 1e9 * check_seconds / map.node_count();
+    result["plmap_derive_graph_ns_per_node"] = 1e9 * derive_seconds / map.node_count();
   }
   for (const auto name : point_locator_names<2>()) {
     double seconds = 0;
@@ -530,6 +566,29 @@ void print_markdown(const Json& report) {
                plmap_per_node / pd["graph_heap_bytes_per_node"].get<double>(),
                plmap_per_node / pf["graph_heap_bytes_per_node"].get<double>());
   }
+
+  // Every array of the map by size, in bytes per node; the graph arrays are derived on demand
+  // (PlMap::data()), except on the elements counted in the last row.
+  fmt::print("\n| array |");
+  for (const auto& r : report["cases"]) fmt::print(" {} |", r["case"].get<std::string>());
+  fmt::print("\n|---|");
+  for (std::size_t i = 0; i < report["cases"].size(); ++i) fmt::print("---:|");
+  fmt::print("\n");
+  const auto& first = report["cases"][0]["plmap_arrays"];
+  for (std::size_t a = 0; a < first.size(); ++a) {
+    fmt::print("| {} |", first[a]["array"].get<std::string>());
+    for (const auto& r : report["cases"]) fmt::print(" {:.2f} |", r["plmap_arrays"][a]["bytes_per_node"].get<double>());
+    fmt::print("\n");
+  }
+  fmt::print("| derived on demand (derived_bytes()) |");
+  for (const auto& r : report["cases"]) fmt::print(" {:.2f} |", r["plmap_derived_bytes_per_node"].get<double>());
+  fmt::print("\n| constructing from the full arrays, ns per node |");
+  for (const auto& r : report["cases"]) fmt::print(" {:.0f} |", r["plmap_construct_ns_per_node"].get<double>());
+  fmt::print("\n| deriving the graph arrays (data()), ns per node |");
+  for (const auto& r : report["cases"]) fmt::print(" {:.0f} |", r["plmap_derive_graph_ns_per_node"].get<double>());
+  fmt::print("\n| elements that store their graph |");
+  for (const auto& r : report["cases"]) fmt::print(" {} of {} |", r["plmap_elements_with_stored_graph"].get<long>(), r["elements"].get<long>());
+  fmt::print("\n");
 }
 
 }  // namespace

@@ -3,7 +3,7 @@
 namespace plmap::point_location {
 
 StartBuckets::StartBuckets(const PlMap<2>& map) : map_(&map), regions_(map.region_count()) {
-  const MapData<2>& m = map.data();
+  const MapData<2>& m = map.stored();
   const Index elements = map.domain().element_count();
   begin_.resize(elements);
   size_.resize(elements);

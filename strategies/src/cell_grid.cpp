@@ -130,7 +130,8 @@ CellGrid::CellGrid(const PlMap<2>& map, const CellGridOptions& options)
       options.max_cells_per_side > 4096)
     throw Error("cell-grid locator: cells_per_region must be positive and max_cells_per_side in "
                 "[1, 4096]");
-  const MapData<2>& m = map.data();
+  const MapData<2>& m = map.stored();
+  const auto region_neighbors = map.region_neighbors();
   const Index element_count = map.domain().element_count();
 
   records_.resize(static_cast<std::size_t>(regions_));
@@ -138,7 +139,7 @@ CellGrid::CellGrid(const PlMap<2>& map, const CellGridOptions& options)
     RegionRecord& record = records_[static_cast<std::size_t>(r)];
     for (int k = 0; k < 3; ++k) {
       record.corner[k] = m.node_position[m.region_corners[r][k]];
-      record.neighbor[k] = m.region_neighbors[r][k];
+      record.neighbor[k] = region_neighbors[static_cast<std::size_t>(r)][k];
     }
   }
 

@@ -144,12 +144,14 @@ TEST(MapFileBinary, BitFlipsAnywhereAreRefused) {
 
 TEST(MapFileBinary, WrongVersionIsRefused) {
   std::string bytes = binary_bytes(sample_map());
-  bytes[8] = 2;  // the version's low byte
+  bytes[8] = 3;  // the version's low byte
   try {
     parse_map(bytes, "future.plmapb");
     FAIL();
   } catch (const ParseError& e) {
-    EXPECT_NE(std::string(e.what()).find("unsupported binary map version 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unsupported binary map version 3 (this build reads versions 1 to 2)"),
+              std::string::npos)
+        << e.what();
   }
 }
 

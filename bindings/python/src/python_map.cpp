@@ -300,13 +300,13 @@ py::object map_summary(const PlMap<d>& map, bool quality) {
     j["nodes"] = map.node_count();
     nlohmann::json by_type;
     for (int t = 0; t < node_type_count; ++t) by_type[std::string(to_string(static_cast<NodeType>(t)))] = 0;
-    for (NodeType t : map.data().node_type) by_type[std::string(to_string(t))] = by_type[std::string(to_string(t))].get<long long>() + 1;
+    for (NodeType t : map.stored().node_type) by_type[std::string(to_string(t))] = by_type[std::string(to_string(t))].get<long long>() + 1;
     j["nodes_by_type"] = by_type;
     j["regions"] = map.region_count();
     const CoveredMeasure covered = covered_measure(map);
     j["covered_measure"] = covered.domain;
     j["covered_target_measure"] = covered.target;
-    j["orientation"] = map.data().orientation;
+    j["orientation"] = map.stored().orientation;
     j["memory_bytes"] = map.memory_bytes();
     if (quality) j["quality"] = to_json(compute_quality(map));
   }

@@ -64,10 +64,10 @@ Header read_header(std::string_view content, const std::string& file) {
   h.table_crc = load_le<std::uint32_t>(content.data() + 12);
   h.table_bytes = load_le<std::uint64_t>(content.data() + 16);
   h.file_bytes = load_le<std::uint64_t>(content.data() + 24);
-  if (h.version != binary_map_version) {
+  if (h.version < oldest_binary_map_version || h.version > binary_map_version) {
     throw ParseError(file, "header",
-                     fmt::format("unsupported binary map version {} (this build reads version {})",
-                                 h.version, binary_map_version));
+                     fmt::format("unsupported binary map version {} (this build reads versions {} to {})",
+                                 h.version, oldest_binary_map_version, binary_map_version));
   }
   if (h.table_bytes == 0 || h.table_bytes > max_table_bytes) {
     throw ParseError(file, "header",
@@ -225,6 +225,7 @@ nlohmann::json Container::table_only(std::string_view head, const std::string& f
 Container::Container(std::string_view content, std::string file, bool verify_table_checksum)
     : content_(content), file_(std::move(file)) {
   const Header h = read_header(content_, file_);
+  version_ = h.version;
   toc_ = parse_table(content_, h, file_, verify_table_checksum);
   if (h.file_bytes != content_.size()) {
     fail(h.file_bytes > content_.size()

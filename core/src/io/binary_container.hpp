@@ -86,6 +86,8 @@ class Container {
 
   const nlohmann::json& toc() const { return toc_; }
   const std::string& file() const { return file_; }
+  /// The format version in the header (one this build reads).
+  std::uint32_t version() const { return version_; }
   std::size_t file_bytes() const { return content_.size(); }
 
   /// The array named `name`; a ParseError if the file has none.
@@ -110,6 +112,7 @@ class Container {
  private:
   std::string_view content_;
   std::string file_;
+  std::uint32_t version_ = 0;
   nlohmann::json toc_;
   std::map<std::string, InArray> arrays_;
 };

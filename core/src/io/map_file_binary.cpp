@@ -229,7 +229,7 @@ void require_finite(const double* values, std::size_t count, std::string_view ar
 /// the array is stored whole.
 template <int d>
 void add_region_maps(const PlMap<d>& map, std::vector<OutArray>& a, nlohmann::json& toc, unsigned threads) {
-  const MapData<d>& m = map.data();
+  const MapData<d>& m = map.stored();
   const std::size_t R = m.region_map.size();
   std::vector<unsigned char> exact(R);
   parallel_ranges(R, threads, [&](std::size_t begin, std::size_t end) {
@@ -270,9 +270,39 @@ void add_region_maps(const PlMap<d>& map, std::vector<OutArray>& a, nlohmann::js
   a.push_back(std::move(values));
 }
 
+/// A begin array (0, then the running sums) of counts.
+std::vector<Index> begin_of_counts(const std::vector<Index>& count) {
+  std::vector<Index> begin(count.size() + 1, 0);
+  for (std::size_t i = 0; i < count.size(); ++i) begin[i + 1] = begin[i] + count[i];
+  return begin;
+}
+
+/// A triangle map's stored graph (PlMap::stored_graph): the graph arrays of the few elements
+/// whose regions do not tile them, with global indices (raw: they are a small part of the file).
+void add_stored_graph(const StoredGraph& g, std::vector<OutArray>& a) {
+  const std::uint64_t G = g.element.size();
+  a.push_back(raw_array("graph_element", "<i4", {G}, g.element));
+  OutArray neighbor_begin = counts_array("graph_neighbor_begin", begin_of_counts(g.neighbor_count));
+  OutArray edge_node_begin = counts_array("graph_edge_node_begin", begin_of_counts(g.edge_node_count));
+  // counts_array may fall back to raw begin arrays, which point into its argument: keep owned bytes
+  for (OutArray* x : {&neighbor_begin, &edge_node_begin}) {
+    if (x->owned.empty() && x->bytes != 0) {
+      x->owned.assign(static_cast<const unsigned char*>(x->data), static_cast<const unsigned char*>(x->data) + x->bytes);
+      x->data = x->owned.data();
+    }
+  }
+  a.push_back(std::move(neighbor_begin));
+  a.push_back(raw_array("graph_neighbor", "<i4", {g.neighbor.size()}, g.neighbor));
+  a.push_back(raw_array("graph_neighbor_edge_kind", "|u1", {g.neighbor_edge_kind.size()}, g.neighbor_edge_kind));
+  a.push_back(std::move(edge_node_begin));
+  a.push_back(raw_array("graph_edge_node", "<i4", {g.edge_node.size()}, g.edge_node));
+  a.push_back(raw_array("graph_region_neighbors", "<i4", {g.region_neighbors.size(), 3}, g.region_neighbors));
+}
+
 template <int d>
 std::vector<OutArray> map_arrays(const PlMap<d>& map, nlohmann::json& toc, unsigned threads) {
-  const MapData<d>& m = map.data();
+  // What the map stores, never what it would derive: writing derives nothing.
+  const MapData<d>& m = map.stored();
   const auto T = static_cast<std::uint64_t>(map.domain().element_count());
   const std::uint64_t N = m.node_type.size(), R = m.region_target.size();
   const std::uint64_t D = d;
@@ -318,24 +348,23 @@ std::vector<OutArray> map_arrays(const PlMap<d>& map, nlohmann::json& toc, unsig
   }
   a.push_back(raw_array("node_target", "<i4", {N}, m.node_target));
 
-  a.push_back(counts_array("neighbor_begin", m.neighbor_begin));
-  a.push_back(local_array("neighbor", "node_begin", {m.neighbor.size()}, m.neighbor.data(), m.neighbor.size(),
-                          [&](auto&& f) { groups.neighbors(f); }));
-  a.push_back(raw_array("neighbor_edge_kind", "|u1", {m.neighbor_edge_kind.size()}, m.neighbor_edge_kind));
-
-  a.push_back(counts_array("edge_node_begin", m.edge_node_begin));
-  if (groups.edge_layout_ok()) {
-    a.push_back(local_array("edge_node", "node_begin", {m.edge_node.size()}, m.edge_node.data(), m.edge_node.size(),
-                            [&](auto&& f) { groups.edge_nodes(f); }));
-  } else {
+  if constexpr (d == 1) {
+    a.push_back(counts_array("neighbor_begin", m.neighbor_begin));
+    a.push_back(local_array("neighbor", "node_begin", {m.neighbor.size()}, m.neighbor.data(), m.neighbor.size(),
+                            [&](auto&& f) { groups.neighbors(f); }));
+    a.push_back(raw_array("neighbor_edge_kind", "|u1", {m.neighbor_edge_kind.size()}, m.neighbor_edge_kind));
+    a.push_back(counts_array("edge_node_begin", m.edge_node_begin));
     a.push_back(raw_array("edge_node", "<i4", {m.edge_node.size()}, m.edge_node));
+  } else {
+    add_stored_graph(map.stored_graph(), a);
   }
-
   a.push_back(counts_array("region_begin", m.region_begin));
   a.push_back(local_array("region_corners", "node_begin", {R, D + 1}, scalars<Index>(m.region_corners), R * (d + 1),
                           [&](auto&& f) { groups.region_corners(f); }));
-  a.push_back(local_array("region_neighbors", "region_begin", {R, D + 1}, scalars<Index>(m.region_neighbors),
-                          R * (d + 1), [&](auto&& f) { groups.region_neighbors(f); }));
+  if constexpr (d == 1) {
+    a.push_back(local_array("region_neighbors", "region_begin", {R, D + 1}, scalars<Index>(m.region_neighbors),
+                            R * (d + 1), [&](auto&& f) { groups.region_neighbors(f); }));
+  }
   a.push_back(raw_array("region_target", "<i4", {R}, m.region_target));
   // Eigen stores [A | b] column by column: the file's shape (R, d+1, d) is its columns.
   add_region_maps(map, a, toc, threads);
@@ -569,10 +598,61 @@ void read_derived_region_maps(const Container& c, MapArrayReader& r, const Surfa
   }
 }
 
+/// The graph arrays of a map file that stores them all: segment maps, and version 1 files.
+template <int d>
+void read_graph_arrays(const Container& c, MapArrayReader& r, std::uint64_t T, std::uint64_t N,
+                       const LocalGroups<d>& groups, MapData<d>& m) {
+  {
+    const InArray& a = r.get("neighbor_begin", {}, r.rows("neighbor_begin"));
+    m.neighbor_begin = r.begin_array(a);
+    check_begin(r, a, m.neighbor_begin, N + 1, r.rows("neighbor"));
+  }
+  const std::uint64_t M = r.rows("neighbor");
+  m.neighbor.resize(M);
+  r.indices(r.get("neighbor", {}, M), "node_begin", m.neighbor.data(), [&](auto&& f) { groups.neighbors(f); });
+  r.raw(r.get("neighbor_edge_kind", {}, M), "|u1", m.neighbor_edge_kind);
+  for (std::size_t i = 0; i < M; ++i) {
+    if (static_cast<int>(m.neighbor_edge_kind[i]) > 1) {
+      r.fail(c.array("neighbor_edge_kind"), fmt::format("entry {} is not 0 (closure) or 1 (target_edge)", i));
+    }
+  }
+
+  {
+    const InArray& begin = r.get("edge_node_begin", {}, r.rows("edge_node_begin"));
+    m.edge_node_begin = r.begin_array(begin);
+    const std::uint64_t K = r.rows("edge_node");
+    m.edge_node.resize(K);
+    const InArray& a = r.get("edge_node", {}, K);
+    // Stored per element only in the d = 2 layout (3 ranges per element); d = 1 maps normally
+    // have empty edge arrays, which are stored raw whatever they hold, as the text format does.
+    if (a.encoding != "raw") check_begin(r, begin, m.edge_node_begin, 3 * T + 1, K);
+    r.indices(a, "node_begin", m.edge_node.data(), [&](auto&& f) { groups.edge_nodes(f); });
+  }
+
+}
+
+/// A version 2 triangle map's stored graph (add_stored_graph); PlMap checks its sizes and ranges.
+StoredGraph read_stored_graph(MapArrayReader& r) {
+  StoredGraph g;
+  auto counts = [&](const char* name, std::vector<Index>& out) {
+    const std::vector<Index> begin = r.begin_array(r.get(name, {}, r.rows(name)));
+    out.resize(begin.empty() ? 0 : begin.size() - 1);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = begin[i + 1] - begin[i];
+  };
+  r.raw(r.get("graph_element", {}, r.rows("graph_element")), "<i4", g.element);
+  counts("graph_neighbor_begin", g.neighbor_count);
+  r.raw(r.get("graph_neighbor", {}, r.rows("graph_neighbor")), "<i4", g.neighbor);
+  r.raw(r.get("graph_neighbor_edge_kind", {}, r.rows("graph_neighbor_edge_kind")), "|u1", g.neighbor_edge_kind);
+  counts("graph_edge_node_begin", g.edge_node_count);
+  r.raw(r.get("graph_edge_node", {}, r.rows("graph_edge_node")), "<i4", g.edge_node);
+  r.raw(r.get("graph_region_neighbors", {3}, r.rows("graph_region_neighbors")), "<i4", g.region_neighbors);
+  return g;
+}
+
 /// Decodes the map's arrays (everything but the surfaces and the derived region maps) into `m`;
 /// `T` is the number of S1 elements.
 template <int d>
-void read_map_arrays(const Container& c, MapArrayReader& r, std::uint64_t T, MapData<d>& m) {
+void read_map_arrays(const Container& c, MapArrayReader& r, std::uint64_t T, bool with_graph, MapData<d>& m) {
   constexpr std::uint64_t D = d;
   {
     const InArray& a = r.get("node_begin", {}, r.rows("node_begin"));
@@ -602,33 +682,7 @@ void read_map_arrays(const Container& c, MapArrayReader& r, std::uint64_t T, Map
   r.raw(r.get("node_target", {}, N), "<i4", m.node_target);
 
   const LocalGroups<d> groups{m, T};
-  {
-    const InArray& a = r.get("neighbor_begin", {}, r.rows("neighbor_begin"));
-    m.neighbor_begin = r.begin_array(a);
-    check_begin(r, a, m.neighbor_begin, N + 1, r.rows("neighbor"));
-  }
-  const std::uint64_t M = r.rows("neighbor");
-  m.neighbor.resize(M);
-  r.indices(r.get("neighbor", {}, M), "node_begin", m.neighbor.data(), [&](auto&& f) { groups.neighbors(f); });
-  r.raw(r.get("neighbor_edge_kind", {}, M), "|u1", m.neighbor_edge_kind);
-  for (std::size_t i = 0; i < M; ++i) {
-    if (static_cast<int>(m.neighbor_edge_kind[i]) > 1) {
-      r.fail(c.array("neighbor_edge_kind"), fmt::format("entry {} is not 0 (closure) or 1 (target_edge)", i));
-    }
-  }
-
-  {
-    const InArray& begin = r.get("edge_node_begin", {}, r.rows("edge_node_begin"));
-    m.edge_node_begin = r.begin_array(begin);
-    const std::uint64_t K = r.rows("edge_node");
-    m.edge_node.resize(K);
-    const InArray& a = r.get("edge_node", {}, K);
-    // Stored per element only in the d = 2 layout (3 ranges per element); d = 1 maps normally
-    // have empty edge arrays, which are stored raw whatever they hold, as the text format does.
-    if (a.encoding != "raw") check_begin(r, begin, m.edge_node_begin, 3 * T + 1, K);
-    r.indices(a, "node_begin", m.edge_node.data(), [&](auto&& f) { groups.edge_nodes(f); });
-  }
-
+  if (with_graph) read_graph_arrays(c, r, T, N, groups, m);
   {
     const InArray& a = r.get("region_begin", {}, r.rows("region_begin"));
     m.region_begin = r.begin_array(a);
@@ -636,11 +690,15 @@ void read_map_arrays(const Container& c, MapArrayReader& r, std::uint64_t T, Map
   }
   const std::uint64_t R = r.rows("region_target");
   m.region_corners.resize(R);
-  m.region_neighbors.resize(R);
+  if (with_graph) m.region_neighbors.resize(R);
   r.indices(r.get("region_corners", {D + 1}, R), "node_begin", scalars<Index>(m.region_corners),
             [&](auto&& f) { groups.region_corners(f); });
-  r.indices(r.get("region_neighbors", {D + 1}, R), "region_begin", scalars<Index>(m.region_neighbors),
-            [&](auto&& f) { groups.region_neighbors(f); });
+  if (with_graph) {
+    r.indices(r.get("region_neighbors", {D + 1}, R), "region_begin", scalars<Index>(m.region_neighbors),
+              [&](auto&& f) { groups.region_neighbors(f); });
+  } else {
+    m.region_neighbors.clear();
+  }
   r.raw(r.get("region_target", {}, R), "<i4", m.region_target);
   if (c.has("region_map")) r.raw(r.get("region_map", {D + 1, D}, R), "<f8", m.region_map);
   m.start_region.resize(T);
@@ -659,20 +717,30 @@ PlMap<d> read_map(const Container& c, int orientation, const MapReadOptions& opt
   // done side by side. If several are damaged, the error that reaches the caller is the first in
   // this order (domain, target, arrays), whatever the thread count.
   const std::uint64_t T = r.rows("domain_elements");
+  // Version 2 stores a triangle map's graph only for the elements that keep it (PlMap's stored
+  // form); segment maps and version 1 files store all graph arrays.
+  const bool stored_form = d == 2 && c.version() >= 2;
+  StoredGraph graph;
   parallel_for_pieces_of_size(3, 1, options.threads, [&](std::size_t piece, std::size_t, std::size_t) {
     if (piece == 0) {
       domain = read_surface<d>(c, r, "domain", options);
     } else if (piece == 1) {
       target = read_surface<d>(c, r, "target", options);
     } else {
-      read_map_arrays<d>(c, r, T, m);
+      read_map_arrays<d>(c, r, T, !stored_form, m);
+      if (stored_form) graph = read_stored_graph(r);
     }
   });
   if (!c.has("region_map")) read_derived_region_maps(c, r, *target, m, options);
 
   // From here on the checks of a text map: the same constructor and structural validation.
   try {
-    PlMap<d> map(std::move(domain), std::move(target), std::move(m));
+    PlMap<d> map = [&] {
+      if constexpr (d == 2) {
+        if (stored_form) return PlMap<2>(std::move(domain), std::move(target), std::move(m), std::move(graph));
+      }
+      return PlMap<d>(std::move(domain), std::move(target), std::move(m));
+    }();
     validate_map_structure(map, options.threads);
     return map;
   } catch (const InvalidMapError& e) {
@@ -718,7 +786,7 @@ template <int d>
 void write_binary_map(std::ostream& out, const PlMap<d>& map, const MapWriteOptions& options) {
   nlohmann::json toc = {{"format", "plmap-map"},
                         {"dimension", d},
-                        {"orientation", map.data().orientation},
+                        {"orientation", map.stored().orientation},
                         {"domain_fingerprint", fingerprint_hex(surface_fingerprint(map.domain()))},
                         {"target_fingerprint", fingerprint_hex(surface_fingerprint(map.target()))}};
   const std::vector<OutArray> arrays = map_arrays(map, toc, options.threads);

@@ -54,8 +54,8 @@ Evaluation<d> evaluate_in_region(const PlMap<d>& map, Index region, const LocalP
   Evaluation<d> e;
   e.in_domain = true;
   e.region = region;
-  e.image.element = map.data().region_target[region];
-  e.image.local = apply<d>(map.data().region_map[region], local);
+  e.image.element = map.stored().region_target[region];
+  e.image.local = apply<d>(map.stored().region_map[region], local);
   e.world = map.target().world_position(e.image.element, e.image.local);
   return e;
 }

@@ -9,12 +9,25 @@
 ///
 /// A PlMap is immutable. It is produced by MapBuilder::finalize() or by loading a map file; the
 /// raw arrays (MapData) are public so that verify/ can inspect them and tests can corrupt them.
+///
+/// What is stored and what is derived (docs/data-model.md): a triangle map (d = 2) stores the
+/// nodes and the regions with their affine maps, everything evaluation reads. The graph arrays
+/// that only graph walkers read — neighbour lists with their edge kinds, edge arrays, region
+/// neighbours — follow from the regions and are derived on first use (data(), neighbors(),
+/// edge_nodes(), region_neighbors()), except on the elements that store them (StoredGraph):
+/// those the regions do not tile (parts outside D, dangling edge pieces). MapBuilder and the
+/// binary file hand over exactly that stored form, so building or loading a map derives and
+/// compares nothing; a map handed its full arrays (the text file, a hand-made map) has each
+/// element's graph compared with the derivation once and keeps it where they differ, so
+/// data() gives back what it was handed. Segment maps (d = 1) store everything.
 
 #include <plmap/core/node_type.hpp>
 #include <plmap/core/surface.hpp>
 #include <plmap/core/types.hpp>
 
+#include <atomic>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <vector>
 
@@ -83,6 +96,19 @@ struct MapData {
   friend bool operator==(const MapData&, const MapData&) = default;
 };
 
+/// The graph arrays of the elements of a triangle map that store them (see PlMap), element by
+/// element in increasing order; indices are global, as in MapData.
+struct StoredGraph {
+  std::vector<Index> element;
+  std::vector<Index> neighbor_count;  ///< per node of these elements
+  std::vector<Index> neighbor;
+  std::vector<GraphEdgeKind> neighbor_edge_kind;
+  std::vector<Index> edge_node_count;  ///< three per element
+  std::vector<Index> edge_node;
+  std::vector<std::array<Index, 3>> region_neighbors;  ///< per region of these elements
+  friend bool operator==(const StoredGraph&, const StoredGraph&) = default;
+};
+
 template <int d>
   requires SurfaceDimension<d>
 class PlMap {
@@ -94,15 +120,36 @@ class PlMap {
   /// validate_map_structure (map_validation.hpp); verify/ does the full check.
   PlMap(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
         MapData<d> data);
+  /// A triangle map in its stored form: `stored` without the graph arrays (they must be empty),
+  /// `graph` the graph arrays of the elements that keep them; every other element's graph is
+  /// derived on first use. Nothing is compared: this is how MapBuilder and the binary file hand
+  /// a map over. Throws InvalidMapError like the constructor above.
+  PlMap(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
+        MapData<d> stored, StoredGraph graph)
+    requires(d == 2);
+  PlMap(const PlMap& other);
+  PlMap& operator=(const PlMap& other);
+  PlMap(PlMap&&) noexcept = default;
+  PlMap& operator=(PlMap&&) noexcept = default;
+  ~PlMap();
 
   const Surface<d>& domain() const { return *domain_; }
   const Surface<d>& target() const { return *target_; }
   const std::shared_ptr<const Surface<d>>& domain_ptr() const { return domain_; }
   const std::shared_ptr<const Surface<d>>& target_ptr() const { return target_; }
-  const MapData<d>& data() const { return data_; }
+  /// All arrays, the derived graph arrays included (derived on the first call; thread-safe).
+  const MapData<d>& data() const;
+  /// The arrays the map stores, without deriving anything: what evaluation reads. The graph
+  /// arrays (neighbor_begin, neighbor, neighbor_edge_kind, edge_node_begin, edge_node,
+  /// region_neighbors) are empty here for d = 2 unless data() or region_neighbors() has derived
+  /// them; read those through data(), neighbors(), edge_nodes() or region_neighbors().
+  const MapData<d>& stored() const { return data_; }
+  /// Region across the side opposite corner i of each region, or invalid_index (derived on the
+  /// first call for d = 2; thread-safe). Walking point locators read it.
+  std::span<const std::array<Index, d + 1>> region_neighbors() const;
   /// Gives up the arrays (this map is left empty), e.g. to attach them to similar copies of the
   /// surfaces: the arrays hold only local and barycentric coordinates, which a similarity keeps.
-  MapData<d> release_data() && { return std::move(data_); }
+  MapData<d> release_data() &&;
 
   Index node_count() const { return static_cast<Index>(data_.node_type.size()); }
   Index region_count() const { return static_cast<Index>(data_.region_target.size()); }
@@ -113,16 +160,16 @@ class PlMap {
 
   /// Neighbours of node n in counter-clockwise order.
   std::span<const Index> neighbors(Index n) const {
-    return {data_.neighbor.data() + data_.neighbor_begin[n],
-            data_.neighbor.data() + data_.neighbor_begin[n + 1]};
+    const MapData<d>& m = data();
+    return {m.neighbor.data() + m.neighbor_begin[n], m.neighbor.data() + m.neighbor_begin[n + 1]};
   }
   /// Nodes on local edge k of element t, from corner k to corner (k+1) mod 3 (d = 2).
   std::span<const Index> edge_nodes(Index t, int k) const
     requires(d == 2)
   {
     const std::size_t i = 3 * static_cast<std::size_t>(t) + k;
-    return {data_.edge_node.data() + data_.edge_node_begin[i],
-            data_.edge_node.data() + data_.edge_node_begin[i + 1]};
+    const MapData<d>& m = data();
+    return {m.edge_node.data() + m.edge_node_begin[i], m.edge_node.data() + m.edge_node_begin[i + 1]};
   }
 
   /// World position of node n on S1 and of its image on S2.
@@ -131,13 +178,41 @@ class PlMap {
   /// S1 element that owns node n (binary search on node_begin).
   Index node_element(Index n) const;
 
-  /// Bytes held by the flat arrays (capacity, not counting the two surfaces).
+  /// Bytes the map stores (capacity of its flat arrays, not counting the two surfaces nor the
+  /// derived graph arrays).
   std::size_t memory_bytes() const;
+  /// Bytes of the graph arrays derived so far (0 until data() or region_neighbors() is called).
+  std::size_t derived_bytes() const;
+  /// How many elements store their graph arrays because the derivation does not give them back.
+  Index elements_with_stored_graph() const {
+    return static_cast<Index>(stored_graph_.element.size());
+  }
+  /// The graph arrays of the elements that store them (empty for d = 1, which stores all of
+  /// them in stored()).
+  const StoredGraph& stored_graph() const { return stored_graph_; }
 
  private:
+  /// The cheap structural checks of the arrays every map stores (sizes, ranges of the indices
+  /// that queries dereference), and of the stored graph.
+  void check_stored_arrays() const;
+  void check_stored_graph() const;
+  /// Checks element by element that the graph arrays follow from the regions; releases them and
+  /// keeps (in stored_graph_) only those of the elements where they do not.
+  void keep_only_underived_graph();
+  void derive_region_neighbors() const;
+  void derive_graph() const;
+
   std::shared_ptr<const Surface<d>> domain_;
   std::shared_ptr<const Surface<d>> target_;
-  MapData<d> data_;
+  /// The stored arrays; the derived graph arrays are written into it once, under the flags.
+  mutable MapData<d> data_;
+  StoredGraph stored_graph_;
+  struct DerivationFlags {
+    std::once_flag region_neighbors, graph;
+    // set after the call_once above, so that the walks' per-query check is one load
+    std::atomic<bool> region_neighbors_ready{false}, graph_ready{false};
+  };
+  std::unique_ptr<DerivationFlags> derived_ = std::make_unique<DerivationFlags>();
 };
 
 extern template class PlMap<1>;

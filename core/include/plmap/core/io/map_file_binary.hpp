@@ -32,8 +32,12 @@ namespace plmap {
 /// The first 8 bytes of every binary map file. The non-ASCII first byte and the line ending keep
 /// it from being mistaken for text and reveal a file mangled by a text-mode transfer.
 inline constexpr std::string_view binary_map_magic{"\x89PLMAPB\n", 8};
-/// The binary format version this build writes and the only one it reads.
-inline constexpr std::uint32_t binary_map_version = 1;
+/// The binary format version this build writes. Version 2 stores a triangle map's graph arrays
+/// only for the elements that store them (PlMap::stored_graph); version 1 stored them all.
+inline constexpr std::uint32_t binary_map_version = 2;
+/// The oldest version this build reads (version 1 files are converted on load: each element's
+/// graph is compared with its derivation once, as for a text file).
+inline constexpr std::uint32_t oldest_binary_map_version = 1;
 /// The extension that selects the binary format when writing (compared case-insensitively).
 inline constexpr std::string_view binary_map_extension = ".plmapb";
 

@@ -14,7 +14,7 @@ namespace plmap::point_location {
 
 struct Bisection {
   RegionLocation<1> locate(const PlMap<1>& map, Index element, const LocalPoint<1>& p) const {
-    const MapData<1>& m = map.data();
+    const MapData<1>& m = map.stored();
     const double x = p(0);
     Index lo = m.region_begin[element], hi = m.region_begin[element + 1];
     if (lo == hi) return {};

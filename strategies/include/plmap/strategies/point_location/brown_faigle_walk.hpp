@@ -30,14 +30,15 @@ class BrownFaigleWalk {
   explicit BrownFaigleWalk(std::uint64_t seed = default_seed) : state_(mix(seed)) {}
 
   RegionLocation<2> locate(const PlMap<2>& map, Index element, const LocalPoint<2>& p) {
-    return walk_from(map, element, p, map.data().start_region[element]);
+    return walk_from(map, element, p, map.stored().start_region[element]);
   }
 
   /// The walk from a given region of `element` (used by walks that choose their own start).
   RegionLocation<2> walk_from(const PlMap<2>& map, Index element, const LocalPoint<2>& p,
                               Index region) {
-    const MapData<2>& m = map.data();
+    const MapData<2>& m = map.stored();
     if (region == invalid_index) return {};
+    const auto neighbors = map.region_neighbors();
     // Generous budget: a walk never needs more steps than there are regions unless it wanders,
     // and a wandering walk is cheaper to cut short than to let run.
     const Index budget = 4 * (m.region_begin[element + 1] - m.region_begin[element]) + 16;
@@ -55,7 +56,7 @@ class BrownFaigleWalk {
       // Cross one of the separating sides, chosen at random when there are two (three is
       // impossible for a positively oriented triangle).
       const int side = chosen_side[separating][next_random() & 1u];
-      const Index next = m.region_neighbors[region][side];
+      const Index next = neighbors[static_cast<std::size_t>(region)][side];
       if (next == invalid_index) break;  // left D ∩ T here; p may still be in another part
       region = next;
     }

@@ -12,7 +12,7 @@ template <int d>
   requires SurfaceDimension<d>
 struct BruteForce {
   RegionLocation<d> locate(const PlMap<d>& map, Index element, const LocalPoint<d>& p) const {
-    return {detail::scan_regions(map.data(), element, p)};
+    return {detail::scan_regions(map.stored(), element, p)};
   }
 };
 

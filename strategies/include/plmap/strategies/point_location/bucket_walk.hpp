@@ -58,7 +58,7 @@ class BucketWalk {
     // A table outlived by its map (another map at the same address) must never index out of
     // range: starts are checked against the element's regions.
     if (start < map.regions_begin(element) || start >= map.regions_end(element))
-      start = map.data().start_region[element];
+      start = map.stored().start_region[element];
     return walk_.walk_from(map, element, p, start);
   }
 

@@ -18,7 +18,8 @@ namespace plmap::point_location {
 
 struct StraightWalk {
   RegionLocation<2> locate(const PlMap<2>& map, Index element, const LocalPoint<2>& p) const {
-    const MapData<2>& m = map.data();
+    const MapData<2>& m = map.stored();
+    const auto neighbors = map.region_neighbors();
     Index region = m.start_region[element];
     if (region == invalid_index) return {};
     const Index budget = 4 * (m.region_begin[element + 1] - m.region_begin[element]) + 16;
@@ -47,7 +48,7 @@ struct StraightWalk {
       }
       if (separating_side < 0) return {region};
       if (exit_side < 0) exit_side = separating_side;
-      const Index next = m.region_neighbors[region][exit_side];
+      const Index next = neighbors[static_cast<std::size_t>(region)][exit_side];
       if (next == invalid_index) break;
       region = next;
     }
