@@ -52,6 +52,23 @@ bool shares_an_edge(const PlanarPoint& p, const PlanarPoint& q) {
   return false;
 }
 
+/// True if x is within `margin` of the segment [a, b].
+bool within_margin(const Vec2& x, const Vec2& a, const Vec2& b, double margin) {
+  const Vec2 d = b - a;
+  const double length2 = d.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((x - a).dot(d) / length2, 0.0, 1.0) : 0.0;
+  return (x - (a + t * d)).squaredNorm() <= margin * margin;
+}
+
+/// Two pieces leaving one node along u and w (not collinear): true if the shorter one's other
+/// end is within `margin` of the longer one. That end projects inside the longer piece when the
+/// angle between them is acute, and its distance to it is then |u x w| / the longer length.
+bool pieces_leave_too_close(const Vec2& u, const Vec2& w, double margin) {
+  if (u.dot(w) <= 0.0) return false;
+  const double cross = u.x() * w.y() - u.y() * w.x();
+  return cross * cross <= margin * margin * std::max(u.squaredNorm(), w.squaredNorm());
+}
+
 struct Piece {
   int triangle;  ///< new triangle
   Vec2 from, to;
@@ -598,32 +615,51 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
   }
 
   // ---- check: straightened pieces in one new triangle must not meet except at shared ends ----
-  // Sorted by triangle, then by the left end of the piece's x-range: two pieces that cross
-  // properly share an interior point, so their x-ranges overlap, and the scan over the later
+  // Nor come closer than the clearance: a node of one piece (a vertex preimage, a crossing)
+  // within rounding of another S2 edge's piece passes the exact test on the rounded planar
+  // positions on either side, but the hand-over to S1's barycentric coordinates can put it on
+  // that piece, and the S2 triangle between them loses its region (the images no longer tile
+  // S2). So a node within edge_clearance times the star's size of another piece is refused like
+  // a crossing, as a vertex preimage on a new edge is (node_on_new_edge).
+  // Sorted by triangle, then by the left end of the piece's x-range: two pieces that cross or
+  // come that close have x-ranges that overlap within the margin, and the scan over the later
   // pieces of a triangle stops at the first one that starts right of the current piece's end
   // (a sweep along x instead of all pairs: late coarse triangles carry many pieces).
+  double star_size = 0.0;
+  for (int g = 0; g < sheet_count; ++g)
+    for (const Vec2& corner : sp[g].flat) star_size = std::max(star_size, corner.cwiseAbs().maxCoeff());
+  const double margin = clearance * star_size;
   auto min_x = [](const Piece& p) { return std::min(p.from.x(), p.to.x()); };
   std::sort(pieces.begin(), pieces.end(), [&min_x](const Piece& a, const Piece& b) {
     return a.triangle != b.triangle ? a.triangle < b.triangle : min_x(a) < min_x(b);
   });
   for (std::size_t a = 0; a < pieces.size(); ++a) {
-    const double max_x = std::max(pieces[a].from.x(), pieces[a].to.x());
-    const double low_y = std::min(pieces[a].from.y(), pieces[a].to.y());
-    const double high_y = std::max(pieces[a].from.y(), pieces[a].to.y());
+    const double max_x = std::max(pieces[a].from.x(), pieces[a].to.x()) + margin;
+    const double low_y = std::min(pieces[a].from.y(), pieces[a].to.y()) - margin;
+    const double high_y = std::max(pieces[a].from.y(), pieces[a].to.y()) + margin;
     for (std::size_t b = a + 1; b < pieces.size() && pieces[b].triangle == pieces[a].triangle; ++b) {
       if (min_x(pieces[b]) > max_x) break;
       if (std::max(pieces[b].from.y(), pieces[b].to.y()) < low_y || std::min(pieces[b].from.y(), pieces[b].to.y()) > high_y)
         continue;
+      const Vec2 &p = pieces[a].from, &q = pieces[a].to, &r = pieces[b].from, &t = pieces[b].to;
       // Most pairs that get here share an end (consecutive pieces of a polyline, pieces ending
       // at one node): those cross only if they are collinear, which one orientation of b's
-      // other end decides (segments_cross_properly's answer, at a quarter of its predicates).
-      const Vec2 &p = pieces[a].from, &q = pieces[a].to, &r = pieces[b].from, &t = pieces[b].to;
+      // other end decides (segments_cross_properly's answer, at a quarter of its predicates),
+      // and come too close only if they leave the shared end at an angle so small that the
+      // shorter one's other end is within the margin of the longer one.
       if (p == r || p == t || q == r || q == t) {
-        const Vec2& other = (r == p || r == q) ? t : r;
-        if (orient2d(p, q, other) != 0) continue;
-      }
-      if (segments_cross_properly(pieces[a].from, pieces[a].to, pieces[b].from, pieces[b].to))
+        const Vec2& shared = (p == r || p == t) ? p : q;
+        const Vec2& end_a = shared == p ? q : p;
+        const Vec2& end_b = r == shared ? t : r;
+        if (orient2d(shared, end_a, end_b) != 0) {
+          if (!pieces_leave_too_close(end_a - shared, end_b - shared, margin)) continue;
+          return refuse(RemovalRefusal::crossing_edges);
+        }
+      } else if (within_margin(p, r, t, margin) || within_margin(q, r, t, margin) || within_margin(r, p, q, margin) ||
+                 within_margin(t, p, q, margin)) {
         return refuse(RemovalRefusal::crossing_edges);
+      }
+      if (segments_cross_properly(p, q, r, t)) return refuse(RemovalRefusal::crossing_edges);
     }
   }
   return plan;

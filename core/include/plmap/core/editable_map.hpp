@@ -54,7 +54,7 @@ enum class RemovalRefusal {
   fold_over,              ///< a new triangle faces away from the star it replaces
   node_on_new_edge,       ///< a vertex preimage would lie on (or too close to) a new edge
   edge_along_new_edge,    ///< an S2 edge's preimage would run along, or touch, a new edge
-  crossing_edges,         ///< straightened S2 edge preimages would cross inside a new triangle
+  crossing_edges,         ///< straightened S2 edge preimages would cross, touch or come within the clearance inside a new triangle
   single_triangle_side,   ///< a side of the feature line is one triangle: it would collapse onto the new edge
   edge_reenters_triangle, ///< an S2 edge's preimage would pass through one new triangle twice
 };
@@ -66,7 +66,8 @@ const char* to_string(RemovalRefusal reason);
 struct EditOptions {
   /// A vertex preimage or a crossing closer than this (barycentric, or edge parameter) to a new
   /// S1 edge or vertex makes the step refused: far above the builder's snap tolerance, so the
-  /// builder never snaps what the editing kept apart.
+  /// builder never snaps what the editing kept apart. Times the flattened star's size, also the
+  /// distance a node keeps from another S2 edge's straightened preimage (crossing_edges).
   double edge_clearance = 1e-9;
   /// A new triangle whose area is below this times the squared bounding-box diagonal of S2 is
   /// degenerate. Above Surface's own degeneracy threshold (1e-14 times the squared longest
