@@ -142,7 +142,8 @@ Json run_case(const Case& c, std::size_t query_count, unsigned all_threads, doub
     const auto& m = map.data();
     auto b = [](const auto& v) { return double(v.size() * sizeof(v[0])); };
     const double node_part = b(m.node_begin) + b(m.node_position) + b(m.node_type) +
-                             b(m.node_location) + b(m.node_image) + b(m.node_target) +
+                             b(m.node_location) + b(m.node_image_element) +
+                             b(m.node_image_local) + b(m.node_target) +
                              b(m.neighbor_begin) + b(m.neighbor) + b(m.neighbor_edge_kind) +
                              b(m.edge_node_begin) + b(m.edge_node);
     const double region_part = b(m.region_begin) + b(m.region_corners) + b(m.region_neighbors) +

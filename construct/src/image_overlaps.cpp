@@ -32,7 +32,7 @@ std::array<LocalPoint<d>, d + 1> image_corners(const PlMap<d>& map, Index r) {
   std::array<LocalPoint<d>, d + 1> y;
   for (int i = 0; i <= d; ++i) {
     const Index n = m.region_corners[r][i];
-    y[i] = transfer_to_element(map.target(), m.node_image[n], m.region_target[r])
+    y[i] = transfer_to_element(map.target(), m.node_image(n), m.region_target[r])
                .value_or(apply<d>(m.region_map[r], m.node_position[n]));
   }
   return y;

@@ -55,7 +55,7 @@ std::optional<PreimageGraph> PreimageGraph::from_map(const PlMap<2>& map, std::s
           if (s1.edge_elements(domain_edge).front().element != t) break;  // one copy per S1 edge
           const Index target_edge = m.node_target[n];
           const auto uw = s2.edge_vertices(target_edge);
-          const SurfacePoint<2>& image = m.node_image[n];
+          const SurfacePoint<2> image = m.node_image(n);
           const int ku = s2.local_corner(image.element, uw[0]), kw = s2.local_corner(image.element, uw[1]);
           if (ku < 0 || kw < 0)
             return refuse(fmt::format("node {} lies on S2 edge {} but its image is on an element without it", n, target_edge));

@@ -75,7 +75,7 @@ inline double triangle_condition(const std::array<Eigen::Vector3d, 3>& from, con
 inline Eigen::Vector3d region_corner_target_world(const PlMap<2>& map, Index r, int k) {
   const auto& m = map.stored();
   const Index n = m.region_corners[r][k];
-  const LocalPoint<2> at = transfer_to_element(map.target(), m.node_image[n], m.region_target[r])
+  const LocalPoint<2> at = transfer_to_element(map.target(), m.node_image(n), m.region_target[r])
                                .value_or(apply<2>(m.region_map[r], m.node_position[n]));
   return map.target().world_position(m.region_target[r], at);
 }

@@ -192,7 +192,7 @@ bool apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>
     for (int k = 0; k < 3; ++k) {
       from[k] = out.node_position[c[k]];
       // the image on the region's S2 element, exactly where it is a vertex or on an edge
-      to[k] = transfer_to_element(map.target(), old.node_image[c[k]], old.region_target[r])
+      to[k] = transfer_to_element(map.target(), old.node_image(c[k]), old.region_target[r])
                   .value_or(apply<2>(old.region_map[r], old.node_position[c[k]]));
     }
     out.region_map[r] = affine_through<2>(from, to);

@@ -97,7 +97,8 @@ void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, bool t
     part.node_position[n] = et.positions[i];
     part.node_type[n] = node_type_of(bn);
     part.node_location[n] = et.location[i];
-    part.node_image[n] = {bn.image.element, support_local<2>(in.s2, bn.image, bn.image.element)};
+    part.node_image_element[n] = bn.image.element;
+    part.node_image_local[n] = support_local<2>(in.s2, bn.image, bn.image.element);
     part.node_target[n] = bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target;
     if (!tiled) visit_ring(w.closure, i, w.ring_start[i], [&](const RingEntry& entry) {
       if (entry.vertex >= ns || (!entry.graph && !is_region(entry.before) && !is_region(entry.after))) return;

@@ -102,7 +102,8 @@ void join_parts(std::vector<MapData<2>>& parts, Index elements, unsigned threads
   joiner.join(&MapData<2>::node_position, node0, same);
   joiner.join(&MapData<2>::node_type, node0, same);
   joiner.join(&MapData<2>::node_location, node0, same);
-  joiner.join(&MapData<2>::node_image, node0, same);
+  joiner.join(&MapData<2>::node_image_element, node0, same);
+  joiner.join(&MapData<2>::node_image_local, node0, same);
   joiner.join(&MapData<2>::node_target, node0, same);
   joiner.join_begins(&MapData<2>::neighbor_begin, node0, entry0);
   joiner.join(&MapData<2>::neighbor, entry0, node_index);

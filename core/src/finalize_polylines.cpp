@@ -185,7 +185,8 @@ void write_element(const BuilderContents<1>& in, Index t, SlotsAndRegions& sr, M
                      : at_corner                       ? NodeType::corner
                                                        : NodeType::interior;
     m.node_location[n] = at_corner ? static_cast<std::int8_t>(sl[i].s == 0.0 ? 0 : 1) : std::int8_t{-1};
-    m.node_image[n] = {bn.image.element, support_local<1>(in.s2, bn.image, bn.image.element)};
+    m.node_image_element[n] = bn.image.element;
+    m.node_image_local[n] = support_local<1>(in.s2, bn.image, bn.image.element);
     m.node_target[n] = bn.kind == BuilderNodeKind::vertex_preimage ? bn.target : invalid_index;
     const auto slot = static_cast<Index>(i);
     while (ending < regs.size() && regs[ending].b < slot) ++ending;

@@ -13,7 +13,8 @@ void size_node_arrays(MapData<d>& m, std::size_t nodes) {
   m.node_position.resize(nodes);
   m.node_type.resize(nodes);
   m.node_location.resize(nodes);
-  m.node_image.resize(nodes);
+  m.node_image_element.resize(nodes);
+  m.node_image_local.resize(nodes);
   m.node_target.resize(nodes);
   m.neighbor_begin.resize(nodes + 1);
 }
@@ -26,8 +27,9 @@ void shrink_to_fit(MapData<d>& m) {
   auto shrink = [](auto&... v) {
     ((v.capacity() - v.size() > v.size() / 16 ? v.shrink_to_fit() : void()), ...);
   };
-  shrink(m.node_begin, m.node_position, m.node_type, m.node_location, m.node_image, m.node_target,
-         m.neighbor_begin, m.neighbor, m.neighbor_edge_kind, m.edge_node_begin, m.edge_node,
+  shrink(m.node_begin, m.node_position, m.node_type, m.node_location, m.node_image_element,
+         m.node_image_local, m.node_target, m.neighbor_begin, m.neighbor, m.neighbor_edge_kind,
+         m.edge_node_begin, m.edge_node,
          m.region_begin, m.region_corners, m.region_neighbors, m.region_target, m.region_map,
          m.start_region);
 }

@@ -28,7 +28,7 @@ Carrier carrier_of(const MapData<2>& m, const Surface<2>& target, Index n) {
     c.size = 2;
     c.vertex = target.edge_vertices(g);
   } else if (type == NodeType::ghost) {
-    const auto& image = m.node_image[n];
+    const SurfacePoint<2> image = m.node_image(n);
     if (!in_range(image.element, 0, target.element_count())) return c;
     const std::array<double, 3> weight{1.0 - image.local(0) - image.local(1), image.local(0), image.local(1)};
     const auto& corners = target.element(image.element);

@@ -94,15 +94,16 @@ void validate_nodes(const PlMap<d>& map, const StoredGraphIndex& stored_graph, I
       fail(t, fmt::format("node {} ({}) stands for S2 {} {}, which does not exist", n,
                           to_string(type), type == NodeType::intersection ? "edge" : "vertex",
                           m.node_target[n]));
-    if (!m.node_position[n].allFinite() || !m.node_image[n].local.allFinite())
+    const LocalPoint<d>& image_local = m.node_image_local[n];
+    if (!m.node_position[n].allFinite() || !image_local.allFinite())
       fail(t, fmt::format("node {} has a non-finite position or image", n));
     if (!near_reference_element<d>(m.node_position[n]))
       fail(t, fmt::format("node {} lies outside its element (local coordinates {})", n,
                           fmt::join(m.node_position[n].data(), m.node_position[n].data() + d, ", ")));
-    if (!near_reference_element<d>(m.node_image[n].local))
+    if (!near_reference_element<d>(image_local))
       fail(t, fmt::format("the image of node {} lies outside its S2 element {} (local coordinates {})",
-                          n, m.node_image[n].element,
-                          fmt::join(m.node_image[n].local.data(), m.node_image[n].local.data() + d, ", ")));
+                          n, m.node_image_element[n],
+                          fmt::join(image_local.data(), image_local.data() + d, ", ")));
   }
   auto check_neighbor = [&](Index n, Index q) {
     if (!own(q) || q == n)

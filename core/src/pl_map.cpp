@@ -97,8 +97,8 @@ void PlMap<d>::check_stored_arrays() const {
   require(std::is_sorted(m.node_begin.begin(), m.node_begin.end()), "node_begin order");
   const std::size_t nn = static_cast<std::size_t>(m.node_begin.back());
   require(m.node_position.size() == nn && m.node_type.size() == nn &&
-              m.node_location.size() == nn && m.node_image.size() == nn &&
-              m.node_target.size() == nn,
+              m.node_location.size() == nn && m.node_image_element.size() == nn &&
+              m.node_image_local.size() == nn && m.node_target.size() == nn,
           "node array sizes");
   require(m.region_begin.size() == nt + 1 && m.region_begin.front() == 0, "region_begin size");
   require(std::is_sorted(m.region_begin.begin(), m.region_begin.end()), "region_begin order");
@@ -127,7 +127,7 @@ void PlMap<d>::check_stored_arrays() const {
             "start_region outside its element");
   }
   bool images_ok = true;
-  for (const auto& img : m.node_image) images_ok &= below(img.element, n2);
+  for (const Index element : m.node_image_element) images_ok &= below(element, n2);
   require(images_ok, "node image element out of range");
 }
 
@@ -425,7 +425,7 @@ WorldPoint<d> PlMap<d>::node_domain_world(Index n) const {
 template <int d>
   requires SurfaceDimension<d>
 WorldPoint<d> PlMap<d>::node_target_world(Index n) const {
-  const auto& img = data_.node_image[n];
+  const SurfacePoint<d> img = data_.node_image(n);
   return target_->world_position(img.element, img.local);
 }
 
@@ -447,7 +447,8 @@ std::size_t PlMap<d>::memory_bytes() const {
                            bytes_of(g.neighbor_edge_kind) + bytes_of(g.edge_node_count) + bytes_of(g.edge_node) +
                            bytes_of(g.region_neighbors);
   return bytes_of(m.node_begin) + bytes_of(m.node_position) + bytes_of(m.node_type) +
-         bytes_of(m.node_location) + bytes_of(m.node_image) + bytes_of(m.node_target) +
+         bytes_of(m.node_location) + bytes_of(m.node_image_element) + bytes_of(m.node_image_local) +
+         bytes_of(m.node_target) +
          bytes_of(m.region_begin) + bytes_of(m.region_corners) + bytes_of(m.region_target) +
          bytes_of(m.region_map) + bytes_of(m.start_region) + kept + (d == 2 ? 0 : graph);
 }

@@ -26,7 +26,7 @@ RemoteIntersection<d> remote_intersection_on(const PlMap<d>& map, Index element,
     ri.domain_local[i] = m.node_position[n];
     // The corner's image on the region's common S2 element, moved exactly through the shared
     // vertices; the affine map would add rounding, which matters on sliver regions.
-    ri.target_local[i] = transfer_to_element(map.target(), m.node_image[n], ri.target_element)
+    ri.target_local[i] = transfer_to_element(map.target(), m.node_image(n), ri.target_element)
                              .value_or(apply<d>(m.region_map[region], ri.domain_local[i]));
     ri.domain_world[i] = map.domain().world_position(ri.domain_element, ri.domain_local[i]);
     ri.target_world[i] = map.target().world_position(ri.target_element, ri.target_local[i]);
@@ -91,7 +91,7 @@ double local_target_measure(const PlMap<d>& map, Index r) {
   std::array<LocalPoint<d>, d + 1> y;
   for (int i = 0; i <= d; ++i) {
     const Index n = m.region_corners[r][i];
-    y[i] = transfer_to_element(map.target(), m.node_image[n], target).value_or(apply<d>(m.region_map[r], m.node_position[n]));
+    y[i] = transfer_to_element(map.target(), m.node_image(n), target).value_or(apply<d>(m.region_map[r], m.node_position[n]));
   }
   return local_simplex_measure<d>(y);
 }

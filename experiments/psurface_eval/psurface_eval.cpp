@@ -199,8 +199,8 @@ PSurfaceMap<ctype> build_psurface(const PlMap<2>& map) {
       switch (m.node_type[n]) {
         case NodeType::corner: idx = factory.addCornerNode(t, where, target); break;
         case NodeType::ghost:
-          idx = factory.addGhostNode(t, where, m.node_image[n].element,
-                                     to_psurface_local<ctype>(m.node_image[n].local));
+          idx = factory.addGhostNode(t, where, m.node_image_element[n],
+                                     to_psurface_local<ctype>(m.node_image_local[n]));
           ++out.ghost_nodes;
           break;
         case NodeType::touching: idx = factory.addTouchingNode(t, local, where, target); break;
@@ -440,7 +440,7 @@ Json run_case(const Case& c, std::size_t query_count) {
     const auto& s = map.stored();
     auto b = [](const auto& v) { return double(v.size() * sizeof(v[0])); };
     const double nodes = b(s.node_begin) + b(s.node_position) + b(s.node_type) + b(s.node_location) +
-                         b(s.node_image) + b(s.node_target);
+                         b(s.node_image_element) + b(s.node_image_local) + b(s.node_target);
     const double regions = b(s.region_begin) + b(s.region_corners) + b(s.region_target) + b(s.region_map) +
                            b(s.start_region);
     result["plmap_graph_size_bytes_per_node"] = nodes / map.node_count();
@@ -456,7 +456,8 @@ Json run_case(const Case& c, std::size_t query_count) {
     add("node_position", m.node_position);
     add("node_type", m.node_type);
     add("node_location", m.node_location);
-    add("node_image", m.node_image);
+    add("node_image_element", m.node_image_element);
+    add("node_image_local", m.node_image_local);
     add("node_target", m.node_target);
     add("neighbor_begin", m.neighbor_begin);
     add("neighbor", m.neighbor);

@@ -79,7 +79,7 @@ TEST(MapFile, AwkwardDoublesSurviveBitForBit) {
   MapData<2> m = base.data();
   m.region_map[0] << 0.1 + 0.2, -0.0, 1.0 / 3.0,  //
       std::numeric_limits<double>::denorm_min(), 1e308, -std::numeric_limits<double>::min();
-  m.node_image[1].local << 1.0 - std::numeric_limits<double>::epsilon() / 2, 1e-300;
+  m.node_image_local[1] << 1.0 - std::numeric_limits<double>::epsilon() / 2, 1e-300;
   const PlMap<2> map(base.domain_ptr(), base.target_ptr(), m);
   const std::string text = to_text(map);
   const PlMap<2> loaded = std::get<PlMap<2>>(parse_map(text, "awkward"));

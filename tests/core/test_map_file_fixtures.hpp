@@ -23,7 +23,8 @@ inline PlMap<2> hand_made_triangle() {
   m.node_position = {{0, 0}, {1, 0}, {0, 1}};
   m.node_type = {NodeType::corner, NodeType::corner, NodeType::corner};
   m.node_location = {0, 1, 2};
-  m.node_image = {{0, {0, 0}}, {0, {1, 0}}, {0, {0, 1}}};
+  m.node_image_element = {0, 0, 0};
+  m.node_image_local = {{0, 0}, {1, 0}, {0, 1}};
   m.node_target = {0, 1, 2};
   m.neighbor_begin = {0, 2, 4, 6};
   m.neighbor = {1, 2, 2, 0, 0, 1};
@@ -50,7 +51,8 @@ inline PlMap<1> hand_made_segment() {
   m.node_position = {LocalPoint<1>(0.0), LocalPoint<1>(1.0)};
   m.node_type = {NodeType::corner, NodeType::corner};
   m.node_location = {0, 1};
-  m.node_image = {{0, LocalPoint<1>(0.0)}, {0, LocalPoint<1>(1.0)}};
+  m.node_image_element = {0, 0};
+  m.node_image_local = {LocalPoint<1>(0.0), LocalPoint<1>(1.0)};
   m.node_target = {0, 1};
   m.neighbor_begin = {0, 1, 2};
   m.neighbor = {1, 0};

@@ -78,7 +78,7 @@ void edit(MapData<d>& m, unsigned array, unsigned index, int value, bool add) {
     case 10: in(m.node_target); break;
     case 11: in(m.node_location); break;
     case 12:
-      if (!m.node_image.empty()) change(m.node_image[index % m.node_image.size()].element);
+      if (!m.node_image_element.empty()) change(m.node_image_element[index % m.node_image_element.size()]);
       break;
     case 13:  // move a node: positions in 1/256 of the element
       if (!m.node_position.empty()) {

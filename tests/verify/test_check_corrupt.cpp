@@ -68,7 +68,7 @@ TEST(VerifyCorrupt, CopyOnSharedEdgeWithADifferentImage) {
   const PlMap<2> base = centre_fan();
   const Index n = node_with_target(base, 1, 4, NodeType::touching);
   const PlMap<2> bad = modified<2>(base, [&](MapData<2>& m) {
-    m.node_image[n].local = lp<2>(0.3, 0.3);  // still inside its S2 element, but elsewhere
+    m.node_image_local[n] = lp<2>(0.3, 0.3);  // still inside its S2 element, but elsewhere
   });
   expect_caught(bad, "structure", "copies_agree");
 }
@@ -209,7 +209,7 @@ TEST(VerifyCorrupt, CurveGhostCopiesDisagree) {
   const PlMap<1> base = curve_with_ghost();
   const PlMap<1> bad = modified<1>(base, [](MapData<1>& m) {
     const Index ghost = m.node_begin[1];  // element 1's copy of the ghost at S1 vertex 1
-    m.node_image[ghost].local(0) += 0.1;
+    m.node_image_local[ghost](0) += 0.1;
   });
   expect_caught(bad, "structure", "copies_agree");
   expect_caught(bad, "map", "region_corner_image");

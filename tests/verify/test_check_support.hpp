@@ -141,7 +141,8 @@ MapData<d> assemble(const Surface<d>& s1, const Surface<d>& s2, const std::vecto
       m.node_target.push_back(ns.target);
       const WorldPoint<d> x = s1.world_position(t, ns.local);
       const Index t2 = element_containing(s2, {x});
-      m.node_image.push_back({t2, local_of(s2, t2, x)});
+      m.node_image_element.push_back(t2);
+      m.node_image_local.push_back(local_of(s2, t2, x));
       lists.emplace_back();
     }
     m.node_begin.push_back(static_cast<Index>(m.node_position.size()));

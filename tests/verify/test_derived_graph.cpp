@@ -25,8 +25,8 @@ PlMap<2> rebuilt(const PlMap<2>& map, MapData<2> data) {
 
 std::size_t full_bytes(const MapData<2>& m) {
   auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
-  return b(m.node_begin) + b(m.node_position) + b(m.node_type) + b(m.node_location) + b(m.node_image) +
-         b(m.node_target) + b(m.neighbor_begin) + b(m.neighbor) + b(m.neighbor_edge_kind) +
+  return b(m.node_begin) + b(m.node_position) + b(m.node_type) + b(m.node_location) +
+         b(m.node_image_element) + b(m.node_image_local) + b(m.node_target) + b(m.neighbor_begin) + b(m.neighbor) + b(m.neighbor_edge_kind) +
          b(m.edge_node_begin) + b(m.edge_node) + b(m.region_begin) + b(m.region_corners) +
          b(m.region_neighbors) + b(m.region_target) + b(m.region_map) + b(m.start_region);
 }

@@ -24,7 +24,7 @@ Anchor anchor_of(const MapContext<d>& ctx, Index n) {
   if (is_target_vertex_preimage(type)) return {Anchor::vertex, m.node_target[n]};
   if (type == NodeType::intersection) return {Anchor::edge, m.node_target[n]};
   // A ghost: where does its image lie on the S2 element that holds it?
-  const SurfacePoint<d>& img = m.node_image[n];
+  const SurfacePoint<d> img = m.node_image(n);
   const Barycentric<d> b = barycentric_from_local<d>(img.local);
   const double tol = ctx.options.local_tolerance;
   int zeros = 0, zero_index = -1, nonzero_index = -1;

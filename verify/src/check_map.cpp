@@ -44,7 +44,7 @@ void run_map(const MapContext<d>& ctx, ViolationSink& sink) {
   std::vector<PreimageKey> preimages;
   for (Index n = 0; n < nn; ++n) {
     const Index t = ctx.node_element[n];
-    const auto& img = m.node_image[n];
+    const SurfacePoint<d> img = m.node_image(n);
     const double inside = min_barycentric<d>(img.local);
     if (inside < -local_tol)
       sink.add("node_image_outside_element", {t, n, invalid_index, img.element}, [&] {

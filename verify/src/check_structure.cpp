@@ -62,10 +62,10 @@ bool check_indices(const MapContext<d>& ctx, ViolationSink& sink) {
         return fmt::format("node {} ({}) has node_target {} (S2 has {} vertices, {} edges)", n,
                            to_string(type), target, nv2, ne2);
       });
-    if (!m.node_position[n].allFinite() || !m.node_image[n].local.allFinite())
+    if (!m.node_position[n].allFinite() || !m.node_image_local[n].allFinite())
       bad([&] { return fmt::format("node {} has a non-finite position or image", n); });
-    if (m.node_image[n].element < 0 || m.node_image[n].element >= ctx.s2.element_count())
-      bad([&] { return fmt::format("node {} has image element {}", n, m.node_image[n].element); });
+    if (m.node_image_element[n] < 0 || m.node_image_element[n] >= ctx.s2.element_count())
+      bad([&] { return fmt::format("node {} has image element {}", n, m.node_image_element[n]); });
     for (Index k = m.neighbor_begin[n]; k < m.neighbor_begin[n + 1]; ++k) {
       const Index q = m.neighbor[k];
       if (q < 0 || q >= nn || q == n || ctx.node_element[q] != t)

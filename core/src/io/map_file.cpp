@@ -121,10 +121,10 @@ void write_map_data(MapFileWriter& w, const MapData<d>& m) {
       w.real(m.node_position[n](i), "node_position", n);
     }
     w.space();
-    w.integer(m.node_image[n].element);
+    w.integer(m.node_image_element[n]);
     for (int i = 0; i < d; ++i) {
       w.space();
-      w.real(m.node_image[n].local(i), "node_image", n);
+      w.real(m.node_image_local[n](i), "node_image", n);
     }
     w.space();
     w.integer(m.node_target[n]);
@@ -396,7 +396,8 @@ PlMap<d> read_map_body(MapFileReader& r, int orientation) {
   m.node_type.resize(node_count);
   m.node_location.resize(node_count);
   m.node_position.resize(node_count);
-  m.node_image.resize(node_count);
+  m.node_image_element.resize(node_count);
+  m.node_image_local.resize(node_count);
   m.node_target.resize(node_count);
   for (std::size_t n = 0; n < node_count; ++n) {
     const Fields f = r.next_record(2 * d + 4);
@@ -409,8 +410,8 @@ PlMap<d> read_map_body(MapFileReader& r, int orientation) {
         f.token[k++], std::numeric_limits<std::int8_t>::min(),
         std::numeric_limits<std::int8_t>::max(), "node location"));
     for (int i = 0; i < d; ++i) m.node_position[n](i) = r.real(f.token[k++], "node position");
-    m.node_image[n].element = r.index(f.token[k++], "image element");
-    for (int i = 0; i < d; ++i) m.node_image[n].local(i) = r.real(f.token[k++], "image local");
+    m.node_image_element[n] = r.index(f.token[k++], "image element");
+    for (int i = 0; i < d; ++i) m.node_image_local[n](i) = r.real(f.token[k++], "image local");
     m.node_target[n] = r.index(f.token[k++], "node target");
   }
 

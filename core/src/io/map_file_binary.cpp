@@ -309,7 +309,7 @@ std::vector<OutArray> map_arrays(const PlMap<d>& map, nlohmann::json& toc, unsig
   require_finite(scalars<double>(m.node_position), N * d, "node_position");
   require_finite(scalars<double>(map.domain().vertices()), map.domain().vertices().size() * (d + 1), "domain vertices");
   require_finite(scalars<double>(map.target().vertices()), map.target().vertices().size() * (d + 1), "target vertices");
-  for (std::size_t n = 0; n < N; ++n) require_finite(m.node_image[n].local.data(), d, "node_image");
+  require_finite(scalars<double>(m.node_image_local), N * d, "node_image");
   require_finite(scalars<double>(m.region_map), R * d * (d + 1), "region_map");
 
   std::vector<OutArray> a;
@@ -325,27 +325,8 @@ std::vector<OutArray> map_arrays(const PlMap<d>& map, nlohmann::json& toc, unsig
   a.push_back(raw_array("node_type", "|u1", {N}, m.node_type));
   a.push_back(raw_array("node_location", "|i1", {N}, m.node_location));
   a.push_back(raw_array("node_position", "<f8", {N, D}, m.node_position));
-  {
-    OutArray element;
-    element.name = "node_image_element";
-    element.dtype = "<i4";
-    element.shape = {N};
-    element.encoding = "raw";
-    fill_owned<Index>(element, N, [&](std::size_t n) { return m.node_image[n].element; });
-    a.push_back(std::move(element));
-    OutArray local;
-    local.name = "node_image_local";
-    local.dtype = "<f8";
-    local.shape = {N, D};
-    local.encoding = "raw";
-    local.owned.resize(N * d * sizeof(double));
-    for (std::size_t n = 0; n < N; ++n) {
-      std::memcpy(local.owned.data() + n * d * sizeof(double), m.node_image[n].local.data(), d * sizeof(double));
-    }
-    local.data = local.owned.data();
-    local.bytes = local.owned.size();
-    a.push_back(std::move(local));
-  }
+  a.push_back(raw_array("node_image_element", "<i4", {N}, m.node_image_element));
+  a.push_back(raw_array("node_image_local", "<f8", {N, D}, m.node_image_local));
   a.push_back(raw_array("node_target", "<i4", {N}, m.node_target));
 
   if constexpr (d == 1) {
@@ -668,17 +649,8 @@ void read_map_arrays(const Container& c, MapArrayReader& r, std::uint64_t T, boo
   }
   r.raw(r.get("node_location", {}, N), "|i1", m.node_location);
   r.raw(r.get("node_position", {D}, N), "<f8", m.node_position);
-  {
-    std::vector<Index> element;
-    std::vector<double> local;
-    r.raw(r.get("node_image_element", {}, N), "<i4", element);
-    r.raw(r.get("node_image_local", {D}, N), "<f8", local);
-    m.node_image.resize(N);
-    for (std::size_t n = 0; n < N; ++n) {
-      m.node_image[n].element = element[n];
-      for (int i = 0; i < d; ++i) m.node_image[n].local(i) = local[n * d + i];
-    }
-  }
+  r.raw(r.get("node_image_element", {}, N), "<i4", m.node_image_element);
+  r.raw(r.get("node_image_local", {D}, N), "<f8", m.node_image_local);
   r.raw(r.get("node_target", {}, N), "<i4", m.node_target);
 
   const LocalGroups<d> groups{m, T};

@@ -48,7 +48,7 @@ std::optional<AffineMap<d>> derived_region_map(const MapData<d>& m, const Surfac
   for (int k = 0; k <= d; ++k) {
     const Index n = m.region_corners[r][k];
     from[k] = m.node_position[n];
-    const std::optional<LocalPoint<d>> y = image_on_element(s2, m.node_image[n], m.region_target[r]);
+    const std::optional<LocalPoint<d>> y = image_on_element(s2, m.node_image(n), m.region_target[r]);
     if (!y) return std::nullopt;
     to[k] = *y;
   }

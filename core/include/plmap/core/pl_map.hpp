@@ -61,8 +61,12 @@ struct MapData {
   /// For corner and ghost nodes the corner of the element (0..d), for touching and intersection
   /// nodes the local edge (0..2), for interior nodes -1.
   std::vector<std::int8_t> node_location;
-  /// Image on S2: an S2 element and local coordinates on it (any element containing the point).
-  std::vector<SurfacePoint<d>> node_image;
+  /// Image on S2: an S2 element (any element containing the point) and local coordinates on it,
+  /// read together through node_image(n). Two arrays rather than one of SurfacePoint<d>: that
+  /// struct pads its 4-byte element to the 16-byte alignment of the local point, 12 of its 32
+  /// bytes per node for d = 2 (docs/data-model.md).
+  std::vector<Index> node_image_element;
+  std::vector<LocalPoint<d>> node_image_local;
   /// The S2 vertex of corner, touching and interior nodes; the S2 edge of intersection nodes;
   /// invalid_index for ghost nodes.
   std::vector<Index> node_target;
@@ -92,6 +96,9 @@ struct MapData {
   /// +1 if the map preserves the orientation of the element frames, -1 if it reverses it (as for
   /// two bodies in contact whose normals face each other).
   int orientation = 1;
+
+  /// The image of node n on S2 (node_image_element and node_image_local put together).
+  SurfacePoint<d> node_image(Index n) const { return {node_image_element[n], node_image_local[n]}; }
 
   friend bool operator==(const MapData&, const MapData&) = default;
 };
