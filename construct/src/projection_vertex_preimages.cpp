@@ -3,6 +3,7 @@
 #include "projection_vertex_preimages.hpp"
 
 #include "projection_seeds.hpp"
+#include "simplex_distance.hpp"
 
 #include <plmap/core/parallel_ranges.hpp>
 #include <plmap/solvers/projection_systems.hpp>
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <utility>
 
@@ -76,37 +78,48 @@ class VertexPreimageSearch {
   /// farther than theirs (a long element among short ones: the steep sides of a zigzag curve),
   /// and the walks from the seeds stop at the first element that holds a solution, which may rank
   /// worse than the one on the missed element (an S2 vertex on S1 then takes a preimage off
-  /// itself). Such elements are added as seeds, nearest centroid first, up to max_search_seeds: those whose
-  /// bounding box lies nearer to x than the nearest seed's centroid. Every element within that
-  /// distance of x has its centroid within it plus the largest centroid-to-corner distance, and
-  /// on meshes of even element size those are seeds already, so this adds none and costs no query.
+  /// itself). Such elements are added as seeds, nearest centroid first, up to max_search_seeds:
+  /// those whose bounding box lies nearer to x than the seed with the nearest centroid itself
+  /// (the element itself, not its centroid, which lies farther). An element through x has its box at distance 0, below the distance of any seed
+  /// that does not pass through x, so the zigzag's long sides are still added; an S2 vertex a
+  /// gap above S1, whose nearest centroid lies about the gap away with nearly every box around it
+  /// nearer than that, no longer gets walks from all of them (with the centroid as the bound a
+  /// third of the vertices of the planes and real-mesh pairs did, and found nothing new). Every
+  /// element within the bound has its centroid within it plus the largest centroid-to-corner
+  /// distance, and on meshes of even element size those are seeds already, so this adds none and
+  /// costs no query.
   int add_long_elements_through(const WorldPoint<d>& x, SeedElements& seeds, int count) const {
     if (count == 0 || count >= max_search_seeds) return count;
-    double nearest = std::numeric_limits<double>::infinity(), farthest = 0.0;
+    double nearest_centroid = std::numeric_limits<double>::infinity(), farthest = 0.0;
+    std::uint32_t nearest_seed = seeds[0];
     for (int i = 0; i < count; ++i) {
       const double squared = ctx_.s1_index->squared_distance(x, seeds[i]);
-      nearest = std::min(nearest, squared);
+      if (squared < nearest_centroid) {
+        nearest_centroid = squared;
+        nearest_seed = seeds[i];
+      }
       farthest = std::max(farthest, squared);
     }
-    nearest = std::sqrt(nearest);
-    // The seeds are the nearest centroids: if they reach beyond that bound, or are all there are,
-    // every candidate is a seed already (the usual case, at the cost of no tree query).
-    if (count >= ctx_.s1_index->size() || std::sqrt(farthest) > nearest + ctx_.s1_index->radius) return count;
-    // The candidates are the elements whose centroid lies within nearest + radius of x (every
-    // element whose box lies within `nearest` has its centroid there, up to the box's corners)
-    // and whose box lies nearer than `nearest`; the box index names a superset of them without
+    const double bound = element_distance(x, static_cast<Index>(nearest_seed));
+    // No box lies nearer than 0 (x on the nearest seed: the usual case of a map of a surface onto
+    // itself). The seeds are the nearest centroids: if they reach beyond the candidates'
+    // centroids, or are all there are, every candidate is a seed already (the usual case, at the
+    // cost of no tree query).
+    if (!(bound > 0.0) || count >= ctx_.s1_index->size() || std::sqrt(farthest) > bound + ctx_.s1_index->radius)
+      return count;
+    // The candidates are the elements whose centroid lies within bound + radius of x (every
+    // element whose box lies within `bound` has its centroid there, up to the box's corners)
+    // and whose box lies nearer than `bound`; the box index names a superset of them without
     // the wide centroid query.
-    const double reach = nearest + ctx_.s1_index->radius;
+    const double reach = bound + ctx_.s1_index->radius;
     std::vector<std::pair<double, Index>> added;
     auto consider = [&](Index t) {
       if (std::find(seeds.begin(), seeds.begin() + count, static_cast<std::uint32_t>(t)) != seeds.begin() + count)
         return;
-      const auto& box = ctx_.s1_boxes->box(t);
-      const double box_distance = (x.cwiseMax(box.low).cwiseMin(box.high) - x).norm();
-      if (box_distance < nearest) added.emplace_back(ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t)), t);
+      if (box_distance(x, t) < bound) added.emplace_back(ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t)), t);
     };
     if (ctx_.s1_boxes->has_classes()) {
-      ctx_.s1_boxes->visit_near(x, nearest, [&](Index t) {
+      ctx_.s1_boxes->visit_near(x, bound, [&](Index t) {
         if (ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t)) < reach * reach) consider(t);
       });
     } else {
@@ -118,6 +131,19 @@ class VertexPreimageSearch {
       seeds[count++] = static_cast<std::uint32_t>(t);
     }
     return count;
+  }
+
+  /// Distance from x to S1 element t.
+  double element_distance(const WorldPoint<d>& x, Index t) const {
+    std::array<WorldPoint<d>, d + 1> corners;
+    for (int k = 0; k <= d; ++k) corners[k] = ctx_.s1.corner(t, k);
+    return simplex_distance<d>(x, corners);
+  }
+
+  /// Distance from x to the bounding box of S1 element t (0 inside it).
+  double box_distance(const WorldPoint<d>& x, Index t) const {
+    const auto& box = ctx_.s1_boxes->box(t);
+    return (x.cwiseMax(box.low).cwiseMin(box.high) - x).norm();
   }
 
   /// Eq. (3) for S2 vertex q on walks across S1 from the first `count` of `seeds`: the solution

@@ -3,12 +3,16 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/face_removal.hpp>
 
+#include "face_removal_rules.hpp"
+#include "face_removal_stored_form.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace plmap {
@@ -21,15 +25,6 @@ Index neighbor_entry(const MapData<d>& m, Index a, Index b) {
   for (Index i = m.neighbor_begin[a]; i < m.neighbor_begin[a + 1]; ++i)
     if (m.neighbor[i] == b) return i;
   return invalid_index;
-}
-
-/// Bit k is set when node n lies on local edge k of its element (edge k joins corners k and
-/// k + 1, so corner k lies on edges k and k + 2).
-std::uint8_t element_edges_through(const MapData<2>& m, Index n) {
-  const int k = m.node_location[n];
-  if (is_at_corner(m.node_type[n])) return static_cast<std::uint8_t>((1u << k) | (1u << ((k + 2) % 3)));
-  if (is_on_edge(m.node_type[n])) return static_cast<std::uint8_t>(1u << k);
-  return 0;
 }
 
 /// Marks the faces of the named regions (and, where a face lies strictly inside its element, all
@@ -58,7 +53,7 @@ void mark_faces(const PlMap<d>& map, std::span<const Index> regions, std::vector
         const auto& c = m.region_corners[r];
         for (int i = 0; i < 3; ++i) {
           const Index a = c[(i + 1) % 3], b = c[(i + 2) % 3];
-          if (element_edges_through(m, a) & element_edges_through(m, b)) reaches_boundary = true;
+          if (detail::element_edges_through(m, a) & detail::element_edges_through(m, b)) reaches_boundary = true;
           const Index entry = neighbor_entry(m, a, b);
           const bool closure = entry != invalid_index && m.neighbor_edge_kind[entry] == GraphEdgeKind::closure;
           const Index across = m.region_neighbors[r][i];
@@ -84,13 +79,6 @@ void mark_faces(const PlMap<d>& map, std::span<const Index> regions, std::vector
 template <int d>
 std::vector<Index> entries_leaving(const MapData<d>& m, Index element_count, const std::vector<char>& removed) {
   std::vector<Index> leaving;
-  auto has_side = [](const std::array<Index, d + 1>& c, Index a, Index b) {
-    for (int i = 0; i <= d; ++i) {
-      const Index x = c[i], y = c[(i + 1) % (d + 1)];
-      if ((x == a && y == b) || (x == b && y == a)) return true;
-    }
-    return false;
-  };
   for (Index t = 0; t < element_count; ++t) {
     const Index begin = m.region_begin[t], end = m.region_begin[t + 1];
     for (Index r = begin; r < end; ++r) {
@@ -100,7 +88,7 @@ std::vector<Index> entries_leaving(const MapData<d>& m, Index element_count, con
         const Index a = c[i], b = c[(i + 1) % (d + 1)];
         bool kept_side = false;
         for (Index other = begin; other < end && !kept_side; ++other)
-          kept_side = !removed[other] && has_side(m.region_corners[other], a, b);
+          kept_side = !removed[other] && detail::has_side(m.region_corners[other], a, b);
         if (kept_side) continue;
         for (const Index e : {neighbor_entry(m, a, b), neighbor_entry(m, b, a)})
           if (e != invalid_index && (d == 1 || m.neighbor_edge_kind[e] == GraphEdgeKind::closure)) leaving.push_back(e);
@@ -112,12 +100,16 @@ std::vector<Index> entries_leaving(const MapData<d>& m, Index element_count, con
   return leaving;
 }
 
-/// Drops the removed regions from m's region arrays in place, keeping the order of the rest,
-/// and renumbers the neighbours and start regions. Returns how many regions are kept.
+}  // namespace
+
+namespace detail {
+
 template <int d>
-Index compact_regions(MapData<d>& m, Index element_count, const std::vector<char>& removed) {
+Index compact_regions(MapData<d>& m, Index element_count, const std::vector<char>& removed,
+                      std::vector<Index>& renumbered) {
   const auto nr = static_cast<Index>(m.region_corners.size());
-  std::vector<Index> renumbered(static_cast<std::size_t>(nr), invalid_index);
+  const bool with_neighbors = !m.region_neighbors.empty();
+  renumbered.assign(static_cast<std::size_t>(nr), invalid_index);
   Index kept = 0, old_begin = 0;
   for (Index t = 0; t < element_count; ++t) {
     const Index old_end = m.region_begin[t + 1];
@@ -129,15 +121,17 @@ Index compact_regions(MapData<d>& m, Index element_count, const std::vector<char
   for (Index r = 0; r < nr; ++r) {
     const Index to = renumbered[r];
     if (to == invalid_index) continue;
-    std::array<Index, d + 1> across = m.region_neighbors[r];
-    for (Index& g : across) g = g == invalid_index ? invalid_index : renumbered[g];
+    if (with_neighbors) {
+      std::array<Index, d + 1> across = m.region_neighbors[r];
+      for (Index& g : across) g = g == invalid_index ? invalid_index : renumbered[g];
+      m.region_neighbors[to] = across;
+    }
     m.region_corners[to] = m.region_corners[r];
-    m.region_neighbors[to] = across;
     m.region_target[to] = m.region_target[r];
     m.region_map[to] = m.region_map[r];
   }
   m.region_corners.resize(kept);
-  m.region_neighbors.resize(kept);
+  if (with_neighbors) m.region_neighbors.resize(kept);
   m.region_target.resize(kept);
   m.region_map.resize(kept);
   // A walk starts from the old start region if it is kept, else from any region of the element.
@@ -150,6 +144,13 @@ Index compact_regions(MapData<d>& m, Index element_count, const std::vector<char
   }
   return kept;
 }
+
+template Index compact_regions<1>(MapData<1>&, Index, const std::vector<char>&, std::vector<Index>&);
+template Index compact_regions<2>(MapData<2>&, Index, const std::vector<char>&, std::vector<Index>&);
+
+}  // namespace detail
+
+namespace {
 
 /// Drops the given entries (sorted, each once) from m's neighbour lists in place.
 template <int d>
@@ -190,6 +191,13 @@ PlMap<d> remove_faces(PlMap<d>&& map, std::span<const Index> regions, FaceRemova
       throw InvalidMapError(fmt::format("remove_faces: region {} does not exist (the map has {})", r, nr));
 
   FaceRemovalReport rep;
+  // A triangle map in its stored form is changed element by element where regions go; its
+  // graph is neither derived whole nor compared whole again (face_removal_stored_form.hpp).
+  if constexpr (d == 2)
+    if (std::optional<PlMap<2>> smaller = detail::remove_faces_in_stored_form(map, regions, rep)) {
+      if (report) *report = rep;
+      return std::move(*smaller);
+    }
   std::vector<char> removed(static_cast<std::size_t>(nr), 0);
   mark_faces(map, regions, removed, rep);
   std::shared_ptr<const Surface<d>> domain = map.domain_ptr(), target = map.target_ptr();
@@ -197,7 +205,8 @@ PlMap<d> remove_faces(PlMap<d>&& map, std::span<const Index> regions, FaceRemova
   // and only the regions and the entries that leave with them are taken out.
   MapData<d> m = std::move(map).release_data();
   const std::vector<Index> leaving = entries_leaving(m, nt, removed);
-  rep.removed_regions = nr - compact_regions(m, nt, removed);
+  std::vector<Index> renumbered;
+  rep.removed_regions = nr - detail::compact_regions(m, nt, removed, renumbered);
   compact_neighbors(m, leaving);
   if (report) *report = rep;
   return PlMap<d>(std::move(domain), std::move(target), std::move(m));

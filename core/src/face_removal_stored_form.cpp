@@ -1,0 +1,310 @@
+// remove_faces on a triangle map's stored form (face_removal_stored_form.hpp).
+
+#include "face_removal_stored_form.hpp"
+
+#include "face_removal_rules.hpp"
+#include "map_graph_derivation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <utility>
+
+namespace plmap::detail {
+
+namespace {
+
+/// The graph arrays of one element, laid out as in StoredGraph: node by node, then the three
+/// local edges, then region by region. Node and region indices are global.
+struct ElementGraph {
+  Index element = invalid_index;
+  std::vector<Index> neighbor_count;
+  std::vector<Index> neighbor;
+  std::vector<GraphEdgeKind> kind;
+  std::vector<Index> edge_node_count;
+  std::vector<Index> edge_node;
+  std::vector<std::array<Index, 3>> region_neighbors;
+
+  bool operator==(const ElementGraph&) const = default;
+
+  /// Entry of neighbour b in the list of node a (an index into `neighbor`), or invalid_index.
+  Index entry(const std::vector<Index>& list_begin, Index local_a, Index b) const {
+    for (Index i = list_begin[static_cast<std::size_t>(local_a)]; i < list_begin[static_cast<std::size_t>(local_a) + 1]; ++i)
+      if (neighbor[static_cast<std::size_t>(i)] == b) return i;
+    return invalid_index;
+  }
+};
+
+/// Where each element of a stored graph begins in its arrays (one more entry than elements).
+struct StoredGraphOffsets {
+  std::vector<std::size_t> node, entry, edge_entry, region;
+
+  StoredGraphOffsets(const MapData<2>& m, const StoredGraph& g) {
+    const std::size_t n = g.element.size();
+    node.assign(n + 1, 0);
+    entry.assign(n + 1, 0);
+    edge_entry.assign(n + 1, 0);
+    region.assign(n + 1, 0);
+    for (std::size_t e = 0; e < n; ++e) {
+      const Index t = g.element[e];
+      const auto nodes = static_cast<std::size_t>(m.node_begin[t + 1] - m.node_begin[t]);
+      node[e + 1] = node[e] + nodes;
+      entry[e + 1] = entry[e];
+      for (std::size_t i = node[e]; i < node[e + 1]; ++i) entry[e + 1] += static_cast<std::size_t>(g.neighbor_count[i]);
+      edge_entry[e + 1] = edge_entry[e];
+      for (std::size_t k = 3 * e; k < 3 * e + 3; ++k) edge_entry[e + 1] += static_cast<std::size_t>(g.edge_node_count[k]);
+      region[e + 1] = region[e] + static_cast<std::size_t>(m.region_begin[t + 1] - m.region_begin[t]);
+    }
+  }
+};
+
+template <class T>
+std::vector<T> slice(const std::vector<T>& v, std::size_t begin, std::size_t end) {
+  return std::vector<T>(v.begin() + static_cast<std::ptrdiff_t>(begin), v.begin() + static_cast<std::ptrdiff_t>(end));
+}
+
+/// Element e of the stored graph.
+ElementGraph stored_element_graph(const StoredGraph& g, const StoredGraphOffsets& at, std::size_t e) {
+  ElementGraph out;
+  out.element = g.element[e];
+  out.neighbor_count = slice(g.neighbor_count, at.node[e], at.node[e + 1]);
+  out.neighbor = slice(g.neighbor, at.entry[e], at.entry[e + 1]);
+  out.kind = slice(g.neighbor_edge_kind, at.entry[e], at.entry[e + 1]);
+  out.edge_node_count = slice(g.edge_node_count, 3 * e, 3 * e + 3);
+  out.edge_node = slice(g.edge_node, at.edge_entry[e], at.edge_entry[e + 1]);
+  out.region_neighbors = slice(g.region_neighbors, at.region[e], at.region[e + 1]);
+  return out;
+}
+
+/// Element t's graph as its regions give it, or nothing where they do not determine one.
+std::optional<ElementGraph> derived_element_graph(const MapData<2>& m, const Surface<2>& target, Index t,
+                                                  GraphDerivationScratch& scratch) {
+  ElementGraph out;
+  out.element = t;
+  out.region_neighbors.resize(static_cast<std::size_t>(m.region_begin[t + 1] - m.region_begin[t]));
+  if (!derive_region_neighbors(m, t, out.region_neighbors, scratch) ||
+      !derive_neighbor_lists(m, target, t, out.region_neighbors, out.neighbor_count, out.neighbor, out.kind, scratch))
+    return std::nullopt;
+  derive_edge_nodes(m, t, out.edge_node_count, out.edge_node);
+  return out;
+}
+
+/// The elements that lose regions, each with its named regions in the order they were named
+/// (the order decides which named region counts as the face's).
+struct NamedByElement {
+  std::vector<Index> element;  // increasing
+  std::vector<std::vector<Index>> regions;
+};
+
+NamedByElement group_by_element(const MapData<2>& m, std::span<const Index> regions) {
+  std::vector<std::pair<Index, Index>> keyed;  // (element, region), in the order named
+  keyed.reserve(regions.size());
+  for (Index r : regions) {
+    const auto at = std::upper_bound(m.region_begin.begin(), m.region_begin.end(), r) - m.region_begin.begin() - 1;
+    keyed.emplace_back(static_cast<Index>(at), r);
+  }
+  std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  NamedByElement out;
+  for (const auto& [t, r] : keyed) {
+    if (out.element.empty() || out.element.back() != t) {
+      out.element.push_back(t);
+      out.regions.emplace_back();
+    }
+    out.regions.back().push_back(r);
+  }
+  return out;
+}
+
+/// Start of each node's list in g's entries (one more than nodes).
+std::vector<Index> list_begins(const ElementGraph& g) {
+  std::vector<Index> begin(g.neighbor_count.size() + 1, 0);
+  for (std::size_t i = 0; i < g.neighbor_count.size(); ++i) begin[i + 1] = begin[i] + g.neighbor_count[i];
+  return begin;
+}
+
+/// Marks the faces of element t's named regions in `removed` (remove_faces' rule: a face is the
+/// element's regions joined across closure edges; one strictly inside the element takes all of
+/// its regions).
+void mark_faces_of_element(const MapData<2>& m, const ElementGraph& g, const std::vector<Index>& named,
+                           std::vector<char>& removed, FaceRemovalReport& report) {
+  const Index t = g.element, nb = m.node_begin[t], rb = m.region_begin[t], re = m.region_begin[t + 1];
+  const std::vector<Index> begin = list_begins(g);
+  std::vector<Index> stack;
+  for (Index r0 : named) {
+    if (removed[static_cast<std::size_t>(r0)]) continue;
+    ++report.removed_faces;
+    removed[static_cast<std::size_t>(r0)] = 1;
+    stack.assign(1, r0);
+    bool reaches_boundary = false;
+    while (!stack.empty()) {
+      const Index r = stack.back();
+      stack.pop_back();
+      const auto& c = m.region_corners[r];
+      for (int i = 0; i < 3; ++i) {
+        const Index a = c[(i + 1) % 3], b = c[(i + 2) % 3];
+        if (element_edges_through(m, a) & element_edges_through(m, b)) reaches_boundary = true;
+        const Index entry = g.entry(begin, a - nb, b);
+        const bool closure = entry != invalid_index && g.kind[static_cast<std::size_t>(entry)] == GraphEdgeKind::closure;
+        const Index across = g.region_neighbors[static_cast<std::size_t>(r - rb)][i];
+        if (closure && across != invalid_index && !removed[static_cast<std::size_t>(across)]) {
+          removed[static_cast<std::size_t>(across)] = 1;
+          stack.push_back(across);
+        }
+      }
+    }
+    if (!reaches_boundary) {
+      for (Index r = rb; r < re; ++r) removed[static_cast<std::size_t>(r)] = 1;
+      ++report.cleared_elements;
+    }
+  }
+}
+
+/// Takes out of g's neighbour lists the closure edges on a side of a removed region that no kept
+/// region of the element has.
+void drop_leaving_entries(const MapData<2>& m, const std::vector<char>& removed, ElementGraph& g) {
+  const Index t = g.element, nb = m.node_begin[t], rb = m.region_begin[t], re = m.region_begin[t + 1];
+  const std::vector<Index> begin = list_begins(g);
+  std::vector<char> leaves(g.neighbor.size(), 0);
+  bool any = false;
+  for (Index r = rb; r < re; ++r) {
+    if (!removed[static_cast<std::size_t>(r)]) continue;
+    const auto& c = m.region_corners[r];
+    for (int i = 0; i < 3; ++i) {
+      const Index a = c[i], b = c[(i + 1) % 3];
+      bool kept_side = false;
+      for (Index other = rb; other < re && !kept_side; ++other)
+        kept_side = !removed[static_cast<std::size_t>(other)] && has_side(m.region_corners[other], a, b);
+      if (kept_side) continue;
+      for (const Index e : {g.entry(begin, a - nb, b), g.entry(begin, b - nb, a)})
+        if (e != invalid_index && g.kind[static_cast<std::size_t>(e)] == GraphEdgeKind::closure) {
+          leaves[static_cast<std::size_t>(e)] = 1;
+          any = true;
+        }
+    }
+  }
+  if (!any) return;
+  std::size_t written = 0;
+  for (std::size_t n = 0; n < g.neighbor_count.size(); ++n) {
+    Index kept = 0;
+    for (auto i = static_cast<std::size_t>(begin[n]); i < static_cast<std::size_t>(begin[n + 1]); ++i) {
+      if (leaves[i]) continue;
+      g.neighbor[written] = g.neighbor[i];
+      g.kind[written] = g.kind[i];
+      ++written;
+      ++kept;
+    }
+    g.neighbor_count[n] = kept;
+  }
+  g.neighbor.resize(written);
+  g.kind.resize(written);
+}
+
+/// g's region neighbours after the compaction: the kept regions' rows (the removed ones' are
+/// dropped when `old_rb` names where the element's regions began), indices renumbered, a removed
+/// neighbour becoming invalid_index.
+void renumber_regions(const std::vector<char>& removed, const std::vector<Index>& renumbered, Index old_rb,
+                      ElementGraph& g) {
+  std::size_t written = 0;
+  for (std::size_t i = 0; i < g.region_neighbors.size(); ++i) {
+    if (removed[static_cast<std::size_t>(old_rb) + i]) continue;
+    std::array<Index, 3> across = g.region_neighbors[i];
+    for (Index& q : across) q = q == invalid_index ? invalid_index : renumbered[static_cast<std::size_t>(q)];
+    g.region_neighbors[written++] = across;
+  }
+  g.region_neighbors.resize(written);
+}
+
+/// The stored arrays (without whatever was derived into them) and the stored graph of `map`,
+/// which is consumed: what the stored-form constructor takes. PlMap gives its arrays up only
+/// through release_data(), which derives the whole graph first; the map here is not const, so
+/// its stored arrays may be moved out through stored().
+std::pair<MapData<2>, StoredGraph> take_stored_form(PlMap<2>& map) {
+  auto& m = const_cast<MapData<2>&>(map.stored());
+  for (auto* v : {&m.neighbor_begin, &m.neighbor, &m.edge_node_begin, &m.edge_node}) std::vector<Index>().swap(*v);
+  std::vector<GraphEdgeKind>().swap(m.neighbor_edge_kind);
+  std::vector<std::array<Index, 3>>().swap(m.region_neighbors);
+  return {std::move(m), std::move(const_cast<StoredGraph&>(map.stored_graph()))};
+}
+
+void append(const ElementGraph& g, StoredGraph& out) {
+  out.element.push_back(g.element);
+  out.neighbor_count.insert(out.neighbor_count.end(), g.neighbor_count.begin(), g.neighbor_count.end());
+  out.neighbor.insert(out.neighbor.end(), g.neighbor.begin(), g.neighbor.end());
+  out.neighbor_edge_kind.insert(out.neighbor_edge_kind.end(), g.kind.begin(), g.kind.end());
+  out.edge_node_count.insert(out.edge_node_count.end(), g.edge_node_count.begin(), g.edge_node_count.end());
+  out.edge_node.insert(out.edge_node.end(), g.edge_node.begin(), g.edge_node.end());
+  out.region_neighbors.insert(out.region_neighbors.end(), g.region_neighbors.begin(), g.region_neighbors.end());
+}
+
+}  // namespace
+
+std::optional<PlMap<2>> remove_faces_in_stored_form(PlMap<2>& map, std::span<const Index> regions,
+                                                    FaceRemovalReport& report) {
+  const MapData<2>& stored = map.stored();
+  const StoredGraph& stored_graph = map.stored_graph();
+  const Surface<2>& target = map.target();
+  const Index nt = map.domain().element_count();
+  const NamedByElement named = group_by_element(stored, regions);
+  const StoredGraphOffsets offsets(stored, stored_graph);
+
+  // The graphs of the elements that lose regions, before anything changes (a damaged element
+  // leaves the map to the full-array path).
+  GraphDerivationScratch scratch;
+  std::vector<ElementGraph> changed;
+  changed.reserve(named.element.size());
+  for (Index t : named.element) {
+    const auto kept = std::lower_bound(stored_graph.element.begin(), stored_graph.element.end(), t);
+    if (kept != stored_graph.element.end() && *kept == t) {
+      changed.push_back(stored_element_graph(stored_graph, offsets, static_cast<std::size_t>(kept - stored_graph.element.begin())));
+    } else if (std::optional<ElementGraph> g = derived_element_graph(stored, target, t, scratch)) {
+      changed.push_back(std::move(*g));
+    } else {
+      return std::nullopt;
+    }
+  }
+
+  std::vector<char> removed(static_cast<std::size_t>(map.region_count()), 0);
+  for (std::size_t i = 0; i < changed.size(); ++i) {
+    mark_faces_of_element(stored, changed[i], named.regions[i], removed, report);
+    drop_leaving_entries(stored, removed, changed[i]);
+  }
+  std::vector<Index> old_region_begin;
+  old_region_begin.reserve(named.element.size());
+  for (Index t : named.element) old_region_begin.push_back(stored.region_begin[t]);
+
+  std::shared_ptr<const Surface<2>> domain = map.domain_ptr(), target_ptr = map.target_ptr();
+  auto [m, old_graph] = take_stored_form(map);
+  std::vector<Index> renumbered;
+  report.removed_regions = static_cast<Index>(removed.size()) - compact_regions(m, nt, removed, renumbered);
+
+  // The new stored graph, in element order: the changed elements and the elements that stored
+  // their graph before, each kept where the derivation from its (remaining) regions differs,
+  // as the constructor from full arrays would decide.
+  StoredGraph graph;
+  auto keep_if_underived = [&](ElementGraph&& g) {
+    const std::optional<ElementGraph> derived = derived_element_graph(m, *target_ptr, g.element, scratch);
+    if (!derived || *derived != g) append(g, graph);
+  };
+  std::size_t c = 0, s = 0;
+  while (c < changed.size() || s < old_graph.element.size()) {
+    const Index tc = c < changed.size() ? changed[c].element : nt;
+    const Index ts = s < old_graph.element.size() ? old_graph.element[s] : nt;
+    if (tc <= ts) {
+      renumber_regions(removed, renumbered, old_region_begin[c], changed[c]);
+      keep_if_underived(std::move(changed[c]));
+      ++c;
+      if (ts == tc) ++s;  // its stored graph was the one changed
+    } else {
+      // no region of it goes, so only the region numbers shift
+      ElementGraph g = stored_element_graph(old_graph, offsets, s);
+      for (auto& across : g.region_neighbors)
+        for (Index& q : across) q = q == invalid_index ? invalid_index : renumbered[static_cast<std::size_t>(q)];
+      keep_if_underived(std::move(g));
+      ++s;
+    }
+  }
+  return PlMap<2>(std::move(domain), std::move(target_ptr), std::move(m), std::move(graph));
+}
+
+}  // namespace plmap::detail
