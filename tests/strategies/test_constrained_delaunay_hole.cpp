@@ -23,6 +23,9 @@ std::vector<Eigen::Vector2d> random_star_polygon(int n) {
   std::vector<double> gaps(n);
   double total = 0.0;
   for (double& g : gaps) total += (g = *rc::gen::inRange(20, 100));
+  // a gap of π or more (possible for n = 3, e.g. gaps 62, 20, 20) leaves the origin outside the
+  // polygon, which may then turn clockwise: not a star polygon around the origin
+  RC_PRE(2.0 * *std::max_element(gaps.begin(), gaps.end()) < total);
   std::vector<Eigen::Vector2d> p(n);
   double angle = *rc::gen::inRange(0, 628) / 100.0;
   for (int i = 0; i < n; ++i) {
