@@ -215,18 +215,6 @@ void renumber_regions(const std::vector<char>& removed, const std::vector<Index>
   g.region_neighbors.resize(written);
 }
 
-/// The stored arrays (without whatever was derived into them) and the stored graph of `map`,
-/// which is consumed: what the stored-form constructor takes. PlMap gives its arrays up only
-/// through release_data(), which derives the whole graph first; the map here is not const, so
-/// its stored arrays may be moved out through stored().
-std::pair<MapData<2>, StoredGraph> take_stored_form(PlMap<2>& map) {
-  auto& m = const_cast<MapData<2>&>(map.stored());
-  for (auto* v : {&m.neighbor_begin, &m.neighbor, &m.edge_node_begin, &m.edge_node}) std::vector<Index>().swap(*v);
-  std::vector<GraphEdgeKind>().swap(m.neighbor_edge_kind);
-  std::vector<std::array<Index, 3>>().swap(m.region_neighbors);
-  return {std::move(m), std::move(const_cast<StoredGraph&>(map.stored_graph()))};
-}
-
 void append(const ElementGraph& g, StoredGraph& out) {
   out.element.push_back(g.element);
   out.neighbor_count.insert(out.neighbor_count.end(), g.neighbor_count.begin(), g.neighbor_count.end());
@@ -274,7 +262,7 @@ std::optional<PlMap<2>> remove_faces_in_stored_form(PlMap<2>& map, std::span<con
   for (Index t : named.element) old_region_begin.push_back(stored.region_begin[t]);
 
   std::shared_ptr<const Surface<2>> domain = map.domain_ptr(), target_ptr = map.target_ptr();
-  auto [m, old_graph] = take_stored_form(map);
+  auto [m, old_graph] = std::move(map).release_stored_form();
   std::vector<Index> renumbered;
   report.removed_regions = static_cast<Index>(removed.size()) - compact_regions(m, nt, removed, renumbered);
 

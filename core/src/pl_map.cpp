@@ -418,6 +418,18 @@ MapData<d> PlMap<d>::release_data() && {
 
 template <int d>
   requires SurfaceDimension<d>
+std::pair<MapData<d>, StoredGraph> PlMap<d>::release_stored_form() &&
+  requires(d == 2)
+{
+  for (auto* v : {&data_.neighbor_begin, &data_.neighbor, &data_.edge_node_begin, &data_.edge_node})
+    std::vector<Index>().swap(*v);
+  std::vector<GraphEdgeKind>().swap(data_.neighbor_edge_kind);
+  std::vector<std::array<Index, d + 1>>().swap(data_.region_neighbors);
+  return {std::move(data_), std::move(stored_graph_)};
+}
+
+template <int d>
+  requires SurfaceDimension<d>
 WorldPoint<d> PlMap<d>::node_domain_world(Index n) const {
   return domain_->world_position(node_element(n), data_.node_position[n]);
 }

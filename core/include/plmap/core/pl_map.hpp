@@ -29,6 +29,7 @@
 #include <memory>
 #include <mutex>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace plmap {
@@ -157,6 +158,11 @@ class PlMap {
   /// Gives up the arrays (this map is left empty), e.g. to attach them to similar copies of the
   /// surfaces: the arrays hold only local and barycentric coordinates, which a similarity keeps.
   MapData<d> release_data() &&;
+  /// Gives up the stored form of a triangle map (this map is left empty): the stored arrays,
+  /// without any graph arrays derived into them, and the stored graph, as the stored-form
+  /// constructor takes them. Nothing is derived (unlike release_data()).
+  std::pair<MapData<d>, StoredGraph> release_stored_form() &&
+    requires(d == 2);
 
   Index node_count() const { return static_cast<Index>(data_.node_type.size()); }
   Index region_count() const { return static_cast<Index>(data_.region_target.size()); }
