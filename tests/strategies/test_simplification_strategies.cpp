@@ -65,11 +65,18 @@ RC_GTEST_PROP(HoleTriangulation, TilesStarPolygonsAndAvoidsForbiddenDiagonals, (
     const std::array<int, 2> key{std::min(i, j), std::max(i, j)};
     return std::find(forbidden.begin(), forbidden.end(), key) == forbidden.end();
   };
+  // With random radii the polygon is not convex, and a forbidden diagonal can leave it without
+  // any triangulation (seed 26120390: n = 5, gaps 28, 81, 20, 20, 20). The min-max-aspect
+  // programme tries every triangulation, so it decides whether one exists by brute force; then
+  // every model must find one, and otherwise every model must say that there is none.
+  const bool exists = MinMaxAspectTriangulation{}.triangulate(p, allowed).has_value();
+  RC_CLASSIFY(!exists, "no triangulation exists");
   for (std::string_view name : hole_triangulation_names()) {
     const auto t = make_hole_triangulation(name)(p, allowed);
-    RC_ASSERT(t.has_value());
-    check_triangulation(p, *t, forbidden);
+    RC_ASSERT(t.has_value() == exists);
+    if (t) check_triangulation(p, *t, forbidden);
   }
+  if (!exists) return;
   // Constrained Delaunay: no flippable diagonal has the fourth point inside the circumcircle.
   const auto t = *ConstrainedDelaunayHole{}.triangulate(p, allowed);
   for (const auto& a : t)
