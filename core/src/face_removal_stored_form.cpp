@@ -262,7 +262,11 @@ std::optional<PlMap<2>> remove_faces_in_stored_form(PlMap<2>& map, std::span<con
   for (Index t : named.element) old_region_begin.push_back(stored.region_begin[t]);
 
   std::shared_ptr<const Surface<2>> domain = map.domain_ptr(), target_ptr = map.target_ptr();
-  auto [m, old_graph] = std::move(map).release_stored_form();
+  // (two named variables, not a structured binding: the lambda below captures m, which
+  // clang before C++20's capture rule for bindings refuses)
+  std::pair<MapData<2>, StoredGraph> released = std::move(map).release_stored_form();
+  MapData<2>& m = released.first;
+  const StoredGraph& old_graph = released.second;
   std::vector<Index> renumbered;
   report.removed_regions = static_cast<Index>(removed.size()) - compact_regions(m, nt, removed, renumbered);
 
