@@ -3,16 +3,15 @@
 #include "projection_edge_walks.hpp"
 
 #include "fold_reentry.hpp"
+#include "projection_edge_crossings.hpp"
 #include "walk_acceptance.hpp"
 
 #include <plmap/core/parallel_ranges.hpp>
 #include <plmap/solvers/projection_systems.hpp>
-#include <plmap/solvers/small_lu.hpp>
 #include <plmap/solvers/solver_kind.hpp>
 
 #include <fmt/format.h>
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -53,102 +52,7 @@ template <int d, class Solver>
 class EdgeWalker {
  public:
   EdgeWalker(const ProjectionContext<d>& ctx, const ProjectionState<d>& state, const Solver& solver)
-      : ctx_(ctx), state_(state), solver_(solver) {}
-
-  struct CrossingCandidate {
-    bool valid = false;
-    bool solver_failed = false;
-    bool beyond_limit = false;
-    double lambda = 0.0, mu = 0.0, eta = 0.0;
-  };
-
-  /// The answers of eq. (4) for the S2 edge of one walk, by S1 edge. Consecutive steps of a walk
-  /// share an element whose other edges were solved in the step before, and a walk from an S1
-  /// vertex meets each edge at the vertex in two elements: the answer depends only on the two
-  /// edges, so it is looked up instead of solved again. The last `capacity` answers are kept,
-  /// enough for a step from a vertex of any usual valence and the step after it.
-  struct CrossingMemo {
-    static constexpr int capacity = 16;
-    std::array<Index, capacity> edges;
-    std::array<CrossingCandidate, capacity> answers;
-    int size = 0, next = 0;
-
-    template <class Solve>
-    const CrossingCandidate& get(Index edge, Solve&& solve) {
-      for (int i = 0; i < size; ++i)
-        if (edges[i] == edge) return answers[i];
-      const int slot = next;
-      next = (next + 1) % capacity;
-      if (size < capacity) ++size;
-      edges[slot] = edge;
-      answers[slot] = solve();
-      return answers[slot];
-    }
-  };
-
-
-  /// Eq. (4): where the projection of S2 edge (qa, qb) crosses S1 edge `edge` (d = 2).
-  CrossingCandidate solve_crossing(Index edge, const WorldPoint<d>& qa, const WorldPoint<d>& qb,
-                                   long long& calls, long long& failures) const
-    requires(d == 2)
-  {
-    CrossingCandidate c;
-    const auto ev = ctx_.s1.edge_vertices(edge);
-    EdgeCrossingSystem sys;
-    sys.edge = {ctx_.s1.vertex(ev[0]), ctx_.s1.vertex(ev[1])};
-    sys.directions = {ctx_.vertex_directions[ev[0]], ctx_.vertex_directions[ev[1]]};
-    sys.target = {qa, qb};
-    // A crossing outside [-slack, 1 + slack] is rejected below whatever the solver returns.
-    const double crossing_lambda_slack = ctx_.options.search_limits.edge_parameter_slack;
-    if (sys.misses_the_edge(ctx_.options.solver_tolerance, crossing_lambda_slack)) return c;
-    ++calls;
-    const auto r = solver_.solve(sys, sys.initial_guess());
-    if (!r.converged) {
-      ++failures;
-      c.solver_failed = true;
-      return c;
-    }
-    c.lambda = r.x(0);
-    c.mu = r.x(1);
-    c.eta = r.x(2);
-    // A (nearly) singular Jacobian at the solution means the S2 edge runs along the projection
-    // of the S1 edge: there is no isolated crossing (the walk passes the edge's end vertices).
-    {
-      const Eigen::Matrix3d j = sys.jacobian(r.x);
-      const double s = sys.scale();
-      if (!(std::abs(j.determinant()) > 1e-10 * s * s * j.col(1).norm())) return c;
-    }
-    if (c.lambda < -crossing_lambda_slack || c.lambda > 1.0 + crossing_lambda_slack) return c;
-    if (!ctx_.distance_ok(c.mu, sys.scale())) {
-      c.beyond_limit = true;
-      return c;
-    }
-    c.lambda = std::clamp(c.lambda, 0.0, 1.0);
-    c.valid = true;
-    return c;
-  }
-
-  /// For d = 1: the ray from S1 vertex w meets the line of the S2 segment (qa, qb).
-  CrossingCandidate ray_crossing(Index w, const WorldPoint<d>& qa, const WorldPoint<d>& qb) const
-    requires(d == 1)
-  {
-    CrossingCandidate c;
-    Eigen::Matrix2d a;
-    a.col(0) = ctx_.vertex_directions[w];
-    a.col(1) = qa - qb;
-    const double scale = (qb - qa).norm();
-    if (!(std::abs(a.determinant()) > 1e-12 * scale)) return c;
-    const Eigen::Vector2d x = solve_with_partial_pivoting<2>(a, qa - ctx_.s1.vertex(w));
-    c.mu = x(0);
-    c.eta = x(1);
-    c.lambda = 0.0;
-    if (!ctx_.distance_ok(c.mu, scale)) {
-      c.beyond_limit = true;
-      return c;
-    }
-    c.valid = true;
-    return c;
-  }
+      : ctx_(ctx), state_(state), crossings_(ctx, solver) {}
 
   /// Walks along the preimage of S2 edge e from `start` (at parameter eta0) towards `end`.
   /// From the second vertex, the walk runs towards the first: eta (and every
@@ -214,7 +118,7 @@ class EdgeWalker {
           if constexpr (d == 2) {
             const Index edge = ctx_.s1.element_edge(t, k);
             if (cur.kind == PlaceKind::edge && cur.index == edge) continue;
-            c = memo.get(edge, [&] { return solve_crossing(edge, qa, qb, calls, failures); });
+            c = memo.get(edge, [&] { return crossings_.solve(edge, qa, qb, calls, failures); });
             if (!c.valid) {
               solver_failed |= c.solver_failed;
               beyond_limit |= c.beyond_limit;
@@ -225,7 +129,7 @@ class EdgeWalker {
           } else {
             const Index vtx = ctx_.s1.element(t)[k];
             if (cur.kind == PlaceKind::vertex && cur.index == vtx) continue;
-            c = ray_crossing(vtx, qa, qb);
+            c = crossings_.ray(vtx, qa, qb);
             if (!c.valid) {
               beyond_limit |= c.beyond_limit;
               continue;
@@ -521,7 +425,7 @@ class EdgeWalker {
     }
     if (!exit) return std::nullopt;
     // the chosen crossing as the walks solve it
-    const CrossingCandidate c = solve_crossing(exit->domain_edge, qa, qb, calls, failures);
+    const CrossingCandidate c = crossings_.solve(exit->domain_edge, qa, qb, calls, failures);
     const double slack = limits.edge_parameter_slack;
     if (!c.valid || !(c.eta > stopped.eta + slack) || !(c.eta < before - slack)) return std::nullopt;
     const Place<d> at = ctx_.edge_place(exit->domain_edge, c.lambda);
@@ -746,7 +650,7 @@ class EdgeWalker {
         edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
         for (Index e : edges) {
           const auto tv = ctx_.s2.edge_vertices(e);
-          const CrossingCandidate c = solve_crossing(edge, ctx_.s2.vertex(tv[0]), ctx_.s2.vertex(tv[1]), calls, failures);
+          const CrossingCandidate c = crossings_.solve(edge, ctx_.s2.vertex(tv[0]), ctx_.s2.vertex(tv[1]), calls, failures);
           if (!c.valid || !(c.eta > piece_slack && c.eta < 1.0 - piece_slack)) continue;
           if (!ctx_.unfolded_at(ctx_.edge_place(edge, c.lambda), c.mu)) continue;
           BoundaryEntry<2> entry;
@@ -771,7 +675,7 @@ class EdgeWalker {
  private:
   const ProjectionContext<d>& ctx_;
   const ProjectionState<d>& state_;
-  const Solver& solver_;
+  EdgeCrossings<d, Solver> crossings_;
 };
 
 }  // namespace

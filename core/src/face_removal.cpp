@@ -44,25 +44,13 @@ void mark_faces(const PlMap<d>& map, std::span<const Index> regions, std::vector
     for (Index r0 : regions) {
       if (removed[r0]) continue;
       ++report.removed_faces;
-      removed[r0] = 1;
-      stack.assign(1, r0);
-      bool reaches_boundary = false;
-      while (!stack.empty()) {
-        const Index r = stack.back();
-        stack.pop_back();
-        const auto& c = m.region_corners[r];
-        for (int i = 0; i < 3; ++i) {
-          const Index a = c[(i + 1) % 3], b = c[(i + 2) % 3];
-          if (detail::element_edges_through(m, a) & detail::element_edges_through(m, b)) reaches_boundary = true;
-          const Index entry = neighbor_entry(m, a, b);
-          const bool closure = entry != invalid_index && m.neighbor_edge_kind[entry] == GraphEdgeKind::closure;
-          const Index across = m.region_neighbors[r][i];
-          if (closure && across != invalid_index && !removed[across]) {
-            removed[across] = 1;
-            stack.push_back(across);
-          }
-        }
-      }
+      const bool reaches_boundary = detail::mark_face(
+          m, r0, removed, stack,
+          [&](Index a, Index b) {
+            const Index entry = neighbor_entry(m, a, b);
+            return entry != invalid_index && m.neighbor_edge_kind[entry] == GraphEdgeKind::closure;
+          },
+          [&](Index r, int i) { return m.region_neighbors[r][i]; });
       if (!reaches_boundary) {
         const Index t = map.node_element(m.region_corners[r0][0]);
         for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) removed[r] = 1;
@@ -86,10 +74,7 @@ std::vector<Index> entries_leaving(const MapData<d>& m, Index element_count, con
       const auto& c = m.region_corners[r];
       for (int i = 0; i <= d; ++i) {
         const Index a = c[i], b = c[(i + 1) % (d + 1)];
-        bool kept_side = false;
-        for (Index other = begin; other < end && !kept_side; ++other)
-          kept_side = !removed[other] && detail::has_side(m.region_corners[other], a, b);
-        if (kept_side) continue;
+        if (!detail::side_leaves(m, begin, end, removed, a, b)) continue;
         for (const Index e : {neighbor_entry(m, a, b), neighbor_entry(m, b, a)})
           if (e != invalid_index && (d == 1 || m.neighbor_edge_kind[e] == GraphEdgeKind::closure)) leaving.push_back(e);
       }

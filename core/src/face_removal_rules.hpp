@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 namespace plmap::detail {
 
@@ -27,6 +28,44 @@ bool has_side(const std::array<Index, n>& c, Index a, Index b) {
     if ((x == a && y == b) || (x == b && y == a)) return true;
   }
   return false;
+}
+
+/// Marks in `removed` the face of region r0 of a triangle map: r0 and every region reached from
+/// it across closure edges. `is_closure(a, b)` says whether the graph edge a-b is a closure edge,
+/// `across(r, i)` names the region across the side of r opposite corner i (or invalid_index);
+/// the two paths of remove_faces read these from different arrays. Returns whether the face
+/// touches its element's boundary; a face strictly inside its element takes all of the element's
+/// regions, which the caller clears. `stack` is scratch space.
+template <class IsClosure, class Across>
+bool mark_face(const MapData<2>& m, Index r0, std::vector<char>& removed, std::vector<Index>& stack,
+               IsClosure&& is_closure, Across&& across) {
+  removed[static_cast<std::size_t>(r0)] = 1;
+  stack.assign(1, r0);
+  bool reaches_boundary = false;
+  while (!stack.empty()) {
+    const Index r = stack.back();
+    stack.pop_back();
+    const auto& c = m.region_corners[r];
+    for (int i = 0; i < 3; ++i) {
+      const Index a = c[(i + 1) % 3], b = c[(i + 2) % 3];
+      if (element_edges_through(m, a) & element_edges_through(m, b)) reaches_boundary = true;
+      const Index next = across(r, i);
+      if (next != invalid_index && !removed[static_cast<std::size_t>(next)] && is_closure(a, b)) {
+        removed[static_cast<std::size_t>(next)] = 1;
+        stack.push_back(next);
+      }
+    }
+  }
+  return reaches_boundary;
+}
+
+/// Whether the side a-b of a removed region of the element whose regions are [begin, end) leaves
+/// with it: no kept region of the element has that side. Its graph edges, if closure edges, go.
+template <int d>
+bool side_leaves(const MapData<d>& m, Index begin, Index end, const std::vector<char>& removed, Index a, Index b) {
+  for (Index other = begin; other < end; ++other)
+    if (!removed[static_cast<std::size_t>(other)] && has_side(m.region_corners[other], a, b)) return false;
+  return true;
 }
 
 }  // namespace plmap::detail

@@ -134,25 +134,13 @@ void mark_faces_of_element(const MapData<2>& m, const ElementGraph& g, const std
   for (Index r0 : named) {
     if (removed[static_cast<std::size_t>(r0)]) continue;
     ++report.removed_faces;
-    removed[static_cast<std::size_t>(r0)] = 1;
-    stack.assign(1, r0);
-    bool reaches_boundary = false;
-    while (!stack.empty()) {
-      const Index r = stack.back();
-      stack.pop_back();
-      const auto& c = m.region_corners[r];
-      for (int i = 0; i < 3; ++i) {
-        const Index a = c[(i + 1) % 3], b = c[(i + 2) % 3];
-        if (element_edges_through(m, a) & element_edges_through(m, b)) reaches_boundary = true;
-        const Index entry = g.entry(begin, a - nb, b);
-        const bool closure = entry != invalid_index && g.kind[static_cast<std::size_t>(entry)] == GraphEdgeKind::closure;
-        const Index across = g.region_neighbors[static_cast<std::size_t>(r - rb)][i];
-        if (closure && across != invalid_index && !removed[static_cast<std::size_t>(across)]) {
-          removed[static_cast<std::size_t>(across)] = 1;
-          stack.push_back(across);
-        }
-      }
-    }
+    const bool reaches_boundary = mark_face(
+        m, r0, removed, stack,
+        [&](Index a, Index b) {
+          const Index entry = g.entry(begin, a - nb, b);
+          return entry != invalid_index && g.kind[static_cast<std::size_t>(entry)] == GraphEdgeKind::closure;
+        },
+        [&](Index r, int i) { return g.region_neighbors[static_cast<std::size_t>(r - rb)][i]; });
     if (!reaches_boundary) {
       for (Index r = rb; r < re; ++r) removed[static_cast<std::size_t>(r)] = 1;
       ++report.cleared_elements;
@@ -172,10 +160,7 @@ void drop_leaving_entries(const MapData<2>& m, const std::vector<char>& removed,
     const auto& c = m.region_corners[r];
     for (int i = 0; i < 3; ++i) {
       const Index a = c[i], b = c[(i + 1) % 3];
-      bool kept_side = false;
-      for (Index other = rb; other < re && !kept_side; ++other)
-        kept_side = !removed[static_cast<std::size_t>(other)] && has_side(m.region_corners[other], a, b);
-      if (kept_side) continue;
+      if (!side_leaves(m, rb, re, removed, a, b)) continue;
       for (const Index e : {g.entry(begin, a - nb, b), g.entry(begin, b - nb, a)})
         if (e != invalid_index && g.kind[static_cast<std::size_t>(e)] == GraphEdgeKind::closure) {
           leaves[static_cast<std::size_t>(e)] = 1;
