@@ -55,6 +55,18 @@ TEST(VerifyValid, PartialDomainIsNotAParametrization) {
   expect_valid(half);
   const VerificationReport report = verify(half, parametrization());
   EXPECT_GT(report.violation_count("coverage", "not_a_parametrization"), 0u) << summary(report);
+  // The report says where: element 1 of S1 has no region, and the S2 element it mapped onto no
+  // image.
+  bool names_s1_element = false, names_s2_element = false;
+  const CheckResult* coverage = report.find("coverage");
+  ASSERT_NE(coverage, nullptr);
+  for (const auto& v : coverage->violations) {
+    if (v.rule != "not_a_parametrization") continue;
+    names_s1_element |= v.message.find("S1 elements short of it: 1 (0 of 0.5)") != std::string::npos;
+    names_s2_element |= v.message.find("S2 elements short of it: 1 (0 of 0.5)") != std::string::npos;
+  }
+  EXPECT_TRUE(names_s1_element) << summary(report);
+  EXPECT_TRUE(names_s2_element) << summary(report);
 }
 
 TEST(VerifyQuality, IdentityHasConditionOne) {

@@ -27,6 +27,23 @@ struct ImagePiece {
   std::array<Vec2, 3> triangle;  // d = 2 only, counter-clockwise
 };
 
+/// "; S2 elements short of it: 3 (0.21 of 0.5), ... (N in all)": the first few elements whose
+/// covered local measure falls short of the reference element's, for a parametrization's report.
+std::string elements_short_of(const std::vector<double>& covered, double reference_measure, double tol,
+                              std::string_view surface) {
+  constexpr std::size_t named = 5;
+  std::string list;
+  std::size_t count = 0;
+  for (std::size_t t = 0; t < covered.size(); ++t) {
+    if (!(covered[t] < reference_measure * (1.0 - tol))) continue;
+    if (count++ < named)
+      list += fmt::format("{}{} ({:.3g} of {:g})", list.empty() ? "" : ", ", t, covered[t], reference_measure);
+  }
+  if (count == 0) return {};
+  return fmt::format("; {} elements short of it: {}{}", surface, list,
+                     count > named ? fmt::format(" ({} in all)", count) : std::string());
+}
+
 }  // namespace
 
 template <int d>
@@ -49,6 +66,10 @@ void run_coverage(const MapContext<d>& ctx, ViolationSink& sink) {
   }
 
   double domain_world = 0.0, image_world = 0.0;
+  // Per element, the measure its regions (S1) and their images (S2) cover, in local coordinates:
+  // a map that is not a parametrization is told where it falls short.
+  std::vector<double> domain_local_sum(static_cast<std::size_t>(ctx.s1.element_count()), 0.0);
+  std::vector<double> image_local_sum(static_cast<std::size_t>(nt2), 0.0);
   std::vector<ImagePiece<d>> pieces;
   std::vector<Box2> boxes;
   OverlapGrid grid;
@@ -85,8 +106,10 @@ void run_coverage(const MapContext<d>& ctx, ViolationSink& sink) {
       sum += piece.measure;
       image_world += piece.measure / reference_measure * s2.element_measure(t2);
       domain_world += domain_local / reference_measure * ctx.s1.element_measure(ctx.region_element(r));
+      domain_local_sum[static_cast<std::size_t>(ctx.region_element(r))] += domain_local;
       if (piece.measure > 0) pieces.push_back(piece);
     }
+    image_local_sum[static_cast<std::size_t>(t2)] = sum;
     if (sum > reference_measure * (1.0 + tol))
       sink.add("image_overlap", {invalid_index, invalid_index, invalid_index, t2}, [&] {
         return fmt::format("the images of the {} regions on S2 element {} cover {:.17g} of its "
@@ -131,13 +154,13 @@ void run_coverage(const MapContext<d>& ctx, ViolationSink& sink) {
     const double s1_measure = ctx.s1.measure(), s2_measure = s2.measure();
     if (std::abs(domain_world - s1_measure) > tol * s1_measure)
       sink.add("not_a_parametrization", {}, [&] {
-        return fmt::format("the regions cover {:.17g} of S1's measure {:.17g}", domain_world,
-                           s1_measure);
+        return fmt::format("the regions cover {:.17g} of S1's measure {:.17g}{}", domain_world,
+                           s1_measure, elements_short_of(domain_local_sum, reference_measure, tol, "S1"));
       });
     if (std::abs(image_world - s2_measure) > tol * s2_measure)
       sink.add("not_a_parametrization", {}, [&] {
-        return fmt::format("the region images cover {:.17g} of S2's measure {:.17g}", image_world,
-                           s2_measure);
+        return fmt::format("the region images cover {:.17g} of S2's measure {:.17g}{}", image_world,
+                           s2_measure, elements_short_of(image_local_sum, reference_measure, tol, "S2"));
       });
   }
 }
