@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace plmap::projection {
@@ -29,6 +30,10 @@ std::vector<Index> regions_with_folded_corners(const PlMap<d>& map, std::span<co
     std::vector<signed char> judged;
     for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) {
       if (map.regions_begin(t) == map.regions_end(t)) continue;
+      // Equal corner directions (a flat S1 with its exact normals): no ray of the element meets a
+      // focal point at any distance, so no node is judged folded (its finite mu is below the
+      // infinite reach), and the element's nodes need not be looked at.
+      if (focal_free_reach[t] == std::numeric_limits<double>::infinity()) continue;
       std::array<WorldPoint<d>, d + 1> corners, nus;
       for (int k = 0; k <= d; ++k) {
         corners[k] = s1.corner(t, k);
