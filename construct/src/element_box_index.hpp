@@ -7,25 +7,28 @@
 /// Asked of the centroid kd-tree alone, the question needs the radius r + R, R the largest
 /// centroid-to-corner distance of the whole surface, and on meshes of uneven element size (the
 /// CGAL remeshes of the real-mesh pairs: R is 7 typical element sizes on the armadillo) that
-/// radius holds dozens of centroids for every query; the radius queries took as long as the
-/// nearest-centroid queries themselves. Here the elements are split into classes by their reach
-/// (the largest distance from the centroid to a point of the bounding box), each class within a
-/// factor 2 and with a kd-tree of its own, and each class is asked with r plus its own largest
-/// reach: the small elements, nearly all of them, with a small radius.
+/// radius holds dozens of centroids for every query. Centroid trees per size class (reaches within
+/// a factor 2, each class asked with r plus its own reach) still descended every class's tree for
+/// every query, and on the armadillo pair that was a tenth of the projection's time: the classes
+/// of the elements a little larger than those around the point are asked with a radius of
+/// several of their sizes. Here the question is asked of the boxes themselves: a bounding volume
+/// hierarchy of the elements' bounding boxes (median splits of the centroids along the longest
+/// axis, up to `leaf_size` elements per leaf), whose search only enters nodes whose box lies
+/// within r, so it costs about the depth of the tree plus the elements near the point, whatever
+/// the element sizes.
 ///
-/// The answer is a superset of the elements whose bounding box lies within r of the point (an
-/// element's box within r puts its centroid within r plus its reach); the caller filters it
-/// with its own exact tests, so it does not change what the search finds.
-
-#include "element_index.hpp"
+/// The answer is a superset of the elements whose bounding box lies within r of the point (those
+/// within r times 1 + 1e-9, the margin covering rounding); the caller filters it with its own
+/// exact tests, so it does not change what the search finds.
 
 #include <plmap/core/surface.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <memory>
+#include <numeric>
 #include <vector>
 
 namespace plmap::projection {
@@ -42,7 +45,7 @@ class ElementBoxIndex {
     const Index n = s.element_count();
     boxes_.resize(static_cast<std::size_t>(n));
     std::vector<double> reach(static_cast<std::size_t>(n));
-    double smallest = std::numeric_limits<double>::infinity();
+    double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
     for (Index t = 0; t < n; ++t) {
       Box& box = boxes_[t];
       box.low = box.high = s.corner(t, 0);
@@ -53,48 +56,39 @@ class ElementBoxIndex {
       const WorldPoint<d> c = element_centroid(s, t);
       reach[t] = (c - box.low).cwiseAbs().cwiseMax((box.high - c).cwiseAbs()).norm();
       if (reach[t] > 0.0) smallest = std::min(smallest, reach[t]);
+      largest = std::max(largest, reach[t]);
     }
-    // class c: reach up to smallest * 2^(c + 1) (the last class takes the rest)
-    auto class_of = [&](double r) {
-      if (!(r > smallest)) return 0;
-      return std::min(max_classes - 1, static_cast<int>(std::log2(r / smallest)));
-    };
-    int lowest = max_classes, highest = -1;
-    for (Index t = 0; t < n; ++t) {
-      lowest = std::min(lowest, class_of(reach[t]));
-      highest = std::max(highest, class_of(reach[t]));
-    }
-    // One class (reaches within a factor 2: the spheres): the one wide query is as tight, and
-    // building the class would cost more than it saves. A few odd elements are enough to make
-    // the classes pay (the 200k planes: 19 elements in a second class).
-    if (highest == lowest) return;
-    classes_.resize(max_classes);
-    for (Index t = 0; t < n; ++t) {
-      SizeClass& sc = classes_[class_of(reach[t])];
-      sc.element.push_back(t);
-      sc.centroids.points.push_back(element_centroid(s, t));
-      sc.reach = std::max(sc.reach, reach[t]);
-    }
-    std::erase_if(classes_, [](const SizeClass& sc) { return sc.element.empty(); });
-    for (SizeClass& sc : classes_)
-      sc.tree = std::make_unique<KdTree<d + 1>>(d + 1, sc.centroids, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+    // Reaches within a factor 2 (the spheres): the caller's one centroid query is as tight, and
+    // building the tree would cost more than it saves. A few odd elements are enough to make the
+    // tree pay (the 200k planes: 19 elements reach more than twice the smallest reach).
+    if (!(largest >= 2.0 * smallest)) return;
+    build_tree(s);
   }
 
-  /// Whether the element sizes are uneven enough for the classes (else visit_near must not be
+  /// Whether the element sizes are uneven enough for the tree (else visit_near must not be
   /// called: the caller asks the centroid tree).
-  bool has_classes() const { return !classes_.empty(); }
+  bool has_tree() const { return !nodes_.empty(); }
 
   const Box& box(Index t) const { return boxes_[t]; }
 
-  /// Calls visit(t) for every element t whose bounding box may lie within r of x (at least those
-  /// that do; each once, in no particular order).
+  /// Calls visit(t) for every element t whose bounding box lies within r of x, and perhaps a few
+  /// more within r (1 + 1e-9); each once, in no particular order.
   template <class Visit>
   void visit_near(const WorldPoint<d>& x, double r, Visit&& visit) const {
-    for (const SizeClass& sc : classes_) {
-      // the margin covers the rounding of the reach and of the tree's distances
-      const double radius = (r + sc.reach) * (1.0 + 1e-9);
-      Collector<Visit> collect{radius * radius, sc.element.data(), visit};
-      sc.tree->findNeighbors(collect, x.data(), nanoflann::SearchParams());
+    const double reach = r * (1.0 + 1e-9);
+    std::array<std::uint32_t, 64> stack;
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[stack[--top]];
+      if (box_distance(x, node.box) > reach) continue;
+      if (node.count > 0) {
+        for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+          if (box_distance(x, ordered_boxes_[i]) <= reach) visit(ordered_element_[i]);
+      } else {
+        stack[top++] = node.first;
+        stack[top++] = node.first + 1;
+      }
     }
   }
 
@@ -106,36 +100,75 @@ class ElementBoxIndex {
     return c;
   }
 
+  /// Distance from x to a box (0 inside it).
+  static double box_distance(const WorldPoint<d>& x, const Box& box) {
+    return (x.cwiseMax(box.low).cwiseMin(box.high) - x).norm();
+  }
+
  private:
-  static constexpr int max_classes = 24;
+  static constexpr std::uint32_t leaf_size = 8;
 
-  struct SizeClass {
-    std::vector<Index> element;  // the class's elements, in the order of its centroids
-    PointCloud<d + 1> centroids;
-    std::unique_ptr<KdTree<d + 1>> tree;
-    double reach = 0.0;  // the largest reach in the class
+  /// A node of the hierarchy: its box, and either its elements (count > 0: ordered_*[first,
+  /// first + count)) or its two children (count = 0: nodes first and first + 1).
+  struct Node {
+    Box box;
+    std::uint32_t first = 0, count = 0;
   };
 
-  /// A nanoflann result set that hands each point within the radius to the visitor instead of
-  /// collecting it (no allocation per query).
-  template <class Visit>
-  struct Collector {
-    double squared_radius;
-    const Index* element;
-    Visit& visit;
-    void init() {}
-    void clear() {}
-    std::size_t size() const { return 0; }
-    bool full() const { return true; }
-    bool addPoint(double squared_distance, std::uint32_t i) {
-      if (squared_distance < squared_radius) visit(element[i]);
-      return true;
+  /// Median splits of the centroids along the longest axis of their bounds, depth first; the
+  /// depth is about log2(n / leaf_size), far below the search stack's 64 for any Index count.
+  void build_tree(const Surface<d>& s) {
+    const auto n = static_cast<std::uint32_t>(boxes_.size());
+    std::vector<WorldPoint<d>> centroid(n);
+    for (std::uint32_t t = 0; t < n; ++t) centroid[t] = element_centroid(s, static_cast<Index>(t));
+    ordered_element_.resize(n);
+    std::iota(ordered_element_.begin(), ordered_element_.end(), 0);
+    nodes_.reserve(2 * (n / leaf_size + 1));
+    nodes_.emplace_back();
+    struct Range {
+      std::uint32_t node, begin, end;
+    };
+    std::vector<Range> todo{{0, 0, n}};
+    while (!todo.empty()) {
+      const Range range = todo.back();
+      todo.pop_back();
+      Box box = boxes_[ordered_element_[range.begin]];
+      WorldPoint<d> low = centroid[ordered_element_[range.begin]], high = low;
+      for (std::uint32_t i = range.begin; i < range.end; ++i) {
+        const auto t = static_cast<std::size_t>(ordered_element_[i]);
+        box.low = box.low.cwiseMin(boxes_[t].low);
+        box.high = box.high.cwiseMax(boxes_[t].high);
+        low = low.cwiseMin(centroid[t]);
+        high = high.cwiseMax(centroid[t]);
+      }
+      nodes_[range.node].box = box;
+      if (range.end - range.begin <= leaf_size) {
+        nodes_[range.node].first = range.begin;
+        nodes_[range.node].count = range.end - range.begin;
+        continue;
+      }
+      int axis = 0;
+      (high - low).maxCoeff(&axis);
+      const std::uint32_t middle = range.begin + (range.end - range.begin) / 2;
+      std::nth_element(ordered_element_.begin() + range.begin, ordered_element_.begin() + middle,
+                       ordered_element_.begin() + range.end, [&](Index a, Index b) {
+                         return centroid[a](axis) < centroid[b](axis) || (centroid[a](axis) == centroid[b](axis) && a < b);
+                       });
+      const auto children = static_cast<std::uint32_t>(nodes_.size());
+      nodes_[range.node].first = children;
+      nodes_.emplace_back();
+      nodes_.emplace_back();
+      todo.push_back({children, range.begin, middle});
+      todo.push_back({children + 1, middle, range.end});
     }
-    double worstDist() const { return squared_radius; }
-  };
+    ordered_boxes_.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) ordered_boxes_[i] = boxes_[ordered_element_[i]];
+  }
 
-  std::vector<Box> boxes_;
-  std::vector<SizeClass> classes_;
+  std::vector<Box> boxes_;          // by element
+  std::vector<Node> nodes_;         // the hierarchy, root first (empty: no tree)
+  std::vector<Index> ordered_element_;  // the elements in the order of the leaves
+  std::vector<Box> ordered_boxes_;  // their boxes in that order (a leaf's are contiguous)
 };
 
 }  // namespace plmap::projection

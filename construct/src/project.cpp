@@ -180,8 +180,10 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   }
   // The image measures give the covered measures and show where images overlap on S2: two
   // sheets of S1 whose rays reach the same part of S2, of which the farther one leaves D.
-  ImageMeasures images = image_measures(map, ctx.threads);
-  if (options.keep_nearer_sheet) keep_nearer_sheet(map, images, ctx.threads, report);
+  // (their terms are kept: after a removal only the elements that lost regions are measured again)
+  ImageMeasureTerms terms;
+  ImageMeasures images = image_measures(map, ctx.threads, terms);
+  if (options.keep_nearer_sheet) keep_nearer_sheet(map, images, terms, ctx.threads, report);
   report.seconds.finalize = seconds_since(t0);
   report.reversed_faces = dropped.reversed_faces;
   insertion.report_edges_dropped_by_finalize(dropped, report);

@@ -70,21 +70,22 @@ std::vector<bool> coincident_preimage_losers(const ProjectionContext<d>& ctx,
 }
 
 template <int d>
-void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, unsigned threads, ProjectionReport<d>& report) {
+void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, ImageMeasureTerms& terms, unsigned threads,
+                       ProjectionReport<d>& report) {
   const std::vector<Index> farther = farther_overlapping_regions(map, images);
   if (farther.empty()) return;
   FaceRemovalReport removal;
   map = remove_faces(std::move(map), std::span<const Index>(farther), &removal);
   report.occluded_faces = removal.removed_faces;
   report.occluded_regions = removal.removed_regions;
-  images = image_measures(map, threads);
+  images = image_measures_after_removal(map, threads, terms);
 }
 
 template std::vector<bool> coincident_preimage_losers<1>(const ProjectionContext<1>&,
                                                          const std::vector<std::optional<Place<1>>>&);
 template std::vector<bool> coincident_preimage_losers<2>(const ProjectionContext<2>&,
                                                          const std::vector<std::optional<Place<2>>>&);
-template void keep_nearer_sheet<1>(PlMap<1>&, ImageMeasures&, unsigned, ProjectionReport<1>&);
-template void keep_nearer_sheet<2>(PlMap<2>&, ImageMeasures&, unsigned, ProjectionReport<2>&);
+template void keep_nearer_sheet<1>(PlMap<1>&, ImageMeasures&, ImageMeasureTerms&, unsigned, ProjectionReport<1>&);
+template void keep_nearer_sheet<2>(PlMap<2>&, ImageMeasures&, ImageMeasureTerms&, unsigned, ProjectionReport<2>&);
 
 }  // namespace plmap::projection

@@ -32,8 +32,10 @@ std::vector<bool> coincident_preimage_losers(const ProjectionContext<d>& ctx,
 
 /// With ProjectionOptions::keep_nearer_sheet: removes the faces of the regions whose images
 /// overlap the image of a nearer region (core/face_removal.hpp), counts them in
-/// report.occluded_faces and occluded_regions, and recomputes `images` for the map left.
+/// report.occluded_faces and occluded_regions, and recomputes `images` for the map left from
+/// `terms` (image_measures' terms of `map`: only the elements that lose regions are measured again).
 template <int d>
-void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, unsigned threads, ProjectionReport<d>& report);
+void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, ImageMeasureTerms& terms, unsigned threads,
+                       ProjectionReport<d>& report);
 
 }  // namespace plmap::projection

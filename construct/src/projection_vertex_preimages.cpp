@@ -118,7 +118,7 @@ class VertexPreimageSearch {
         return;
       if (box_distance(x, t) < bound) added.emplace_back(ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t)), t);
     };
-    if (ctx_.s1_boxes->has_classes()) {
+    if (ctx_.s1_boxes->has_tree()) {
       ctx_.s1_boxes->visit_near(x, bound, [&](Index t) {
         if (ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t)) < reach * reach) consider(t);
       });
@@ -142,8 +142,7 @@ class VertexPreimageSearch {
 
   /// Distance from x to the bounding box of S1 element t (0 inside it).
   double box_distance(const WorldPoint<d>& x, Index t) const {
-    const auto& box = ctx_.s1_boxes->box(t);
-    return (x.cwiseMax(box.low).cwiseMin(box.high) - x).norm();
+    return ElementBoxIndex<d>::box_distance(x, ctx_.s1_boxes->box(t));
   }
 
   /// Eq. (3) for S2 vertex q on walks across S1 from the first `count` of `seeds`: the solution

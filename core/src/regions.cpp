@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -99,60 +100,116 @@ double local_target_measure(const PlMap<d>& map, Index r) {
 // Elements are affine, so a region's measure is its measure in local coordinates times its
 // element's, on either side: no world position of a corner is needed. Local measures are summed
 // per element first (S1: consecutive regions; S2: one running sum per S2 element) and scaled once.
-// With several threads everything but the sums over elements is computed first, in parallel: the
-// regions' target measures, each S1 element's scaled domain measure and each S2 element's
-// measure (element_measure is a scaled cross product, not a lookup); then the sums run in the
-// order and with the operations of one thread, so the result is the same to the last bit.
+// With several threads, or when the terms are kept, everything but the sums over elements is
+// computed first, in parallel: the regions' target measures, each S1 element's scaled domain
+// measure and each S2 element's measure (element_measure is a scaled cross product, not a
+// lookup); then the sums run in the order and with the operations of one thread, so the result is
+// the same to the last bit.
+namespace {
+
 template <int d>
-ImageMeasures image_measures(const PlMap<d>& map, unsigned threads) {
+double domain_part(const PlMap<d>& map, Index t) {
+  double local = 0.0;
+  for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) local += local_domain_measure(map, r);
+  return local * map.domain().element_measure(t);
+}
+
+/// The terms of element t: its regions' target measures and its scaled domain measure.
+template <int d>
+void element_terms(const PlMap<d>& map, Index t, ImageMeasureTerms& terms) {
+  if (map.regions_begin(t) == map.regions_end(t)) {
+    terms.element_domain[static_cast<std::size_t>(t)] = 0.0;  // not summed
+    return;
+  }
+  for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
+    terms.region_target[static_cast<std::size_t>(r)] = local_target_measure(map, r);
+  terms.element_domain[static_cast<std::size_t>(t)] = domain_part(map, t);
+}
+
+/// The sums over the terms, in the order of the one-thread loop; the S2 elements' measures are
+/// computed (in parallel) where `terms.target_measure` does not hold them yet.
+template <int d>
+ImageMeasures sum_terms(const PlMap<d>& map, unsigned threads, ImageMeasureTerms& terms) {
   const auto& m = map.stored();
-  const Surface<d>& s1 = map.domain();
-  const Surface<d>& s2 = map.target();
-  const Index n1 = s1.element_count(), n2 = s2.element_count();
+  const Index n1 = map.domain().element_count(), n2 = map.target().element_count();
   ImageMeasures out;
   out.per_target.assign(static_cast<std::size_t>(n2), 0.0);
-  const auto domain_part = [&](Index t) {
-    double local = 0.0;
-    for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) local += local_domain_measure(map, r);
-    return local * s1.element_measure(t);
-  };
-  if (resolve_thread_count(threads) <= 1) {
-    for (Index t = 0; t < n1; ++t) {
-      if (map.regions_begin(t) == map.regions_end(t)) continue;
-      for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
-        out.per_target[static_cast<std::size_t>(m.region_target[r])] += local_target_measure(map, r);
-      out.covered.domain += domain_part(t);
-    }
-    for (Index t2 = 0; t2 < n2; ++t2)
-      if (out.per_target[static_cast<std::size_t>(t2)] != 0.0)
-        out.covered.target += out.per_target[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
-    return out;
-  }
-  std::vector<double> region_target_measure(static_cast<std::size_t>(map.region_count()));
-  std::vector<double> element_domain_measure(static_cast<std::size_t>(n1));
-  parallel_for_chunks(static_cast<std::size_t>(n1), 1024, threads, [&](std::size_t begin, std::size_t end) {
-    for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) {
-      if (map.regions_begin(t) == map.regions_end(t)) continue;
-      for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
-        region_target_measure[static_cast<std::size_t>(r)] = local_target_measure(map, r);
-      element_domain_measure[static_cast<std::size_t>(t)] = domain_part(t);
-    }
-  });
   for (Index t = 0; t < n1; ++t) {
     if (map.regions_begin(t) == map.regions_end(t)) continue;
     for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
-      out.per_target[static_cast<std::size_t>(m.region_target[r])] += region_target_measure[static_cast<std::size_t>(r)];
-    out.covered.domain += element_domain_measure[static_cast<std::size_t>(t)];
+      out.per_target[static_cast<std::size_t>(m.region_target[r])] += terms.region_target[static_cast<std::size_t>(r)];
+    out.covered.domain += terms.element_domain[static_cast<std::size_t>(t)];
   }
-  std::vector<double>().swap(region_target_measure);
-  std::vector<double> target_part(static_cast<std::size_t>(n2), 0.0);
+  // A removal only takes regions away, so every S2 element with images had them before and has
+  // its measure already; a first call computes them.
+  terms.target_measure.resize(static_cast<std::size_t>(n2), 0.0);
   parallel_for_chunks(static_cast<std::size_t>(n2), 4096, threads, [&](std::size_t begin, std::size_t end) {
     for (auto t2 = static_cast<Index>(begin); t2 < static_cast<Index>(end); ++t2)
-      if (out.per_target[static_cast<std::size_t>(t2)] != 0.0)
-        target_part[static_cast<std::size_t>(t2)] = out.per_target[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
+      if (out.per_target[static_cast<std::size_t>(t2)] != 0.0 && terms.target_measure[static_cast<std::size_t>(t2)] == 0.0)
+        terms.target_measure[static_cast<std::size_t>(t2)] = map.target().element_measure(t2);
   });
   for (Index t2 = 0; t2 < n2; ++t2)
-    if (out.per_target[static_cast<std::size_t>(t2)] != 0.0) out.covered.target += target_part[static_cast<std::size_t>(t2)];
+    if (out.per_target[static_cast<std::size_t>(t2)] != 0.0)
+      out.covered.target += out.per_target[static_cast<std::size_t>(t2)] * terms.target_measure[static_cast<std::size_t>(t2)];
+  return out;
+}
+
+}  // namespace
+
+template <int d>
+ImageMeasures image_measures(const PlMap<d>& map, unsigned threads, ImageMeasureTerms& terms) {
+  const Index n1 = map.domain().element_count();
+  terms.region_begin = map.stored().region_begin;
+  terms.region_target.assign(static_cast<std::size_t>(map.region_count()), 0.0);
+  terms.element_domain.assign(static_cast<std::size_t>(n1), 0.0);
+  terms.target_measure.clear();
+  parallel_for_chunks(static_cast<std::size_t>(n1), 1024, threads, [&](std::size_t begin, std::size_t end) {
+    for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) element_terms(map, t, terms);
+  });
+  return sum_terms(map, threads, terms);
+}
+
+template <int d>
+ImageMeasures image_measures_after_removal(const PlMap<d>& smaller, unsigned threads, ImageMeasureTerms& terms) {
+  const Index n1 = smaller.domain().element_count();
+  const std::vector<Index>& before = terms.region_begin;
+  // The regions keep their order, and an element that lost none keeps its terms: they move down
+  // to the element's new first region (never up, so in place, element by element in order).
+  for (Index t = 0; t < n1; ++t) {
+    const Index count = before[t + 1] - before[t];
+    if (count != smaller.regions_end(t) - smaller.regions_begin(t)) continue;
+    std::copy(terms.region_target.begin() + before[t], terms.region_target.begin() + before[t + 1],
+              terms.region_target.begin() + smaller.regions_begin(t));
+  }
+  terms.region_target.resize(static_cast<std::size_t>(smaller.region_count()));
+  parallel_for_chunks(static_cast<std::size_t>(n1), 1024, threads, [&](std::size_t begin, std::size_t end) {
+    for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t)
+      if (before[t + 1] - before[t] != smaller.regions_end(t) - smaller.regions_begin(t)) element_terms(smaller, t, terms);
+  });
+  terms.region_begin = smaller.stored().region_begin;
+  return sum_terms(smaller, threads, terms);
+}
+
+template <int d>
+ImageMeasures image_measures(const PlMap<d>& map, unsigned threads) {
+  if (resolve_thread_count(threads) > 1) {
+    ImageMeasureTerms terms;
+    return image_measures(map, threads, terms);
+  }
+  const auto& m = map.stored();
+  const Surface<d>& s2 = map.target();
+  const Index n1 = map.domain().element_count(), n2 = s2.element_count();
+  ImageMeasures out;
+  out.per_target.assign(static_cast<std::size_t>(n2), 0.0);
+  for (Index t = 0; t < n1; ++t) {
+    if (map.regions_begin(t) == map.regions_end(t)) continue;
+    for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
+      out.per_target[static_cast<std::size_t>(m.region_target[r])] += local_target_measure(map, r);
+    out.covered.domain += domain_part(map, t);
+  }
+  for (Index t2 = 0; t2 < n2; ++t2)
+    if (out.per_target[static_cast<std::size_t>(t2)] != 0.0)
+      out.covered.target += out.per_target[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
   return out;
 }
 
@@ -171,5 +228,9 @@ template CoveredMeasure covered_measure(const PlMap<1>&);
 template CoveredMeasure covered_measure(const PlMap<2>&);
 template ImageMeasures image_measures(const PlMap<1>&, unsigned);
 template ImageMeasures image_measures(const PlMap<2>&, unsigned);
+template ImageMeasures image_measures(const PlMap<1>&, unsigned, ImageMeasureTerms&);
+template ImageMeasures image_measures(const PlMap<2>&, unsigned, ImageMeasureTerms&);
+template ImageMeasures image_measures_after_removal(const PlMap<1>&, unsigned, ImageMeasureTerms&);
+template ImageMeasures image_measures_after_removal(const PlMap<2>&, unsigned, ImageMeasureTerms&);
 
 }  // namespace plmap

@@ -77,6 +77,7 @@ nlohmann::json measure(const Arguments& args, const SurfacePair<d>& input, doubl
           {"ok", outcome.ok},
           {"error", outcome.error},
           {"seconds", clock.seconds()},
+          {"cpu_seconds", clock.cpu_seconds()},
           {"peak_increase_mib", double(clock.peak_increase_kib()) / 1024.0},
           {"baseline_mib", double(clock.baseline_kib()) / 1024.0},
           {"peak_reset", clock.peak_was_reset()},

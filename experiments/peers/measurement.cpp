@@ -47,11 +47,13 @@ void Measurement::start() {
     reset_ok_ = static_cast<bool>(clear);
   }
   baseline_kib_ = status_kib("VmRSS");
+  start_cpu_ = process_cpu_seconds();
   start_time_ = now_seconds();
 }
 
 void Measurement::stop() {
   seconds_ = now_seconds() - start_time_;
+  cpu_seconds_ = process_cpu_seconds() - start_cpu_;
   peak_kib_ = status_kib("VmHWM");
   peak_read_ = peak_kib_ >= 0;
   if (peak_kib_ < 0) {

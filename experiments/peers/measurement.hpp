@@ -17,12 +17,16 @@ double now_seconds();
 /// single-threaded tool includes the time other processes held the core; its CPU time does not.
 double process_cpu_seconds();
 
-/// Wall clock and memory of the measured part; start() also resets the process's peak memory.
+/// Wall clock, CPU time and memory of the measured part; start() also resets the process's peak
+/// memory.
 class Measurement {
  public:
   void start();
   void stop();
   double seconds() const { return seconds_; }
+  /// CPU seconds of the whole process (all threads) during the measured part: on a machine
+  /// shared with other jobs a single-threaded tool's CPU time moves far less than its wall time.
+  double cpu_seconds() const { return cpu_seconds_; }
   /// Peak resident memory during the measured part minus the resident memory at start (KiB).
   long peak_increase_kib() const { return peak_kib_ - baseline_kib_; }
   long baseline_kib() const { return baseline_kib_; }
@@ -34,7 +38,7 @@ class Measurement {
   std::optional<double> exact_peak_increase_mib() const;
 
  private:
-  double start_time_ = 0.0, seconds_ = 0.0;
+  double start_time_ = 0.0, seconds_ = 0.0, start_cpu_ = 0.0, cpu_seconds_ = 0.0;
   long baseline_kib_ = 0, peak_kib_ = 0;
   bool peak_read_ = false;  ///< VmHWM was read at stop() (not the getrusage fallback)
   bool reset_ok_ = false;

@@ -1,9 +1,10 @@
 // ElementBoxIndex (construct/src/element_box_index.hpp) names the elements that may pass within a
 // distance of a point, for the long elements the vertex preimage search adds as seeds. The
 // search filters what it is given with its own exact tests, so the index may name more than
-// needed but never fewer: every element whose bounding box lies within the distance must be
-// visited, once. Checked by brute force on meshes whose element sizes span orders of magnitude
-// (the case the size classes are for) and at distances from zero to the whole mesh.
+// needed (within a rounding margin of the distance) but never fewer: every element whose bounding
+// box lies within the distance must be visited, once. Checked by brute force on meshes whose
+// element sizes span orders of magnitude (the case the tree is built for) and at distances from
+// zero to the whole mesh.
 #include "../../construct/src/element_box_index.hpp"
 
 #include <gtest/gtest.h>
@@ -27,12 +28,12 @@ double box_distance(const Surface<d>& s, Index t, const WorldPoint<d>& x) {
 }
 
 /// Visits from random points at random distances; returns how many (element, query) pairs the
-/// index named beyond the exact answer (to show it is not everything).
+/// index named beyond the exact answer (each within the margin of r).
 template <int d>
 std::size_t expect_superset(const Surface<d>& s, const WorldPoint<d>& low, const WorldPoint<d>& high, double largest,
                             std::uint32_t seed) {
   const ElementBoxIndex<d> index(s);
-  EXPECT_TRUE(index.has_classes());  // uneven sizes: the classes are what is tested
+  EXPECT_TRUE(index.has_tree());  // uneven sizes: the tree is what is tested
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::size_t extra = 0;
@@ -50,7 +51,9 @@ std::size_t expect_superset(const Surface<d>& s, const WorldPoint<d>& low, const
       if (near) {
         EXPECT_EQ(visits[t], 1) << "element " << t << " at box distance " << box_distance(s, t, x) << " < " << r
                                 << " not named (query " << q << ")";
-      } else {
+      } else if (visits[t] > 0) {
+        // beyond r, only within the documented margin
+        EXPECT_LE(box_distance(s, t, x), r * (1.0 + 1e-9)) << "element " << t << " named from far away (query " << q << ")";
         extra += static_cast<std::size_t>(visits[t]);
       }
     }
@@ -71,7 +74,7 @@ TEST(ElementBoxIndex, NamesEveryElementWhoseBoxIsNearOnAGradedZigzag) {
   }
   const Surface<1> s(v, e);
   const std::size_t extra = expect_superset<1>(s, s.bounding_box_min(), s.bounding_box_max(), 2.0, 3);
-  EXPECT_GT(extra, 0u);  // a superset, as documented; the exactness is the caller's
+  EXPECT_LE(extra, 3u);  // at most a few, within rounding of the distance
 }
 
 TEST(ElementBoxIndex, NamesEveryElementWhoseBoxIsNearOnAGradedGrid) {

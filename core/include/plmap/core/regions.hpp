@@ -55,4 +55,24 @@ struct ImageMeasures {
 template <int d>
 ImageMeasures image_measures(const PlMap<d>& map, unsigned threads = 1);
 
+/// The terms image_measures sums, kept so that the measures of the map after a removal of faces
+/// (face_removal.hpp: regions go, every other region and every node stays as it was) can be
+/// summed again without computing the terms of the elements that kept all their regions.
+struct ImageMeasureTerms {
+  std::vector<Index> region_begin;     ///< the map's, per S1 element: which elements lost regions
+  std::vector<double> region_target;   ///< per region, d! times its image's local measure
+  std::vector<double> element_domain;  ///< per S1 element with regions, its regions' measure
+  std::vector<double> target_measure;  ///< per S2 element with images, its measure (else 0)
+};
+
+/// image_measures, keeping its terms in `terms`.
+template <int d>
+ImageMeasures image_measures(const PlMap<d>& map, unsigned threads, ImageMeasureTerms& terms);
+
+/// image_measures of `smaller`, a map that `terms`' map became by removing regions: only the
+/// elements that lost regions have their terms computed again, and the sums run as in
+/// image_measures, so the result is the same to the last bit. `terms` becomes smaller's.
+template <int d>
+ImageMeasures image_measures_after_removal(const PlMap<d>& smaller, unsigned threads, ImageMeasureTerms& terms);
+
 }  // namespace plmap

@@ -15,18 +15,26 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <initializer_list>
+#include <limits>
 
 namespace plmap {
 
 /// The power of two at or just below the largest absolute coordinate of the vectors; 1 if they
-/// are all zero or not finite.
+/// are all zero or not finite. For a normal largest coordinate that is the number with its
+/// mantissa bits cleared; only subnormal ones take the library calls ilogb and ldexp, which cost
+/// about as much as the measure they scale (3 % of a projection's instructions: every element
+/// measure and normal, the image measures, the adjacency of a surface being read).
 template <int d>
 double power_of_two_scale(std::initializer_list<WorldPoint<d>> vectors) {
   double largest = 0.0;
   for (const auto& v : vectors) largest = std::max(largest, v.cwiseAbs().maxCoeff());
   if (!(largest > 0.0) || !std::isfinite(largest)) return 1.0;
+  if (largest >= std::numeric_limits<double>::min())
+    return std::bit_cast<double>(std::bit_cast<std::uint64_t>(largest) & 0x7ff0000000000000ULL);
   return std::ldexp(1.0, std::ilogb(largest));
 }
 
