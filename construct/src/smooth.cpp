@@ -200,9 +200,26 @@ bool apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>
   return true;
 }
 
+/// The stored arrays of `map` without the graph arrays derived into them: the element pass
+/// moves interior nodes and re-fits region maps only, so the graph, and which elements must
+/// store theirs (map.stored_graph()), stay those of `map`, and the new map is built in stored
+/// form without deriving every element's graph to compare it (which the full-array
+/// constructor does).
+MapData<2> stored_arrays(const PlMap<2>& map) {
+  MapData<2> out = map.stored();
+  out.neighbor_begin = {};
+  out.neighbor = {};
+  out.neighbor_edge_kind = {};
+  out.edge_node_begin = {};
+  out.edge_node = {};
+  out.region_neighbors = {};
+  return out;
+}
+
 /// Total area of the region images on S2: smoothing re-places preimages, so it must not change.
+/// Reads only stored arrays (the graph of a rebuilt map is never derived for it).
 double image_area(const PlMap<2>& map) {
-  const MapData<2>& m = map.data();
+  const MapData<2>& m = map.stored();
   double total = 0.0;
   for (Index r = 0; r < map.region_count(); ++r) {
     const auto& c = m.region_corners[r];
@@ -340,7 +357,9 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
 
   SmoothReport report;
   report.weights = options.weights;
-  PlMap<2> current(map.domain_ptr(), map.target_ptr(), map.data());
+  // A copy keeps the stored form: the graph is derived once, where the element pass reads it
+  // (handing over map.data() made the constructor derive every element's graph to compare it).
+  PlMap<2> current(map);
   if (options.measure_kappa) report.kappa_before = options.measure_kappa(current);
   // κ of every region of `current`, kept up to date through the sweeps
   smoothing::MapConditions conditions = smoothing::MapConditions::of(current);
@@ -353,7 +372,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
     // the quadrilateral pass's
     const double worst_at_sweep_start = std::ranges::max(conditions.element);
     std::vector<Index> moved;
-    MapData<2> next = current.data();
+    MapData<2> next = stored_arrays(current);
     ElementSmoother smoother(current, current.data(), weights, report, &conditions.element);
     report.skipped_elements.clear();
     for (Index t = 0; t < (options.elements ? elements : 0); ++t) {
@@ -366,7 +385,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
       if (outcome.shortened) ++sweep.elements_shortened;
       if (!outcome.positions.empty() && apply_outcome(current, t, outcome.positions, next, sweep)) moved.push_back(t);
     }
-    current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next));
+    current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next), StoredGraph(current.stored_graph()));
     for (Index t : moved) conditions.update(current, t);
     if (options.quadrilaterals) smooth_quadrilaterals(current, conditions, worst_at_sweep_start, weights, report, sweep);
     if (options.measure_kappa)
