@@ -82,6 +82,7 @@ struct SheetPlan {
   bool closed = true;
   int first_old = 0, first_new = 0;
   std::vector<std::array<int, 2>> diagonals;          ///< interior edges of the triangulation
+  std::vector<Eigen::AlignedBox2d> diagonal_boxes;    ///< per diagonal, filled by the cut
   std::vector<std::pair<Index, Vec2>> moved;          ///< vertex preimages inside, planar
 
   int size() const { return static_cast<int>(ring->size()); }
@@ -191,6 +192,7 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
   for (int g = 0; g < sheet_count; ++g) {
     SheetPlan& sh = sp[g];
     sh.diagonals.clear();
+    sh.diagonal_boxes.clear();
     sh.moved.clear();
     sh.ring = &sheets[g].ring;
     sh.flat = flattened[g];
@@ -514,7 +516,7 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       for (int j = i; j <= run_end; ++j)
         if (plan.old_triangle_sheet[star_position(p.segment_triangle[j])] != g)
           return refuse(RemovalRefusal::crossing_edges);  // crosses the feature line; never expected
-      const SheetPlan& sh = sp[g];
+      SheetPlan& sh = sp[g];  // its diagonal boxes are filled below
       const std::vector<Index>& ring = *sh.ring;
 
       // Planar points of the run, each from the first star triangle that holds it.
@@ -538,6 +540,11 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       }
 
       // Cut every planar segment of the run along the sheet's diagonals.
+      if (sh.diagonal_boxes.size() != sh.diagonals.size()) {
+        sh.diagonal_boxes.clear();
+        for (const auto& [di, dj] : sh.diagonals)
+          sh.diagonal_boxes.emplace_back(sh.flat[di].cwiseMin(sh.flat[dj]), sh.flat[di].cwiseMax(sh.flat[dj]));
+      }
       PlanarPoint previous = points.front();
       std::array<Index, 2> previous_diagonal{invalid_index, invalid_index};
       auto emit_piece_to = [&](const PlanarPoint& to) -> bool {
@@ -553,8 +560,12 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       for (int j = 0; j + 1 < static_cast<int>(points.size()); ++j) {
         const Vec2& from = points[j].position;
         const Vec2& to = points[j + 1].position;
+        const Eigen::AlignedBox2d box(from.cwiseMin(to), from.cwiseMax(to));
         cuts.clear();
         for (int d = 0; d < static_cast<int>(sh.diagonals.size()); ++d) {
+          // Closed boxes apart: the segment and the diagonal share no point, so the exact tests
+          // below would find neither a crossing nor a touch (most pairs in a large star).
+          if (!box.intersects(sh.diagonal_boxes[d])) continue;
           const Index da = ring[sh.diagonals[d][0]], db = ring[sh.diagonals[d][1]];
           // A point that is a diagonal's own end never crosses it.
           if (points[j].corner == da || points[j].corner == db || points[j + 1].corner == da || points[j + 1].corner == db)
