@@ -3,6 +3,7 @@
 #include <plmap/construct/smooth.hpp>
 
 #include "convex_combination_system.hpp"
+#include "free_node_fans.hpp"
 #include "preimage_graph.hpp"
 #include "quad_smoothing.hpp"
 #include "region_condition.hpp"
@@ -20,6 +21,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <span>
 
 namespace plmap {
 
@@ -37,7 +39,8 @@ class ElementSmoother {
   /// `worst_now`, if given, is worst_condition_per_element(map) (saves recomputing it per element).
   ElementSmoother(const PlMap<2>& map, const MapData<2>& m, const AnySmoothingWeights& weights, SmoothReport& report,
                   const std::vector<double>* worst_now)
-      : map_(map), m_(m), weights_(weights), report_(report), worst_now_(worst_now) {}
+      : map_(map), m_(m), weights_(weights), report_(report), worst_now_(worst_now),
+        local_rings_(map.elements_with_stored_graph() == 0) {}
 
   ElementOutcome solve(Index t, bool count_nodes) {
     const Index nb = m_.node_begin[t], ne = m_.node_begin[t + 1];
@@ -58,11 +61,16 @@ class ElementSmoother {
     for (Index r = rb; r < re; ++r)
       for (Index c : m_.region_corners[r]) ++incidence_[local(c)];
 
+    if (local_rings_) {
+      free_.resize(unknown_.size());
+      for (std::size_t v = 0; v < unknown_.size(); ++v) free_[v] = unknown_[v] >= 0;
+      fans_.collect(m_, t, free_);
+    }
     system_.reset(unknowns);
     for (Index n = nb; n < ne; ++n) {
       const int i = unknown_[local(n)];
       if (i < 0) continue;
-      const auto ring_nodes = map_.neighbors(n);
+      const std::span<const Index> ring_nodes = local_rings_ ? fans_.ring(n) : map_.neighbors(n);
       if (incidence_[local(n)] != static_cast<int>(ring_nodes.size()) || ring_nodes.size() < 3) {
         out.skipped = "open star";
         return out;
@@ -163,6 +171,11 @@ class ElementSmoother {
   SmoothReport& report_;
   std::vector<int> unknown_, incidence_;
   const std::vector<double>* worst_now_;
+  /// No element of the map stores its graph: the free nodes' rings come from their regions
+  /// (free_node_fans.hpp), the map's graph is not derived.
+  bool local_rings_;
+  smoothing::FreeNodeFans fans_;
+  std::vector<char> free_;
   smoothing::ConvexCombinationSystem system_;
   std::vector<Eigen::Vector3d> ring_, world_;
   std::vector<std::array<Eigen::Vector3d, 3>> targets_;  ///< per region of the element being solved
@@ -173,7 +186,7 @@ class ElementSmoother {
 /// Returns whether a node moved.
 bool apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>>& positions, MapData<2>& out,
                    SmoothSweepReport& sweep) {
-  const MapData<2>& old = map.data();
+  const MapData<2>& old = map.stored();
   const Index nb = old.node_begin[t];
   bool moved_any = false;
   for (std::size_t i = 0; i < positions.size(); ++i) {
@@ -373,7 +386,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
     const double worst_at_sweep_start = std::ranges::max(conditions.element);
     std::vector<Index> moved;
     MapData<2> next = stored_arrays(current);
-    ElementSmoother smoother(current, current.data(), weights, report, &conditions.element);
+    ElementSmoother smoother(current, current.stored(), weights, report, &conditions.element);
     report.skipped_elements.clear();
     for (Index t = 0; t < (options.elements ? elements : 0); ++t) {
       ElementOutcome outcome = smoother.solve(t, s == 1);
