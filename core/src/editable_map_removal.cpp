@@ -109,6 +109,24 @@ struct PlanScratch {
   std::vector<SheetPlan> sheets;
   std::vector<std::array<Index, 2>> new_edges;
   std::vector<Index> star_triangles, edges;
+  /// Per S1 triangle slot: its place among the plan's old triangles, or -1; per S2 vertex: the
+  /// sheet and place of its entry in that sheet's `moved`, or -1. Lookups the cut makes for
+  /// every polyline point (a search of the star's lists each, quadratic in a late star's nodes);
+  /// set per plan and reset by SlotReset, so they are -1 everywhere between plans.
+  std::vector<int> star_slot;
+  std::vector<std::array<int, 2>> moved_slot;
+  std::vector<Index> marked_triangles, marked_vertices;
+};
+
+/// Resets the slots a plan marked, on every way out of the plan.
+struct SlotReset {
+  PlanScratch& scratch;
+  ~SlotReset() {
+    for (Index t : scratch.marked_triangles) scratch.star_slot[static_cast<std::size_t>(t)] = -1;
+    for (Index w : scratch.marked_vertices) scratch.moved_slot[static_cast<std::size_t>(w)] = {-1, -1};
+    scratch.marked_triangles.clear();
+    scratch.marked_vertices.clear();
+  }
 };
 
 }  // namespace
@@ -233,10 +251,14 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
     if (std::adjacent_find(all.begin(), all.end()) != all.end() || all.size() != s.vertex_triangles[v].size())
       return refuse(RemovalRefusal::not_a_disk_star);
   }
-  auto star_position = [&plan](Index t) {
-    const auto it = std::find(plan.old_triangles.begin(), plan.old_triangles.end(), t);
-    return it == plan.old_triangles.end() ? -1 : static_cast<int>(it - plan.old_triangles.begin());
-  };
+  const SlotReset slot_reset{scratch};
+  if (scratch.star_slot.size() < s.triangles.size()) scratch.star_slot.resize(s.triangles.size(), -1);
+  for (std::size_t i = 0; i < plan.old_triangles.size(); ++i) {
+    scratch.star_slot[static_cast<std::size_t>(plan.old_triangles[i])] = static_cast<int>(i);
+    scratch.marked_triangles.push_back(plan.old_triangles[i]);
+  }
+  const std::vector<int>& star_slot = scratch.star_slot;
+  auto star_position = [&star_slot](Index t) { return star_slot[static_cast<std::size_t>(t)]; };
   auto planar_corner = [&](int g, Index w) -> Vec2 { return w == v ? origin : sp[g].flat[sp[g].ring_index(w)]; };
 
   // On a feature line every sheet must place v (the origin) at the same parameter of the new
@@ -395,6 +417,23 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
   // A ranking bound ends here: the cut below only adds nodes (crossings) and refusals.
   if (extent == PlanExtent::ranking_bound) return plan;
 
+  // Where each moved vertex preimage is listed (its first entry), for vertex_point below.
+  if (scratch.moved_slot.size() < static_cast<std::size_t>(s.target->vertex_count()))
+    scratch.moved_slot.resize(static_cast<std::size_t>(s.target->vertex_count()), {-1, -1});
+  for (int g = 0; g < sheet_count; ++g)
+    for (std::size_t i = 0; i < sp[g].moved.size(); ++i) {
+      const Index w = sp[g].moved[i].first;
+      auto& slot = scratch.moved_slot[static_cast<std::size_t>(w)];
+      if (slot[0] >= 0) continue;
+      slot = {g, static_cast<int>(i)};
+      scratch.marked_vertices.push_back(w);
+    }
+  auto moved_position = [&](int g, Index w) -> const Vec2* {
+    const auto& slot = scratch.moved_slot[static_cast<std::size_t>(w)];
+    if (slot[0] == g) return &sp[g].moved[static_cast<std::size_t>(slot[1])].second;
+    return sp[g].moved_position(w);  // listed first in another sheet: search this one's list
+  };
+
   // The planar point of S2 vertex w in sheet g, as it lies after the step; false if w is not in
   // that sheet (an inconsistent state; never expected).
   auto vertex_point = [&](int g, Index w, PlanarPoint& q) {
@@ -412,7 +451,7 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       return true;
     }
     if (s.vertex_live[w] || !s.on_edge(w)) {
-      const Vec2* at = sh.moved_position(w);
+      const Vec2* at = moved_position(g, w);
       if (!at) return false;
       q.position = *at;
       return true;
