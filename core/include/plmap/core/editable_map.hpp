@@ -142,6 +142,9 @@ struct VertexRemovalPlan {
   std::vector<PolylineEdit> polyline_edits;
   Index triangle_count_at_planning = 0;
   PlanExtent extent = PlanExtent::full;
+  /// For an accepted ranking bound: the planning call that made it (per thread), so that a full
+  /// plan asked for right after it, with the bound as `storage`, continues from it.
+  std::uint64_t bound_generation = 0;
 
   /// For node_on_new_edge: the diagonal (ring indices of sheet blocking_sheet) the node would
   /// lie on, if it is one; a caller may re-triangulate that sheet without it.
