@@ -149,6 +149,13 @@ class Simplifier {
     // triangulation asked about is still there or still absent.
     if (extent == PlanExtent::full && hole.stamp == stamp_[v] && !hole.sheet.ring.empty() &&
         hole.new_edge_count == new_edges_at(hole.sheet.ring)) {
+      // Right after confirm_estimate accepted v's ranking plan (made on this hole), the full plan
+      // continues from it (EditableMap::plan_vertex_removal's `storage`).
+      if (confirmed_.vertex == v) {
+        give_back(std::move(a.plan));
+        a.plan = std::move(confirmed_);
+        confirmed_.vertex = invalid_index;
+      }
       a.plan = map_.plan_vertex_removal(v, std::span(&hole.sheet, 1), std::span(&hole.flat, 1),
                                         std::span(&hole.triangles, 1), extent, std::move(a.plan));
       return judge(std::move(a));
@@ -407,8 +414,12 @@ class Simplifier {
     last_refusal_[v] = a.refusal;
     const bool refused = !a.refusal.empty();
     const bool above = !refused && a.verdict.cost > next_queued_cost();
+    if (!refused && !above) {
+      if (confirmed_.vertex != invalid_index) give_back(std::move(confirmed_));
+      confirmed_ = std::move(a.plan);  // the full plan, made next, continues from it
+      return true;
+    }
     give_back(std::move(a.plan));
-    if (!refused && !above) return true;
     ++stamp_[v];
     if (above) {
       ++requeued_;
@@ -487,6 +498,9 @@ class Simplifier {
     if (spare_plans_.size() < 8) spare_plans_.push_back(std::move(plan));
   }
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
+  /// The ranking plan confirm_estimate accepted, until the full plan of its vertex takes it
+  /// (vertex invalid: none).
+  VertexRemovalPlan confirmed_;
 };
 
 }  // namespace

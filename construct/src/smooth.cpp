@@ -3,6 +3,7 @@
 #include <plmap/construct/smooth.hpp>
 
 #include "convex_combination_system.hpp"
+#include "free_node_fans.hpp"
 #include "preimage_graph.hpp"
 #include "quad_smoothing.hpp"
 #include "region_condition.hpp"
@@ -20,6 +21,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <span>
 
 namespace plmap {
 
@@ -37,7 +39,8 @@ class ElementSmoother {
   /// `worst_now`, if given, is worst_condition_per_element(map) (saves recomputing it per element).
   ElementSmoother(const PlMap<2>& map, const MapData<2>& m, const AnySmoothingWeights& weights, SmoothReport& report,
                   const std::vector<double>* worst_now)
-      : map_(map), m_(m), weights_(weights), report_(report), worst_now_(worst_now) {}
+      : map_(map), m_(m), weights_(weights), report_(report), worst_now_(worst_now),
+        local_rings_(map.elements_with_stored_graph() == 0) {}
 
   ElementOutcome solve(Index t, bool count_nodes) {
     const Index nb = m_.node_begin[t], ne = m_.node_begin[t + 1];
@@ -58,11 +61,16 @@ class ElementSmoother {
     for (Index r = rb; r < re; ++r)
       for (Index c : m_.region_corners[r]) ++incidence_[local(c)];
 
+    if (local_rings_) {
+      free_.resize(unknown_.size());
+      for (std::size_t v = 0; v < unknown_.size(); ++v) free_[v] = unknown_[v] >= 0;
+      fans_.collect(m_, t, free_);
+    }
     system_.reset(unknowns);
     for (Index n = nb; n < ne; ++n) {
       const int i = unknown_[local(n)];
       if (i < 0) continue;
-      const auto ring_nodes = map_.neighbors(n);
+      const std::span<const Index> ring_nodes = local_rings_ ? fans_.ring(n) : map_.neighbors(n);
       if (incidence_[local(n)] != static_cast<int>(ring_nodes.size()) || ring_nodes.size() < 3) {
         out.skipped = "open star";
         return out;
@@ -163,6 +171,11 @@ class ElementSmoother {
   SmoothReport& report_;
   std::vector<int> unknown_, incidence_;
   const std::vector<double>* worst_now_;
+  /// No element of the map stores its graph: the free nodes' rings come from their regions
+  /// (free_node_fans.hpp), the map's graph is not derived.
+  bool local_rings_;
+  smoothing::FreeNodeFans fans_;
+  std::vector<char> free_;
   smoothing::ConvexCombinationSystem system_;
   std::vector<Eigen::Vector3d> ring_, world_;
   std::vector<std::array<Eigen::Vector3d, 3>> targets_;  ///< per region of the element being solved
@@ -173,7 +186,7 @@ class ElementSmoother {
 /// Returns whether a node moved.
 bool apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>>& positions, MapData<2>& out,
                    SmoothSweepReport& sweep) {
-  const MapData<2>& old = map.data();
+  const MapData<2>& old = map.stored();
   const Index nb = old.node_begin[t];
   bool moved_any = false;
   for (std::size_t i = 0; i < positions.size(); ++i) {
@@ -200,9 +213,26 @@ bool apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>
   return true;
 }
 
+/// The stored arrays of `map` without the graph arrays derived into them: the element pass
+/// moves interior nodes and re-fits region maps only, so the graph, and which elements must
+/// store theirs (map.stored_graph()), stay those of `map`, and the new map is built in stored
+/// form without deriving every element's graph to compare it (which the full-array
+/// constructor does).
+MapData<2> stored_arrays(const PlMap<2>& map) {
+  MapData<2> out = map.stored();
+  out.neighbor_begin = {};
+  out.neighbor = {};
+  out.neighbor_edge_kind = {};
+  out.edge_node_begin = {};
+  out.edge_node = {};
+  out.region_neighbors = {};
+  return out;
+}
+
 /// Total area of the region images on S2: smoothing re-places preimages, so it must not change.
+/// Reads only stored arrays (the graph of a rebuilt map is never derived for it).
 double image_area(const PlMap<2>& map) {
-  const MapData<2>& m = map.data();
+  const MapData<2>& m = map.stored();
   double total = 0.0;
   for (Index r = 0; r < map.region_count(); ++r) {
     const auto& c = m.region_corners[r];
@@ -340,7 +370,9 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
 
   SmoothReport report;
   report.weights = options.weights;
-  PlMap<2> current(map.domain_ptr(), map.target_ptr(), map.data());
+  // A copy keeps the stored form: the graph is derived once, where the element pass reads it
+  // (handing over map.data() made the constructor derive every element's graph to compare it).
+  PlMap<2> current(map);
   if (options.measure_kappa) report.kappa_before = options.measure_kappa(current);
   // κ of every region of `current`, kept up to date through the sweeps
   smoothing::MapConditions conditions = smoothing::MapConditions::of(current);
@@ -353,8 +385,8 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
     // the quadrilateral pass's
     const double worst_at_sweep_start = std::ranges::max(conditions.element);
     std::vector<Index> moved;
-    MapData<2> next = current.data();
-    ElementSmoother smoother(current, current.data(), weights, report, &conditions.element);
+    MapData<2> next = stored_arrays(current);
+    ElementSmoother smoother(current, current.stored(), weights, report, &conditions.element);
     report.skipped_elements.clear();
     for (Index t = 0; t < (options.elements ? elements : 0); ++t) {
       ElementOutcome outcome = smoother.solve(t, s == 1);
@@ -366,7 +398,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
       if (outcome.shortened) ++sweep.elements_shortened;
       if (!outcome.positions.empty() && apply_outcome(current, t, outcome.positions, next, sweep)) moved.push_back(t);
     }
-    current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next));
+    current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next), StoredGraph(current.stored_graph()));
     for (Index t : moved) conditions.update(current, t);
     if (options.quadrilaterals) smooth_quadrilaterals(current, conditions, worst_at_sweep_start, weights, report, sweep);
     if (options.measure_kappa)

@@ -82,6 +82,7 @@ struct SheetPlan {
   bool closed = true;
   int first_old = 0, first_new = 0;
   std::vector<std::array<int, 2>> diagonals;          ///< interior edges of the triangulation
+  std::vector<Eigen::AlignedBox2d> diagonal_boxes;    ///< per diagonal, filled by the cut
   std::vector<std::pair<Index, Vec2>> moved;          ///< vertex preimages inside, planar
 
   int size() const { return static_cast<int>(ring->size()); }
@@ -108,7 +109,51 @@ struct PlanScratch {
   std::vector<SheetPlan> sheets;
   std::vector<std::array<Index, 2>> new_edges;
   std::vector<Index> star_triangles, edges;
+  /// Per S1 triangle slot: its place among the plan's old triangles, or -1; per S2 vertex: the
+  /// sheet and place of its entry in that sheet's `moved`, or -1. Lookups the cut makes for
+  /// every polyline point (a search of the star's lists each, quadratic in a late star's nodes);
+  /// set per plan and reset by SlotReset, so they are -1 everywhere between plans.
+  std::vector<int> star_slot;
+  std::vector<std::array<int, 2>> moved_slot;
+  std::vector<Index> marked_triangles, marked_vertices;
+  /// The planning call (counted per thread) and the map of the last plan, and the flattening of
+  /// its sheet if it ended as an accepted ranking bound: what continue_from_bound() checks.
+  std::uint64_t generation = 0;
+  const void* owner = nullptr;
+  std::vector<Vec2> bound_flat;
 };
+
+/// Resets the slots a plan marked, on every way out of the plan.
+struct SlotReset {
+  PlanScratch& scratch;
+  ~SlotReset() {
+    for (Index t : scratch.marked_triangles) scratch.star_slot[static_cast<std::size_t>(t)] = -1;
+    for (Index w : scratch.marked_vertices) scratch.moved_slot[static_cast<std::size_t>(w)] = {-1, -1};
+    scratch.marked_triangles.clear();
+    scratch.marked_vertices.clear();
+  }
+};
+
+}  // namespace
+
+namespace {
+
+/// True if the plan's star, flattening and triangulation are those given: one closed sheet, the
+/// same ring, the flattening `bound_flat` (kept by the planning call that made the plan) and a
+/// triangulation that makes the plan's new triangles.
+bool same_closed_star(const VertexRemovalPlan& plan, std::span<const StarSheet> sheets,
+                      std::span<const std::vector<Vec2>> flattened,
+                      std::span<const std::vector<std::array<int, 3>>> triangulations, const std::vector<Vec2>& bound_flat) {
+  if (sheets.size() != 1 || flattened.size() != 1 || triangulations.size() != 1 || !sheets[0].closed) return false;
+  const std::vector<Index>& ring = sheets[0].ring;
+  if (ring != plan.ring || flattened[0] != bound_flat || triangulations[0].size() != plan.new_triangles.size()) return false;
+  for (std::size_t n = 0; n < plan.new_triangles.size(); ++n)
+    for (int m = 0; m < 3; ++m) {
+      const int i = triangulations[0][n][m];
+      if (i < 0 || i >= static_cast<int>(ring.size()) || ring[static_cast<std::size_t>(i)] != plan.new_triangles[n][m]) return false;
+    }
+  return true;
+}
 
 }  // namespace
 
@@ -138,6 +183,7 @@ void VertexRemovalPlan::reset() {
   extent = PlanExtent::full;
   blocking_diagonal = {-1, -1};
   blocking_sheet = -1;
+  bound_generation = 0;
 }
 
 VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Vec2> flattened_ring,
@@ -155,9 +201,23 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
                                                    PlanExtent extent, VertexRemovalPlan storage) const {
   const Impl& s = *impl_;
   const double clearance = s.options.edge_clearance;
-  VertexRemovalPlan plan = std::move(storage);
-  plan.reset();
   thread_local PlanScratch scratch;
+  // A full plan of a closed star whose `storage` is the accepted ranking bound that the previous
+  // planning call on this thread made on this map, with the same star, flattening and
+  // triangulation, continues from it: the star's triangles, the new triangles and the relocated
+  // preimages are already in the plan and in `scratch` (the simplifier plans a vertex's bound
+  // and then, if it removes it, its full plan: the bound's part cost about a third of the full
+  // plan's). Otherwise it starts from scratch, in the buffers of `storage`.
+  const bool continuing = extent == PlanExtent::full && storage.extent == PlanExtent::ranking_bound &&
+                          storage.accepted() && storage.vertex == v && storage.bound_generation != 0 &&
+                          storage.bound_generation == scratch.generation && scratch.owner == impl_.get() &&
+                          storage.triangle_count_at_planning == static_cast<Index>(s.triangles.size()) &&
+                          same_closed_star(storage, sheets, flattened, triangulations, scratch.bound_flat);
+  ++scratch.generation;
+  scratch.owner = impl_.get();
+  VertexRemovalPlan plan = std::move(storage);
+  if (!continuing) plan.reset();
+  plan.bound_generation = 0;
   plan.vertex = v;
   plan.extent = extent;
   plan.triangle_count_at_planning = static_cast<Index>(s.triangles.size());
@@ -188,53 +248,65 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
   // ---- the star's triangles, sheet by sheet: sheet triangle i is (v, ring[i], ring[i+1]) ----
   std::vector<SheetPlan>& sp = scratch.sheets;
   if (static_cast<int>(sp.size()) < sheet_count) sp.resize(static_cast<std::size_t>(sheet_count));
-  for (int g = 0; g < sheet_count; ++g) {
-    SheetPlan& sh = sp[g];
-    sh.diagonals.clear();
-    sh.moved.clear();
-    sh.ring = &sheets[g].ring;
-    sh.flat = flattened[g];
-    sh.triangulation = triangulations[g];
-    sh.closed = sheets[g].closed;
-    const int k = sh.size();
-    if (k < 3 || static_cast<int>(sh.flat.size()) != k) return refuse(RemovalRefusal::not_a_disk_star);
-    const int fan = sh.closed ? k : k - 1;
-    sh.first_old = static_cast<int>(plan.old_triangles.size());
-    for (int i = 0; i < fan; ++i) {
-      const Index x = (*sh.ring)[i], y = (*sh.ring)[(i + 1) % k];
-      Index found = invalid_index;
-      for (Index t : s.vertex_triangles[v]) {
-        const auto& c = s.triangles[t];
-        const int at = c[0] == v ? 0 : c[1] == v ? 1 : 2;
-        if (c[(at + 1) % 3] == x && c[(at + 2) % 3] == y) found = t;
+  if (continuing) {  // the same contents as the bound's, in the caller's objects of this call
+    sp[0].ring = &sheets[0].ring;
+    sp[0].flat = flattened[0];
+    sp[0].triangulation = triangulations[0];
+  }
+  if (!continuing) {
+    for (int g = 0; g < sheet_count; ++g) {
+      SheetPlan& sh = sp[g];
+      sh.diagonals.clear();
+      sh.diagonal_boxes.clear();
+      sh.moved.clear();
+      sh.ring = &sheets[g].ring;
+      sh.flat = flattened[g];
+      sh.triangulation = triangulations[g];
+      sh.closed = sheets[g].closed;
+      const int k = sh.size();
+      if (k < 3 || static_cast<int>(sh.flat.size()) != k) return refuse(RemovalRefusal::not_a_disk_star);
+      const int fan = sh.closed ? k : k - 1;
+      sh.first_old = static_cast<int>(plan.old_triangles.size());
+      for (int i = 0; i < fan; ++i) {
+        const Index x = (*sh.ring)[i], y = (*sh.ring)[(i + 1) % k];
+        Index found = invalid_index;
+        for (Index t : s.vertex_triangles[v]) {
+          const auto& c = s.triangles[t];
+          const int at = c[0] == v ? 0 : c[1] == v ? 1 : 2;
+          if (c[(at + 1) % 3] == x && c[(at + 2) % 3] == y) found = t;
+        }
+        if (found == invalid_index) return refuse(RemovalRefusal::not_a_disk_star);
+        plan.old_triangles.push_back(found);
+        plan.old_triangle_sheet.push_back(g);
       }
-      if (found == invalid_index) return refuse(RemovalRefusal::not_a_disk_star);
-      plan.old_triangles.push_back(found);
-      plan.old_triangle_sheet.push_back(g);
+      for (Index w : *sh.ring)
+        if (std::find(plan.ring.begin(), plan.ring.end(), w) == plan.ring.end()) plan.ring.push_back(w);
+      for (int i = 0; i < fan; ++i)
+        if (orient2d(origin, sh.flat[i], sh.flat[(i + 1) % k]) <= 0) return refuse(RemovalRefusal::flattening_not_simple);
+      if (!sh.closed) {
+        if (sh.flat.front().y() != 0.0 || sh.flat.back().y() != 0.0 || !(sh.flat.front().x() > 0.0) ||
+            !(sh.flat.back().x() < 0.0))
+          return refuse(RemovalRefusal::flattening_not_simple);
+        for (int i = 1; i + 1 < k; ++i)
+          if (!(sh.flat[i].y() > 0.0)) return refuse(RemovalRefusal::flattening_not_simple);
+      }
     }
-    for (Index w : *sh.ring)
-      if (std::find(plan.ring.begin(), plan.ring.end(), w) == plan.ring.end()) plan.ring.push_back(w);
-    for (int i = 0; i < fan; ++i)
-      if (orient2d(origin, sh.flat[i], sh.flat[(i + 1) % k]) <= 0) return refuse(RemovalRefusal::flattening_not_simple);
-    if (!sh.closed) {
-      if (sh.flat.front().y() != 0.0 || sh.flat.back().y() != 0.0 || !(sh.flat.front().x() > 0.0) ||
-          !(sh.flat.back().x() < 0.0))
-        return refuse(RemovalRefusal::flattening_not_simple);
-      for (int i = 1; i + 1 < k; ++i)
-        if (!(sh.flat[i].y() > 0.0)) return refuse(RemovalRefusal::flattening_not_simple);
+    {
+      std::vector<Index>& all = scratch.star_triangles;
+      all.assign(plan.old_triangles.begin(), plan.old_triangles.end());
+      std::sort(all.begin(), all.end());
+      if (std::adjacent_find(all.begin(), all.end()) != all.end() || all.size() != s.vertex_triangles[v].size())
+        return refuse(RemovalRefusal::not_a_disk_star);
     }
   }
-  {
-    std::vector<Index>& all = scratch.star_triangles;
-    all.assign(plan.old_triangles.begin(), plan.old_triangles.end());
-    std::sort(all.begin(), all.end());
-    if (std::adjacent_find(all.begin(), all.end()) != all.end() || all.size() != s.vertex_triangles[v].size())
-      return refuse(RemovalRefusal::not_a_disk_star);
+  const SlotReset slot_reset{scratch};
+  if (scratch.star_slot.size() < s.triangles.size()) scratch.star_slot.resize(s.triangles.size(), -1);
+  for (std::size_t i = 0; i < plan.old_triangles.size(); ++i) {
+    scratch.star_slot[static_cast<std::size_t>(plan.old_triangles[i])] = static_cast<int>(i);
+    scratch.marked_triangles.push_back(plan.old_triangles[i]);
   }
-  auto star_position = [&plan](Index t) {
-    const auto it = std::find(plan.old_triangles.begin(), plan.old_triangles.end(), t);
-    return it == plan.old_triangles.end() ? -1 : static_cast<int>(it - plan.old_triangles.begin());
-  };
+  const std::vector<int>& star_slot = scratch.star_slot;
+  auto star_position = [&star_slot](Index t) { return star_slot[static_cast<std::size_t>(t)]; };
   auto planar_corner = [&](int g, Index w) -> Vec2 { return w == v ? origin : sp[g].flat[sp[g].ring_index(w)]; };
 
   // On a feature line every sheet must place v (the origin) at the same parameter of the new
@@ -248,58 +320,60 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       if (std::abs(line_parameter(g, origin) - line_parameter(0, origin)) > 1e-12)
         return refuse(RemovalRefusal::flattening_not_simple);
 
-  // ---- the new triangles ----
-  const double area_scale = (s.target->bounding_box_max() - s.target->bounding_box_min()).squaredNorm();
-  const Eigen::Vector3d& pv = position(v);
-  if (on_line && s.has_edge(line_key[0], line_key[1])) return refuse(RemovalRefusal::existing_edge);
-  std::vector<std::array<Index, 2>>& new_edges = scratch.new_edges;
-  new_edges.clear();
-  for (int g = 0; g < sheet_count; ++g) {
-    SheetPlan& sh = sp[g];
-    const int k = sh.size();
-    const std::vector<Index>& ring = *sh.ring;
-    Eigen::Vector3d sheet_normal = Eigen::Vector3d::Zero();
-    for (int i = 0; i < (sh.closed ? k : k - 1); ++i)
-      sheet_normal += (position(ring[i]) - pv).cross(position(ring[(i + 1) % k]) - pv);
-    sh.first_new = static_cast<int>(plan.new_triangles.size());
-    if (static_cast<int>(sh.triangulation.size()) != k - 2) return refuse(RemovalRefusal::no_triangulation);
-    for (const auto& tri : sh.triangulation) {
-      for (int m = 0; m < 3; ++m) {
-        const int i = tri[m], j = tri[(m + 1) % 3];
-        if (i < 0 || i >= k || j < 0 || j >= k || i == j) return refuse(RemovalRefusal::no_triangulation);
-        if (!sh.adjacent(i, j)) {
-          if (s.has_edge(ring[i], ring[j])) return refuse(RemovalRefusal::existing_edge);
-          if (i < j) {
-            sh.diagonals.push_back({i, j});
-            new_edges.push_back(sorted_pair(ring[i], ring[j]));
+  if (!continuing) {
+    // ---- the new triangles ----
+    const double area_scale = (s.target->bounding_box_max() - s.target->bounding_box_min()).squaredNorm();
+    const Eigen::Vector3d& pv = position(v);
+    if (on_line && s.has_edge(line_key[0], line_key[1])) return refuse(RemovalRefusal::existing_edge);
+    std::vector<std::array<Index, 2>>& new_edges = scratch.new_edges;
+    new_edges.clear();
+    for (int g = 0; g < sheet_count; ++g) {
+      SheetPlan& sh = sp[g];
+      const int k = sh.size();
+      const std::vector<Index>& ring = *sh.ring;
+      Eigen::Vector3d sheet_normal = Eigen::Vector3d::Zero();
+      for (int i = 0; i < (sh.closed ? k : k - 1); ++i)
+        sheet_normal += (position(ring[i]) - pv).cross(position(ring[(i + 1) % k]) - pv);
+      sh.first_new = static_cast<int>(plan.new_triangles.size());
+      if (static_cast<int>(sh.triangulation.size()) != k - 2) return refuse(RemovalRefusal::no_triangulation);
+      for (const auto& tri : sh.triangulation) {
+        for (int m = 0; m < 3; ++m) {
+          const int i = tri[m], j = tri[(m + 1) % 3];
+          if (i < 0 || i >= k || j < 0 || j >= k || i == j) return refuse(RemovalRefusal::no_triangulation);
+          if (!sh.adjacent(i, j)) {
+            if (s.has_edge(ring[i], ring[j])) return refuse(RemovalRefusal::existing_edge);
+            if (i < j) {
+              sh.diagonals.push_back({i, j});
+              new_edges.push_back(sorted_pair(ring[i], ring[j]));
+            }
           }
         }
+        if (orient2d(sh.flat[tri[0]], sh.flat[tri[1]], sh.flat[tri[2]]) <= 0) return refuse(RemovalRefusal::no_triangulation);
+        const std::array<Index, 3> corners{ring[tri[0]], ring[tri[1]], ring[tri[2]]};
+        const Eigen::Vector3d normal =
+            (position(corners[1]) - position(corners[0])).cross(position(corners[2]) - position(corners[0]));
+        if (0.5 * normal.norm() <= s.options.min_relative_area * area_scale)
+          return refuse(RemovalRefusal::degenerate_triangle);
+        if (normal.dot(sheet_normal) <= 0.0) return refuse(RemovalRefusal::fold_over);
+        plan.new_triangles.push_back(corners);
+        plan.new_triangle_sheet.push_back(g);
       }
-      if (orient2d(sh.flat[tri[0]], sh.flat[tri[1]], sh.flat[tri[2]]) <= 0) return refuse(RemovalRefusal::no_triangulation);
-      const std::array<Index, 3> corners{ring[tri[0]], ring[tri[1]], ring[tri[2]]};
-      const Eigen::Vector3d normal =
-          (position(corners[1]) - position(corners[0])).cross(position(corners[2]) - position(corners[0]));
-      if (0.5 * normal.norm() <= s.options.min_relative_area * area_scale)
-        return refuse(RemovalRefusal::degenerate_triangle);
-      if (normal.dot(sheet_normal) <= 0.0) return refuse(RemovalRefusal::fold_over);
-      plan.new_triangles.push_back(corners);
-      plan.new_triangle_sheet.push_back(g);
-    }
-    if (sh.closed && k == 3) {  // the hole's one triangle must not exist already (a tetrahedron-like pocket)
-      auto n = plan.new_triangles[sh.first_new];
-      std::sort(n.begin(), n.end());
-      for (Index t : s.vertex_triangles[ring[0]]) {
-        if (star_position(t) >= 0) continue;
-        auto c = s.triangles[t];
-        std::sort(c.begin(), c.end());
-        if (c == n) return refuse(RemovalRefusal::existing_edge);
+      if (sh.closed && k == 3) {  // the hole's one triangle must not exist already (a tetrahedron-like pocket)
+        auto n = plan.new_triangles[sh.first_new];
+        std::sort(n.begin(), n.end());
+        for (Index t : s.vertex_triangles[ring[0]]) {
+          if (star_position(t) >= 0) continue;
+          auto c = s.triangles[t];
+          std::sort(c.begin(), c.end());
+          if (c == n) return refuse(RemovalRefusal::existing_edge);
+        }
       }
     }
-  }
-  std::sort(new_edges.begin(), new_edges.end());
-  if (std::adjacent_find(new_edges.begin(), new_edges.end()) != new_edges.end())
-    return refuse(RemovalRefusal::existing_edge);
+    std::sort(new_edges.begin(), new_edges.end());
+    if (std::adjacent_find(new_edges.begin(), new_edges.end()) != new_edges.end())
+      return refuse(RemovalRefusal::existing_edge);
 
+  }
   // Where a planar point of sheet g falls among the sheet's new triangles.
   auto locate = [&](int g, const Vec2& p, Eigen::Vector3d* barycentric) {
     const SheetPlan& sh = sp[g];
@@ -330,41 +404,43 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
     plan.max_node_distance = std::max(plan.max_node_distance, (domain - image).norm());
   };
 
-  // ---- merge: planar positions of the vertex preimages of each sheet, and their new places ----
-  if (!on_line) sp[0].moved.emplace_back(v, origin);
-  for (int g = 0; g < sheet_count; ++g) {
-    SheetPlan& sh = sp[g];
-    const int fan = sh.closed ? sh.size() : sh.size() - 1;
-    for (int i = 0; i < fan; ++i) {
-      const Index t = plan.old_triangles[sh.first_old + i];
-      const auto& c = s.triangles[t];
-      for (Index w : s.triangle_vertices[t]) {
-        const Eigen::Vector3d& b = s.preimage_barycentric[w];
-        sh.moved.emplace_back(w, b(0) * planar_corner(g, c[0]) + b(1) * planar_corner(g, c[1]) + b(2) * planar_corner(g, c[2]));
-      }
-    }
-    for (const auto& [w, p] : sh.moved) {
-      Eigen::Vector3d b;
-      const auto [n, min_coordinate] = locate(g, p, &b);
-      if (n < 0 || !(min_coordinate > clearance)) {
-        if (n >= 0) {  // name the new edge it is on, if that is a diagonal, so the caller can avoid it
-          int side = 0;
-          for (int m = 1; m < 3; ++m)
-            if (b(m) < b(side)) side = m;
-          const auto& tri = sh.triangulation[n - sh.first_new];
-          const int i = tri[(side + 1) % 3], j = tri[(side + 2) % 3];
-          if (!sh.adjacent(i, j)) {
-            plan.blocking_diagonal = {std::min(i, j), std::max(i, j)};
-            plan.blocking_sheet = g;
-          }
+  if (!continuing) {
+    // ---- merge: planar positions of the vertex preimages of each sheet, and their new places ----
+    if (!on_line) sp[0].moved.emplace_back(v, origin);
+    for (int g = 0; g < sheet_count; ++g) {
+      SheetPlan& sh = sp[g];
+      const int fan = sh.closed ? sh.size() : sh.size() - 1;
+      for (int i = 0; i < fan; ++i) {
+        const Index t = plan.old_triangles[sh.first_old + i];
+        const auto& c = s.triangles[t];
+        for (Index w : s.triangle_vertices[t]) {
+          const Eigen::Vector3d& b = s.preimage_barycentric[w];
+          sh.moved.emplace_back(w, b(0) * planar_corner(g, c[0]) + b(1) * planar_corner(g, c[1]) + b(2) * planar_corner(g, c[2]));
         }
-        return refuse(RemovalRefusal::node_on_new_edge);
       }
-      plan.relocations.push_back({w, n, b, 0.0});
-      record_node(world_on_new(n, b), t2.vertex(w));
+      for (const auto& [w, p] : sh.moved) {
+        Eigen::Vector3d b;
+        const auto [n, min_coordinate] = locate(g, p, &b);
+        if (n < 0 || !(min_coordinate > clearance)) {
+          if (n >= 0) {  // name the new edge it is on, if that is a diagonal, so the caller can avoid it
+            int side = 0;
+            for (int m = 1; m < 3; ++m)
+              if (b(m) < b(side)) side = m;
+            const auto& tri = sh.triangulation[n - sh.first_new];
+            const int i = tri[(side + 1) % 3], j = tri[(side + 2) % 3];
+            if (!sh.adjacent(i, j)) {
+              plan.blocking_diagonal = {std::min(i, j), std::max(i, j)};
+              plan.blocking_sheet = g;
+            }
+          }
+          return refuse(RemovalRefusal::node_on_new_edge);
+        }
+        plan.relocations.push_back({w, n, b, 0.0});
+        record_node(world_on_new(n, b), t2.vertex(w));
+      }
     }
-  }
 
+  }
   // ---- the line's nodes (v, and the nodes of the two removed line edges) onto the new edge ----
   // Distance from v along the removed line edge (v, end) of S2 vertex w on it.
   auto spoke_fraction = [&](Index w) {
@@ -391,7 +467,28 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
   }
 
   // A ranking bound ends here: the cut below only adds nodes (crossings) and refusals.
-  if (extent == PlanExtent::ranking_bound) return plan;
+  if (extent == PlanExtent::ranking_bound) {
+    plan.bound_generation = scratch.generation;  // a full plan may continue from it (above)
+    scratch.bound_flat.assign(sp[0].flat.begin(), sp[0].flat.end());
+    return plan;
+  }
+
+  // Where each moved vertex preimage is listed (its first entry), for vertex_point below.
+  if (scratch.moved_slot.size() < static_cast<std::size_t>(s.target->vertex_count()))
+    scratch.moved_slot.resize(static_cast<std::size_t>(s.target->vertex_count()), {-1, -1});
+  for (int g = 0; g < sheet_count; ++g)
+    for (std::size_t i = 0; i < sp[g].moved.size(); ++i) {
+      const Index w = sp[g].moved[i].first;
+      auto& slot = scratch.moved_slot[static_cast<std::size_t>(w)];
+      if (slot[0] >= 0) continue;
+      slot = {g, static_cast<int>(i)};
+      scratch.marked_vertices.push_back(w);
+    }
+  auto moved_position = [&](int g, Index w) -> const Vec2* {
+    const auto& slot = scratch.moved_slot[static_cast<std::size_t>(w)];
+    if (slot[0] == g) return &sp[g].moved[static_cast<std::size_t>(slot[1])].second;
+    return sp[g].moved_position(w);  // listed first in another sheet: search this one's list
+  };
 
   // The planar point of S2 vertex w in sheet g, as it lies after the step; false if w is not in
   // that sheet (an inconsistent state; never expected).
@@ -410,7 +507,7 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       return true;
     }
     if (s.vertex_live[w] || !s.on_edge(w)) {
-      const Vec2* at = sh.moved_position(w);
+      const Vec2* at = moved_position(g, w);
       if (!at) return false;
       q.position = *at;
       return true;
@@ -514,7 +611,7 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       for (int j = i; j <= run_end; ++j)
         if (plan.old_triangle_sheet[star_position(p.segment_triangle[j])] != g)
           return refuse(RemovalRefusal::crossing_edges);  // crosses the feature line; never expected
-      const SheetPlan& sh = sp[g];
+      SheetPlan& sh = sp[g];  // its diagonal boxes are filled below
       const std::vector<Index>& ring = *sh.ring;
 
       // Planar points of the run, each from the first star triangle that holds it.
@@ -538,6 +635,11 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       }
 
       // Cut every planar segment of the run along the sheet's diagonals.
+      if (sh.diagonal_boxes.size() != sh.diagonals.size()) {
+        sh.diagonal_boxes.clear();
+        for (const auto& [di, dj] : sh.diagonals)
+          sh.diagonal_boxes.emplace_back(sh.flat[di].cwiseMin(sh.flat[dj]), sh.flat[di].cwiseMax(sh.flat[dj]));
+      }
       PlanarPoint previous = points.front();
       std::array<Index, 2> previous_diagonal{invalid_index, invalid_index};
       auto emit_piece_to = [&](const PlanarPoint& to) -> bool {
@@ -553,8 +655,12 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
       for (int j = 0; j + 1 < static_cast<int>(points.size()); ++j) {
         const Vec2& from = points[j].position;
         const Vec2& to = points[j + 1].position;
+        const Eigen::AlignedBox2d box(from.cwiseMin(to), from.cwiseMax(to));
         cuts.clear();
         for (int d = 0; d < static_cast<int>(sh.diagonals.size()); ++d) {
+          // Closed boxes apart: the segment and the diagonal share no point, so the exact tests
+          // below would find neither a crossing nor a touch (most pairs in a large star).
+          if (!box.intersects(sh.diagonal_boxes[d])) continue;
           const Index da = ring[sh.diagonals[d][0]], db = ring[sh.diagonals[d][1]];
           // A point that is a diagonal's own end never crosses it.
           if (points[j].corner == da || points[j].corner == db || points[j + 1].corner == da || points[j + 1].corner == db)

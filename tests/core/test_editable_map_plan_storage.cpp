@@ -111,5 +111,35 @@ TEST(EditableMapPlanStorage, APlanInReusedBuffersEqualsAFreshOne) {
       }
 }
 
+// A full plan asked for right after the ranking bound of the same request, with the bound as
+// storage, continues from the bound (the simplifier's estimate ranking does this for every
+// vertex it removes): it must be the plan made from scratch. The bound of another request, or a
+// bound followed by another planning call, must not be continued from.
+TEST(EditableMapPlanStorage, AFullPlanContinuedFromItsRankingBoundEqualsAFreshOne) {
+  const EditableMap m(tilted_fan());
+  const Request zigzag = request_for(m, 0, {{0, 1, 2}, {2, 3, 4}, {4, 5, 0}, {0, 2, 4}});
+  const Request fan = request_for(m, 0, {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}});
+  for (const auto& [request, other] : {std::pair{&zigzag, &fan}, std::pair{&fan, &zigzag}}) {
+    const VertexRemovalPlan fresh = plan(m, *request, PlanExtent::full);
+    ASSERT_TRUE(fresh.accepted()) << to_string(fresh.refusal);
+    ASSERT_FALSE(fresh.polyline_edits.empty());
+
+    VertexRemovalPlan bound = plan(m, *request, PlanExtent::ranking_bound);
+    ASSERT_TRUE(bound.accepted());
+    EXPECT_NE(bound.bound_generation, 0u);
+    const VertexRemovalPlan continued = plan(m, *request, PlanExtent::full, std::move(bound));
+    expect_same(continued, fresh);
+    EXPECT_EQ(continued.bound_generation, 0u);
+
+    VertexRemovalPlan other_bound = plan(m, *other, PlanExtent::ranking_bound);
+    expect_same(plan(m, *request, PlanExtent::full, std::move(other_bound)), fresh);
+
+    VertexRemovalPlan stale = plan(m, *request, PlanExtent::ranking_bound);
+    const VertexRemovalPlan between = plan(m, *other, PlanExtent::ranking_bound);
+    ASSERT_TRUE(between.accepted());
+    expect_same(plan(m, *request, PlanExtent::full, std::move(stale)), fresh);
+  }
+}
+
 }  // namespace
 }  // namespace plmap
