@@ -4,6 +4,7 @@
 
 #include "face_removal_rules.hpp"
 #include "map_graph_derivation.hpp"
+#include "stored_graph_offsets.hpp"
 
 #include <algorithm>
 #include <array>
@@ -33,29 +34,6 @@ struct ElementGraph {
     for (Index i = list_begin[static_cast<std::size_t>(local_a)]; i < list_begin[static_cast<std::size_t>(local_a) + 1]; ++i)
       if (neighbor[static_cast<std::size_t>(i)] == b) return i;
     return invalid_index;
-  }
-};
-
-/// Where each element of a stored graph begins in its arrays (one more entry than elements).
-struct StoredGraphOffsets {
-  std::vector<std::size_t> node, entry, edge_entry, region;
-
-  StoredGraphOffsets(const MapData<2>& m, const StoredGraph& g) {
-    const std::size_t n = g.element.size();
-    node.assign(n + 1, 0);
-    entry.assign(n + 1, 0);
-    edge_entry.assign(n + 1, 0);
-    region.assign(n + 1, 0);
-    for (std::size_t e = 0; e < n; ++e) {
-      const Index t = g.element[e];
-      const auto nodes = static_cast<std::size_t>(m.node_begin[t + 1] - m.node_begin[t]);
-      node[e + 1] = node[e] + nodes;
-      entry[e + 1] = entry[e];
-      for (std::size_t i = node[e]; i < node[e + 1]; ++i) entry[e + 1] += static_cast<std::size_t>(g.neighbor_count[i]);
-      edge_entry[e + 1] = edge_entry[e];
-      for (std::size_t k = 3 * e; k < 3 * e + 3; ++k) edge_entry[e + 1] += static_cast<std::size_t>(g.edge_node_count[k]);
-      region[e + 1] = region[e] + static_cast<std::size_t>(m.region_begin[t + 1] - m.region_begin[t]);
-    }
   }
 };
 

@@ -2,6 +2,8 @@
 #include <plmap/core/map_validation.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 
+#include "stored_graph_offsets.hpp"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -11,6 +13,8 @@
 namespace plmap {
 
 namespace {
+
+using detail::StoredGraphOffsets;
 
 /// The defect of one element; the message starts with the element so that the command line
 /// names it whatever the defect is.
@@ -47,40 +51,12 @@ bool near_reference_element(const LocalPoint<d>& x) {
   return barycentric_from_local<d>(x).minCoeff() >= -margin;
 }
 
-/// Where each element that stores its graph (PlMap::stored_graph) finds it: prefix sums over the
-/// stored elements of their nodes, neighbour entries, edge entries and regions. A triangle map's
-/// other elements derive their graph from their regions, which gives only indices of their own
-/// nodes and regions, so only the stored graph needs checking (and nothing is derived here).
-struct StoredGraphIndex {
-  std::vector<std::size_t> node, entry, edge, region;  // size stored elements + 1
-
-  template <int d>
-  explicit StoredGraphIndex(const PlMap<d>& map) {
-    const StoredGraph& g = map.stored_graph();
-    const std::size_t e = g.element.size();
-    node.assign(e + 1, 0);
-    entry.assign(e + 1, 0);
-    edge.assign(e + 1, 0);
-    region.assign(e + 1, 0);
-    for (std::size_t i = 0; i < e; ++i) {
-      const Index t = g.element[i];
-      node[i + 1] = node[i] + static_cast<std::size_t>(map.nodes_end(t) - map.nodes_begin(t));
-      region[i + 1] = region[i] + static_cast<std::size_t>(map.regions_end(t) - map.regions_begin(t));
-      entry[i + 1] = entry[i];
-      for (std::size_t n = node[i]; n < node[i + 1]; ++n) entry[i + 1] += static_cast<std::size_t>(g.neighbor_count[n]);
-      edge[i + 1] = edge[i];
-      for (std::size_t k = 3 * i; k < 3 * i + 3; ++k) edge[i + 1] += static_cast<std::size_t>(g.edge_node_count[k]);
-    }
-  }
-  /// The position of element t among the stored elements, or -1.
-  static std::ptrdiff_t find(const StoredGraph& g, Index t) {
-    const auto it = std::lower_bound(g.element.begin(), g.element.end(), t);
-    return it != g.element.end() && *it == t ? it - g.element.begin() : -1;
-  }
-};
+// Only the stored graph needs checking: a triangle map's other elements derive their graph from
+// their regions, which gives only indices of their own nodes and regions (nothing is derived
+// here). StoredGraphOffsets (stored_graph_offsets.hpp) says where each stored element's part is.
 
 template <int d>
-void validate_nodes(const PlMap<d>& map, const StoredGraphIndex& stored_graph, Index t) {
+void validate_nodes(const PlMap<d>& map, const StoredGraphOffsets& stored_graph, Index t) {
   const MapData<d>& m = map.stored();
   const Index first = map.nodes_begin(t), end = map.nodes_end(t);
   auto own = [&](Index q) { return q >= first && q < end; };
@@ -114,7 +90,7 @@ void validate_nodes(const PlMap<d>& map, const StoredGraphIndex& stored_graph, I
       for (Index j = m.neighbor_begin[n]; j < m.neighbor_begin[n + 1]; ++j) check_neighbor(n, m.neighbor[j]);
   } else {
     const StoredGraph& g = map.stored_graph();
-    const std::ptrdiff_t e = StoredGraphIndex::find(g, t);
+    const std::ptrdiff_t e = StoredGraphOffsets::find(g, t);
     if (e < 0) return;
     const auto i = static_cast<std::size_t>(e);
     std::size_t entry = stored_graph.entry[i];
@@ -122,7 +98,7 @@ void validate_nodes(const PlMap<d>& map, const StoredGraphIndex& stored_graph, I
       const auto count = static_cast<std::size_t>(g.neighbor_count[stored_graph.node[i] + static_cast<std::size_t>(n - first)]);
       for (std::size_t j = 0; j < count; ++j) check_neighbor(n, g.neighbor[entry++]);
     }
-    std::size_t edge = stored_graph.edge[i];
+    std::size_t edge = stored_graph.edge_entry[i];
     for (int k = 0; k < 3; ++k)
       for (Index j = 0; j < g.edge_node_count[3 * i + static_cast<std::size_t>(k)]; ++j) {
         const Index q = g.edge_node[edge++];
@@ -133,7 +109,7 @@ void validate_nodes(const PlMap<d>& map, const StoredGraphIndex& stored_graph, I
 }
 
 template <int d>
-void validate_regions(const PlMap<d>& map, const StoredGraphIndex& stored_graph, Index t) {
+void validate_regions(const PlMap<d>& map, const StoredGraphOffsets& stored_graph, Index t) {
   const MapData<d>& m = map.stored();
   // Region neighbours: stored by segment maps, and by the triangle map's elements that store
   // their graph (the others derive them, which gives only symmetric pairs of own regions).
@@ -141,7 +117,7 @@ void validate_regions(const PlMap<d>& map, const StoredGraphIndex& stored_graph,
   if constexpr (d == 1) {
     neighbors = m.region_neighbors.data() + map.regions_begin(t);
   } else {
-    const std::ptrdiff_t e = StoredGraphIndex::find(map.stored_graph(), t);
+    const std::ptrdiff_t e = StoredGraphOffsets::find(map.stored_graph(), t);
     if (e >= 0) neighbors = map.stored_graph().region_neighbors.data() + stored_graph.region[static_cast<std::size_t>(e)];
   }
   const Index first_node = map.nodes_begin(t), end_node = map.nodes_end(t);
@@ -176,7 +152,7 @@ constexpr std::size_t elements_per_validation_piece = 4096;
 template <int d>
 void validate_map_structure(const PlMap<d>& map, unsigned threads) {
   const auto elements = static_cast<std::size_t>(map.domain().element_count());
-  const StoredGraphIndex stored_graph(map);
+  const StoredGraphOffsets stored_graph(map.stored(), map.stored_graph());
   parallel_for_chunks(elements, elements_per_validation_piece, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t) {
       validate_nodes(map, stored_graph, static_cast<Index>(t));
