@@ -3,6 +3,7 @@
 // regions close a fan, and nothing for the others (the smoothing skips those as open stars).
 
 #include "free_node_fans.hpp"
+#include "simplified_spheres.hpp"
 
 #include <plmap/construct/simplify.hpp>
 #include <plmap/verify/generators/closed_surfaces.hpp>
@@ -58,12 +59,8 @@ RC_GTEST_PROP(FreeNodeFans, AgreeWithTheDerivedNeighboursOnSimplifiedSpheres, ()
   const int subdivisions = *rc::gen::inRange(1, 3);
   const int jitter_percent = *rc::gen::inRange(0, 25);
   const auto seed = *rc::gen::arbitrary<std::uint32_t>();
-  generators::Rng rng(seed);
-  auto fine = std::make_shared<const Surface<2>>(generators::icosphere({subdivisions, jitter_percent / 100.0}, rng));
-  SimplifyOptions so;
-  so.target_elements = std::max<Index>(8, fine->element_count() * *rc::gen::inRange(10, 60) / 100);
-  so.feature_angle_degrees = 180.0;
-  const SimplifyResult simplified = simplify(fine, so);
+  const int percent = *rc::gen::inRange(10, 60);
+  const SimplifyResult simplified = simplify_test::simplified_sphere(subdivisions, jitter_percent / 100.0, seed, percent);
   RC_ASSERT(check_fans_against_neighbors(simplified.map) > 0);
 }
 

@@ -6,6 +6,7 @@
 #include "preimage_graph.hpp"
 #include "quad_smoothing.hpp"
 #include "region_condition.hpp"
+#include "simplified_spheres.hpp"
 
 #include <plmap/construct/simplify.hpp>
 #include <plmap/verify/generators/closed_surfaces.hpp>
@@ -55,12 +56,7 @@ RC_GTEST_PROP(QuadrilateralPassReplay, RepeatedPassEqualsAPassFromScratch, ()) {
   const auto seed = *rc::gen::arbitrary<std::uint32_t>();
   const int percent = *rc::gen::inRange(10, 60);
   RC_LOG() << "icosphere " << subdivisions << " jitter " << jitter_percent << "% seed " << seed << " to " << percent << "%\n";
-  generators::Rng rng(seed);
-  auto fine = std::make_shared<const Surface<2>>(generators::icosphere({subdivisions, jitter_percent / 100.0}, rng));
-  SimplifyOptions so;
-  so.target_elements = std::max<Index>(8, fine->element_count() * percent / 100);
-  so.feature_angle_degrees = 180.0;
-  const SimplifyResult s = simplify(fine, so);
+  const SimplifyResult s = simplify_test::simplified_sphere(subdivisions, jitter_percent / 100.0, seed, percent);
   std::string why;
   const auto start = PreimageGraph::from_map(s.map, &why);
   RC_ASSERT(start.has_value());

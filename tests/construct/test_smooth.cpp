@@ -2,6 +2,8 @@
 // boundaries and everything but positions and region maps unchanged; closed forms on known
 // configurations; κ_Ξ falls on a simplified sphere.
 
+#include "simplified_spheres.hpp"
+
 #include <plmap/construct/simplify.hpp>
 #include <plmap/construct/smooth.hpp>
 #include <plmap/core/errors.hpp>
@@ -66,12 +68,8 @@ RC_GTEST_PROP(SmoothProperties, SimplifiedSpheresStayValidParametrizations, ()) 
   const int jitter_percent = *rc::gen::inRange(0, 25);
   const auto seed = *rc::gen::arbitrary<std::uint32_t>();
   RC_LOG() << "icosphere " << subdivisions << " jitter " << jitter_percent << "% seed " << seed << "\n";
-  generators::Rng rng(seed);
-  auto fine = std::make_shared<const Surface<2>>(generators::icosphere({subdivisions, jitter_percent / 100.0}, rng));
-  SimplifyOptions so;
-  so.target_elements = std::max<Index>(8, fine->element_count() * *rc::gen::inRange(10, 60) / 100);
-  so.feature_angle_degrees = 180.0;
-  const SimplifyResult simplified = simplify(fine, so);
+  const int percent = *rc::gen::inRange(10, 60);
+  const SimplifyResult simplified = simplify_test::simplified_sphere(subdivisions, jitter_percent / 100.0, seed, percent);
   SmoothOptions options;
   options.quadrilaterals = false;
   options.weights = *rc::gen::elementOf(weight_models);

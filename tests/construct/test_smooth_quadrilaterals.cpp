@@ -5,6 +5,7 @@
 
 #include "preimage_graph.hpp"
 #include "quad_smoothing.hpp"
+#include "simplified_spheres.hpp"
 #include "simplify_test_support.hpp"
 
 #include <plmap/construct/simplify.hpp>
@@ -31,14 +32,7 @@ using smoothing::QuadSmoother;
 
 const std::vector<std::string> weight_models = {"floater", "mean-value", "uniform"};
 
-SimplifyResult simplified_sphere(int subdivisions, double jitter, std::uint32_t seed, int percent) {
-  generators::Rng rng(seed);
-  auto fine = std::make_shared<const Surface<2>>(generators::icosphere({subdivisions, jitter}, rng));
-  SimplifyOptions so;
-  so.target_elements = std::max<Index>(8, fine->element_count() * percent / 100);
-  so.feature_angle_degrees = 180.0;
-  return simplify(fine, so);
-}
+using simplify_test::simplified_sphere;
 
 bool verified_parametrization(const PlMap<2>& map) {
   VerifyOptions v;
