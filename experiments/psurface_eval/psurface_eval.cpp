@@ -48,11 +48,13 @@
 #include <malloc.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -412,7 +414,76 @@ Json measure_psurface(const PSurfaceMap<ctype>& psm, const PlMap<2>& map,
   return result;
 }
 
-Json run_case(const Case& c, std::size_t query_count) {
+/// PSurface<2,double>::map(), plmap's cell-grid locator and the region-known floor, timed in
+/// turns on one query stream: round r runs the three one after the other, in an order that
+/// rotates with r, so a slow spell of the shared machine falls on every one of them alike.
+/// Reported per contender: the best round (the least disturbed pass) and, per round, plmap's
+/// rate over the other two measured seconds apart; the median of those ratios is the figure
+/// least moved by load that drifts between the phases of a run.
+Json interleaved_rates(const PSurfaceMap<double>& psm, const PlMap<2>& map,
+                       const std::vector<SurfacePoint<2>>& queries,
+                       const std::vector<Evaluation<2>>& reference, int rounds) {
+  const auto& ps = *psm.psurface;
+  std::vector<psurface::StaticVector<double, 2>> local(queries.size());
+  for (std::size_t i = 0; i < queries.size(); ++i) local[i] = to_psurface_local<double>(queries[i].local);
+  std::vector<std::tr1::array<int, 3>> vertices(queries.size());
+  std::vector<psurface::StaticVector<double, 2>> coords(queries.size());
+  std::vector<char> ok(queries.size());
+  std::vector<Evaluation<2>> out(queries.size());
+  // The floor evaluates the in-domain queries in their known region; the other two are timed
+  // on the same subset so that the three do the same number of evaluations.
+  std::vector<std::size_t> inside;
+  for (std::size_t i = 0; i < queries.size(); ++i)
+    if (reference[i].in_domain) inside.push_back(i);
+  std::vector<SurfacePoint<2>> inside_queries;
+  for (const std::size_t i : inside) inside_queries.push_back(queries[i]);
+  std::vector<Evaluation<2>> inside_out(inside.size());
+
+  std::array<std::vector<double>, 3> seconds;  // psurface, cell-grid, floor
+  with_point_locator<2>("cell-grid", [&](auto& locator) {
+    prepare_point_locator<2>(locator, map);
+    const std::array<std::function<void()>, 3> work = {
+        [&] {
+          peers::QuietStdout quiet;
+          for (const std::size_t i : inside) ok[i] = ps.map(queries[i].element, local[i], vertices[i], coords[i]);
+        },
+        [&] { evaluate_batch<2>(map, inside_queries, inside_out, locator, 1); },
+        [&] {
+          for (const std::size_t i : inside)
+            out[i] = evaluate_in_region(map, reference[i].region, queries[i].local);
+        }};
+    for (int r = 0; r < rounds; ++r)
+      for (int k = 0; k < 3; ++k) {
+        const int who = (r + k) % 3;
+        const double t0 = peers::process_cpu_seconds();
+        work[who]();
+        seconds[who].push_back(peers::process_cpu_seconds() - t0);
+      }
+  });
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+  };
+  std::vector<double> over_psurface, over_floor;
+  for (int r = 0; r < rounds; ++r) {
+    over_psurface.push_back(seconds[0][r] / seconds[1][r]);
+    over_floor.push_back(seconds[1][r] / seconds[2][r]);
+  }
+  const double n = double(inside.size());
+  auto best = [&](int who) { return n / *std::min_element(seconds[who].begin(), seconds[who].end()); };
+  return {{"rounds", rounds},
+          {"evaluations_per_round", inside.size()},
+          {"psurface_double_best_evals_per_cpu_s", best(0)},
+          {"cell_grid_best_evals_per_cpu_s", best(1)},
+          {"floor_best_evals_per_cpu_s", best(2)},
+          {"cell_grid_over_psurface_median_of_rounds", median(over_psurface)},
+          {"cell_grid_over_psurface_min_of_rounds", *std::min_element(over_psurface.begin(), over_psurface.end())},
+          {"cell_grid_over_psurface_max_of_rounds", *std::max_element(over_psurface.begin(), over_psurface.end())},
+          {"cell_grid_time_over_floor_median_of_rounds", median(over_floor)},
+          {"cell_grid_time_over_floor_max_of_rounds", *std::max_element(over_floor.begin(), over_floor.end())}};
+}
+
+Json run_case(const Case& c, std::size_t query_count, int rounds) {
   const PlMap<2>& map = *c.map;
   const auto queries = bench::random_queries(map.domain(), query_count, 12345);
   std::vector<Evaluation<2>> out(queries.size()), reference(queries.size());
@@ -501,6 +572,7 @@ Json run_case(const Case& c, std::size_t query_count) {
   {
     auto psm = build_psurface<double>(map);
     result["psurface"].push_back(measure_psurface(psm, map, queries, reference, "PSurface<2,double>"));
+    if (rounds > 0) result["interleaved"] = interleaved_rates(psm, map, queries, reference, rounds);
   }
   {
     auto psm = build_psurface<float>(map);
@@ -526,6 +598,25 @@ void print_markdown(const Json& report) {
     };
     for (const auto& p : r["psurface"]) row(p["label"].get<std::string>() + "::map()", p["evals_per_cpu_s"], false);
     for (const auto& [name, l] : r["plmap"].items()) row("plmap " + name, l["evals_per_cpu_s"], true);
+  }
+
+  if (report["cases"][0].contains("interleaved")) {
+    fmt::print("\n| map | rounds | best Meval/CPU-s: PSurface<double> / cell-grid / floor | cell-grid / "
+               "PSurface<double>, per round: median (min–max) | cell-grid time / floor, per round: "
+               "median (max) |\n|---|---:|---|---|---|\n");
+    for (const auto& r : report["cases"]) {
+      const auto& i = r["interleaved"];
+      fmt::print("| {} | {} | {:.3f} / {:.3f} / {:.3f} | {:.1f} ({:.1f}–{:.1f}) | {:.2f} ({:.2f}) |\n",
+                 r["case"].get<std::string>(), i["rounds"].get<int>(),
+                 i["psurface_double_best_evals_per_cpu_s"].get<double>() / 1e6,
+                 i["cell_grid_best_evals_per_cpu_s"].get<double>() / 1e6,
+                 i["floor_best_evals_per_cpu_s"].get<double>() / 1e6,
+                 i["cell_grid_over_psurface_median_of_rounds"].get<double>(),
+                 i["cell_grid_over_psurface_min_of_rounds"].get<double>(),
+                 i["cell_grid_over_psurface_max_of_rounds"].get<double>(),
+                 i["cell_grid_time_over_floor_median_of_rounds"].get<double>(),
+                 i["cell_grid_time_over_floor_max_of_rounds"].get<double>());
+    }
   }
 
   fmt::print("\n| map | library | PSurface closure | compared | agree 1e-9 | agree 1e-6 | agree 1e-3 | "
@@ -599,6 +690,7 @@ int main(int argc, char** argv) {
   std::string femur_path, json_path;
   std::vector<std::string> map_paths;
   bool sphere = true;
+  int rounds = 9;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--queries" && i + 1 < argc) query_count = std::stoul(argv[++i]);
@@ -606,9 +698,10 @@ int main(int argc, char** argv) {
     else if (a == "--map" && i + 1 < argc) map_paths.emplace_back(argv[++i]);
     else if (a == "--json" && i + 1 < argc) json_path = argv[++i];
     else if (a == "--no-sphere") sphere = false;
+    else if (a == "--rounds" && i + 1 < argc) rounds = std::stoi(argv[++i]);
     else {
       fmt::print(stderr, "usage: {} [--femur femur.off] [--map file.plmap]... [--no-sphere] "
-                 "[--queries N] [--json out.json]\n", argv[0]);
+                 "[--queries N] [--rounds R] [--json out.json]\n", argv[0]);
       return 2;
     }
   }
@@ -642,7 +735,7 @@ int main(int argc, char** argv) {
     report["queries"] = query_count;
     for (const auto& c : cases) {
       fmt::print(stderr, "measuring {} ...\n", c.name);
-      report["cases"].push_back(run_case(c, query_count));
+      report["cases"].push_back(run_case(c, query_count, rounds));
     }
     print_markdown(report);
     if (!json_path.empty()) std::ofstream(json_path) << report.dump(2) << "\n";
