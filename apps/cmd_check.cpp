@@ -75,19 +75,30 @@ std::string ray_summary(const Json& j) {
   const auto& by = j["missed"]["by_reason"];
   const auto& e = j["image_error_relative_to_edge"];
   const auto f = [&](const char* reason) { return by[reason]["fraction"].get<double>(); };
+  const auto x = [&](const char* reason) { return j["extra"]["by_reason"][reason]["fraction"].get<double>(); };
+  // The map file does not record the projection's options: a map projected with other ones than
+  // the check was given shows as extra area on the ray, which this line points out.
+  const bool rejected = x("behind_domain") + x("beyond_distance_limit") + x("against_normal_check") > 0.0;
+  const std::string rules_hint =
+      rejected ? "    note: the map puts parts of D where this check's rules reject the ray's hit; check with the "
+                 "options the map was projected with (--allow-negative, --max-distance, --normal-check)\n"
+               : "";
   return fmt::format(
       "against rays ({} samples): {}\n"
       "  missed {:.3g} of S1, defects {:.3g}\n"
       "    outside D for a reason: nearer sheet {:.3g}, S1 in between {:.3g}, S2 seen twice {:.3g}, past a focal "
       "point {:.3g}\n"
       "    defects: farther sheet {:.3g}, next to a fold {:.3g}, not covered {:.3g}\n"
-      "  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, unexplained {:.3g})\n"
+      "  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, unexplained {:.3g}; rejected by this check's rules: "
+      "behind S1 {:.3g}, beyond the distance limit {:.3g}, against the normal check {:.3g})\n"
+      "{}"
       "  image error / S2 edge length: median {:.3g}, p99 {:.3g}, max {:.3g}\n",
       j["samples"].get<std::size_t>(), j["ok"].get<bool>() ? "ok" : "FAILED", j["missed"]["fraction"].get<double>(),
       j["missed"]["defect_fraction"].get<double>(), f("nearer_sheet"), f("domain_in_between"),
       f("target_seen_twice"), f("past_focal_point"), f("farther_sheet"), f("next_to_fold"), f("not_covered"),
       j["extra"]["fraction"].get<double>(), j["extra"]["by_reason"]["beyond_target_boundary"]["fraction"].get<double>(),
-      j["extra"]["by_reason"]["unexplained"]["fraction"].get<double>(), e["median"].get<double>(),
+      j["extra"]["by_reason"]["unexplained"]["fraction"].get<double>(), x("behind_domain"),
+      x("beyond_distance_limit"), x("against_normal_check"), rules_hint, e["median"].get<double>(),
       e["p99"].get<double>(), e["max"].get<double>());
 }
 

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 using namespace plmap;
 using namespace plmap::test;
@@ -113,4 +114,50 @@ TEST(RayCheckReasons, FoldsAtAValleyCrease) {
       EXPECT_LT(from_crease, 2 * h + 1e-9);
     }
   }
+}
+
+namespace {
+
+double extra_fraction_of(const RayCheckReport<2>& r, ExtraReason reason) {
+  return r.fraction(r.extra_by_reason[static_cast<std::size_t>(reason)]);
+}
+
+}  // namespace
+
+TEST(RayCheckReasons, ExtraAreaWhereTheChecksOwnRulesRejectTheImage) {
+  // The map file does not record the projection's options. A map projected with options the
+  // check is not given covers S1 where the check's rays find no admissible hit; the check names
+  // the rule that rejects Xi(x), and with the projection's own options finds no extra area.
+  auto s1 = grid(10, 10, 0, 1, 0, 1, 0.0);
+  RayCheckOptions<2> o;
+  o.directions = averaged_vertex_normals(*s1);
+  o.samples = 5000;
+
+  // S2 below S1, projected with negative distances allowed.
+  const auto below = project<2>(s1, grid(13, 13, -0.1, 1.1, -0.1, 1.1, -0.2), ProjectionOptions{.allow_negative_distance = true});
+  ASSERT_GT(below.map.region_count(), 0);
+  auto r = check_against_rays(below.map, o);
+  EXPECT_EQ(r.extra, r.samples);
+  EXPECT_EQ(extra_fraction_of(r, ExtraReason::behind_domain), 1.0);
+  EXPECT_EQ(r.extra_rejected_by_rules(), r.samples);
+  EXPECT_EQ(r.extra_defects(), r.samples);
+  o.allow_negative_distance = true;
+  r = check_against_rays(below.map, o);
+  EXPECT_EQ(r.extra, 0u);
+  EXPECT_EQ(r.in_domain_with_hit, r.samples);
+  o.allow_negative_distance = false;
+
+  // S2 0.3 above S1, its normals pointing up (aligned with the rays), projected with no limit
+  // and no normal test: a check with a limit of 0.1 or with the facing test rejects every hit.
+  const auto above = project<2>(s1, grid(13, 13, -0.1, 1.1, -0.1, 1.1, 0.3), ProjectionOptions{});
+  o.max_distance = 0.1;
+  r = check_against_rays(above.map, o);
+  EXPECT_EQ(extra_fraction_of(r, ExtraReason::beyond_distance_limit), 1.0);
+  o.max_distance = std::numeric_limits<double>::infinity();
+  o.normal_check = RayNormalCheck::facing;
+  r = check_against_rays(above.map, o);
+  EXPECT_EQ(extra_fraction_of(r, ExtraReason::against_normal_check), 1.0);
+  o.normal_check = RayNormalCheck::aligned;
+  r = check_against_rays(above.map, o);
+  EXPECT_EQ(r.extra, 0u);
 }

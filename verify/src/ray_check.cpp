@@ -38,6 +38,9 @@ std::string_view to_string(ExtraReason reason) {
   switch (reason) {
     case ExtraReason::beyond_target_boundary: return "beyond_target_boundary";
     case ExtraReason::unexplained: return "unexplained";
+    case ExtraReason::behind_domain: return "behind_domain";
+    case ExtraReason::beyond_distance_limit: return "beyond_distance_limit";
+    case ExtraReason::against_normal_check: return "against_normal_check";
   }
   return "unknown";
 }
@@ -246,7 +249,7 @@ class RayChecker {
       ++report.extra;
       const Evaluation<d> e = evaluate_in_region(map_, region, xi);
       const std::optional<double> sliver = beyond_target_boundary(x, nu, e);
-      const ExtraReason reason = sliver ? ExtraReason::beyond_target_boundary : ExtraReason::unexplained;
+      const ExtraReason reason = sliver ? ExtraReason::beyond_target_boundary : rule_rejecting_image(x, nu, e);
       if (sliver) errors.push_back(*sliver);
       ++report.extra_by_reason[static_cast<std::size_t>(reason)];
       if (report.extra_examples.size() < o_.max_listed)
@@ -291,6 +294,26 @@ class RayChecker {
     }
     if (!outside) return std::nullopt;
     return (lifted<d>(q) - lifted<d>(e.world)).norm() / mean_edge_length(s2_, tau);
+  }
+
+  /// For a sample in D without an admissible hit: if Xi(x) lies on the ray (within half the
+  /// mean edge length of its S2 element), the acceptance rule of the check that rejects it as a
+  /// hit (negative distance, the distance limit, the normal test); else unexplained.
+  ExtraReason rule_rejecting_image(const WorldPoint<d>& x, const WorldPoint<d>& nu, const Evaluation<d>& e) const {
+    const double nn = nu.squaredNorm();
+    if (!(nn > 0.0)) return ExtraReason::unexplained;
+    const double mu = (e.world - x).dot(nu) / nn;
+    const double edge = mean_edge_length(s2_, e.image.element);
+    if (!((e.world - (x + mu * nu)).norm() <= 0.5 * edge)) return ExtraReason::unexplained;
+    const double slack = 1e-9 * edge;
+    if (!o_.allow_negative_distance && mu < -slack) return ExtraReason::behind_domain;
+    if (!(std::abs(mu) <= limit_ + slack)) return ExtraReason::beyond_distance_limit;
+    if (o_.normal_check != RayNormalCheck::none) {
+      const double c = nu.dot(s2_.element_normal(e.image.element));
+      if (o_.normal_check == RayNormalCheck::facing ? !(c < 0.0) : !(c > 0.0))
+        return ExtraReason::against_normal_check;
+    }
+    return ExtraReason::unexplained;
   }
 
   /// The admissible hit with the smallest mu (|mu| with negative distances), if any.
@@ -517,7 +540,8 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
                  {"by_reason", by_reason},
                  {"examples", examples(r.missed_examples, true)}};
   nlohmann::json extra_by_reason = nlohmann::json::object();
-  for (ExtraReason reason : {ExtraReason::beyond_target_boundary, ExtraReason::unexplained}) {
+  for (ExtraReason reason : {ExtraReason::beyond_target_boundary, ExtraReason::unexplained, ExtraReason::behind_domain,
+                             ExtraReason::beyond_distance_limit, ExtraReason::against_normal_check}) {
     const std::size_t n = r.extra_by_reason[static_cast<std::size_t>(reason)];
     extra_by_reason[std::string(to_string(reason))] = {{"samples", n}, {"fraction", r.fraction(n)}};
   }

@@ -103,7 +103,20 @@ enum class ExtraReason {
   beyond_target_boundary,
   /// Anything else. A defect.
   unexplained,
+  /// Xi(x) lies on the ray (within half an edge length of the S2 element it is on), but behind
+  /// S1 (mu < 0) while the check does not allow negative distances. The map file does not record
+  /// the options the map was projected with; a map projected with --allow-negative shows this
+  /// when it is checked without. Counted as a defect: the check cannot tell a wrong map from
+  /// wrong options.
+  behind_domain,
+  /// Xi(x) lies on the ray, beyond the check's distance limit (as behind_domain, for
+  /// --max-distance).
+  beyond_distance_limit,
+  /// Xi(x) lies on the ray, on an S2 element that the check's normal test rejects (as
+  /// behind_domain, for --normal-check).
+  against_normal_check,
 };
+constexpr std::size_t extra_reason_count = 5;
 std::string_view to_string(ExtraReason reason);
 
 /// One sample listed in the report.
@@ -128,7 +141,7 @@ struct RayCheckReport {
   /// missed samples by MissedReason (index = enum value)
   std::array<std::size_t, missed_reason_count> missed_by_reason{};
   /// extra samples by ExtraReason (index = enum value)
-  std::array<std::size_t, 2> extra_by_reason{};
+  std::array<std::size_t, extra_reason_count> extra_by_reason{};
   /// Image error |Xi(x) - hit| / mean edge length of the S2 element hit, over the samples in D
   /// with a hit and the extra samples beyond S2's boundary (0 if there are none).
   double error_median = 0.0, error_p99 = 0.0, error_max = 0.0;
@@ -143,7 +156,17 @@ struct RayCheckReport {
            missed_by_reason[static_cast<std::size_t>(MissedReason::next_to_fold)];
   }
   /// Extra samples not explained by the interpolation at S2's boundary.
-  std::size_t extra_defects() const { return extra_by_reason[1]; }
+  std::size_t extra_defects() const {
+    return extra - extra_by_reason[static_cast<std::size_t>(ExtraReason::beyond_target_boundary)];
+  }
+  /// Extra samples that the map puts where the check's own acceptance rules reject the hit
+  /// (behind_domain, beyond_distance_limit, against_normal_check): a sign that the map was
+  /// projected with other options than the check was given.
+  std::size_t extra_rejected_by_rules() const {
+    return extra_by_reason[static_cast<std::size_t>(ExtraReason::behind_domain)] +
+           extra_by_reason[static_cast<std::size_t>(ExtraReason::beyond_distance_limit)] +
+           extra_by_reason[static_cast<std::size_t>(ExtraReason::against_normal_check)];
+  }
 };
 
 /// Runs the ray check. Throws plmap::Error if the directions do not fit S1 or max_distance is
