@@ -92,14 +92,14 @@ std::string ray_summary(const Json& j) {
       "  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, unexplained {:.3g}; rejected by this check's rules: "
       "behind S1 {:.3g}, beyond the distance limit {:.3g}, against the normal check {:.3g})\n"
       "{}"
-      "  image error / S2 edge length: median {:.3g}, p99 {:.3g}, max {:.3g}\n",
+      "  image error / S2 edge length: median {:.3g}, p99 {:.3g}, max {:.3g}; above 1 {:.3g} of S1\n",
       j["samples"].get<std::size_t>(), j["ok"].get<bool>() ? "ok" : "FAILED", j["missed"]["fraction"].get<double>(),
       j["missed"]["defect_fraction"].get<double>(), f("nearer_sheet"), f("domain_in_between"),
       f("target_seen_twice"), f("past_focal_point"), f("farther_sheet"), f("next_to_fold"), f("not_covered"),
       j["extra"]["fraction"].get<double>(), j["extra"]["by_reason"]["beyond_target_boundary"]["fraction"].get<double>(),
       j["extra"]["by_reason"]["unexplained"]["fraction"].get<double>(), x("behind_domain"),
       x("beyond_distance_limit"), x("against_normal_check"), rules_hint, e["median"].get<double>(),
-      e["p99"].get<double>(), e["max"].get<double>());
+      e["p99"].get<double>(), e["max"].get<double>(), e["fraction_above_one"].get<double>());
 }
 
 int run_check(const CheckOptions& o) {

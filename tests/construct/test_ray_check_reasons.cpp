@@ -161,3 +161,26 @@ TEST(RayCheckReasons, ExtraAreaWhereTheChecksOwnRulesRejectTheImage) {
   r = check_against_rays(above.map, o);
   EXPECT_EQ(r.extra, 0u);
 }
+
+TEST(RayCheckReasons, ImagesMoreThanAnEdgeFromTheHitAreCounted) {
+  // Projected along a tilted constant field onto a plane 1 above, Xi(x) lies 0.5 to the side of
+  // the hit of a vertical ray, five S2 edge lengths: checked along the vertical, every sample in
+  // D counts as above one edge; checked along the projection's own field, none does.
+  auto s1 = grid(10, 10, 0, 1, 0, 1, 0.0);
+  auto s2 = grid(20, 20, -1, 2, -1, 2, 1.0, true);  // edge length 0.15
+  ProjectionOptions po;
+  po.directions = constant_directions(*s1, WorldPoint<2>(0.5, 0, 1));
+  const auto map = project<2>(s1, s2, po).map;
+  RayCheckOptions<2> o;
+  o.samples = 4000;
+  o.directions = directions_from_values(*s1, po.directions);
+  auto r = check_against_rays(map, o);
+  EXPECT_EQ(r.in_domain_with_hit, r.samples);
+  EXPECT_EQ(r.error_above_one_edge, 0u);
+  EXPECT_LT(r.error_max, 1e-9);
+  o.directions = averaged_vertex_normals(*s1);
+  r = check_against_rays(map, o);
+  EXPECT_EQ(r.in_domain_with_hit, r.samples);
+  EXPECT_EQ(r.error_above_one_edge, r.samples);
+  EXPECT_GT(r.error_median, 2.0);
+}

@@ -230,6 +230,8 @@ class RayChecker {
       report.error_median = at(0.5);
       report.error_p99 = at(0.99);
       report.error_max = errors.back();
+      report.error_above_one_edge = static_cast<std::size_t>(
+          errors.end() - std::upper_bound(errors.begin(), errors.end(), 1.0));
     }
     return report;
   }
@@ -552,7 +554,11 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
                 {"examples", examples(r.extra_examples, false)}};
   j["in_domain_with_hit"] = r.in_domain_with_hit;
   j["neither"] = r.neither;
-  j["image_error_relative_to_edge"] = {{"median", r.error_median}, {"p99", r.error_p99}, {"max", r.error_max}};
+  j["image_error_relative_to_edge"] = {{"median", r.error_median},
+                                       {"p99", r.error_p99},
+                                       {"max", r.error_max},
+                                       {"samples_above_one", r.error_above_one_edge},
+                                       {"fraction_above_one", r.fraction(r.error_above_one_edge)}};
   return j;
 }
 

@@ -145,6 +145,11 @@ struct RayCheckReport {
   /// Image error |Xi(x) - hit| / mean edge length of the S2 element hit, over the samples in D
   /// with a hit and the extra samples beyond S2's boundary (0 if there are none).
   double error_median = 0.0, error_p99 = 0.0, error_max = 0.0;
+  /// Of those, the samples whose image lies more than one edge length from the hit: Xi(x) lies
+  /// on another part of S2 than the ray's nearest admissible hit (another sheet), or the
+  /// projection stretches so much there (next to a focal point) that the piecewise-linear
+  /// interpolation is off by more than an edge. 0 on the contact pairs of experiments/.
+  std::size_t error_above_one_edge = 0;
   std::vector<RaySample<d>> missed_examples, extra_examples;
 
   double fraction(std::size_t count) const { return samples ? double(count) / double(samples) : 0.0; }
