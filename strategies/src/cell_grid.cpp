@@ -63,12 +63,33 @@ Index CellGrid::walk(const ElementGrid& e, const LocalPoint<2>& p, Index region)
   return scan(e, p);
 }
 
+bool CellGrid::on_element_boundary(const LocalPoint<2>& a, const LocalPoint<2>& b) {
+  static const LocalPoint<2> corner1(1, 0), corner2(0, 1);
+  return (a.x() == 0 && b.x() == 0) || (a.y() == 0 && b.y() == 0) ||
+         (orient2d(corner1, corner2, a) == 0 && orient2d(corner1, corner2, b) == 0);
+}
+
+bool CellGrid::holds_within_element(Index region, const std::array<LocalPoint<2>, 4>& box) const {
+  const RegionRecord& r = records_[static_cast<std::size_t>(region)];
+  for (int k = 0; k < 3; ++k) {
+    const LocalPoint<2>& a = r.corner[static_cast<std::size_t>(next_corner[k])];
+    const LocalPoint<2>& b = r.corner[static_cast<std::size_t>(next_corner[k + 1])];
+    if (on_element_boundary(a, b)) continue;
+    for (const LocalPoint<2>& c : box)
+      if (orient2d(a, b, c) < 0) return false;
+  }
+  return true;
+}
+
 unsigned CellGrid::certify(Index region, const std::array<LocalPoint<2>, 4>& box) const {
   const auto inside = [&](Index r) {
     return std::all_of(box.begin(), box.end(), [&](const LocalPoint<2>& c) { return contains(r, c); });
   };
-  // Regions are convex: the widened square is inside when its four corners are.
-  if (inside(region)) return whole_cell;
+  // Regions are convex: the widened square is inside when its four corners are. A cell at the
+  // element's boundary reaches outside the reference triangle, where no region is; but the
+  // queries a certified cell answers lie inside it (locate() checks), so there the region only
+  // has to hold the cell on the inner side of its sides that are not the triangle's own.
+  if (inside(region) || holds_within_element(region, box)) return whole_cell;
   const RegionRecord& r = records_[static_cast<std::size_t>(region)];
   for (int k = 0; k < 3; ++k) {
     const Index other = r.neighbor[static_cast<std::size_t>(k)];

@@ -10,6 +10,9 @@
 /// by a margin far larger than the rounding of the cell index computed from a query, is
 /// classified with the exact orient2d on its corners (regions are convex):
 /// - whole: it lies in one region, which is the answer for every query landing in the cell;
+///   at the element's boundary, where the cell reaches outside the reference triangle, it lies
+///   in one region as far as it lies in the triangle (the region's sides on the triangle's
+///   edges are not tested), and a query is answered from it only if it lies in the triangle;
 /// - split: it lies in the union of a region and its neighbour across one side, and that union
 ///   is convex, so the side's line divides the cell between the two: one orient2d answers;
 /// - start: anything else; the query walks from the region covering most of the cell.
@@ -82,8 +85,12 @@ class CellGrid {
     const unsigned kind = cell & kind_mask;
     const Index region = e.first_region + static_cast<Index>(cell >> kind_bits);
     // Certified cells may answer only when p really maps to this cell: u and v were not clamped
-    // (this also rejects NaN) and the cell is one of the stored ones.
-    const bool in_cell = u >= 0 && v >= 0 && u < e.scale && v < e.scale && j == j_in_square;
+    // (this also rejects NaN) and the cell is one of the stored ones. A cell whose widened square
+    // crosses the slanted edge of the reference triangle (i + j >= G - 2) may be certified for
+    // its part inside the triangle only, so there p must also lie on the inner side of that
+    // edge (the other two are u >= 0, v >= 0).
+    const bool in_cell = u >= 0 && v >= 0 && u < e.scale && v < e.scale && j == j_in_square &&
+                         (i + j + 2 < e.side || orient2d(slanted_edge_from, slanted_edge_to, p) >= 0);
     if (kind <= whole_cell && in_cell) [[likely]] {
       if (kind == whole_cell) return region;
       // A split cell: p is in `region` on its side of the shared side's line, else in the
@@ -112,6 +119,8 @@ class CellGrid {
   /// start walks from a lower one instead).
   static constexpr Index max_cell_offset = (1 << (16 - kind_bits)) - 1;
   static constexpr std::array<int, 4> next_corner = {1, 2, 0, 1};
+  // The slanted edge of the reference triangle, from corner 1 to corner 2.
+  static inline const LocalPoint<2> slanted_edge_from{1.0, 0.0}, slanted_edge_to{0.0, 1.0};
 
   struct alignas(64) RegionRecord {
     std::array<Eigen::Vector2d, 3> corner;
@@ -140,6 +149,13 @@ class CellGrid {
   /// How the widened cell with corners `box` relates to `region`, which contains its centre:
   /// whole_cell, a side k splitting it between region and that neighbour, or start_cell.
   unsigned certify(Index region, const std::array<LocalPoint<2>, 4>& box) const;
+  /// Whether the widened cell `box` lies on the inner side of each side of `region` that is not
+  /// on the reference triangle's boundary: then the region holds every point of the cell that
+  /// lies in the triangle.
+  bool holds_within_element(Index region, const std::array<LocalPoint<2>, 4>& box) const;
+  /// Whether the segment a b lies on an edge of the reference triangle (x = 0, y = 0 or
+  /// x + y = 1, exactly).
+  static bool on_element_boundary(const LocalPoint<2>& a, const LocalPoint<2>& b);
   /// The start region for an uncertified cell (i, j): the one covering most of it.
   Index most_covering(const ElementGrid& e, int i, int j, Index near) const;
 
