@@ -48,9 +48,10 @@ struct Evaluation {
   WorldPoint<d> world = WorldPoint<d>::Zero();  ///< Xi(p) in world coordinates
 };
 
-/// Image of a point that is known to lie in `region`.
+/// Image of a point that is known to lie in `region`. Inlined into the query loops, where it is
+/// half of a query's work and the call would copy its result through the stack.
 template <int d>
-Evaluation<d> evaluate_in_region(const PlMap<d>& map, Index region, const LocalPoint<d>& local) {
+[[gnu::always_inline]] inline Evaluation<d> evaluate_in_region(const PlMap<d>& map, Index region, const LocalPoint<d>& local) {
   Evaluation<d> e;
   e.in_domain = true;
   e.region = region;
