@@ -64,7 +64,8 @@ std::pair<Json, bool> ray_check(const PlMap<d>& map, const CheckOptions& o) {
   options.max_listed = o.max_reported;
   const RayCheckReport<d> report = check_against_rays(map, options);
   const bool ok = report.fraction(report.missed_defects()) <= o.ray_tolerance &&
-                  report.fraction(report.extra_defects()) <= o.ray_tolerance;
+                  report.fraction(report.extra_defects()) <= o.ray_tolerance &&
+                  report.fraction(report.in_domain_defects()) <= o.ray_tolerance;
   Json j = to_json(report);
   j["tolerance"] = o.ray_tolerance;
   j["ok"] = ok;
@@ -76,6 +77,9 @@ std::string ray_summary(const Json& j) {
   const auto& e = j["image_error_relative_to_edge"];
   const auto f = [&](const char* reason) { return by[reason]["fraction"].get<double>(); };
   const auto x = [&](const char* reason) { return j["extra"]["by_reason"][reason]["fraction"].get<double>(); };
+  const auto a = [&](const char* reason) {
+    return j["image_error_relative_to_edge"]["above_one_by_reason"][reason]["fraction"].get<double>();
+  };
   // The map file does not record the projection's options: a map projected with other ones than
   // the check was given shows as extra area on the ray, which this line points out.
   const bool rejected = x("behind_domain") + x("beyond_distance_limit") + x("against_normal_check") > 0.0;
@@ -92,14 +96,16 @@ std::string ray_summary(const Json& j) {
       "  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, unexplained {:.3g}; rejected by this check's rules: "
       "behind S1 {:.3g}, beyond the distance limit {:.3g}, against the normal check {:.3g})\n"
       "{}"
-      "  image error / S2 edge length: median {:.3g}, p99 {:.3g}, max {:.3g}; above 1 {:.3g} of S1\n",
+      "  image error / S2 edge length: median {:.3g}, p99 {:.3g}, max {:.3g}; above 1 {:.3g} of S1 (the hit "
+      "is the image of a nearer part of S1 {:.3g}; defects: of a farther part {:.3g}, of none {:.3g})\n",
       j["samples"].get<std::size_t>(), j["ok"].get<bool>() ? "ok" : "FAILED", j["missed"]["fraction"].get<double>(),
       j["missed"]["defect_fraction"].get<double>(), f("nearer_sheet"), f("domain_in_between"),
       f("target_seen_twice"), f("past_focal_point"), f("farther_sheet"), f("next_to_fold"), f("not_covered"),
       j["extra"]["fraction"].get<double>(), j["extra"]["by_reason"]["beyond_target_boundary"]["fraction"].get<double>(),
       j["extra"]["by_reason"]["unexplained"]["fraction"].get<double>(), x("behind_domain"),
       x("beyond_distance_limit"), x("against_normal_check"), rules_hint, e["median"].get<double>(),
-      e["p99"].get<double>(), e["max"].get<double>(), e["fraction_above_one"].get<double>());
+      e["p99"].get<double>(), e["max"].get<double>(), e["fraction_above_one"].get<double>(), a("nearer_sheet"),
+      a("farther_sheet"), a("not_covered"));
 }
 
 int run_check(const CheckOptions& o) {

@@ -183,4 +183,11 @@ TEST(RayCheckReasons, ImagesMoreThanAnEdgeFromTheHitAreCounted) {
   EXPECT_EQ(r.in_domain_with_hit, r.samples);
   EXPECT_EQ(r.error_above_one_edge, r.samples);
   EXPECT_GT(r.error_median, 2.0);
+  // The vertical hit over x is the image of x - 0.5 (along the tilted field, a longer way than
+  // x's): a farther part of S1 where that lies in S1, no part where it does not (x < 0.5).
+  const auto by = [&](MissedReason reason) { return r.fraction(r.above_one_by_reason[static_cast<std::size_t>(reason)]); };
+  EXPECT_EQ(by(MissedReason::nearer_sheet), 0.0);
+  EXPECT_NEAR(by(MissedReason::farther_sheet), 0.5, 0.05);
+  EXPECT_NEAR(by(MissedReason::not_covered), 0.5, 0.05);
+  EXPECT_EQ(r.in_domain_defects(), r.samples);
 }

@@ -230,8 +230,6 @@ class RayChecker {
       report.error_median = at(0.5);
       report.error_p99 = at(0.99);
       report.error_max = errors.back();
-      report.error_above_one_edge = static_cast<std::size_t>(
-          errors.end() - std::upper_bound(errors.begin(), errors.end(), 1.0));
     }
     return report;
   }
@@ -247,6 +245,10 @@ class RayChecker {
       ++report.in_domain_with_hit;
       const Evaluation<d> e = evaluate_in_region(map_, region, xi);
       errors.push_back((lifted<d>(e.world) - hit->point).norm() / mean_edge_length(s2_, hit->element));
+      if (errors.back() > 1.0) {
+        ++report.error_above_one_edge;
+        ++report.above_one_by_reason[static_cast<std::size_t>(classify_missed(x, *hit))];
+      }
     } else if (region != invalid_index) {
       ++report.extra;
       const Evaluation<d> e = evaluate_in_region(map_, region, xi);
@@ -554,11 +556,18 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
                 {"examples", examples(r.extra_examples, false)}};
   j["in_domain_with_hit"] = r.in_domain_with_hit;
   j["neither"] = r.neither;
+  nlohmann::json above_one_by_reason = nlohmann::json::object();
+  for (MissedReason reason : {MissedReason::nearer_sheet, MissedReason::farther_sheet, MissedReason::not_covered}) {
+    const std::size_t n = r.above_one_by_reason[static_cast<std::size_t>(reason)];
+    above_one_by_reason[std::string(to_string(reason))] = {{"samples", n}, {"fraction", r.fraction(n)}};
+  }
   j["image_error_relative_to_edge"] = {{"median", r.error_median},
                                        {"p99", r.error_p99},
                                        {"max", r.error_max},
                                        {"samples_above_one", r.error_above_one_edge},
-                                       {"fraction_above_one", r.fraction(r.error_above_one_edge)}};
+                                       {"fraction_above_one", r.fraction(r.error_above_one_edge)},
+                                       {"above_one_by_reason", above_one_by_reason},
+                                       {"defect_fraction", r.fraction(r.in_domain_defects())}};
   return j;
 }
 

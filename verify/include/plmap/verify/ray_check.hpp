@@ -145,11 +145,18 @@ struct RayCheckReport {
   /// Image error |Xi(x) - hit| / mean edge length of the S2 element hit, over the samples in D
   /// with a hit and the extra samples beyond S2's boundary (0 if there are none).
   double error_median = 0.0, error_p99 = 0.0, error_max = 0.0;
-  /// Of those, the samples whose image lies more than one edge length from the hit: Xi(x) lies
-  /// on another part of S2 than the ray's nearest admissible hit (another sheet), or the
-  /// projection stretches so much there (next to a focal point) that the piecewise-linear
-  /// interpolation is off by more than an edge. 0 on the contact pairs of experiments/.
+  /// Of the samples in D with a hit, those whose image lies more than one edge length from the
+  /// hit: Xi(x) lies on another part of S2 than the ray's nearest admissible hit (another
+  /// sheet), or the projection stretches so much there (next to a focal point) that the
+  /// piecewise-linear interpolation is off by more than an edge. 0 on the contact pairs of
+  /// experiments/. By what maps onto the hit (the first three MissedReasons):
+  /// - nearer_sheet: a part of S1 nearer to the hit. The map is injective, so x cannot have that
+  ///   part of S2 as well and takes a farther one: the counterpart of a missed sample's
+  ///   nearer_sheet, not a defect;
+  /// - farther_sheet: a part of S1 farther from the hit than x. A defect;
+  /// - not_covered: nothing (the stretched interpolation, or a part of S2 left out). A defect.
   std::size_t error_above_one_edge = 0;
+  std::array<std::size_t, 3> above_one_by_reason{};
   std::vector<RaySample<d>> missed_examples, extra_examples;
 
   double fraction(std::size_t count) const { return samples ? double(count) / double(samples) : 0.0; }
@@ -163,6 +170,12 @@ struct RayCheckReport {
   /// Extra samples not explained by the interpolation at S2's boundary.
   std::size_t extra_defects() const {
     return extra - extra_by_reason[static_cast<std::size_t>(ExtraReason::beyond_target_boundary)];
+  }
+  /// Samples in D whose image lies more than an edge from the hit, and not because a nearer
+  /// part of S1 maps onto the hit.
+  std::size_t in_domain_defects() const {
+    return above_one_by_reason[static_cast<std::size_t>(MissedReason::farther_sheet)] +
+           above_one_by_reason[static_cast<std::size_t>(MissedReason::not_covered)];
   }
   /// Extra samples that the map puts where the check's own acceptance rules reject the hit
   /// (behind_domain, beyond_distance_limit, against_normal_check): a sign that the map was
