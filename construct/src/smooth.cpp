@@ -7,6 +7,7 @@
 #include "preimage_graph.hpp"
 #include "quad_smoothing.hpp"
 #include "region_condition.hpp"
+#include "s2_stars.hpp"
 
 #include <plmap/core/affine_through.hpp>
 #include <plmap/core/element_transfer.hpp>
@@ -269,7 +270,7 @@ std::vector<double> neighbourhood_max(const Surface<2>& s1, const std::vector<do
 /// records (run_quadrilateral_pass in quad_smoothing.hpp).
 /// `conditions` are those of `current` and, if the pass is kept, become those of the new map.
 void smooth_quadrilaterals(PlMap<2>& current, smoothing::MapConditions& conditions, double worst_at_sweep_start,
-                           const AnySmoothingWeights& weights, SmoothReport& report, SmoothSweepReport& sweep) {
+                           smoothing::S2Stars& stars, SmoothReport& report, SmoothSweepReport& sweep) {
   constexpr int max_attempts = 8;
   const std::vector<double>& worst_before = conditions.element;
   const Surface<2>& s1 = current.domain();
@@ -293,7 +294,7 @@ void smooth_quadrilaterals(PlMap<2>& current, smoothing::MapConditions& conditio
   std::optional<PlMap<2>> last_rebuilt;
   for (int attempt = 0; attempt < max_attempts; ++attempt) {
     smoothing::PreimageGraph graph = *start;
-    smoothing::QuadSmoother smoother(graph, s1, current.target(), weights, start_index ? &*start_index : nullptr);
+    smoothing::QuadSmoother smoother(graph, s1, stars, start_index ? &*start_index : nullptr);
     if (!start_index) start_index = smoother.edges_in_element();
     const smoothing::QuadPassTally pass = smoothing::run_quadrilateral_pass(
         smoother, s1, frozen, attempt == 0 ? nullptr : &previous, &newly_frozen, records);
@@ -378,6 +379,8 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
   smoothing::MapConditions conditions = smoothing::MapConditions::of(current);
   if (!options.measure_kappa && options.summarize_kappa) report.kappa_before = options.summarize_kappa(conditions.region);
   const Index elements = map.domain().element_count();
+  // S2's stars as the quadrilateral steps read them: S2 and the weights are those of every sweep
+  smoothing::S2Stars stars(map.target(), weights);
   for (int s = 1; s <= options.sweeps; ++s) {
     report_progress(options.progress, "smoothing sweeps", static_cast<std::uint64_t>(s - 1), static_cast<std::uint64_t>(options.sweeps));
     SmoothSweepReport sweep;
@@ -400,7 +403,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
     }
     current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next), StoredGraph(current.stored_graph()));
     for (Index t : moved) conditions.update(current, t);
-    if (options.quadrilaterals) smooth_quadrilaterals(current, conditions, worst_at_sweep_start, weights, report, sweep);
+    if (options.quadrilaterals) smooth_quadrilaterals(current, conditions, worst_at_sweep_start, stars, report, sweep);
     if (options.measure_kappa)
       sweep.kappa = options.measure_kappa(current);
     else if (options.summarize_kappa)
