@@ -10,6 +10,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -83,6 +84,27 @@ struct Piece {
   std::array<double, 2> target_parameter{0.0, 0.0};
 };
 
+/// What QuadSmoother::reindex_quadrilateral finds by walking the edited polylines, read off a
+/// step's pieces: every segment of a relevant S2 edge in T1 or T2 belongs to one of its pieces,
+/// which after the cut lies in T1, in T2 or (cut) in both (`sides`: bit 0 T1, bit 1 T2). The
+/// lists are appended in the order of `relevant`, as reindex_quadrilateral does.
+/// `position` is scratch indexed by S2 edge.
+void index_quadrilateral_from_pieces(EdgesInElement& index, Index t1, Index t2, const std::vector<Index>& relevant,
+                                     const std::vector<Piece>& pieces, const std::vector<std::uint8_t>& sides,
+                                     std::vector<Index>& position) {
+  thread_local std::vector<std::uint8_t> edge_sides;
+  edge_sides.assign(relevant.size(), 0);
+  for (std::size_t i = 0; i < relevant.size(); ++i) position[static_cast<std::size_t>(relevant[i])] = static_cast<Index>(i);
+  for (std::size_t p = 0; p < pieces.size(); ++p)
+    edge_sides[static_cast<std::size_t>(position[static_cast<std::size_t>(pieces[p].edge)])] |= sides[p];
+  index[t1].clear();
+  index[t2].clear();
+  for (std::size_t i = 0; i < relevant.size(); ++i) {
+    if (edge_sides[i] & 1) index[t1].push_back(relevant[i]);
+    if (edge_sides[i] & 2) index[t2].push_back(relevant[i]);
+  }
+}
+
 /// Condition number of the affine map from the plane triangle p to the space triangle w
 /// (infinite if either is degenerate).
 double condition(const std::array<Vec2, 3>& p, const std::array<Eigen::Vector3d, 3>& w) {
@@ -113,7 +135,8 @@ QuadSmoother::QuadSmoother(PreimageGraph& graph, const Surface<2>& domain, const
       own_stars_(std::in_place, target, std::move(weights)),
       stars_(&*own_stars_),
       unknown_index_(static_cast<std::size_t>(target.vertex_count()), -1),
-      edge_seen_(static_cast<std::size_t>(target.edge_count()), 0) {
+      edge_seen_(static_cast<std::size_t>(target.edge_count()), 0),
+      position_in_relevant_(static_cast<std::size_t>(target.edge_count()), 0) {
   index_edges(index);
 }
 
@@ -123,7 +146,8 @@ QuadSmoother::QuadSmoother(PreimageGraph& graph, const Surface<2>& domain, S2Sta
       s2_(stars.target()),
       stars_(&stars),
       unknown_index_(static_cast<std::size_t>(s2_.vertex_count()), -1),
-      edge_seen_(static_cast<std::size_t>(s2_.edge_count()), 0) {
+      edge_seen_(static_cast<std::size_t>(s2_.edge_count()), 0),
+      position_in_relevant_(static_cast<std::size_t>(s2_.edge_count()), 0) {
   index_edges(index);
 }
 
@@ -405,11 +429,16 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
 
   // new crossings with e
   std::vector<std::optional<EdgeCrossing>> cut(pieces.size());
+  // per piece: bit 0 if it has a segment in T1 after the cut, bit 1 in T2 (an end off e lies on
+  // e's side of its triangle; an end on e is A or B)
+  thread_local std::vector<std::uint8_t> piece_sides;
+  piece_sides.assign(pieces.size(), 0);
   const bool a_is_smaller = u.a < u.b;
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     const Vec2 s = end_position(pieces[p], 0), t = end_position(pieces[p], 1);
     const int ss = orient2d(u.pa, u.pb, s), st = orient2d(u.pa, u.pb, t);
     if (ss == 0 && st == 0) return refuse("S2 edge along an S1 edge");
+    for (const int side : {ss, st}) piece_sides[p] |= side > 0 ? 1 : side < 0 ? 2 : 0;
     if (ss * st >= 0) continue;
     const double lambda = s.y() / (s.y() - t.y());
     const double along = (s.x() + lambda * (t.x() - s.x())) / u.length;
@@ -439,7 +468,7 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     list.erase(first, first + static_cast<std::ptrdiff_t>(pieces[p].last - pieces[p].first - 1));
     if (cut[p]) list.insert(list.begin() + static_cast<std::ptrdiff_t>(pieces[p].first), *cut[p]);
   }
-  reindex_quadrilateral(u.t1, u.t2, relevant);
+  index_quadrilateral_from_pieces(edges_in_element_, u.t1, u.t2, relevant, pieces, piece_sides, position_in_relevant_);
   if (record != nullptr) {
     record->wrote = true;
     record->places.clear();

@@ -94,6 +94,7 @@ class QuadSmoother {
   std::vector<Index> relevant_, unknown_vertex_;  ///< of the current step: S2 edges in T1 ∪ T2, unknowns
   std::vector<int> unknown_index_;                ///< per S2 vertex: its unknown in the current step, or -1
   std::vector<char> edge_seen_;                   ///< per S2 edge: in relevant_
+  std::vector<Index> position_in_relevant_;       ///< per S2 edge in relevant_: its index there
   Index uniform_fallbacks_ = 0;
 };
 
