@@ -300,6 +300,7 @@ void smooth_quadrilaterals(PlMap<2>& current, smoothing::MapConditions& conditio
   smoothing::MapConditions rebuilt_conditions;  // of the rebuilt map of the last run
   const std::vector<double>& worst = rebuilt_conditions.element;
   std::optional<PlMap<2>> last_rebuilt;
+  std::vector<char> reuse;  // per S1 element: copied from last_rebuilt in a repeated run's rebuild
   for (int attempt = 0; attempt < max_attempts; ++attempt) {
     smoothing::PreimageGraph graph = *start;
     smoothing::QuadSmoother smoother(graph, s1, stars, start_index ? &*start_index : nullptr);
@@ -314,7 +315,15 @@ void smooth_quadrilaterals(PlMap<2>& current, smoothing::MapConditions& conditio
       last_rebuilt.reset();
     } else try {
       FinalizeReport built;
-      PlMap<2> map = graph.to_map(current.domain_ptr(), current.target_ptr(), &built);
+      // A repeated run's graph differs from the last run's only on pass.changed: the other
+      // elements are copied from the last rebuilt map instead of closed again (the same arrays).
+      const bool repeated = attempt > 0 && last_rebuilt.has_value();
+      if (repeated) {
+        reuse.resize(pass.changed.size());
+        for (std::size_t t = 0; t < reuse.size(); ++t) reuse[t] = pass.changed[t] ? 0 : 1;
+      }
+      PlMap<2> map = repeated ? graph.to_map_reusing(current.domain_ptr(), current.target_ptr(), *last_rebuilt, reuse, &built)
+                              : graph.to_map(current.domain_ptr(), current.target_ptr(), &built);
       // The same coverage of S2, up to rounding: guards against a map the graph form cannot hold
       // (e.g. an S2 edge whose preimage leaves D between two vertex preimages).
       if (built.reversed_faces == 0 && built.dropped_edges.empty() && map.region_count() > 0 &&
