@@ -74,8 +74,8 @@ std::optional<PreimageGraph> PreimageGraph::from_map(const PlMap<2>& map, std::s
   return g;
 }
 
-PlMap<2> PreimageGraph::to_map(const std::shared_ptr<const Surface<2>>& domain,
-                               const std::shared_ptr<const Surface<2>>& target, FinalizeReport* report) const {
+MapBuilder<2> PreimageGraph::builder(const std::shared_ptr<const Surface<2>>& domain,
+                                     const std::shared_ptr<const Surface<2>>& target) const {
   BuilderOptions options;
   options.orientation = orientation;
   MapBuilder<2> b(domain, target, options);
@@ -93,7 +93,18 @@ PlMap<2> PreimageGraph::to_map(const std::shared_ptr<const Surface<2>>& domain,
     else
       b.add_edge(e, crossings[e]);
   }
-  return std::move(b).finalize(report);
+  return b;
+}
+
+PlMap<2> PreimageGraph::to_map(const std::shared_ptr<const Surface<2>>& domain,
+                               const std::shared_ptr<const Surface<2>>& target, FinalizeReport* report) const {
+  return builder(domain, target).finalize(report);
+}
+
+PlMap<2> PreimageGraph::to_map_reusing(const std::shared_ptr<const Surface<2>>& domain,
+                                       const std::shared_ptr<const Surface<2>>& target, const PlMap<2>& previous,
+                                       std::span<const char> reuse, FinalizeReport* report) const {
+  return builder(domain, target).finalize_reusing(previous, reuse, report);
 }
 
 DomainPlace polyline_point(const PreimageGraph& g, const Surface<2>& target, Index edge, std::size_t i) {

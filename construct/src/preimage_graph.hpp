@@ -15,6 +15,7 @@
 #include <plmap/core/pl_map.hpp>
 
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,14 @@ struct PreimageGraph {
   /// graph is inconsistent (crossing edges).
   PlMap<2> to_map(const std::shared_ptr<const Surface<2>>& domain, const std::shared_ptr<const Surface<2>>& target,
                   FinalizeReport* report) const;
+  /// The same map, with every element t with reuse[t] != 0 copied from `previous` instead of
+  /// closed again (MapBuilder::finalize_reusing): `previous` must be to_map of a graph that is
+  /// this one on those elements (their vertex preimages, the crossings of their edges).
+  PlMap<2> to_map_reusing(const std::shared_ptr<const Surface<2>>& domain, const std::shared_ptr<const Surface<2>>& target,
+                          const PlMap<2>& previous, std::span<const char> reuse, FinalizeReport* report) const;
+
+ private:
+  MapBuilder<2> builder(const std::shared_ptr<const Surface<2>>& domain, const std::shared_ptr<const Surface<2>>& target) const;
 };
 
 /// Point i of the preimage of S2 edge `edge`: 0 is the preimage of its smaller-index vertex,

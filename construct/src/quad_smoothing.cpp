@@ -6,11 +6,11 @@
 
 #include <plmap/core/predicates.hpp>
 #include <plmap/core/segment_sweep.hpp>
-#include <plmap/strategies/smoothing/uniform_weights.hpp>
 
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -84,6 +84,27 @@ struct Piece {
   std::array<double, 2> target_parameter{0.0, 0.0};
 };
 
+/// What QuadSmoother::reindex_quadrilateral finds by walking the edited polylines, read off a
+/// step's pieces: every segment of a relevant S2 edge in T1 or T2 belongs to one of its pieces,
+/// which after the cut lies in T1, in T2 or (cut) in both (`sides`: bit 0 T1, bit 1 T2). The
+/// lists are appended in the order of `relevant`, as reindex_quadrilateral does.
+/// `position` is scratch indexed by S2 edge.
+void index_quadrilateral_from_pieces(EdgesInElement& index, Index t1, Index t2, const std::vector<Index>& relevant,
+                                     const std::vector<Piece>& pieces, const std::vector<std::uint8_t>& sides,
+                                     std::vector<Index>& position) {
+  thread_local std::vector<std::uint8_t> edge_sides;
+  edge_sides.assign(relevant.size(), 0);
+  for (std::size_t i = 0; i < relevant.size(); ++i) position[static_cast<std::size_t>(relevant[i])] = static_cast<Index>(i);
+  for (std::size_t p = 0; p < pieces.size(); ++p)
+    edge_sides[static_cast<std::size_t>(position[static_cast<std::size_t>(pieces[p].edge)])] |= sides[p];
+  index[t1].clear();
+  index[t2].clear();
+  for (std::size_t i = 0; i < relevant.size(); ++i) {
+    if (edge_sides[i] & 1) index[t1].push_back(relevant[i]);
+    if (edge_sides[i] & 2) index[t2].push_back(relevant[i]);
+  }
+}
+
 /// Condition number of the affine map from the plane triangle p to the space triangle w
 /// (infinite if either is degenerate).
 double condition(const std::array<Vec2, 3>& p, const std::array<Eigen::Vector3d, 3>& w) {
@@ -111,17 +132,32 @@ QuadSmoother::QuadSmoother(PreimageGraph& graph, const Surface<2>& domain, const
     : g_(graph),
       s1_(domain),
       s2_(target),
-      weights_(std::move(weights)),
+      own_stars_(std::in_place, target, std::move(weights)),
+      stars_(&*own_stars_),
       unknown_index_(static_cast<std::size_t>(target.vertex_count()), -1),
       edge_seen_(static_cast<std::size_t>(target.edge_count()), 0),
-      s2_ring_known_(static_cast<std::size_t>(target.vertex_count()), 0),
-      s2_ring_edges_(static_cast<std::size_t>(target.vertex_count())) {
+      position_in_relevant_(static_cast<std::size_t>(target.edge_count()), 0) {
+  index_edges(index);
+}
+
+QuadSmoother::QuadSmoother(PreimageGraph& graph, const Surface<2>& domain, S2Stars& stars, const EdgesInElement* index)
+    : g_(graph),
+      s1_(domain),
+      s2_(stars.target()),
+      stars_(&stars),
+      unknown_index_(static_cast<std::size_t>(s2_.vertex_count()), -1),
+      edge_seen_(static_cast<std::size_t>(s2_.edge_count()), 0),
+      position_in_relevant_(static_cast<std::size_t>(s2_.edge_count()), 0) {
+  index_edges(index);
+}
+
+void QuadSmoother::index_edges(const EdgesInElement* index) {
   if (index != nullptr) {
     edges_in_element_ = *index;
     return;
   }
-  edges_in_element_.assign(static_cast<std::size_t>(domain.element_count()), {});
-  for (Index e = 0; e < target.edge_count(); ++e) index_edge(e);
+  edges_in_element_.assign(static_cast<std::size_t>(s1_.element_count()), {});
+  for (Index e = 0; e < s2_.edge_count(); ++e) index_edge(e);
 }
 
 void QuadSmoother::reindex_quadrilateral(Index t1, Index t2, const std::vector<Index>& relevant) {
@@ -151,35 +187,6 @@ void QuadSmoother::index_edge(Index target_edge) {
     auto& list = edges_in_element_[t];
     if (std::find(list.begin(), list.end(), target_edge) == list.end()) list.push_back(target_edge);
   }
-}
-
-const std::vector<Index>* QuadSmoother::s2_ring_edges(Index v) {
-  signed char& known = s2_ring_known_[static_cast<std::size_t>(v)];
-  if (known == 0) {
-    // S2's cyclic order of v's neighbours: next(x) = y for each S2 triangle (v, x, y)
-    known = -1;
-    const auto star = s2_.vertex_elements(v);
-    if (star.empty()) return nullptr;
-    thread_local std::vector<std::pair<Index, Index>> next;
-    next.clear();
-    for (Index s : star) {
-      const int k = s2_.local_corner(s, v);
-      next.push_back({s2_.element(s)[(k + 1) % 3], s2_.element(s)[(k + 2) % 3]});
-    }
-    thread_local std::vector<Index> cycle;
-    cycle.assign(1, next.front().first);
-    while (cycle.size() <= next.size()) {
-      const auto it = std::find_if(next.begin(), next.end(), [&](const auto& xy) { return xy.first == cycle.back(); });
-      if (it == next.end()) return nullptr;
-      if (it->second == cycle.front()) break;
-      cycle.push_back(it->second);
-    }
-    if (cycle.size() != next.size()) return nullptr;
-    std::vector<Index>& edges = s2_ring_edges_[static_cast<std::size_t>(v)];
-    for (Index x : cycle) edges.push_back(s2_.find_edge(v, x));
-    known = 1;
-  }
-  return known > 0 ? &s2_ring_edges_[static_cast<std::size_t>(v)] : nullptr;
 }
 
 bool QuadSmoother::has_quadrilateral(Index e) const {
@@ -325,30 +332,30 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   system_.reset(unknowns);
   for (int i = 0; i < unknowns; ++i) {
     const Index v = unknown_vertex[i];
-    const std::vector<Index>* cycle = s2_ring_edges(v);
+    const std::vector<Index>* cycle = stars_->ring_edges(v);
     if (cycle == nullptr || ring_of[i].size() != cycle->size()) return refuse("vertex preimage with an open S2 star");
     std::vector<Eigen::Vector3d>& ring = ring_world[i];
     ring.clear();
+    bool whole_star = true;  // every ring point an S2 vertex: v's whole star (s2_stars.hpp)
     for (Index te : *cycle) {
       const auto it = std::find_if(ring_of[i].begin(), ring_of[i].end(), [&](const auto& pe) { return pieces[pe.first].edge == te; });
       if (it == ring_of[i].end()) return refuse("vertex preimage with an open S2 star");
       ordered_ring[i].push_back(*it);
       const auto ends = s2_.edge_vertices(te);
       const double t = pieces[it->first].target_parameter[it->second];
+      whole_star = whole_star && (t == 0.0 || t == 1.0);
       ring.push_back((1.0 - t) * s2_.vertex(ends[0]) + t * s2_.vertex(ends[1]));
     }
-    auto w = weights_(s2_.vertex(v), ring);
-    if (!w) {
-      w = UniformWeights{}.weights(s2_.vertex(v), ring);
-      ++uniform_fallbacks_;
-    }
+    bool fallback = false;
+    const std::span<const double> w = stars_->weights(v, ring, whole_star, fallback);
+    if (fallback) ++uniform_fallbacks_;
     system_.add(i, i, 1.0);
     for (std::size_t j = 0; j < ring.size(); ++j) {
       const auto [p, end] = ordered_ring[i][j];
       if (pieces[p].unknown[end] >= 0)
-        system_.add(i, pieces[p].unknown[end], -(*w)[j]);
+        system_.add(i, pieces[p].unknown[end], -w[j]);
       else
-        system_.add_rhs(i, (*w)[j] * pieces[p].fixed[end]);
+        system_.add_rhs(i, w[j] * pieces[p].fixed[end]);
     }
     if (g_.orientation < 0) {
       std::reverse(ordered_ring[i].begin(), ordered_ring[i].end());
@@ -422,11 +429,16 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
 
   // new crossings with e
   std::vector<std::optional<EdgeCrossing>> cut(pieces.size());
+  // per piece: bit 0 if it has a segment in T1 after the cut, bit 1 in T2 (an end off e lies on
+  // e's side of its triangle; an end on e is A or B)
+  thread_local std::vector<std::uint8_t> piece_sides;
+  piece_sides.assign(pieces.size(), 0);
   const bool a_is_smaller = u.a < u.b;
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     const Vec2 s = end_position(pieces[p], 0), t = end_position(pieces[p], 1);
     const int ss = orient2d(u.pa, u.pb, s), st = orient2d(u.pa, u.pb, t);
     if (ss == 0 && st == 0) return refuse("S2 edge along an S1 edge");
+    for (const int side : {ss, st}) piece_sides[p] |= side > 0 ? 1 : side < 0 ? 2 : 0;
     if (ss * st >= 0) continue;
     const double lambda = s.y() / (s.y() - t.y());
     const double along = (s.x() + lambda * (t.x() - s.x())) / u.length;
@@ -456,7 +468,7 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     list.erase(first, first + static_cast<std::ptrdiff_t>(pieces[p].last - pieces[p].first - 1));
     if (cut[p]) list.insert(list.begin() + static_cast<std::ptrdiff_t>(pieces[p].first), *cut[p]);
   }
-  reindex_quadrilateral(u.t1, u.t2, relevant);
+  index_quadrilateral_from_pieces(edges_in_element_, u.t1, u.t2, relevant, pieces, piece_sides, position_in_relevant_);
   if (record != nullptr) {
     record->wrote = true;
     record->places.clear();

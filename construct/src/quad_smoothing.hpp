@@ -21,10 +21,12 @@
 
 #include "convex_combination_system.hpp"
 #include "preimage_graph.hpp"
+#include "s2_stars.hpp"
 
 #include <plmap/strategies/smoothing/smoothing_weights_registry.hpp>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +62,9 @@ class QuadSmoother {
   /// if given, is edges_in_element() of a smoother on an identical graph (saves indexing).
   QuadSmoother(PreimageGraph& graph, const Surface<2>& domain, const Surface<2>& target, AnySmoothingWeights weights,
                const EdgesInElement* index = nullptr);
+  /// The same, reading S2's stars (cyclic orders, whole-star weights) from `stars`, which
+  /// outlives the smoother and may be shared with other smoothers on the same S2 and weights.
+  QuadSmoother(PreimageGraph& graph, const Surface<2>& domain, S2Stars& stars, const EdgesInElement* index = nullptr);
   /// True if S1 edge e has exactly two triangles, oriented consistently across it.
   bool has_quadrilateral(Index e) const;
   /// One step; with `record`, what it decided and wrote goes there.
@@ -73,23 +78,23 @@ class QuadSmoother {
 
  private:
   QuadOutcome step(Index e, QuadStepRecord* record);
+  void index_edges(const EdgesInElement* index);
   void index_edge(Index target_edge);
   void reindex_quadrilateral(Index t1, Index t2, const std::vector<Index>& relevant);
-  /// The S2 edges at S2 vertex v in S2's cyclic order around v (following its triangles), or
-  /// nullptr if v's triangles do not close one fan around it. Computed once per vertex (S2 does
-  /// not change; every step with v among its unknowns asked again: a tenth of a step).
-  const std::vector<Index>* s2_ring_edges(Index v);
   PreimageGraph& g_;
   const Surface<2>& s1_;
   const Surface<2>& s2_;
-  AnySmoothingWeights weights_;
+  /// S2's cyclic orders and whole-star weights, computed once per vertex (S2 does not change;
+  /// every step with v among its unknowns asked again: a tenth of a step): the smoother's own,
+  /// or shared (stars_ points to one or the other).
+  std::optional<S2Stars> own_stars_;
+  S2Stars* stars_;
   EdgesInElement edges_in_element_;
   ConvexCombinationSystem system_;
   std::vector<Index> relevant_, unknown_vertex_;  ///< of the current step: S2 edges in T1 ∪ T2, unknowns
   std::vector<int> unknown_index_;                ///< per S2 vertex: its unknown in the current step, or -1
   std::vector<char> edge_seen_;                   ///< per S2 edge: in relevant_
-  std::vector<signed char> s2_ring_known_;        ///< per S2 vertex: 0 not yet, 1 closed fan, -1 open
-  std::vector<std::vector<Index>> s2_ring_edges_; ///< per S2 vertex with a closed fan: s2_ring_edges
+  std::vector<Index> position_in_relevant_;       ///< per S2 edge in relevant_: its index there
   Index uniform_fallbacks_ = 0;
 };
 

@@ -7,6 +7,7 @@
 #include "preimage_graph.hpp"
 #include "quad_smoothing.hpp"
 #include "region_condition.hpp"
+#include "s2_stars.hpp"
 
 #include <plmap/core/affine_through.hpp>
 #include <plmap/core/element_transfer.hpp>
@@ -230,14 +231,22 @@ MapData<2> stored_arrays(const PlMap<2>& map) {
 }
 
 /// Total area of the region images on S2: smoothing re-places preimages, so it must not change.
-/// Reads only stored arrays (the graph of a rebuilt map is never derived for it).
+/// Reads only stored arrays (the graph of a rebuilt map is never derived for it). Each node's
+/// image is evaluated once per element, not once per region corner (about six), in a buffer
+/// reused from call to call: the same values in the same order of summation.
 double image_area(const PlMap<2>& map) {
   const MapData<2>& m = map.stored();
+  thread_local std::vector<Eigen::Vector3d> world;
   double total = 0.0;
-  for (Index r = 0; r < map.region_count(); ++r) {
-    const auto& c = m.region_corners[r];
-    const Eigen::Vector3d a = map.node_target_world(c[0]);
-    total += 0.5 * (map.node_target_world(c[1]) - a).cross(map.node_target_world(c[2]) - a).norm();
+  for (Index t = 0; t < map.domain().element_count(); ++t) {
+    const Index nb = m.node_begin[t];
+    world.resize(static_cast<std::size_t>(m.node_begin[t + 1] - nb));
+    for (Index n = nb; n < m.node_begin[t + 1]; ++n) world[static_cast<std::size_t>(n - nb)] = map.node_target_world(n);
+    for (Index r = m.region_begin[t]; r < m.region_begin[t + 1]; ++r) {
+      const auto& c = m.region_corners[r];
+      const auto at = [&](int k) -> const Eigen::Vector3d& { return world[static_cast<std::size_t>(c[k] - nb)]; };
+      total += 0.5 * (at(1) - at(0)).cross(at(2) - at(0)).norm();
+    }
   }
   return total;
 }
@@ -269,7 +278,7 @@ std::vector<double> neighbourhood_max(const Surface<2>& s1, const std::vector<do
 /// records (run_quadrilateral_pass in quad_smoothing.hpp).
 /// `conditions` are those of `current` and, if the pass is kept, become those of the new map.
 void smooth_quadrilaterals(PlMap<2>& current, smoothing::MapConditions& conditions, double worst_at_sweep_start,
-                           const AnySmoothingWeights& weights, SmoothReport& report, SmoothSweepReport& sweep) {
+                           smoothing::S2Stars& stars, SmoothReport& report, SmoothSweepReport& sweep) {
   constexpr int max_attempts = 8;
   const std::vector<double>& worst_before = conditions.element;
   const Surface<2>& s1 = current.domain();
@@ -291,9 +300,10 @@ void smooth_quadrilaterals(PlMap<2>& current, smoothing::MapConditions& conditio
   smoothing::MapConditions rebuilt_conditions;  // of the rebuilt map of the last run
   const std::vector<double>& worst = rebuilt_conditions.element;
   std::optional<PlMap<2>> last_rebuilt;
+  std::vector<char> reuse;  // per S1 element: copied from last_rebuilt in a repeated run's rebuild
   for (int attempt = 0; attempt < max_attempts; ++attempt) {
     smoothing::PreimageGraph graph = *start;
-    smoothing::QuadSmoother smoother(graph, s1, current.target(), weights, start_index ? &*start_index : nullptr);
+    smoothing::QuadSmoother smoother(graph, s1, stars, start_index ? &*start_index : nullptr);
     if (!start_index) start_index = smoother.edges_in_element();
     const smoothing::QuadPassTally pass = smoothing::run_quadrilateral_pass(
         smoother, s1, frozen, attempt == 0 ? nullptr : &previous, &newly_frozen, records);
@@ -305,7 +315,15 @@ void smooth_quadrilaterals(PlMap<2>& current, smoothing::MapConditions& conditio
       last_rebuilt.reset();
     } else try {
       FinalizeReport built;
-      PlMap<2> map = graph.to_map(current.domain_ptr(), current.target_ptr(), &built);
+      // A repeated run's graph differs from the last run's only on pass.changed: the other
+      // elements are copied from the last rebuilt map instead of closed again (the same arrays).
+      const bool repeated = attempt > 0 && last_rebuilt.has_value();
+      if (repeated) {
+        reuse.resize(pass.changed.size());
+        for (std::size_t t = 0; t < reuse.size(); ++t) reuse[t] = pass.changed[t] ? 0 : 1;
+      }
+      PlMap<2> map = repeated ? graph.to_map_reusing(current.domain_ptr(), current.target_ptr(), *last_rebuilt, reuse, &built)
+                              : graph.to_map(current.domain_ptr(), current.target_ptr(), &built);
       // The same coverage of S2, up to rounding: guards against a map the graph form cannot hold
       // (e.g. an S2 edge whose preimage leaves D between two vertex preimages).
       if (built.reversed_faces == 0 && built.dropped_edges.empty() && map.region_count() > 0 &&
@@ -378,6 +396,8 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
   smoothing::MapConditions conditions = smoothing::MapConditions::of(current);
   if (!options.measure_kappa && options.summarize_kappa) report.kappa_before = options.summarize_kappa(conditions.region);
   const Index elements = map.domain().element_count();
+  // S2's stars as the quadrilateral steps read them: S2 and the weights are those of every sweep
+  smoothing::S2Stars stars(map.target(), weights);
   for (int s = 1; s <= options.sweeps; ++s) {
     report_progress(options.progress, "smoothing sweeps", static_cast<std::uint64_t>(s - 1), static_cast<std::uint64_t>(options.sweeps));
     SmoothSweepReport sweep;
@@ -400,7 +420,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
     }
     current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next), StoredGraph(current.stored_graph()));
     for (Index t : moved) conditions.update(current, t);
-    if (options.quadrilaterals) smooth_quadrilaterals(current, conditions, worst_at_sweep_start, weights, report, sweep);
+    if (options.quadrilaterals) smooth_quadrilaterals(current, conditions, worst_at_sweep_start, stars, report, sweep);
     if (options.measure_kappa)
       sweep.kappa = options.measure_kappa(current);
     else if (options.summarize_kappa)

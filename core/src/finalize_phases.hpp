@@ -18,6 +18,8 @@
 namespace plmap::detail {
 
 MapData<1> finalize_polylines(BuilderContents<1>& in, FinalizeReport* report);
-MapData<2> finalize_triangles(BuilderContents<2>& in, FinalizeReport* report);
+class ElementReuse;
+/// `reuse`: elements copied from a previous map instead of closed (MapBuilder::finalize_reusing).
+MapData<2> finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, const ElementReuse* reuse = nullptr);
 
 }  // namespace plmap::detail

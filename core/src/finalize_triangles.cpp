@@ -8,6 +8,7 @@
 #include "finalize_conflicts.hpp"
 #include "finalize_joining.hpp"
 #include "finalize_phases.hpp"
+#include "finalize_reuse.hpp"
 
 #include <plmap/core/parallel_ranges.hpp>
 
@@ -25,8 +26,9 @@ using ElementFailures = std::vector<std::pair<Index, std::exception_ptr>>;
 /// for the smallest element that has one, whatever the thread count.
 class ClosingPass {
  public:
-  ClosingPass(BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, unsigned threads)
-      : in_(in), where_(where), threads_(threads), blocks_(block_count(in.s1.element_count(), threads)) {}
+  ClosingPass(BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, unsigned threads,
+              const ElementReuse* reuse)
+      : in_(in), where_(where), threads_(threads), blocks_(block_count(in.s1.element_count(), threads)), reuse_(reuse) {}
 
   /// Closes and assembles every element with the given orientation. Returns the elements that
   /// could not be closed, in element order. Without drop_conflicting_edges it stops a block at
@@ -45,6 +47,10 @@ class ClosingPass {
       AssemblyCursor cursor;
       for (Index t = begin; t < end; ++t) {
         try {
+          if (reuse_ != nullptr && reuse_->reuses(t)) {  // copied, not closed (finalize_reuse.hpp)
+            if (failures[k].empty()) reuse_->copy_element(in_, where_, t, parts_[k], cursor);
+            continue;
+          }
           close_element(in_, where_, t, workspaces_[k]);
           // after a failure the part is discarded: only the failures are still collected
           if (failures[k].empty()) assemble_element(in_, workspaces_[k], orientation, parts_[k], cursor);
@@ -116,6 +122,7 @@ class ClosingPass {
   std::vector<ClosureWorkspace> workspaces_;
   std::vector<MapData<2>> parts_;
   std::vector<Index> reversed_faces_;  // per block, FinalizeReport::reversed_faces
+  const ElementReuse* reuse_;
 };
 
 /// The orientation guess: the vote of up to 64 elements spread over S1.
@@ -135,7 +142,7 @@ int sampled_orientation(const BuilderContents<2>& in, const NodesAndSegmentsByPl
 
 }  // namespace
 
-MapData<2> finalize_triangles(BuilderContents<2>& in, FinalizeReport* report) {
+MapData<2> finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, const ElementReuse* reuse) {
   const Index n1 = in.s1.element_count();
   DroppedEdges dropped(in.edge_inserted, report, in.segments.size());
   NodesAndSegmentsByPlace<2> where;
@@ -154,7 +161,7 @@ MapData<2> finalize_triangles(BuilderContents<2>& in, FinalizeReport* report) {
   // on by all elements: the pass assembles with a guess (the vote of a sample of elements, or
   // the orientation given in the options) and runs again in the rare case the full vote differs.
   const int guess = in.options.orientation != 0 ? in.options.orientation : sampled_orientation(in, where);
-  ClosingPass pass(in, where, in.options.threads);
+  ClosingPass pass(in, where, in.options.threads, reuse);
   for (int round = 0;; ++round) {
     const ElementFailures failed = pass.run(guess);
     if (failed.empty()) break;

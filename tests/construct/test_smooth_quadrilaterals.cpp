@@ -20,6 +20,7 @@
 #include <rapidcheck.h>
 #include <rapidcheck/gtest.h>
 
+#include <algorithm>
 #include <iostream>
 #include <random>
 
@@ -119,6 +120,35 @@ RC_GTEST_PROP(QuadSmoothingProperties, OneStepStaysInItsQuadrilateral, ()) {
   RC_ASSERT(built.reversed_faces == 0);
   RC_ASSERT(verified_parametrization(after));
   RC_ASSERT(simplify_test::vertices_without_one_preimage(after).empty());
+}
+
+// After steps on random edges, the smoother's index (per S1 triangle, the S2 edges with a segment
+// in it), which a kept step updates from its pieces, is the index of the edited graph computed from
+// scratch. Fails if a step's update misses a triangle a piece now lies in, or keeps a stale edge.
+RC_GTEST_PROP(QuadSmoothingProperties, StepsKeepTheEdgeIndexOfTheGraph, ()) {
+  const auto seed = *rc::gen::arbitrary<std::uint32_t>();
+  const SimplifyResult s = simplified_sphere(*rc::gen::inRange(1, 3), *rc::gen::inRange(0, 25) / 100.0, seed,
+                                             *rc::gen::inRange(10, 60));
+  std::string why;
+  auto graph = PreimageGraph::from_map(s.map, &why);
+  RC_ASSERT(graph.has_value());
+  const Surface<2>& s1 = s.map.domain();
+  QuadSmoother smoother(*graph, s1, s.map.target(), make_smoothing_weights(*rc::gen::elementOf(weight_models)));
+  const int steps = *rc::gen::inRange(1, 40);
+  Index kept = 0;
+  for (int i = 0; i < steps; ++i) {
+    const Index e = *rc::gen::inRange<Index>(0, s1.edge_count());
+    if (smoother.has_quadrilateral(e) && smoother.smooth(e).skipped == nullptr) ++kept;
+  }
+  RC_CLASSIFY(kept > 0, "a step was kept");
+  PreimageGraph copy = *graph;
+  const QuadSmoother fresh(copy, s1, s.map.target(), make_smoothing_weights("uniform"));
+  for (Index t = 0; t < s1.element_count(); ++t) {
+    std::vector<Index> kept_list = smoother.edges_in_element()[t], fresh_list = fresh.edges_in_element()[t];
+    std::sort(kept_list.begin(), kept_list.end());
+    std::sort(fresh_list.begin(), fresh_list.end());
+    RC_ASSERT(kept_list == fresh_list);
+  }
 }
 
 // The checks of a step, exercised: weights that break the convex-combination rule (some negative,

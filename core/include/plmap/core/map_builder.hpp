@@ -170,6 +170,17 @@ class MapBuilder {
   /// Builds the compact map. The builder is left empty. `report`, if given, receives what had
   /// to be left out.
   PlMap<d> finalize(FinalizeReport* report = nullptr) &&;
+  /// finalize(), copying each element t with reuse[t] != 0 from `previous` (a map on the same
+  /// surfaces) instead of closing it again: the closure is most of finalize, and a caller that
+  /// edits the graph of a few elements of a built map (smoothing's repeated quadrilateral pass)
+  /// knows that the others are what they were. The caller guarantees that the graph entered on
+  /// each reused element (its nodes, and the pieces of S2 edge preimages in it and along its
+  /// edges) is the one `previous` was built from with the same options; then the result equals
+  /// finalize()'s, array for array. A reused element is not checked again and counts no reversed
+  /// faces; one whose node count differs from the entered graph's throws BuilderError. Needs the
+  /// orientation given (BuilderOptions::orientation) and drop_conflicting_edges off.
+  PlMap<d> finalize_reusing(const PlMap<d>& previous, std::span<const char> reuse, FinalizeReport* report = nullptr) &&
+    requires(d == 2);
 
  private:
   struct Impl;
