@@ -547,6 +547,11 @@ SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions 
   report_progress(options.progress, "finalize", 0, 1);
   std::optional<PlMap<2>> traced;
   try {
+    // The deferred cut refuses steps the per-step cut makes (straight_fold): a run it stopped
+    // above its target is redone per step too.
+    if (options.edit.defer_cut && !report.target_reached && (options.target_elements > 0 || options.target_vertices > 0))
+      throw DeferredCutFailure(fmt::format("deferred cut: the run stopped at {} triangles, above its target",
+                                           simplifier.map().live_triangle_count()));
     traced = simplifier.map().to_map(options.builder);
   } catch (const DeferredCutFailure& failure) {
     // The deferred cut's traced graph is not a valid parametrization: redo the run with the

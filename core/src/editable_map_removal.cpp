@@ -657,22 +657,40 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
         at = b(0) * corner[0] + b(1) * corner[1] + b(2) * corner[2];
         return true;
       };
-      for (const auto& [w, unused] : sh.moved) {
-        (void)unused;
-        if (scratch.moved_slot[static_cast<std::size_t>(w)][0] != g) continue;
-        Vec2 pw;
-        if (!straight_point(w, pw)) continue;
+      // Counter-clockwise, and each corner farther than the clearance from the opposite side
+      // (the trace's test of near-touching pieces).
+      auto turns_over = [&](Index w, const Vec2& pw) {
         for (Index f : t2.vertex_elements(w)) {
           const auto& c = t2.element(f);
           const int m = t2.local_corner(f, w);
           Vec2 px, py;
           if (!straight_point(c[(m + 1) % 3], px) || !straight_point(c[(m + 2) % 3], py)) continue;
-          // Counter-clockwise, and each corner farther than the clearance from the opposite side
-          // (the trace's test of near-touching pieces).
           const double twice_area = (px - pw).x() * (py - pw).y() - (px - pw).y() * (py - pw).x();
           const double longest = std::max({(px - pw).norm(), (py - pw).norm(), (py - px).norm()});
-          if (orient2d(pw, px, py) <= 0 || twice_area <= 2.0 * margin * longest)
-            return refuse(RemovalRefusal::straight_fold);
+          if (orient2d(pw, px, py) <= 0 || twice_area <= 2.0 * margin * longest) return true;
+        }
+        return false;
+      };
+      // The S2 triangles at a moved preimage.
+      for (const auto& [w, unused] : sh.moved) {
+        (void)unused;
+        if (scratch.moved_slot[static_cast<std::size_t>(w)][0] != g) continue;
+        Vec2 pw;
+        if (straight_point(w, pw) && turns_over(w, pw)) return refuse(RemovalRefusal::straight_fold);
+      }
+      // S2 triangles that span the star between the S1 triangles just outside it: their corners
+      // did not move, but their straight edges through the star did.
+      for (int i = 0; i < k; ++i) {
+        if (!sh.closed && i == k - 1) break;  // the new line edge: no triangle beyond in this sheet
+        const Index x = ring[i], y = ring[(i + 1) % k];
+        for (Index t : s.vertex_triangles[x]) {
+          if (star_position(t) >= 0) continue;
+          const auto& c = s.triangles[t];
+          if (c[0] != y && c[1] != y && c[2] != y) continue;
+          for (Index w : s.triangle_vertices[t]) {
+            Vec2 pw;
+            if (straight_point(w, pw) && turns_over(w, pw)) return refuse(RemovalRefusal::straight_fold);
+          }
         }
       }
       relocation_base += sh.moved.size();

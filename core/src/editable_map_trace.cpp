@@ -178,22 +178,27 @@ class Tracer {
 
     // A corridor: the shortest straight segment from a's preimage to b's over all start triangles.
     const double chord = (world(a) - world(b)).norm();
-    best_length_ = 4.0 * chord;
+    // Within a disk of radius 1.25 times the chord first (the S1 path of a short S2 edge is
+    // about its chord), then 4 times: the search explores every cone that reaches the disk.
     found_ = false;
     budget_ = 20000;
-    for (Index t0 : from_) {
-      apex_ = place(t0, a, frames_[t0]);
-      target_ = b;
-      path_.assign(1, t0);
-      portals_.clear();
-      portal_ends_.clear();
-      const auto& c = s_.triangles[t0];
-      for (int k = 0; k < 3; ++k) {
-        const Index x = c[k], y = c[(k + 1) % 3];
-        if (is_corner_preimage(a) && (x == a || y == a)) continue;
-        if (!is_corner_preimage(a) && s_.on_edge(a) && sorted_pair(x, y) == s_.preimage_edge[a]) continue;
-        enter(t0, frames_[t0], x, y, nullptr, nullptr);
+    for (double factor : {1.25, 4.0}) {
+      best_length_ = factor * chord;
+      for (Index t0 : from_) {
+        apex_ = place(t0, a, frames_[t0]);
+        target_ = b;
+        path_.assign(1, t0);
+        portals_.clear();
+        portal_ends_.clear();
+        const auto& c = s_.triangles[t0];
+        for (int k = 0; k < 3; ++k) {
+          const Index x = c[k], y = c[(k + 1) % 3];
+          if (is_corner_preimage(a) && (x == a || y == a)) continue;
+          if (!is_corner_preimage(a) && s_.on_edge(a) && sorted_pair(x, y) == s_.preimage_edge[a]) continue;
+          enter(t0, frames_[t0], x, y, nullptr, nullptr);
+        }
       }
+      if (found_) break;
     }
     if (budget_ < 0) fail(fmt::format("the search for S2 edge {}'s corridor ran out of budget", e));
     if (!found_) fail(fmt::format("no straight trace of S2 edge {} (vertices {} and {})", e, a, b));
