@@ -147,6 +147,43 @@ TEST(SimplifyDeferredCut, TracesBumpySpheresWithoutFallingBack) {
   }
 }
 
+// The fallback itself: strongly jittered spheres simplified far down by the long-edge oracle
+// (which lets the preimages drift far), where the traces of 6 of these 24 seeds cross or come
+// within the clearance. Each run that fell back says why and is the per-step run's valid map
+// (the same plans and error); the others are traced and valid too.
+TEST(SimplifyDeferredCut, RunsThatFallBackAreTheValidPerStepRuns) {
+  int fell_back_on_the_trace = 0, traced = 0;
+  for (std::uint64_t seed = 1; seed <= 24; ++seed) {
+    generators::Rng rng(seed);
+    auto fine = std::make_shared<const Surface<2>>(generators::icosphere({3, 0.3}, rng));
+    SimplifyOptions options = sphere_options("deferred");
+    options.target_elements = 40;
+    options.oracles = WeightedOracles{};
+    options.oracles.add("long-edge", 1.0);
+    const SimplifyResult deferred = simplify(fine, options);
+    VerifyOptions v;
+    v.expect_parametrization = true;
+    const VerificationReport report = verify(deferred.map, v);
+    EXPECT_TRUE(report.ok()) << "seed " << seed << ": " << summary(report);
+    EXPECT_TRUE(simplify_test::vertices_without_one_preimage(deferred.map).empty()) << "seed " << seed;
+    EXPECT_NEAR(simplify_test::image_area(deferred.map), fine->measure(), 1e-8 * fine->measure()) << "seed " << seed;
+    if (!deferred.report.cut_fell_back) {
+      ++traced;
+      continue;
+    }
+    EXPECT_EQ(deferred.report.cut_failure.rfind("deferred cut: ", 0), 0u) << deferred.report.cut_failure;
+    if (deferred.report.cut_failure.find("above its target") == std::string::npos) ++fell_back_on_the_trace;
+    // The result is the per-step run's.
+    SimplifyOptions again = options;
+    again.cut = "per-step";
+    const SimplifyResult reference = simplify(fine, again);
+    EXPECT_EQ(deferred.report.full_plans, reference.report.full_plans) << "seed " << seed;
+    EXPECT_EQ(deferred.report.hausdorff_error, reference.report.hausdorff_error) << "seed " << seed;
+  }
+  EXPECT_GT(fell_back_on_the_trace, 0);
+  EXPECT_GT(traced, 0);
+}
+
 TEST(SimplifyDeferredCut, AnUnknownCutIsAnErrorNamingIt) {
   SimplifyOptions options = sphere_options("sometimes");
   try {
