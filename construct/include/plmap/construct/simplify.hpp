@@ -66,7 +66,11 @@ struct SimplifyOptions {
   /// paper's method; every intermediate map is valid). "deferred": the steps only relocate the
   /// S2 vertex preimages; at the end every S2 edge is traced once as a straight segment through
   /// the final S1 and the traced graph is checked (EditOptions::defer_cut). If that check fails,
-  /// the whole run is redone with the per-step cut (SimplifyReport::cut_fell_back).
+  /// or the run stopped above its target (the deferred cut refuses steps that would turn an S2
+  /// triangle's straight preimage over), the whole run is redone with the per-step cut
+  /// (SimplifyReport::cut_fell_back); the oracles known by name start afresh for it, a custom
+  /// oracle is handed over as it is (its state must allow a second run). Surfaces only: a curve's
+  /// segments have no crossings to cut.
   std::string cut = "per-step";
   /// The error oracles; empty: hausdorff:1, aspect-ratio:0.05, normal-deviation:0.5.
   WeightedOracles oracles;
