@@ -25,7 +25,7 @@ struct SimplifyCommand {
   double max_error = std::numeric_limits<double>::infinity();
   std::vector<std::string> oracles;
   double feature_angle = 60.0;
-  std::string flattening = "polar-map", hole_triangulation = "constrained-delaunay", ranking = "exact";
+  std::string flattening = "polar-map", hole_triangulation = "constrained-delaunay", ranking = "exact", cut = "per-step";
   unsigned threads = 0;
   bool json = false;
   ProgressMode progress = ProgressMode::automatic;
@@ -51,6 +51,7 @@ int run_simplify(const SimplifyCommand& o) {
   options.flattening = o.flattening;
   options.hole_triangulation = o.hole_triangulation;
   options.ranking = o.ranking;
+  options.cut = o.cut;
   options.builder.threads = o.threads;
   for (const std::string& spec : o.oracles) options.oracles.add_spec(spec);
   // Strategy names are checked before the (possibly long) run.
@@ -121,6 +122,9 @@ int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const S
     j["full_plans"] = r.full_plans;
     j["requeued"] = r.requeued;
     j["ranking_plans"] = r.ranking_plans;
+    j["cut"] = r.cut;
+    j["cut_fell_back"] = r.cut_fell_back;
+    if (r.cut_fell_back) j["cut_failure"] = r.cut_failure;
   }
   j["feature_angle"] = o.feature_angle;
   j["threads"] = resolved_threads(o.threads);
@@ -167,6 +171,12 @@ void register_simplify(CLI::App& app, Action& action) {
                   "Queue removal candidates by their exact ranking plan (exact) or by a cheap "
                   "Hausdorff estimate corrected when they come up (estimate)")
       ->check(CLI::IsMember({"exact", "estimate"}))
+      ->capture_default_str();
+  cmd->add_option("--cut", o->cut,
+                  "Cut the fine edges along the new coarse edges at every step (per-step), or trace "
+                  "them once through the final coarse surface, redoing the run per step if the "
+                  "trace is not valid (deferred); surfaces only")
+      ->check(CLI::IsMember({"per-step", "deferred"}))
       ->capture_default_str();
   add_threads_option(*cmd, o->threads, "Threads of the final closure");
   add_progress_options(*cmd, o->progress);

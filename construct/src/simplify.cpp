@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <queue>
 
 namespace plmap {
@@ -512,6 +513,9 @@ SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions 
   detail::check_simplify_options(options, s.element_count(), s.vertex_count(), "surface", "triangles");
   if (options.ranking != "exact" && options.ranking != "estimate")
     throw Error(fmt::format("simplify: unknown ranking '{}' (exact or estimate)", options.ranking));
+  if (options.cut != "per-step" && options.cut != "deferred")
+    throw Error(fmt::format("simplify: unknown cut '{}' (per-step or deferred)", options.cut));
+  options.edit.defer_cut = options.cut == "deferred";
   if (options.oracles.empty()) options.oracles.add("hausdorff", 1.0).add("aspect-ratio", 0.05).add("normal-deviation", 0.5);
 
   SimplifyReport report;
@@ -521,6 +525,7 @@ SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions 
   report.flattening = options.flattening;
   report.hole_triangulation = options.hole_triangulation;
   report.ranking = options.ranking;
+  report.cut = options.cut;
 
   Simplifier simplifier(fine, options);
   report.feature_edges = simplifier.feature_edge_count();
@@ -540,7 +545,36 @@ SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions 
 
   const auto finalize_start = Clock::now();
   report_progress(options.progress, "finalize", 0, 1);
-  PlMap<2> map = simplifier.map().to_map(options.builder);
+  std::optional<PlMap<2>> traced;
+  try {
+    // The deferred cut refuses steps the per-step cut makes (straight_fold): a run it stopped
+    // above its target is redone per step too.
+    if (options.edit.defer_cut && !report.target_reached && (options.target_elements > 0 || options.target_vertices > 0))
+      throw DeferredCutFailure(fmt::format("deferred cut: the run stopped at {} triangles, above its target",
+                                           simplifier.map().live_triangle_count()));
+    traced = simplifier.map().to_map(options.builder);
+  } catch (const DeferredCutFailure& failure) {
+    // The deferred cut's traced graph is not a valid parametrization: redo the run with the
+    // per-step cut, whose every step is checked.
+    SimplifyOptions again = options;
+    again.cut = "per-step";
+    again.edit.defer_cut = false;
+    // The oracles keep state about the map they judged (shared by copies of the options): the
+    // ones known by name start afresh; a custom oracle is handed over as it is.
+    again.oracles = WeightedOracles{};
+    for (const auto& [name, weight] : options.oracles.named_weights()) {
+      const auto names = error_oracle_names();
+      if (std::find(names.begin(), names.end(), name) != names.end()) again.oracles.add(name, weight);
+    }
+    if (again.oracles.named_weights().size() != options.oracles.named_weights().size()) again.oracles = options.oracles;
+    SimplifyResult result = simplify(std::move(fine), std::move(again));
+    result.report.cut = "deferred";
+    result.report.cut_fell_back = true;
+    result.report.cut_failure = failure.what();
+    result.report.seconds_total = seconds_since(start);
+    return result;
+  }
+  PlMap<2> map = std::move(*traced);
   report_progress(options.progress, "finalize", 1, 1);
   report.seconds_finalize = seconds_since(finalize_start);
   report.elements_after = map.domain().element_count();

@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace plmap {
 
 const char* to_string(RemovalRefusal reason) {
@@ -24,6 +26,7 @@ const char* to_string(RemovalRefusal reason) {
     case RemovalRefusal::crossing_edges: return "crossing_edges";
     case RemovalRefusal::single_triangle_side: return "single_triangle_side";
     case RemovalRefusal::edge_reenters_triangle: return "edge_reenters_triangle";
+    case RemovalRefusal::straight_fold: return "straight_fold";
   }
   return "unknown";
 }
@@ -286,6 +289,8 @@ Surface<2> EditableMap::domain_surface(std::vector<Index>* domain_to_target_vert
 
 PlMap<2> EditableMap::to_map(BuilderOptions options) const {
   const Impl& s = *impl_;
+  // With the deferred cut the polylines were never cut: every S2 edge is traced now.
+  const std::vector<std::vector<TracedCrossing>> traced = s.options.defer_cut ? Trace::run(s) : std::vector<std::vector<TracedCrossing>>{};
   std::vector<Index> domain_to_target;
   auto domain = std::make_shared<const Surface<2>>(domain_surface(&domain_to_target));
   std::vector<Index> vertex_number(s.vertex_live.size(), invalid_index);
@@ -314,23 +319,46 @@ PlMap<2> EditableMap::to_map(BuilderOptions options) const {
     }
   }
   std::vector<EdgeCrossing> crossings;
+  auto add_crossing = [&](Index e, std::array<Index, 2> s1_edge, double edge_parameter, double target_parameter) {
+    const Index edge = domain->find_edge(vertex_number[s1_edge[0]], vertex_number[s1_edge[1]]);
+    if (edge == invalid_index)
+      throw InvalidMapError(fmt::format("EditableMap: S2 edge {} crosses S1 vertices {} and {}, which share no edge", e,
+                                        s1_edge[0], s1_edge[1]));
+    crossings.push_back({edge, edge_parameter, target_parameter});
+  };
   for (Index e = 0; e < t2.edge_count(); ++e) {
-    const EdgePolyline& p = s.polylines[e];
     crossings.clear();
-    for (std::size_t i = 1; i + 1 < p.vertex.size(); ++i) {
-      const Index a = vertex_number[p.edge[i][0]], b = vertex_number[p.edge[i][1]];
-      const Index edge = domain->find_edge(a, b);
-      if (edge == invalid_index)
-        throw InvalidMapError(fmt::format("EditableMap: S2 edge {} crosses S1 vertices {} and {}, which share no edge", e,
-                                          p.edge[i][0], p.edge[i][1]));
-      crossings.push_back({edge, p.edge_parameter[i], p.target_parameter[i]});
+    if (!traced.empty()) {
+      for (const TracedCrossing& c : traced[e]) add_crossing(e, c.edge, c.edge_parameter, c.target_parameter);
+    } else {
+      const EdgePolyline& p = s.polylines[e];
+      for (std::size_t i = 1; i + 1 < p.vertex.size(); ++i) add_crossing(e, p.edge[i], p.edge_parameter[i], p.target_parameter[i]);
     }
     if (crossings.empty())
       builder.add_edge(e);
     else
       builder.add_edge(e, crossings);
   }
-  return std::move(builder).finalize();
+  if (!s.options.defer_cut) return std::move(builder).finalize();
+  // The traced graph passed the trace's checks (no crossings, S2's rotation order); the builder
+  // and the tiling of S2 by the region images confirm it, else the caller falls back.
+  PlMap<2> map = [&] {
+    try {
+      return std::move(builder).finalize();
+    } catch (const Error& e) {
+      throw DeferredCutFailure(fmt::format("deferred cut: the builder refused the traced graph: {}", e.what()));
+    }
+  }();
+  const MapData<2>& m = map.stored();  // region corners are stored: no graph is derived
+  double image_area = 0.0;
+  for (Index r = 0; r < map.region_count(); ++r) {
+    const auto& c = m.region_corners[r];
+    const Eigen::Vector3d a = map.node_target_world(c[0]), b = map.node_target_world(c[1]), d = map.node_target_world(c[2]);
+    image_area += 0.5 * (b - a).cross(d - a).norm();
+  }
+  if (!(std::abs(image_area - t2.measure()) <= 1e-8 * t2.measure()))
+    throw DeferredCutFailure(fmt::format("deferred cut: the region images cover {} of S2's area {}", image_area, t2.measure()));
+  return map;
 }
 
 }  // namespace plmap

@@ -77,6 +77,21 @@ struct EditableMap::Impl {
   }
 };
 
+/// A crossing of an S1 edge (smaller vertex first) by a traced S2 edge: the parameter on the S1
+/// edge from its smaller vertex and on the S2 edge from its smaller vertex.
+struct TracedCrossing {
+  std::array<Index, 2> edge;
+  double edge_parameter;
+  double target_parameter;
+};
+
+/// The deferred cut (editable_map_trace.cpp): per S2 edge, its crossings of S1 edges in order
+/// from the preimage of its smaller vertex, traced straight through the final S1 and checked.
+/// Throws DeferredCutFailure.
+struct EditableMap::Trace {
+  static std::vector<std::vector<TracedCrossing>> run(const Impl& s);
+};
+
 inline std::array<Index, 2> sorted_pair(Index a, Index b) { return a < b ? std::array{a, b} : std::array{b, a}; }
 
 }  // namespace plmap

@@ -9,7 +9,7 @@
 // coarse surface and of its refinement through the map.
 //
 // Usage: bench_simplification_peers --tool plmap|psurface|cgal --mesh FILE.off --target N
-//            [--oracle NAME[:WEIGHT]]... [--ranking exact|estimate] [--feature-angle DEG] [--sweeps K] [--weights NAME]
+//            [--oracle NAME[:WEIGHT]]... [--ranking exact|estimate] [--cut per-step|deferred] [--feature-angle DEG] [--sweeps K] [--weights NAME]
 //            [--refine-levels L] [--psurface-aspect-ratio W] [--psurface-hausdorff W]
 //        bench_simplification_peers --list-tools
 // Exit 2 with one line on stderr for bad arguments or an unreadable mesh.
@@ -51,6 +51,7 @@ int run(int argc, char** argv) {
       request.oracles.push_back(a.value());
     } else if (a.name() == "--feature-angle") request.feature_angle_degrees = std::stod(a.value());
     else if (a.name() == "--ranking") request.ranking = a.value();
+    else if (a.name() == "--cut") request.cut = a.value();
     else if (a.name() == "--sweeps") request.smooth_sweeps = std::stoi(a.value());
     else if (a.name() == "--weights") request.smoothing_weights = a.value();
     else if (a.name() == "--refine-levels") request.refine_levels = std::stoi(a.value());

@@ -25,6 +25,8 @@ struct SimplificationRequest {
   std::vector<std::string> oracles = {"hausdorff:1", "aspect-ratio:1"};
   /// plmap's queueing of removal candidates (SimplifyOptions::ranking): "exact" or "estimate".
   std::string ranking = "exact";
+  /// plmap's cut of the fine edges (SimplifyOptions::cut): "per-step" or "deferred".
+  std::string cut = "per-step";
   /// plmap: dihedral angle above which an edge is a feature line (180: none, as PSurface sees a
   /// mesh without feature-line marks).
   double feature_angle_degrees = 180.0;

@@ -39,6 +39,7 @@ SimplificationOutcome simplify_with_plmap(const SimplificationRequest& request, 
   options.feature_angle_degrees = request.feature_angle_degrees;
   for (const auto& spec : request.oracles) options.oracles.add_spec(spec);
   options.ranking = request.ranking;
+  options.cut = request.cut;
   SmoothOptions smoothing;
   smoothing.sweeps = std::max(1, request.smooth_sweeps);
   smoothing.weights = request.smoothing_weights;
@@ -69,6 +70,8 @@ SimplificationOutcome simplify_with_plmap(const SimplificationRequest& request, 
     f["regions"] = map.region_count();
     f["ranking"] = r.ranking;
     f["ranking_plans"] = r.ranking_plans;
+    f["cut"] = r.cut;
+    f["cut_fell_back"] = r.cut_fell_back;
     f["full_plans"] = r.full_plans;
     f["hausdorff_before_smoothing"] = node_hausdorff(map) / diagonal;
     f["hausdorff"] = node_hausdorff(final_map) / diagonal;

@@ -19,3 +19,16 @@ def simplify_with_the_estimate_ranking():
     expect_clean_error(["simplify", "ranked.off", "-o", "never.plmap", "--target-elements", 100,
                         "--ranking", "psychic"], code=64, mention="psychic")
     expect(not os.path.exists(os.path.join(WORK, "never.plmap")), "never.plmap was written")
+
+
+@case
+def simplify_with_the_deferred_cut():
+    run("generate", "delaunay", "--points", 300, "--lift", "--seed", 21, "-o", "deferred.off")
+    j = run_json("simplify", "deferred.off", "-o", "deferred.plmap", "--target-elements", 120,
+                 "--feature-angle", 180, "--oracle", "hausdorff:1", "--oracle", "aspect-ratio:1",
+                 "--ranking", "estimate", "--cut", "deferred", "--json")
+    expect_keys(j, ["cut", "cut_fell_back"], "simplify --json")
+    expect(j["cut"] == "deferred" and j["target_reached"], j)
+    run("check", "--parametrization", "deferred.plmap")
+    expect_clean_error(["simplify", "deferred.off", "-o", "never.plmap", "--target-elements", 100,
+                        "--cut", "later"], code=64, mention="later")

@@ -322,6 +322,7 @@ class Pipeline {
     options.flattening = p.text("flattening");
     options.hole_triangulation = p.text("hole_triangulation");
     options.ranking = p.text("ranking");
+    options.cut = p.text("cut");
     peers::Measurement clock;
     clock.start();
     SimplifyResult result = plmap::simplify(s1_, options);
@@ -393,7 +394,7 @@ class Pipeline {
                                      "--psurface-aspect-ratio", fmt::format("{}", p.real("psurface_aspect_ratio")),
                                      "--psurface-hausdorff", fmt::format("{}", p.real("psurface_hausdorff"))};
     for (const auto& spec : detail::split_oracles(p.text("oracles"))) argv.insert(argv.end(), {"--oracle", spec});
-    argv.insert(argv.end(), {"--ranking", p.text("ranking")});
+    argv.insert(argv.end(), {"--ranking", p.text("ranking"), "--cut", p.text("cut")});
     const auto outcome = detail::run_peer_benchmark("peer_simplify", argv, p.real("timeout_seconds"), true);
     m.metrics[prefix + "ok"] = outcome.ok;
     m.metrics[prefix + "error"] = outcome.error;

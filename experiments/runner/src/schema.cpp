@@ -281,7 +281,9 @@ const std::vector<ParameterSpec>& step_schema(const std::string& kind) {
              "re-triangulation of the hole"),
       choice("ranking", "exact", {"exact", "estimate"}, "ranking",
              "how removal candidates are queued: by their ranking plan, or by a Hausdorff estimate corrected when "
-             "they come up")};
+             "they come up"),
+      choice("cut", "per-step", {"per-step", "deferred"}, "cut",
+             "when the fine edges are cut along the coarse edges: at every step, or traced once at the end")};
   static const std::vector<ParameterSpec> smooth = {
       integer("sweeps", 1, 1, 1000, "passes over all elements"),
       choice("weights", "floater", names_of(smoothing_weights_names()), "smoothing weights",
@@ -295,6 +297,7 @@ const std::vector<ParameterSpec>& step_schema(const std::string& kind) {
       integer("target_elements", 500, 1, 1e9, "triangles to simplify to"),
       text("oracles", "hausdorff:1,aspect-ratio:1", "plmap's error oracles NAME[:WEIGHT], comma-separated"),
       choice("ranking", "exact", {"exact", "estimate"}, "ranking", "plmap's queueing of removal candidates"),
+      choice("cut", "per-step", {"per-step", "deferred"}, "cut", "plmap's cut of the fine edges: per step or deferred"),
       real("feature_angle", 180.0, 0.0, 180.0,
            "plmap's feature-line angle (180: no sharp features, as PSurface sees an unmarked mesh)"),
       real("psurface_aspect_ratio", 0.5, 0.0, unbounded, "PSurface's QualityRequest aspect-ratio weight"),

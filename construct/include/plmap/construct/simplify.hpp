@@ -61,6 +61,17 @@ struct SimplifyOptions {
   /// order differs from the exact one where the estimate is too high (8-11 % larger Hausdorff
   /// error there).
   std::string ranking = "exact";
+  /// When S2's edges are cut along S1's new edges. "per-step": every step cuts the star's S2
+  /// edge polylines along its new triangles and refuses the step if they would cross (the
+  /// paper's method; every intermediate map is valid). "deferred": the steps only relocate the
+  /// S2 vertex preimages; at the end every S2 edge is traced once as a straight segment through
+  /// the final S1 and the traced graph is checked (EditOptions::defer_cut). If that check fails,
+  /// or the run stopped above its target (the deferred cut refuses steps that would turn an S2
+  /// triangle's straight preimage over), the whole run is redone with the per-step cut
+  /// (SimplifyReport::cut_fell_back); the oracles known by name start afresh for it, a custom
+  /// oracle is handed over as it is (its state must allow a second run). Surfaces only: a curve's
+  /// segments have no crossings to cut.
+  std::string cut = "per-step";
   /// The error oracles; empty: hausdorff:1, aspect-ratio:0.05, normal-deviation:0.5.
   WeightedOracles oracles;
   EditOptions edit;
@@ -93,7 +104,11 @@ struct SimplifyReport {
   Index skipped_vertices = 0;
   /// True if the element or vertex target was reached.
   bool target_reached = false;
-  std::string oracles, flattening, hole_triangulation, ranking;
+  std::string oracles, flattening, hole_triangulation, ranking, cut;
+  /// With the deferred cut: true if its traced graph failed the check and the run was redone
+  /// with the per-step cut (the result is the per-step run's), and why it failed.
+  bool cut_fell_back = false;
+  std::string cut_failure;
   /// Full plans made when candidates came up, and of these, how many went back into the queue
   /// with their full cost because it was above the queued one.
   Index full_plans = 0, requeued = 0;

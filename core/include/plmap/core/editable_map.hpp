@@ -26,6 +26,7 @@
 /// along the line moves them there; elsewhere a step that would put one within
 /// `EditOptions::edge_clearance` of a new edge is refused (see docs/algorithms/simplification.md).
 
+#include <plmap/core/errors.hpp>
 #include <plmap/core/map_builder.hpp>
 #include <plmap/core/pl_map.hpp>
 #include <plmap/core/surface.hpp>
@@ -57,6 +58,7 @@ enum class RemovalRefusal {
   crossing_edges,         ///< straightened S2 edge preimages would cross, touch or come within the clearance inside a new triangle
   single_triangle_side,   ///< a side of the feature line is one triangle: it would collapse onto the new edge
   edge_reenters_triangle, ///< an S2 edge's preimage would pass through one new triangle twice
+  straight_fold,          ///< deferred cut: an S2 triangle's straightened preimage in the star would turn over
 };
 
 const char* to_string(RemovalRefusal reason);
@@ -73,6 +75,22 @@ struct EditOptions {
   /// degenerate. Above Surface's own degeneracy threshold (1e-14 times the squared longest
   /// edge), so the final S1 is always a valid Surface.
   double min_relative_area = 1e-12;
+  /// The deferred cut: full plans stop after the new triangles and the relocated vertex
+  /// preimages (as a ranking bound does) and no S2 edge polyline is cut or checked while
+  /// editing; to_map() then traces every S2 edge once, as the straight segment between its ends'
+  /// preimages through the final S1 (unfolding the triangles it crosses), and checks that the
+  /// traced graph is an embedding with S2's rotation order (see
+  /// docs/algorithms/simplification.md, "The deferred cut"). Where a trace cannot be made or the
+  /// check fails, to_map() throws DeferredCutFailure and the caller redoes the run with the
+  /// per-step cut.
+  bool defer_cut = false;
+};
+
+/// to_map() of an EditableMap with the deferred cut found no valid straight trace of S2's
+/// edges through the final S1; the message says which edge or vertex and why.
+class DeferredCutFailure : public Error {
+ public:
+  using Error::Error;
 };
 
 /// One side of the star of an S1 vertex v. A vertex off the feature lines has one closed sheet:
@@ -234,10 +252,13 @@ class EditableMap {
   /// triangles) and, for each of its vertices, the S2 vertex it is.
   Surface<2> domain_surface(std::vector<Index>* domain_to_target_vertex = nullptr) const;
   /// The compact map Ξ: S1 → S2 of the current state, through MapBuilder (closure, finalize).
+  /// With EditOptions::defer_cut, the S2 edges are traced first; throws DeferredCutFailure if
+  /// the traced graph is not a valid parametrization.
   PlMap<2> to_map(BuilderOptions options = {}) const;
 
  private:
   struct Impl;
+  struct Trace;  ///< the deferred cut's tracing (editable_map_trace.cpp)
   std::unique_ptr<Impl> impl_;
 };
 
