@@ -23,6 +23,12 @@ std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAn
 bool drop_stretch_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index e, Index t,
                              DroppedEdges& dropped);
 
+/// Drops the rim edges (MapBuilder::add_rim_edge) on S1 element t and along its edges: where an
+/// element with rim edges cannot be closed, they go first, which leaves D ending at the last
+/// crossings there, as without a rim. Returns whether any was still there to drop.
+bool drop_rim_edges_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
+                               DroppedEdges& dropped);
+
 /// Drops, on each S1 element that the preimage of an S2 edge meets in two or more separate
 /// pieces (where a projection is discontinuous a preimage can enter an element twice), that
 /// edge's stretch on the element. Returns whether any was dropped (the buckets are then stale).

@@ -161,8 +161,15 @@ MapData<2> finalize_triangles(BuilderContents<2>& in, FinalizeReport* report) {
     // failed.front() is the smallest element that failed
     if (!drop || round == 16) std::rethrow_exception(failed.front().second);
     bool any = false;
-    for (const auto& [t, error] : failed)
+    for (const auto& [t, error] : failed) {
+      // rim edges in a conflict go first (they cost less than an S2 edge's stretch); the S2 edges
+      // in one are dropped in the next round if it remains
+      if (drop_rim_edges_on_element(in, where, t, dropped)) {
+        any = true;
+        continue;
+      }
       for (Index e : conflicting_edges(in, where, t)) any = drop_stretch_on_element(in, where, e, t, dropped) || any;
+    }
     if (!any) std::rethrow_exception(failed.front().second);
     where.build(in, dropped);
   }
