@@ -28,9 +28,13 @@ std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAn
   std::vector<Index> edges;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const auto& si = in.segments[pieces[i]];
+    // a rim edge's conflicts are settled by dropping the rim edges (drop_rim_edges_on_element),
+    // not the S2 edges it meets
+    if (si.target_edge == invalid_index) continue;
     const LocalPoint<2> p = node_local(in, si.a, t), q = node_local(in, si.b, t);
     for (std::size_t j = i + 1; j < pieces.size(); ++j) {
       const auto& sj = in.segments[pieces[j]];
+      if (sj.target_edge == invalid_index) continue;
       if (segments_cross_properly(p, q, node_local(in, sj.a, t), node_local(in, sj.b, t))) {
         edges.push_back(si.target_edge);
         edges.push_back(sj.target_edge);
@@ -44,8 +48,6 @@ std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAn
         edges.push_back(si.target_edge);
     }
   }
-  // Rim edges belong to no S2 edge: where one is in conflict, the S2 edges it meets are dropped.
-  edges.erase(std::remove(edges.begin(), edges.end(), invalid_index), edges.end());
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   return edges;

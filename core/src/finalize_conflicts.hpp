@@ -12,8 +12,8 @@
 
 namespace plmap::detail {
 
-/// The S2 edges whose pieces on S1 element t cross another piece or pass through a node, sorted,
-/// each once.
+/// The S2 edges whose pieces on S1 element t cross another S2 edge's piece or pass through a
+/// node, sorted, each once (conflicts with rim edges are left to drop_rim_edges_on_element).
 std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t);
 
 /// Drops the stretch of S2 edge e's preimage on S1 element t (its segments inside t and along
@@ -24,8 +24,8 @@ bool drop_stretch_on_element(const BuilderContents<2>& in, const NodesAndSegment
                              DroppedEdges& dropped);
 
 /// Drops the rim edges (MapBuilder::add_rim_edge) on S1 element t and along its edges: where an
-/// element with rim edges cannot be closed, they go first, which leaves D ending at the last
-/// crossings there, as without a rim. Returns whether any was still there to drop.
+/// element with rim edges cannot be closed, they go, which leaves D ending at the last crossings
+/// there, as without a rim. Returns whether any was still there to drop.
 bool drop_rim_edges_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
                                DroppedEdges& dropped);
 
