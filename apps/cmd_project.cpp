@@ -23,7 +23,7 @@ namespace {
 struct ProjectCommand {
   std::string s1, s2, output, directions_file, solver = "newton", normal_check = "none";
   double max_distance = std::numeric_limits<double>::infinity();
-  bool relative_distance = false, allow_negative = false, json = false;
+  bool relative_distance = false, allow_negative = false, json = false, no_rim = false;
   unsigned threads = 0;
   int dimension = 0;
   std::size_t max_listed = 20;
@@ -80,6 +80,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   options.max_distance = o.max_distance;
   options.max_distance_is_relative = o.relative_distance;
   options.allow_negative_distance = o.allow_negative;
+  options.end_on_rim = !o.no_rim;
   options.normal_check = normal_check_from(o.normal_check);
   options.threads = o.threads;
   if (!o.directions_file.empty()) options.directions = read_directions(o.directions_file, d, s1->vertex_count());
@@ -111,6 +112,8 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   j["reversed_faces"] = r.reversed_faces;
   j["occluded_faces"] = r.occluded_faces;
   j["folded_faces"] = r.folded_faces;
+  j["rim_nodes"] = r.rim_nodes;
+  j["rim_edges"] = r.rim_edges;
   Json listed = Json::array();
   for (std::size_t i = 0; i < std::min(o.max_listed, r.edges_not_inserted.size()); ++i) {
     const auto& e = r.edges_not_inserted[i];
@@ -171,6 +174,9 @@ void register_project(CLI::App& app, Action& action) {
       ->check(positive_number);
   cmd->add_flag("--relative-distance", o->relative_distance,
                 "--max-distance is a multiple of S1's bounding-box diagonal");
+  cmd->add_flag("--no-rim", o->no_rim,
+                "Where S2 passes behind S1, end D at the last S1 edge a walk crosses instead of on the curve "
+                "where the surfaces meet (the behaviour before rim nodes)");
   cmd->add_flag("--allow-negative", o->allow_negative,
                 "Also accept images behind S1 (penetrating contact), down to -max-distance");
   cmd->add_option("--normal-check", o->normal_check,

@@ -38,6 +38,9 @@ std::optional<PreimageGraph> PreimageGraph::from_map(const PlMap<2>& map, std::s
     for (Index n = m.node_begin[t]; n < m.node_begin[t + 1]; ++n) {
       const int k = m.node_location[n];
       switch (m.node_type[n]) {
+        case NodeType::rim_on_edge:
+        case NodeType::rim_inside:
+          return refuse(fmt::format("node {} lies on the rim of D inside S1 element {} (the map stops there)", n, t));
         case NodeType::ghost:
           return refuse(fmt::format("S1 vertex {} is a ghost node (not the preimage of an S2 vertex)", s1.element(t)[k]));
         case NodeType::corner:

@@ -292,6 +292,12 @@ struct ProjectionContext {
   }
 
   /// The vertices of S2 edge e (d = 1: of S2 segment e), in the edge's direction.
+  /// Whether D ends on the rim where S2 passes behind S1 (ProjectionOptions::end_on_rim): only
+  /// with the default distance rules, where the rim is the curve mu = 0 (rim_geometry.hpp).
+  bool ends_on_rim() const {
+    return d == 2 && options.end_on_rim && !options.allow_negative_distance && std::isinf(distance_limit);
+  }
+
   std::array<Index, 2> target_edge_vertices(Index e) const {
     if constexpr (d == 2)
       return s2.edge_vertices(e);

@@ -3,6 +3,7 @@
 #include "projection_edge_walks.hpp"
 
 #include "fold_reentry.hpp"
+#include "rim_geometry.hpp"
 #include "projection_edge_crossings.hpp"
 #include "walk_acceptance.hpp"
 
@@ -45,6 +46,9 @@ struct WalkResult {
   Place<d> stop;
   double eta = 0.0;
   int steps = 0;
+  /// A walk that stopped because its S2 edge passes behind S1 (end_on_rim): where the edge
+  /// pierces S1 beyond the stop, its parameter measured in the walk's direction.
+  std::optional<RimPoint<d>> rim;
 };
 
 /// The walks along the preimages of S2 edges.
@@ -175,6 +179,8 @@ class EdgeWalker {
                    : solver_failed ? EdgeFailureReason::solver_failure
                    : beyond_limit  ? EdgeFailureReason::distance_limit
                                    : EdgeFailureReason::discontinuity;
+        if (w.reason == EdgeFailureReason::distance_limit && ctx_.ends_on_rim())
+          w.rim = rim_ahead(cand, eta, qa, qb, unfolded_here);
         return w;
       }
       if (best_eta >= 1.0 - ctx_.options.search_limits.end_parameter_slack) {
@@ -210,6 +216,31 @@ class EdgeWalker {
     w.end = WalkEnd::failed;
     w.reason = EdgeFailureReason::walk_limit;
     return w;
+  }
+
+  /// Where the S2 edge qa -> qb, beyond parameter eta, pierces one of the S1 elements at the
+  /// walk's stop (the first along the edge, strictly inside the element): the stop's elements
+  /// gave crossings only behind S1, so the edge's preimage ends inside one of them where the
+  /// gap reaches zero (rim_geometry.hpp).
+  template <class Unfolded>
+  std::optional<RimPoint<d>> rim_ahead(const std::vector<Index>& elements, double eta, const WorldPoint<d>& qa,
+                                       const WorldPoint<d>& qb, Unfolded&& unfolded_here) const {
+    std::optional<RimPoint<d>> best;
+    if constexpr (d == 2) {
+      const auto& limits = ctx_.options.search_limits;
+      const WorldPoint<d> from = qa + eta * (qb - qa);
+      for (Index t : elements) {
+        if (!unfolded_here(t)) continue;
+        const std::array<WorldPoint<2>, 3> tri{ctx_.s1.corner(t, 0), ctx_.s1.corner(t, 1), ctx_.s1.corner(t, 2)};
+        const std::optional<Pierce> p = segment_through_triangle(from, qb, tri);
+        if (!p || !strictly_inside(p->barycentric, 1e3 * ctx_.options.snap_tolerance)) continue;
+        const double at = eta + p->s * (1.0 - eta);
+        if (!(at > eta + limits.edge_parameter_slack) || !(at < 1.0 - limits.end_parameter_slack)) continue;
+        if (best && best->eta <= at) continue;
+        best = RimPoint<d>{t, LocalPoint<d>(p->barycentric[1], p->barycentric[2]), at};
+      }
+    }
+    return best;
   }
 
   EdgeNotInserted<d> failure(Index e, EdgeFailureReason reason, const Place<d>& at, double eta,
@@ -280,9 +311,18 @@ class EdgeWalker {
   };
 
   /// Appends the piece of crossings [begin, end of the buffer).
-  static void add_piece(PlanBuffer<d>& buffer, std::size_t begin, PieceStart starts_at, PieceEnd ends_at) {
-    buffer.pieces.push_back(
-        {static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(buffer.crossings.size()), starts_at, ends_at});
+  static void add_piece(PlanBuffer<d>& buffer, std::size_t begin, PieceStart starts_at, PieceEnd ends_at,
+                        std::uint32_t rim = PlanBuffer<d>::no_rim) {
+    buffer.pieces.push_back({static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(buffer.crossings.size()),
+                             starts_at, ends_at, rim});
+  }
+
+  /// Keeps a walk's rim point for a piece, its parameter measured from the edge's first vertex
+  /// (`backwards`: the walk ran from the second vertex); returns its index.
+  static std::uint32_t keep_rim(PlanBuffer<d>& buffer, RimPoint<d> rim, bool backwards) {
+    if (backwards) rim.eta = 1.0 - rim.eta;
+    buffer.rim_points.push_back(rim);
+    return static_cast<std::uint32_t>(buffer.rim_points.size() - 1);
   }
 
   /// Walks along S2 edge e and appends its pieces (and what could not be walked) to `buffer`.
@@ -329,11 +369,13 @@ class EdgeWalker {
       // (partial insertion): the S2 elements on both sides of e then keep their regions away
       // from the failure, and only the faces around its far end stay outside D.
       buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
-      if (w.crossing_count > 0)
+      if (w.rim)  // the edge passes behind S1: the piece ends where it pierces S1
+        add_piece(buffer, begin, PieceStart::first_vertex, PieceEnd::rim_node, keep_rim(buffer, *w.rim, false));
+      else if (w.crossing_count > 0)
         add_piece(buffer, begin, PieceStart::first_vertex, PieceEnd::last_crossing);
       else
         crossings.resize(begin);
-      progress.covered_until = w.eta;
+      progress.covered_until = w.rim ? w.rim->eta : w.eta;
       progress.first_walk_failed = true;
       if constexpr (d == 2) walk_on_after_folds(e, w, progress, buffer);
     } else {
@@ -456,8 +498,11 @@ class EdgeWalker {
         crossings.resize(begin);
         break;
       }
-      add_piece(buffer, begin, PieceStart::first_crossing, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing);
-      progress.covered_until = reached ? 1.0 : stopped.eta;
+      if (!reached && stopped.rim)
+        add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::rim_node, keep_rim(buffer, *stopped.rim, false));
+      else
+        add_piece(buffer, begin, PieceStart::first_crossing, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing);
+      progress.covered_until = reached ? 1.0 : (stopped.rim ? stopped.rim->eta : stopped.eta);
       progress.reached_second |= reached;
     }
     ctx_.solver_calls += calls;
@@ -520,8 +565,19 @@ class EdgeWalker {
       if (w.end == WalkEnd::failed) {
         if (w.crossing_count > 0) {  // partial insertion, as for the walk from the first vertex
           buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
-          add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::last_crossing);
+          if (w.rim) {
+            add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::rim_node, keep_rim(buffer, *w.rim, false));
+            progress.covered_until = w.rim->eta;
+          } else {
+            add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::last_crossing);
+          }
           if constexpr (d == 2) walk_on_after_folds(e, w, progress, buffer);
+          continue;
+        }
+        if (w.rim) {  // right after the entry the edge passes behind S1: a piece from the entry to the rim
+          buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
+          add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::rim_node, keep_rim(buffer, *w.rim, false));
+          progress.covered_until = w.rim->eta;
           continue;
         }
         crossings.resize(begin);
@@ -564,6 +620,19 @@ class EdgeWalker {
       add_piece(buffer, piece_begin, PieceStart::first_crossing, PieceEnd::second_vertex);
       progress.reached_second = true;
     };
+    // A walk that stopped because the edge passes behind S1 starts the piece at the rim, if
+    // that lies beyond what the forward walks covered.
+    if (w.end == WalkEnd::failed && w.rim && !progress.second_reached_from_entry &&
+        1.0 - w.rim->eta > progress.covered_until + piece_slack) {
+      std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(begin), crossings.end());
+      for (std::size_t i = begin; i < crossings.size(); ++i)
+        crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
+      add_piece(buffer, begin, PieceStart::rim_node, PieceEnd::second_vertex, keep_rim(buffer, *w.rim, true));
+      progress.reached_second = true;
+      if (!progress.first_walk_failed) buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
+      if constexpr (d == 2) walk_back_after_folds(e, w, progress.covered_until, buffer);
+      return;
+    }
     // where the backward walk's last crossing lies, measured from the first vertex
     const double walked_back_to = w.crossing_count > 0 ? 1.0 - crossings.back().target_parameter : 1.0;
     const bool partial = w.crossing_count > 0 && !progress.second_reached_from_entry &&

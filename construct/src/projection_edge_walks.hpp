@@ -20,16 +20,31 @@ namespace plmap::projection {
 /// thread and reused from block to block: once they have grown, planning allocates nothing per
 /// edge or per walk (the per-edge vectors of pieces and crossings this replaces were millions of small
 /// allocations).
+/// Where an S2 edge pierces S1 (d = 2) and a walk along its preimage that stopped because the
+/// edge passes behind S1 ends: a point inside S1 element `element`, and the edge parameter there
+/// (0 at the edge's smaller-index vertex). The piece ends at a rim node there (end_on_rim).
+template <int d>
+struct RimPoint {
+  Index element = invalid_index;
+  LocalPoint<d> local = LocalPoint<d>::Zero();
+  double eta = 0.0;
+};
+
 template <int d>
 struct PlanBuffer {
-  /// A piece of an S2 edge's preimage: crossings [begin, end) of `crossings`.
+  static constexpr std::uint32_t no_rim = ~std::uint32_t{0};
+  /// A piece of an S2 edge's preimage: crossings [begin, end) of `crossings`; a piece that starts
+  /// or ends at a rim node (PieceStart::rim_node, PieceEnd::rim_node) has its point in
+  /// rim_points[rim].
   struct Piece {
     std::uint32_t begin, end;
     PieceStart starts_at;
     PieceEnd ends_at;
+    std::uint32_t rim = no_rim;
   };
   std::vector<Crossing<d>> crossings;
   std::vector<Piece> pieces;
+  std::vector<RimPoint<d>> rim_points;
   std::vector<EdgeNotInserted<d>> failures;
   /// scratch of the walks: the S1 elements at the current point and at the walk's end
   std::vector<Index> candidates, end_elements;
@@ -37,6 +52,7 @@ struct PlanBuffer {
   void clear() {
     crossings.clear();
     pieces.clear();
+    rim_points.clear();
     failures.clear();
   }
 };

@@ -226,12 +226,30 @@ std::uint32_t ProjectionInsertion<d>::insert_planned_edge(Index e, const Planned
       rejected.push_back(std::move(f));
       continue;
     }
+    PieceStart starts_at = piece.starts_at;
+    PieceEnd ends_at = piece.ends_at;
+    PieceRimNodes rims;
+    if (piece.rim != PlanBuffer<d>::no_rim) {
+      const RimPoint<d>& rim = buffer.rim_points[piece.rim];
+      const Index node = rim_node_inside(rim.element, e, rim.local, rim.eta);
+      if (node != invalid_index) {
+        (starts_at == PieceStart::rim_node ? rims.start : rims.end) = node;
+      } else {  // the builder refused the rim node: the piece ends at its last crossing, as before
+        if (starts_at == PieceStart::rim_node) starts_at = PieceStart::first_crossing;
+        if (ends_at == PieceEnd::rim_node) ends_at = PieceEnd::last_crossing;
+        if (crossings.size() + (starts_at == PieceStart::first_vertex) + (ends_at == PieceEnd::second_vertex) < 2)
+          continue;
+      }
+    }
     try {
-      if (piece.starts_at == PieceStart::first_vertex && piece.ends_at == PieceEnd::second_vertex) {
+      if (starts_at == PieceStart::first_vertex && ends_at == PieceEnd::second_vertex) {
         builder_.add_edge(e, crossings);
         whole = true;
       } else {
-        builder_.add_edge_piece(e, crossings, piece.starts_at, piece.ends_at);
+        if constexpr (d == 2)
+          builder_.add_edge_piece(e, crossings, starts_at, ends_at, rims);
+        else
+          builder_.add_edge_piece(e, crossings, starts_at, ends_at);
         ++pieces;
       }
       mark_used_points(crossings, e);

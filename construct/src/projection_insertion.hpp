@@ -15,6 +15,8 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace plmap::projection {
@@ -37,6 +39,12 @@ class ProjectionInsertion {
   /// The planned pieces of S2 edges [block, block_end) (plan_edge_block), in index order.
   void insert_planned_edges(Index block, Index block_end, const std::vector<PlannedEdge>& planned,
                             std::vector<PlanBuffer<d>>& buffers, ProjectionReport<d>& report);
+
+  /// d = 2, end_on_rim: the rim of D where S2 passes behind S1, traced across S1 from the rim
+  /// nodes where pieces ended (projection_rim.cpp): per pair of an S1 element and an S2
+  /// triangle that meet along it, a rim edge between the two ends of their intersection. Runs
+  /// after every edge is inserted, before release_used_points.
+  void insert_rim(ProjectionReport<d>& report);
 
   /// Frees what only the insertion needs, before finalize; what it inserted per edge stays.
   void release_used_points();
@@ -65,6 +73,28 @@ class ProjectionInsertion {
   void add_used_parameter(Index edge, double t, Index owner);
   std::uint32_t insert_planned_edge(Index e, const PlannedEdge& plan, PlanBuffer<d>& buffer,
                                     ProjectionReport<d>& report);
+
+  // ---- the rim of D (end_on_rim) ------------------------------------------------------------------
+  /// The rim node where S2 edge e pierces S1 element `element` at `local` (edge parameter eta),
+  /// made once per (element, edge); invalid_index if the builder refuses it.
+  Index rim_node_inside(Index element, Index e, const LocalPoint<d>& local, double eta);
+  /// The rim node where S1 edge `edge` pierces S2 element `target` (parameter t along the S1
+  /// edge, image `image` on the target), made once per point; invalid_index if refused or if
+  /// another node holds that point of the edge.
+  Index rim_node_on_edge(Index edge, double t, Index target, const LocalPoint<d>& image);
+  /// The point at parameter eta (from the smaller-index vertex) of S2 edge e, on an S2 element.
+  SurfacePoint<d> point_on_target_edge(Index e, double eta) const;
+  static std::uint64_t pair_key(Index a, Index b) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+  }
+  /// Per (S1 element, S2 edge): the rim node where the edge pierces the element.
+  std::unordered_map<std::uint64_t, Index> rim_inside_;
+  /// Per S1 edge: the rim nodes on it, (parameter, node).
+  std::unordered_map<Index, std::vector<std::pair<double, Index>>> rim_on_edge_;
+  /// The (S1 element, S2 edge) pairs of the pieces' rim nodes, in insertion order: where the
+  /// tracing starts.
+  std::vector<std::pair<Index, Index>> rim_seeds_;
+  Index rim_nodes_made_ = 0;
 
   /// In the per-edge count of what was inserted: the edge was inserted whole.
   static constexpr std::uint32_t inserted_whole = 1u << 31;

@@ -46,7 +46,8 @@ struct Support {
   std::uint8_t count = 0;
 };
 
-enum class BuilderNodeKind : std::uint8_t { vertex_preimage, ghost, intersection };
+/// rim: a node on the rim of D inside S1 (on an S1 edge or inside an element), where the map stops.
+enum class BuilderNodeKind : std::uint8_t { vertex_preimage, ghost, intersection, rim };
 
 template <int d>
 struct BuilderNode {
@@ -58,7 +59,8 @@ struct BuilderNode {
 static_assert(sizeof(BuilderNode<2>) <= 80 && sizeof(BuilderNode<1>) <= 64, "builder nodes are kept compact");
 
 /// A straight piece of an S2 edge's preimage between two nodes: inside element `where`, or (d = 2)
-/// along S1 edge `where`.
+/// along S1 edge `where`. A piece of the rim of D (MapBuilder::add_rim_edge) has target_edge
+/// invalid_index.
 struct Segment {
   Index a, b;
   Index target_edge;
@@ -94,9 +96,10 @@ class DroppedEdges {
       : dropped_(edge_inserted.size(), 0), reported_(edge_inserted.size(), 0), segment_dropped_(segment_count, 0),
         edge_inserted_(edge_inserted), report_(report) {}
   bool contains(Index e) const { return dropped_[static_cast<std::size_t>(e)] != 0; }
-  /// Whether segment s is left out: its S2 edge is dropped, or its stretch is.
+  /// Whether segment s is left out: its S2 edge is dropped, or its stretch is (a rim edge, with
+  /// no S2 edge, never is).
   bool drops_segment(Index s, Index target_edge) const {
-    return contains(target_edge) ||
+    return (target_edge != invalid_index && contains(target_edge)) ||
            (!segment_dropped_.empty() && segment_dropped_[static_cast<std::size_t>(s)] != 0);
   }
   /// Drops S2 edge e, found in conflict on S1 element t, and reports it; false if it was dropped
@@ -118,6 +121,16 @@ class DroppedEdges {
       flag = 1;
     }
     if (any) report(e, t);
+    return any;
+  }
+  /// Drops rim edges (no S2 edge, nothing to report); false if none of them was still in the map.
+  bool drop_rim_segments(std::span<const Index> segments) {
+    bool any = false;
+    for (Index s : segments) {
+      char& flag = segment_dropped_[static_cast<std::size_t>(s)];
+      any = any || flag == 0;
+      flag = 1;
+    }
     return any;
   }
 

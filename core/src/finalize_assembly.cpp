@@ -58,6 +58,7 @@ void make_room(Array& array, std::size_t needed) {
 
 NodeType node_type_of(const BuilderNode<2>& bn) {
   if (bn.place.kind == PlaceKind::vertex) return bn.kind == BuilderNodeKind::ghost ? NodeType::ghost : NodeType::corner;
+  if (bn.kind == BuilderNodeKind::rim) return bn.place.kind == PlaceKind::edge ? NodeType::rim_on_edge : NodeType::rim_inside;
   if (bn.place.kind == PlaceKind::edge)
     return bn.kind == BuilderNodeKind::intersection ? NodeType::intersection : NodeType::touching;
   return NodeType::interior;
@@ -199,12 +200,17 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
   // of the ghost's image, which the rounding of the input's scale can decide either way: such an
   // element is written with its neighbour entries and keeps them if the derivation would differ.
   const bool tiled = nf > 0 && static_cast<std::size_t>(region_count) == nf;
-  const bool has_ghost = std::any_of(et.slots.begin(), et.slots.end(),
-                                     [&](auto slot) { return in.nodes[slot].kind == BuilderNodeKind::ghost; });
+  // An element with a rim node keeps its graph: D ends on it, so its regions do not tile it
+  // anyway, and the derivation knows no rim edges.
+  bool has_ghost = false, has_rim = false;
+  for (const Index slot : et.slots) {
+    has_ghost = has_ghost || in.nodes[slot].kind == BuilderNodeKind::ghost;
+    has_rim = has_rim || in.nodes[slot].kind == BuilderNodeKind::rim;
+  }
   const std::size_t first_entry = at.entries;
-  write_nodes(in, w, tiled && !has_ghost, part, at);
+  write_nodes(in, w, tiled && !has_ghost && !has_rim, part, at);
   write_regions(w, base, region_count, part, at);
-  if (tiled && has_ghost && ghost_sides_derive_as_written(in.s2, part, base, static_cast<Index>(at.nodes),
+  if (tiled && has_ghost && !has_rim && ghost_sides_derive_as_written(in.s2, part, base, static_cast<Index>(at.nodes),
                                                          at.regions - static_cast<std::size_t>(region_count), at.regions)) {
     at.entries = first_entry;  // the derivation gives these entries back: drop them
     for (auto n = static_cast<std::size_t>(base); n < at.nodes; ++n) part.neighbor_begin[n + 1] = static_cast<Index>(first_entry);

@@ -164,7 +164,9 @@ std::array<int, 2> collect_constraints(const BuilderContents<2>& in, const Nodes
     if (a == b)
       throw BuilderError(fmt::format(
           "a graph edge on S1 element {} passes through another node (or its endpoints coincide)", t));
-    keys.push_back(segment_key(a, b, true));
+    // A rim edge is a constraint like the element boundary, not a graph edge: it is no S2 edge's
+    // preimage, and its sides are closure edges.
+    keys.push_back(segment_key(a, b, seg.target_edge != invalid_index));
   };
   for (Index sidx : where.element_segments[t]) add_graph(sidx);
   for (int k = 0; k < 3; ++k)

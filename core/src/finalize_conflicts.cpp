@@ -28,9 +28,13 @@ std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAn
   std::vector<Index> edges;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const auto& si = in.segments[pieces[i]];
+    // a rim edge's conflicts are settled by dropping the rim edges (drop_rim_edges_on_element),
+    // not the S2 edges it meets
+    if (si.target_edge == invalid_index) continue;
     const LocalPoint<2> p = node_local(in, si.a, t), q = node_local(in, si.b, t);
     for (std::size_t j = i + 1; j < pieces.size(); ++j) {
       const auto& sj = in.segments[pieces[j]];
+      if (sj.target_edge == invalid_index) continue;
       if (segments_cross_properly(p, q, node_local(in, sj.a, t), node_local(in, sj.b, t))) {
         edges.push_back(si.target_edge);
         edges.push_back(sj.target_edge);
@@ -58,6 +62,17 @@ bool drop_stretch_on_element(const BuilderContents<2>& in, const NodesAndSegment
     for (Index s : where.edge_segments[in.s1.element_edge(t, k)])
       if (in.segments[s].target_edge == e) stretch.push_back(s);
   return dropped.drop_stretch(e, t, stretch);
+}
+
+bool drop_rim_edges_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
+                               DroppedEdges& dropped) {
+  std::vector<Index> rim;
+  for (Index s : where.element_segments[t])
+    if (in.segments[s].target_edge == invalid_index) rim.push_back(s);
+  for (int k = 0; k < 3; ++k)
+    for (Index s : where.edge_segments[in.s1.element_edge(t, k)])
+      if (in.segments[s].target_edge == invalid_index) rim.push_back(s);
+  return dropped.drop_rim_segments(rim);
 }
 
 namespace {
@@ -110,7 +125,7 @@ bool drop_split_preimages(const BuilderContents<2>& in, const NodesAndSegmentsBy
       std::sort(pieces.begin(), pieces.end());
       for (std::size_t i = 0, j = 0; i < pieces.size(); i = j) {
         for (j = i + 1; j < pieces.size() && pieces[j].first == pieces[i].first;) ++j;
-        if (j - i < 2) continue;
+        if (j - i < 2 || pieces[i].first == invalid_index) continue;  // rim edges: no S2 edge
         if (!one_connected_piece(std::span<const Piece>(pieces.data() + i, j - i), reached))
           found.emplace_back(t, pieces[i].first);
       }

@@ -12,8 +12,8 @@
 
 namespace plmap::detail {
 
-/// The S2 edges whose pieces on S1 element t cross another piece or pass through a node, sorted,
-/// each once.
+/// The S2 edges whose pieces on S1 element t cross another S2 edge's piece or pass through a
+/// node, sorted, each once (conflicts with rim edges are left to drop_rim_edges_on_element).
 std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t);
 
 /// Drops the stretch of S2 edge e's preimage on S1 element t (its segments inside t and along
@@ -22,6 +22,12 @@ std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAn
 /// Returns whether anything was still there to drop (the buckets are then stale).
 bool drop_stretch_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index e, Index t,
                              DroppedEdges& dropped);
+
+/// Drops the rim edges (MapBuilder::add_rim_edge) on S1 element t and along its edges: where an
+/// element with rim edges cannot be closed, they go, which leaves D ending at the last crossings
+/// there, as without a rim. Returns whether any was still there to drop.
+bool drop_rim_edges_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
+                               DroppedEdges& dropped);
 
 /// Drops, on each S1 element that the preimage of an S2 edge meets in two or more separate
 /// pieces (where a projection is discontinuous a preimage can enter an element twice), that

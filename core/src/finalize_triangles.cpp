@@ -168,8 +168,13 @@ MapData<2> finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, co
     // failed.front() is the smallest element that failed
     if (!drop || round == 16) std::rethrow_exception(failed.front().second);
     bool any = false;
-    for (const auto& [t, error] : failed)
+    for (const auto& [t, error] : failed) {
+      // rim edges on a failed element go (a conflict with a rim edge costs the rim there, not an
+      // S2 edge's stretch), and so do the stretches of S2 edges in conflict among themselves or
+      // with a node: both in the same round, which closes every element again
+      any = drop_rim_edges_on_element(in, where, t, dropped) || any;
       for (Index e : conflicting_edges(in, where, t)) any = drop_stretch_on_element(in, where, e, t, dropped) || any;
+    }
     if (!any) std::rethrow_exception(failed.front().second);
     where.build(in, dropped);
   }

@@ -279,6 +279,60 @@ struct MapBuilder<d>::Impl {
     return new_node(place, BuilderNodeKind::ghost, invalid_index, image);
   }
 
+  // ---- the rim of D inside S1 --------------------------------------------------------------------
+  /// S2 edge an image support lies on (two support vertices), or invalid_index (inside an element).
+  Index target_edge_of(const Support<d>& image) const {
+    if constexpr (d == 2) {
+      if (image.count == 2) return s2->find_edge(image.vertex[0], image.vertex[1]);
+    }
+    return invalid_index;
+  }
+
+  Index add_rim_node(const Place<d>& place, const Support<d>& image) {
+    if (image.count < 2)
+      throw BuilderError(fmt::format("a rim node maps onto S2 vertex {}: enter it as that vertex's preimage",
+                                     image.vertex[0]));
+    if (place.kind == PlaceKind::vertex) {
+      const Index existing = node_at_domain_vertex[place.index];
+      if (existing == invalid_index) return new_node(place, BuilderNodeKind::ghost, invalid_index, image);
+      if (nodes[existing].kind != BuilderNodeKind::ghost)
+        throw BuilderError(fmt::format("a rim node at S1 vertex {} meets the preimage of S2 vertex {}", place.index,
+                                       nodes[existing].target));
+      return existing;  // the rim passes through the ghost node already there
+    }
+    return new_node(place, BuilderNodeKind::rim, target_edge_of(image), image);
+  }
+
+  void check_node_handle(Index n, const char* what) const {
+    if (n < 0 || n >= static_cast<Index>(nodes.size()))
+      throw BuilderError(fmt::format("{}: node {} does not exist (the builder has {} nodes)", what, n, nodes.size()));
+  }
+
+  /// A piece that starts or ends at rim node n: n must be a rim node (or a ghost node the rim
+  /// passes) whose image lies on the piece's S2 edge (u, v), strictly between its ends.
+  void check_rim_end(Index n, Index target_edge, Index u, Index v) const {
+    check_node_handle(n, "the end of a piece");
+    const auto& node = nodes[n];
+    if (node.kind != BuilderNodeKind::rim && node.kind != BuilderNodeKind::ghost)
+      throw BuilderError(fmt::format("a piece of S2 edge {} ends at node {}, which is no rim node", target_edge, n));
+    const Support<d>& s = node.image;
+    const bool on_edge = s.count == 2 && ((s.vertex[0] == u && s.vertex[1] == v) || (s.vertex[0] == v && s.vertex[1] == u));
+    if (!on_edge)
+      throw BuilderError(fmt::format("a piece of S2 edge {} ends at rim node {}, whose image does not lie on that edge",
+                                     target_edge, n));
+  }
+
+  void add_rim_edge(Index a, Index b) {
+    check_node_handle(a, "rim edge");
+    check_node_handle(b, "rim edge");
+    if (a == b) throw BuilderError(fmt::format("a rim edge needs two distinct nodes (node {} twice)", a));
+    try {
+      segments.push_back(locate_segment(a, b, invalid_index));
+    } catch (const BuilderError&) {
+      throw BuilderError(fmt::format("the rim edge between nodes {} and {} does not lie in one S1 element", a, b));
+    }
+  }
+
   // ---- geometry of places ----------------------------------------------------------------------
   WorldPoint<d> world_of(const Place<d>& p) const {
     switch (p.kind) {
@@ -398,9 +452,12 @@ struct MapBuilder<d>::Impl {
   std::vector<Index> chain_scratch;
 
   void insert_edge_preimage(Index target_edge, Index u, Index v, const std::vector<CrossingPlace>& crossings,
-                            bool from_u = true, bool to_v = true) {
+                            bool from_u = true, bool to_v = true, Index start_rim = invalid_index,
+                            Index end_rim = invalid_index) {
     const char* noun = d == 2 ? "edge" : "segment";
     const bool piece = !from_u || !to_v;
+    for (const Index rim : {start_rim, end_rim})
+      if (rim != invalid_index) check_rim_end(rim, target_edge, u, v);
     if (edge_inserted[target_edge] == edge_outside_domain)
       throw BuilderError(fmt::format("S2 {} {} was declared outside the domain", noun, target_edge));
     if (edge_inserted[target_edge] == edge_complete || (edge_inserted[target_edge] && !piece))
@@ -417,7 +474,7 @@ struct MapBuilder<d>::Impl {
       if (!cs.empty() && same_place(cs.back().place, c.place)) continue;
       cs.push_back(c);
     }
-    if (static_cast<int>(cs.size()) + from_u + to_v < 2)
+    if (static_cast<int>(cs.size()) + (from_u || start_rim != invalid_index) + (to_v || end_rim != invalid_index) < 2)
       throw BuilderError(fmt::format("a piece of the preimage of S2 {} {} needs two distinct points",
                                      noun, target_edge));
     // Arc-length image parameters for crossings of complete edges that have none given.
@@ -437,6 +494,7 @@ struct MapBuilder<d>::Impl {
     auto& chain = chain_scratch;
     chain.clear();
     if (from_u) chain.push_back(a);
+    if (start_rim != invalid_index) chain.push_back(start_rim);
     for (std::size_t i = 0; i < cs.size(); ++i) {
       double tau = cs[i].target_parameter;
       if (std::isnan(tau)) {
@@ -467,6 +525,7 @@ struct MapBuilder<d>::Impl {
       chain.push_back(node);
     }
     if (to_v) chain.push_back(b);
+    if (end_rim != invalid_index) chain.push_back(end_rim);
     for (std::size_t i = 0; i + 1 < chain.size(); ++i)
       segments.push_back(locate_segment(chain[i], chain[i + 1], target_edge));
     edge_inserted[target_edge] = piece ? edge_partial : edge_complete;
@@ -627,15 +686,41 @@ void MapBuilder<d>::add_edge(Index target_edge, std::span<const EdgeCrossing> cr
 template <int d>
   requires SurfaceDimension<d>
 void MapBuilder<d>::add_edge_piece(Index target_edge, std::span<const EdgeCrossing> crossings, PieceStart start,
-                                   PieceEnd end)
+                                   PieceEnd end, PieceRimNodes rims)
   requires(d == 2)
 {
   if constexpr (d == 2) {
     auto& im = *impl_;
     im.check_s2_edge(target_edge);
     const auto ev = im.s2->edge_vertices(target_edge);
+    if ((start == PieceStart::rim_node && rims.start == invalid_index) ||
+        (end == PieceEnd::rim_node && rims.end == invalid_index))
+      throw BuilderError(fmt::format("a piece of S2 edge {} starts or ends at a rim node but names none", target_edge));
     im.insert_edge_preimage(target_edge, ev[0], ev[1], crossing_places<d>(im, target_edge, crossings),
-                            start == PieceStart::first_vertex, end == PieceEnd::second_vertex);
+                            start == PieceStart::first_vertex, end == PieceEnd::second_vertex,
+                            start == PieceStart::rim_node ? rims.start : invalid_index,
+                            end == PieceEnd::rim_node ? rims.end : invalid_index);
+  }
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+typename MapBuilder<d>::NodeHandle MapBuilder<d>::add_rim_node(const SurfacePoint<d>& at, const SurfacePoint<d>& image)
+  requires(d == 2)
+{
+  if constexpr (d == 2) {
+    return impl_->add_rim_node(impl_->place_of(at, "rim node"), impl_->support_of(image, "rim node image"));
+  }
+  __builtin_unreachable();
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+void MapBuilder<d>::add_rim_edge(NodeHandle a, NodeHandle b)
+  requires(d == 2)
+{
+  if constexpr (d == 2) {
+    impl_->add_rim_edge(a, b);
   }
 }
 

@@ -11,8 +11,8 @@ bool in_range(Index i, Index begin, Index end) { return i >= begin && i < end; }
 
 /// The S2 vertex a node maps to (one entry), or the S2 edge it maps into (two entries, smaller
 /// first), or nothing: vertex nodes give their vertex, intersection nodes their edge, ghost
-/// nodes the edge their image lies on when one barycentric weight is exactly zero (the snapping
-/// rule makes it so). Indices out of range (a corrupt file) give nothing: the element then keeps
+/// and rim nodes the edge their image lies on when one barycentric weight is exactly zero (the
+/// snapping rule makes it so). Indices out of range (a corrupt file) give nothing: the element then keeps
 /// its stored graph.
 struct Carrier {
   int size = 0;
@@ -27,7 +27,7 @@ Carrier carrier_of(const MapData<2>& m, const Surface<2>& target, Index n) {
     if (!in_range(g, 0, target.edge_count())) return c;
     c.size = 2;
     c.vertex = target.edge_vertices(g);
-  } else if (type == NodeType::ghost) {
+  } else if (type == NodeType::ghost || is_on_rim(type)) {
     const SurfacePoint<2> image = m.node_image(n);
     if (!in_range(image.element, 0, target.element_count())) return c;
     const std::array<double, 3> weight{1.0 - image.local(0) - image.local(1), image.local(0), image.local(1)};
@@ -202,8 +202,8 @@ void derive_edge_nodes(const MapData<2>& m, Index t, std::vector<Index>& count, 
     for (Index n = nb; n < ne; ++n) {
       const NodeType type = m.node_type[n];
       const int at = m.node_location[n];
-      const bool on_corner = type == NodeType::corner || type == NodeType::ghost;
-      const bool on_edge = type == NodeType::touching || type == NodeType::intersection;
+      const bool on_corner = is_at_corner(type);
+      const bool on_edge = is_on_edge(type);
       if ((on_corner && (at == k || at == (k + 1) % 3)) || (on_edge && at == k)) edge_node.push_back(n);
     }
     // along local edge k: corner 0 (0,0) -> 1 (1,0) by x, 1 -> 2 (0,1) by y, 2 -> 0 by -y

@@ -29,15 +29,18 @@ template <int d>
 bool location_fits(NodeType type, int location) {
   if (is_at_corner(type)) return location >= 0 && location <= d;
   if (is_on_edge(type)) return d == 2 && location >= 0 && location <= 2;
+  if (type == NodeType::rim_inside) return d == 2 && location == -1;
   return type == NodeType::interior && location == -1;
 }
 
 /// The S2 entity a node of `type` stands for must exist: an S2 vertex for vertex preimages, an
-/// S2 edge for intersection nodes, none (invalid_index) for ghost nodes.
+/// S2 edge for intersection nodes, none (invalid_index) for ghost nodes, the S2 edge the image
+/// lies on or none for rim nodes.
 template <int d>
 bool target_fits(NodeType type, Index target, const Surface<d>& s2) {
   if (is_target_vertex_preimage(type)) return target >= 0 && target < s2.vertex_count();
   if (type == NodeType::intersection) return target >= 0 && target < s2.edge_count();
+  if (is_on_rim(type)) return target == invalid_index || (target >= 0 && target < s2.edge_count());
   return type == NodeType::ghost && target == invalid_index;
 }
 
@@ -68,7 +71,7 @@ void validate_nodes(const PlMap<d>& map, const StoredGraphOffsets& stored_graph,
       fail(t, fmt::format("node {} ({}) has location {}", n, to_string(type), m.node_location[n]));
     if (!target_fits<d>(type, m.node_target[n], map.target()))
       fail(t, fmt::format("node {} ({}) stands for S2 {} {}, which does not exist", n,
-                          to_string(type), type == NodeType::intersection ? "edge" : "vertex",
+                          to_string(type), is_target_vertex_preimage(type) ? "vertex" : "edge",
                           m.node_target[n]));
     const LocalPoint<d>& image_local = m.node_image_local[n];
     if (!m.node_position[n].allFinite() || !image_local.allFinite())

@@ -153,6 +153,12 @@ PSurfaceMap<ctype> build_psurface(const PlMap<2>& map) {
   const auto& s2 = map.target();
   const auto& m = map.data();
   PSurfaceMap<ctype> out;
+  // PSurface's graph has no node where the map stops inside an S1 element.
+  for (Index n = 0; n < map.node_count(); ++n)
+    if (is_on_rim(m.node_type[n]))
+      throw Error(fmt::format("node {} lies on the rim of D inside S1 (a {} node): PSurface 2.0 has no such node, "
+                              "so this map cannot be converted",
+                              n, to_string(m.node_type[n])));
 
   // Everything the translation needs is computed before the heap is measured.
   const std::vector<Index> partner = intersection_partners(map);
@@ -207,6 +213,8 @@ PSurfaceMap<ctype> build_psurface(const PlMap<2>& map) {
           break;
         case NodeType::touching: idx = factory.addTouchingNode(t, local, where, target); break;
         case NodeType::interior: idx = factory.addInteriorNode(t, local, target); break;
+        case NodeType::rim_on_edge:
+        case NodeType::rim_inside: continue;  // refused above
         case NodeType::intersection: {
           ++out.intersection_nodes;
           if (local_index[std::size_t(n)] >= 0) continue;  // entered with its partner

@@ -73,15 +73,15 @@ void run_map(const MapContext<d>& ctx, ViolationSink& sink) {
         }
       }
       preimages.push_back(key);
-    } else if (type == NodeType::intersection) {
+    } else if (type == NodeType::intersection || (is_on_rim(type) && m.node_target[n] != invalid_index)) {
       if constexpr (d == 2) {
         const auto ends = s2.edge_vertices(m.node_target[n]);
         const double dist = distance_to_segment<d>(world, s2.vertex(ends[0]), s2.vertex(ends[1]));
         if (!(dist <= world_tol))
           sink.add("node_image_on_target", {t, n, invalid_index, img.element}, [&] {
-            return fmt::format("intersection node {} lies on S2 edge {}, but its image is {:.3g} "
+            return fmt::format("{} node {} lies on S2 edge {}, but its image is {:.3g} "
                                "away from it (tolerance {:.3g})",
-                               n, m.node_target[n], dist, world_tol);
+                               to_string(type), n, m.node_target[n], dist, world_tol);
           });
       }
     }

@@ -44,7 +44,7 @@ bool check_indices(const MapContext<d>& ctx, ViolationSink& sink) {
       bad([&] { return fmt::format("node {} has invalid type {}", n, static_cast<int>(type)); });
       continue;
     }
-    if (d == 1 && is_on_edge(type))
+    if (d == 1 && (is_on_edge(type) || is_on_rim(type)))
       bad([&] { return fmt::format("node {} of a curve map has type {}", n, to_string(type)); });
     const bool loc_ok = is_at_corner(type) ? (loc >= 0 && loc <= d)
                         : is_on_edge(type) ? (loc >= 0 && loc <= 2)
@@ -56,6 +56,7 @@ bool check_indices(const MapContext<d>& ctx, ViolationSink& sink) {
     const Index target = m.node_target[n];
     const bool target_ok = is_target_vertex_preimage(type) ? (target >= 0 && target < nv2)
                            : type == NodeType::intersection ? (target >= 0 && target < ne2)
+                           : is_on_rim(type)                ? (target == invalid_index || (target >= 0 && target < ne2))
                                                             : target == invalid_index;
     if (!target_ok)
       bad([&] {

@@ -92,6 +92,13 @@ class Writer {
         fmt::format_to(out(), "<path class=\"node {}\" d=\"M{:.2f} {:.2f}L{:.2f} {:.2f}L{:.2f} {:.2f}L{:.2f} {:.2f}Z\"{}/>\n",
                        name, x, y - h, x + h, y, x, y + h, x - h, y, extra);
         return;
+      }      case NodeType::rim_on_edge:
+      case NodeType::rim_inside: {
+        // a triangle pointing up: the map stops here (larger on an S1 edge)
+        const double h = (type == NodeType::rim_on_edge ? 1.2 : 0.8) * radius;
+        fmt::format_to(out(), "<path class=\"node {}\" d=\"M{:.2f} {:.2f}L{:.2f} {:.2f}L{:.2f} {:.2f}Z\"{}/>\n",
+                       name, x, y - h, x + h, y + h, x - h, y + h, extra);
+        return;
       }
     }
   }
@@ -143,6 +150,8 @@ constexpr std::string_view node_type_description(NodeType t) {
     case NodeType::intersection: return "intersection: S2 edge crosses S1 edge";
     case NodeType::ghost: return "ghost: S1 corner, no S2 vertex";
     case NodeType::interior: return "interior: S2 vertex inside";
+    case NodeType::rim_on_edge: return "rim on edge: D ends, crossing an S1 edge";
+    case NodeType::rim_inside: return "rim inside: D ends inside";
   }
   return "";
 }

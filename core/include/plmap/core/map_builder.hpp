@@ -90,12 +90,21 @@ struct VertexCrossing {
 enum class PieceStart : std::uint8_t {
   first_vertex,    ///< at the preimage of the edge's first vertex
   first_crossing,  ///< at the first crossing given (e.g. where the edge enters S1 across ∂S1)
+  rim_node,        ///< at a rim node (MapBuilder::add_rim_node), before the first crossing given
 };
 
 /// Where a piece of an S2 edge's preimage ends (MapBuilder::add_edge_piece).
 enum class PieceEnd : std::uint8_t {
   second_vertex,  ///< at the preimage of the edge's second vertex
   last_crossing,  ///< at the last crossing given (∂S1, or where the projection stops being defined)
+  rim_node,       ///< at a rim node (MapBuilder::add_rim_node), after the last crossing given
+};
+
+/// The rim nodes a piece starts and ends at, for PieceStart::rim_node and PieceEnd::rim_node
+/// (unused otherwise).
+struct PieceRimNodes {
+  Index start = invalid_index;
+  Index end = invalid_index;
 };
 
 template <int d>
@@ -149,11 +158,30 @@ class MapBuilder {
   /// they are not regions: D ends there. Crossings are in order from the first vertex's side,
   /// and every crossing must give its target_parameter. An S2 edge may consist of several
   /// disjoint pieces.
-  void add_edge_piece(Index target_edge, std::span<const EdgeCrossing> crossings, PieceStart start, PieceEnd end)
+  /// A piece may also start or end at a rim node inside an S1 element (PieceStart::rim_node,
+  /// PieceEnd::rim_node, the nodes given in `rims`), whose image must lie on this edge: D then
+  /// ends there, on the rim, instead of at the last S1 edge crossed.
+  void add_edge_piece(Index target_edge, std::span<const EdgeCrossing> crossings, PieceStart start, PieceEnd end,
+                      PieceRimNodes rims = {})
     requires(d == 2);
   void add_edge_piece(Index target_element, std::span<const VertexCrossing> crossings, PieceStart start,
                       PieceEnd end)
     requires(d == 1);
+  /// A node on the rim of D inside S1 (d = 2): a point of S1 where the map stops (a projection
+  /// reaches its distance limit or a focal point), mapped to `image`, which is no S2 vertex.
+  /// Snapped like every node: on an S1 vertex it is a ghost node (an existing ghost node there is
+  /// returned), on an S1 edge a rim_on_edge node, inside an element a rim_inside node. A piece of
+  /// an S2 edge ends at it where the image lies on that edge (add_edge_piece with
+  /// PieceEnd::rim_node), and rim edges (add_rim_edge) join it to its neighbours along the rim.
+  NodeHandle add_rim_node(const SurfacePoint<d>& at, const SurfacePoint<d>& image)
+    requires(d == 2);
+  /// A straight piece of the rim of D between two nodes of one S1 element (rim nodes, ghost nodes,
+  /// or the nodes where pieces end): no S2 edge's preimage, but a side of the regions next to it
+  /// (GraphEdgeKind::closure). The part of the element beyond it must be closed off by other rim
+  /// edges, pieces ending inside S1, or corners without a node, so that it forms no region.
+  void add_rim_edge(NodeHandle a, NodeHandle b)
+    requires(d == 2);
+
   /// Declares that no part of S2 edge `target_edge` (d = 2) / segment (d = 1) lies over D (e.g.
   /// it lies beyond S1's boundary), so that the regions of S2 elements having such an edge are
   /// formed from the pieces of their other edges and S1's boundary. has_edge() stays false.

@@ -1,0 +1,243 @@
+// Normal projection, phase 5: the rim of D where S2 passes behind S1 (ProjectionOptions::
+// end_on_rim; projection_insertion.hpp, insert_rim).
+//
+// With the default distance rules a walk stops where its S2 edge passes behind S1 (mu < 0).
+// There the projection really ends on the curve mu = 0, where the two surfaces meet, and Xi is
+// the identity on it: the curve is the union of the segments in which S1 elements and S2
+// triangles intersect. The pieces that stopped there end at rim nodes where their S2 edges
+// pierce S1 (planned by the walks, made by insert_planned_edge). From those, the curve is traced
+// pair by pair: for an S1 element t and an S2 triangle A that meet, the segment t ∩ A runs
+// between two of the points where an edge of A pierces t (a rim node inside t, image on that S2
+// edge, continued in the S2 triangle across that edge) or an edge of t pierces A (a rim node on
+// that S1 edge, image inside A, continued in the S1 element across that edge), and becomes a
+// rim edge. The faces on D's side of the rim then map into one S2 triangle and become regions;
+// those beyond it reach S1 corners without a node (their rays pass behind S2) and stay out.
+
+#include "projection_insertion.hpp"
+#include "rim_geometry.hpp"
+
+#include <plmap/core/errors.hpp>
+#include <plmap/core/snapping.hpp>
+
+#include <cmath>
+#include <unordered_set>
+
+namespace plmap::projection {
+
+namespace {
+
+/// Points of the rim closer than this (in barycentric coordinates or edge parameters) to the
+/// side of a triangle or the end of an edge are not made: they would coincide, after the
+/// builder's snapping, with a point of the neighbouring triangle's or edge's rim, or a node.
+constexpr double rim_margin = 1e-9;
+
+/// One end of the segment in which an S1 element and an S2 triangle meet.
+struct RimEnd {
+  bool on_target_edge = false;  // true: an S2 edge pierces the S1 element; false: an S1 edge pierces the S2 triangle
+  Index edge = invalid_index;   // that S2 or S1 edge
+  double parameter = 0.0;       // along it, from its smaller-index vertex
+  LocalPoint<2> local;          // on the S1 element (on_target_edge) or on the S2 triangle
+};
+
+std::array<WorldPoint<2>, 3> corners_of(const Surface<2>& s, Index t) {
+  return {s.corner(t, 0), s.corner(t, 1), s.corner(t, 2)};
+}
+
+/// The ends of the segment t ∩ a (S1 element t, S2 triangle a): exactly two, each strictly
+/// inside its triangle and edge, or none (no intersection, or a degenerate one).
+int rim_segment(const Surface<2>& s1, const Surface<2>& s2, Index t, Index a, std::array<RimEnd, 2>& ends) {
+  int count = 0;
+  auto add = [&](const RimEnd& end) {
+    if (count < 2) ends[count] = end;
+    ++count;
+  };
+  const auto t_corners = corners_of(s1, t), a_corners = corners_of(s2, a);
+  for (int k = 0; k < 3; ++k) {
+    const Index e = s2.element_edge(a, k);
+    const auto ev = s2.edge_vertices(e);
+    const auto p = segment_through_triangle(s2.vertex(ev[0]), s2.vertex(ev[1]), t_corners);
+    if (!p) continue;
+    if (!strictly_inside(p->barycentric, rim_margin) || !(p->s > rim_margin && p->s < 1.0 - rim_margin)) {
+      if (p->barycentric[0] >= -rim_margin && p->barycentric[1] >= -rim_margin && p->barycentric[2] >= -rim_margin &&
+          p->s >= -rim_margin && p->s <= 1.0 + rim_margin)
+        return 0;  // on a side or at an end: degenerate
+      continue;
+    }
+    add({true, e, p->s, LocalPoint<2>(p->barycentric[1], p->barycentric[2])});
+  }
+  for (int k = 0; k < 3; ++k) {
+    const Index e = s1.element_edge(t, k);
+    const auto ev = s1.edge_vertices(e);
+    const auto p = segment_through_triangle(s1.vertex(ev[0]), s1.vertex(ev[1]), a_corners);
+    if (!p) continue;
+    if (!strictly_inside(p->barycentric, rim_margin) || !(p->s > rim_margin && p->s < 1.0 - rim_margin)) {
+      if (p->barycentric[0] >= -rim_margin && p->barycentric[1] >= -rim_margin && p->barycentric[2] >= -rim_margin &&
+          p->s >= -rim_margin && p->s <= 1.0 + rim_margin)
+        return 0;
+      continue;
+    }
+    add({false, e, p->s, LocalPoint<2>(p->barycentric[1], p->barycentric[2])});
+  }
+  return count == 2 ? 2 : 0;
+}
+
+/// Whether no ray of S1 element t meets a focal point of t's direction field before it reaches
+/// the plane of S2 triangle a, over the part of t in front of that plane. The faces on D's side
+/// of the rim become regions, and the walks and the ray check accept no point beyond a focal
+/// point of its element (walk_acceptance.hpp); a rim next to a fold would claim such points.
+/// Where the element's focal-free distance (a bound for all of it) covers the corners' distances
+/// to the plane that decides; else the rays are tested on a grid of 153 points (spacing 1/16 of
+/// the element): tests at the corners and half-way to the rim alone let folded points through
+/// on the bones pair.
+template <class Context>
+bool rays_unfolded_in_front(const Context& ctx, Index t, Index a) {
+  const auto tri = corners_of(ctx.s2, a);
+  const WorldPoint<2> normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+  auto distance_along_ray = [&](const LocalPoint<2>& xi) -> std::optional<double> {
+    const Barycentric<2> b = barycentric_from_local<2>(xi);
+    WorldPoint<2> nu = WorldPoint<2>::Zero();
+    for (int k = 0; k < 3; ++k) nu += b(k) * ctx.vertex_directions[ctx.s1.element(t)[k]];
+    const double along = normal.dot(nu);
+    if (!(std::abs(along) > 1e-12 * normal.norm() * nu.norm())) return std::nullopt;
+    return normal.dot(tri[0] - ctx.s1.world_position(t, xi)) / along;
+  };
+  double farthest = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const std::optional<double> mu = distance_along_ray(reference_corner<2>(k));
+    if (!mu) return false;
+    farthest = std::max(farthest, *mu);
+  }
+  if (farthest <= ctx.focal_free_reach[t]) return true;
+  constexpr int steps = 16;
+  for (int i = 0; i <= steps; ++i)
+    for (int j = 0; i + j <= steps; ++j) {
+      const LocalPoint<2> xi(double(i) / steps, double(j) / steps);
+      const std::optional<double> mu = distance_along_ray(xi);
+      if (mu && *mu > 0.0 && !ctx.unfolded_in(t, xi, *mu)) return false;
+    }
+  return true;
+}
+
+/// The other element at an edge with two, or invalid_index.
+template <class Incidences>
+Index other_element(const Incidences& incidences, Index t) {
+  if (incidences.size() != 2) return invalid_index;
+  return incidences[0].element == t ? incidences[1].element : incidences[0].element;
+}
+
+}  // namespace
+
+template <int d>
+SurfacePoint<d> ProjectionInsertion<d>::point_on_target_edge(Index e, double eta) const {
+  SurfacePoint<d> p;
+  if constexpr (d == 2) {
+    const auto ev = ctx_.s2.edge_vertices(e);
+    p.element = ctx_.s2.edge_elements(e).front().element;
+    Barycentric<2> b = Barycentric<2>::Zero();
+    b(ctx_.s2.local_corner(p.element, ev[0])) = 1.0 - eta;
+    b(ctx_.s2.local_corner(p.element, ev[1])) = eta;
+    p.local = LocalPoint<2>(b(1), b(2));
+  }
+  return p;
+}
+
+template <int d>
+Index ProjectionInsertion<d>::rim_node_inside(Index element, Index e, const LocalPoint<d>& local, double eta) {
+  if constexpr (d == 2) {
+    const auto [at, fresh] = rim_inside_.try_emplace(pair_key(element, e), invalid_index);
+    if (!fresh) return at->second;
+    if (!(eta > rim_margin && eta < 1.0 - rim_margin)) return invalid_index;
+    try {
+      at->second = builder_.add_rim_node({element, local}, point_on_target_edge(e, eta));
+      ++rim_nodes_made_;
+      rim_seeds_.emplace_back(element, e);
+    } catch (const BuilderError&) {
+      // e.g. the point snaps onto an S1 vertex that holds the preimage of an S2 vertex
+    }
+    return at->second;
+  }
+  return invalid_index;
+}
+
+template <int d>
+Index ProjectionInsertion<d>::rim_node_on_edge(Index edge, double t, Index target, const LocalPoint<d>& image) {
+  if constexpr (d == 2) {
+    auto& list = rim_on_edge_[edge];
+    for (const auto& [parameter, node] : list)
+      if (std::abs(parameter - t) <= rim_margin) return node;
+    // a crossing of an S2 edge's preimage at the same point: the rim is not made there
+    for (Index i = used_first_[edge]; i != invalid_index; i = used_parameters_[i].next)
+      if (std::abs(used_parameters_[i].t - t) <= rim_margin) return invalid_index;
+    const EdgeIncidence inc = ctx_.s1.edge_elements(edge).front();
+    const auto ev = ctx_.s1.edge_vertices(edge);
+    Barycentric<2> b = Barycentric<2>::Zero();
+    b(ctx_.s1.local_corner(inc.element, ev[0])) = 1.0 - t;
+    b(ctx_.s1.local_corner(inc.element, ev[1])) = t;
+    Index node = invalid_index;
+    try {
+      node = builder_.add_rim_node({inc.element, LocalPoint<2>(b(1), b(2))}, {target, image});
+      ++rim_nodes_made_;
+    } catch (const BuilderError&) {
+    }
+    list.emplace_back(t, node);
+    return node;
+  }
+  return invalid_index;
+}
+
+template <int d>
+void ProjectionInsertion<d>::insert_rim(ProjectionReport<d>& report) {
+  if constexpr (d == 2) {
+    const Surface<2>& s1 = ctx_.s1;
+    const Surface<2>& s2 = ctx_.s2;
+    std::unordered_set<std::uint64_t> done;
+    std::vector<std::pair<Index, Index>> pending;  // (S1 element, S2 triangle), taken from the back
+    for (auto it = rim_seeds_.rbegin(); it != rim_seeds_.rend(); ++it)
+      for (const auto& inc : s2.edge_elements(it->second)) pending.emplace_back(it->first, inc.element);
+    // the curve is traced as far as it goes, but no farther than a few times the size of S1
+    const std::size_t step_cap = 4 * static_cast<std::size_t>(s1.element_count()) + 1024;
+    std::array<RimEnd, 2> ends;
+    for (std::size_t steps = 0; !pending.empty() && steps < step_cap;) {
+      const auto [t, a] = pending.back();
+      pending.pop_back();
+      if (!done.insert(pair_key(t, a)).second) continue;
+      ++steps;
+      if (rim_segment(s1, s2, t, a, ends) != 2) continue;
+      std::array<Index, 2> nodes{};
+      for (int i = 0; i < 2; ++i) {
+        const RimEnd& end = ends[i];
+        if (end.on_target_edge) {
+          nodes[i] = rim_node_inside(t, end.edge, end.local, end.parameter);
+          const Index next = other_element(s2.edge_elements(end.edge), a);
+          if (next != invalid_index) pending.emplace_back(t, next);
+        } else {
+          nodes[i] = rim_node_on_edge(end.edge, end.parameter, a, end.local);
+          const Index next = other_element(s1.edge_elements(end.edge), t);
+          if (next != invalid_index) pending.emplace_back(next, a);
+        }
+      }
+      if (nodes[0] == invalid_index || nodes[1] == invalid_index) continue;
+      if (!rays_unfolded_in_front(ctx_, t, a)) {
+        continue;  // the tracing goes on beyond: the curve may leave the fold
+      }
+      try {
+        builder_.add_rim_edge(nodes[0], nodes[1]);
+        ++report.rim_edges;
+      } catch (const BuilderError&) {
+      }
+    }
+  }
+  report.rim_nodes = rim_nodes_made_;
+}
+
+// the members defined here (the rest of the class is instantiated in projection_insertion.cpp)
+#define PLMAP_RIM_MEMBERS(d)                                                                               \
+  template SurfacePoint<d> ProjectionInsertion<d>::point_on_target_edge(Index, double) const;              \
+  template Index ProjectionInsertion<d>::rim_node_inside(Index, Index, const LocalPoint<d>&, double);      \
+  template Index ProjectionInsertion<d>::rim_node_on_edge(Index, double, Index, const LocalPoint<d>&);     \
+  template void ProjectionInsertion<d>::insert_rim(ProjectionReport<d>&);
+PLMAP_RIM_MEMBERS(1)
+PLMAP_RIM_MEMBERS(2)
+#undef PLMAP_RIM_MEMBERS
+
+}  // namespace plmap::projection

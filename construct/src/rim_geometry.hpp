@@ -1,0 +1,48 @@
+#pragma once
+// The rim of D (projection, end_on_rim): with the default distance rules the projection ends
+// where S2 passes behind S1, on the curve where the two surfaces meet (mu = 0). There Xi is the
+// identity, so the curve is the intersection of S1 and S2 triangles and its points are found by
+// straight segments piercing triangles, in world coordinates.
+
+#include <plmap/core/types.hpp>
+
+#include <array>
+#include <cmath>
+#include <optional>
+
+namespace plmap::projection {
+
+/// Where the segment p0 -> p1 passes through the plane of a triangle: the parameter s in [0, 1]
+/// along the segment and the barycentric coordinates of that point on the triangle (inside it
+/// when all are >= 0).
+struct Pierce {
+  double s = 0.0;
+  std::array<double, 3> barycentric{};
+};
+
+/// The pierce of segment p0 -> p1 through the plane of triangle `tri`, if the segment reaches
+/// that plane and is not (nearly) parallel to it.
+inline std::optional<Pierce> segment_through_triangle(const WorldPoint<2>& p0, const WorldPoint<2>& p1,
+                                                      const std::array<WorldPoint<2>, 3>& tri) {
+  const WorldPoint<2> n = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+  const WorldPoint<2> along = p1 - p0;
+  const double nn = n.squaredNorm();
+  const double denominator = n.dot(along);
+  // parallel (within rounding): no single point
+  if (!(std::abs(denominator) > 1e-12 * std::sqrt(nn) * along.norm())) return std::nullopt;
+  Pierce p;
+  p.s = n.dot(tri[0] - p0) / denominator;
+  if (!(p.s >= 0.0 && p.s <= 1.0)) return std::nullopt;
+  const WorldPoint<2> x = p0 + p.s * along;
+  p.barycentric[0] = n.dot((tri[1] - x).cross(tri[2] - x)) / nn;
+  p.barycentric[1] = n.dot((tri[2] - x).cross(tri[0] - x)) / nn;
+  p.barycentric[2] = 1.0 - p.barycentric[0] - p.barycentric[1];
+  return p;
+}
+
+/// Whether barycentric coordinates lie inside the triangle by more than `margin` from each side.
+inline bool strictly_inside(const std::array<double, 3>& b, double margin) {
+  return b[0] > margin && b[1] > margin && b[2] > margin;
+}
+
+}  // namespace plmap::projection
