@@ -821,21 +821,27 @@ template <int d>
 PlMap<d> MapBuilder<d>::finalize_reusing(const PlMap<d>& previous, std::span<const char> reuse, FinalizeReport* report) &&
   requires(d == 2)
 {
-  if (impl_->options.orientation == 0)
-    throw BuilderError("finalize_reusing needs the map's orientation given (BuilderOptions::orientation)");
-  if (impl_->options.drop_conflicting_edges)
-    throw BuilderError("finalize_reusing does not drop conflicting edges");
-  if (&previous.domain() != impl_->s1.get() || &previous.target() != impl_->s2.get())
-    throw BuilderError("finalize_reusing needs the previous map on the builder's surfaces");
-  const detail::ElementReuse reused(previous, reuse);
-  auto impl = std::move(impl_);
-  auto& im = *impl;
-  detail::BuilderContents<d> contents{*im.s1, *im.s2, im.options, im.nodes, im.node_at_domain_vertex,
-                                      im.segments, im.edge_inserted};
-  MapData<2> m = detail::finalize_triangles(contents, report, &reused);
-  StoredGraph graph = detail::hand_over_stored_form(m);
-  detail::shrink_to_fit(m);
-  return PlMap<2>(im.s1, im.s2, std::move(m), std::move(graph));
+  // The explicit instantiation of MapBuilder<1> below makes clang 14 compile this body for d = 1
+  // despite the constraint; `if constexpr` keeps the d = 2 code out of it.
+  if constexpr (d != 2) {
+    throw BuilderError("finalize_reusing is for triangle surfaces");
+  } else {
+    if (impl_->options.orientation == 0)
+      throw BuilderError("finalize_reusing needs the map's orientation given (BuilderOptions::orientation)");
+    if (impl_->options.drop_conflicting_edges)
+      throw BuilderError("finalize_reusing does not drop conflicting edges");
+    if (&previous.domain() != impl_->s1.get() || &previous.target() != impl_->s2.get())
+      throw BuilderError("finalize_reusing needs the previous map on the builder's surfaces");
+    const detail::ElementReuse reused(previous, reuse);
+    auto impl = std::move(impl_);
+    auto& im = *impl;
+    detail::BuilderContents<d> contents{*im.s1, *im.s2, im.options, im.nodes, im.node_at_domain_vertex,
+                                        im.segments, im.edge_inserted};
+    MapData<2> m = detail::finalize_triangles(contents, report, &reused);
+    StoredGraph graph = detail::hand_over_stored_form(m);
+    detail::shrink_to_fit(m);
+    return PlMap<2>(im.s1, im.s2, std::move(m), std::move(graph));
+  }
 }
 
 template class MapBuilder<1>;
