@@ -14,6 +14,7 @@
 // boxes overlap, found by a sweep along x).
 
 #include "editable_map_state.hpp"
+#include "piece_clearance.hpp"
 
 #include <plmap/core/predicates.hpp>
 
@@ -26,6 +27,8 @@ namespace plmap {
 namespace {
 
 using Vec2 = Eigen::Vector2d;
+using detail::pieces_leave_too_close;
+using detail::within_margin;
 
 /// Barycentric coordinates of p in the planar triangle (a, b, c).
 Eigen::Vector3d planar_barycentric(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& p) {
@@ -50,23 +53,6 @@ bool shares_an_edge(const PlanarPoint& p, const PlanarPoint& q) {
   if (p.corner != invalid_index && q.edge[0] != invalid_index) return q.edge[0] == p.corner || q.edge[1] == p.corner;
   if (q.corner != invalid_index && p.edge[0] != invalid_index) return p.edge[0] == q.corner || p.edge[1] == q.corner;
   return false;
-}
-
-/// True if x is within `margin` of the segment [a, b].
-bool within_margin(const Vec2& x, const Vec2& a, const Vec2& b, double margin) {
-  const Vec2 d = b - a;
-  const double length2 = d.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((x - a).dot(d) / length2, 0.0, 1.0) : 0.0;
-  return (x - (a + t * d)).squaredNorm() <= margin * margin;
-}
-
-/// Two pieces leaving one node along u and w (not collinear): true if the shorter one's other
-/// end is within `margin` of the longer one. That end projects inside the longer piece when the
-/// angle between them is acute, and its distance to it is then |u x w| / the longer length.
-bool pieces_leave_too_close(const Vec2& u, const Vec2& w, double margin) {
-  if (u.dot(w) <= 0.0) return false;
-  const double cross = u.x() * w.y() - u.y() * w.x();
-  return cross * cross <= margin * margin * std::max(u.squaredNorm(), w.squaredNorm());
 }
 
 struct Piece {

@@ -15,6 +15,7 @@
 // per-step cut. See docs/algorithms/simplification.md, "The deferred cut".
 
 #include "editable_map_state.hpp"
+#include "piece_clearance.hpp"
 
 #include <plmap/core/predicates.hpp>
 
@@ -29,6 +30,8 @@ namespace plmap {
 namespace {
 
 using Vec2 = Eigen::Vector2d;
+using detail::pieces_leave_too_close;
+using detail::within_margin;
 using Vec3 = Eigen::Vector3d;
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
@@ -39,22 +42,6 @@ struct Piece {
   Vec2 from, to;
   Index edge;  ///< the S2 edge
 };
-
-/// True if x is within `margin` of the segment [a, b].
-bool within_margin(const Vec2& x, const Vec2& a, const Vec2& b, double margin) {
-  const Vec2 d = b - a;
-  const double length2 = d.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((x - a).dot(d) / length2, 0.0, 1.0) : 0.0;
-  return (x - (a + t * d)).squaredNorm() <= margin * margin;
-}
-
-/// Two pieces leaving one node along u and w (not collinear): true if the shorter one's other end
-/// is within `margin` of the longer one.
-bool pieces_leave_too_close(const Vec2& u, const Vec2& w, double margin) {
-  if (u.dot(w) <= 0.0) return false;
-  const double cross = cross2(u, w);
-  return cross * cross <= margin * margin * std::max(u.squaredNorm(), w.squaredNorm());
-}
 
 /// The tracing, on the state of an EditableMap (a template only so that it can name the state,
 /// a private type of EditableMap).
