@@ -79,15 +79,18 @@ class VertexPreimageSearch {
   /// and the walks from the seeds stop at the first element that holds a solution, which may rank
   /// worse than the one on the missed element (an S2 vertex on S1 then takes a preimage off
   /// itself). Such elements are added as seeds, nearest centroid first, up to max_search_seeds:
-  /// those whose bounding box lies nearer to x than the seed with the nearest centroid itself
-  /// (the element itself, not its centroid, which lies farther). An element through x has its box at distance 0, below the distance of any seed
-  /// that does not pass through x, so the zigzag's long sides are still added; an S2 vertex a
-  /// gap above S1, whose nearest centroid lies about the gap away with nearly every box around it
-  /// nearer than that, no longer gets walks from all of them (with the centroid as the bound a
-  /// third of the vertices of the planes and real-mesh pairs did, and found nothing new). Every
-  /// element within the bound has its centroid within it plus the largest centroid-to-corner
-  /// distance, and on meshes of even element size those are seeds already, so this adds none and
-  /// costs no query.
+  /// those that lie nearer to x than the seed with the nearest centroid itself (the element
+  /// itself, not its centroid, which lies farther). The test is the distance to the element, not
+  /// to its bounding box: a box depends on the coordinate axes, so with boxes a rigid motion of
+  /// both surfaces changed which elements were added and, next to a fold of the projection, which
+  /// of two sheets an S2 vertex took (ProjectProperties.OffsetHeightFieldsWithAveragedNormals);
+  /// the box index only names the candidates. An element through x lies at distance 0, below the
+  /// distance of any seed that does not pass through x, so the zigzag's long sides are still
+  /// added; an S2 vertex a gap above S1, whose nearest centroid lies about the gap away, gets no
+  /// walks from all the elements around it (with the centroid as the bound a third of the
+  /// vertices of the planes and real-mesh pairs did, and found nothing new). Every element within
+  /// the bound has its centroid within it plus the largest centroid-to-corner distance, and on
+  /// meshes of even element size those are seeds already, so this adds none and costs no query.
   int add_long_elements_through(const WorldPoint<d>& x, SeedElements& seeds, int count) const {
     if (count == 0 || count >= max_search_seeds) return count;
     double nearest_centroid = std::numeric_limits<double>::infinity(), farthest = 0.0;
@@ -108,15 +111,16 @@ class VertexPreimageSearch {
     if (!(bound > 0.0) || count >= ctx_.s1_index->size() || std::sqrt(farthest) > bound + ctx_.s1_index->radius)
       return count;
     // The candidates are the elements whose centroid lies within bound + radius of x (every
-    // element whose box lies within `bound` has its centroid there, up to the box's corners)
-    // and whose box lies nearer than `bound`; the box index names a superset of them without
-    // the wide centroid query.
+    // element within `bound` has its centroid there) and that lie nearer than `bound`; their
+    // boxes do too, so the box index names a superset of them without the wide centroid query
+    // (the cheap box test first, the element's distance decides).
     const double reach = bound + ctx_.s1_index->radius;
     std::vector<std::pair<double, Index>> added;
     auto consider = [&](Index t) {
       if (std::find(seeds.begin(), seeds.begin() + count, static_cast<std::uint32_t>(t)) != seeds.begin() + count)
         return;
-      if (box_distance(x, t) < bound) added.emplace_back(ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t)), t);
+      if (box_distance(x, t) < bound && element_distance(x, t) < bound)
+        added.emplace_back(ctx_.s1_index->squared_distance(x, static_cast<std::uint32_t>(t)), t);
     };
     if (ctx_.s1_boxes->has_tree()) {
       ctx_.s1_boxes->visit_near(x, bound, [&](Index t) {
