@@ -91,17 +91,18 @@ std::string ray_summary(const Json& j) {
       "against rays ({} samples): {}\n"
       "  missed {:.3g} of S1, defects {:.3g}\n"
       "    outside D for a reason: nearer sheet {:.3g}, S1 in between {:.3g}, S2 seen twice {:.3g}, past a focal "
-      "point {:.3g}\n"
+      "point {:.3g}, just inside S2's boundary {:.3g}\n"
       "    defects: farther sheet {:.3g}, next to a fold {:.3g}, not covered {:.3g}\n"
-      "  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, unexplained {:.3g}; rejected by this check's rules: "
+      "  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, past a focal point {:.3g}, unexplained {:.3g}; rejected by "
+      "this check's rules: "
       "behind S1 {:.3g}, beyond the distance limit {:.3g}, against the normal check {:.3g})\n"
       "{}"
       "  image error / S2 edge length: median {:.3g}, p99 {:.3g}, max {:.3g}; above 1 {:.3g} of S1 (the hit "
       "is the image of a nearer part of S1 {:.3g}; defects: of a farther part {:.3g}, of none {:.3g})\n",
       j["samples"].get<std::size_t>(), j["ok"].get<bool>() ? "ok" : "FAILED", j["missed"]["fraction"].get<double>(),
       j["missed"]["defect_fraction"].get<double>(), f("nearer_sheet"), f("domain_in_between"),
-      f("target_seen_twice"), f("past_focal_point"), f("farther_sheet"), f("next_to_fold"), f("not_covered"),
-      j["extra"]["fraction"].get<double>(), j["extra"]["by_reason"]["beyond_target_boundary"]["fraction"].get<double>(),
+      f("target_seen_twice"), f("past_focal_point"), f("inside_target_boundary"), f("farther_sheet"), f("next_to_fold"), f("not_covered"),
+      j["extra"]["fraction"].get<double>(), j["extra"]["by_reason"]["beyond_target_boundary"]["fraction"].get<double>(), x("past_focal_point"),
       j["extra"]["by_reason"]["unexplained"]["fraction"].get<double>(), x("behind_domain"),
       x("beyond_distance_limit"), x("against_normal_check"), rules_hint, e["median"].get<double>(),
       e["p99"].get<double>(), e["max"].get<double>(), e["fraction_above_one"].get<double>(), a("nearer_sheet"),

@@ -7,6 +7,7 @@
 
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/construct/project.hpp>
+#include <plmap/verify/generators/rc_generators.hpp>
 #include <plmap/verify/ray_check.hpp>
 
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@
 
 using namespace plmap;
 using namespace plmap::test;
+namespace gen = plmap::generators;
 
 namespace {
 
@@ -45,6 +47,45 @@ RayCheckReport<2> check_of_empty_map(const std::shared_ptr<const Surface<2>>& s1
   o.samples = 20000;
   o.max_listed = o.samples;
   return check_against_rays(r.map, o);
+}
+
+/// A pair of ProjectProperties.OffsetHeightFieldsWithAveragedNormals: S1 a planar triangulation
+/// lifted to a random height field, S2 another one over a footprint shifted by (dx, dy) and
+/// lifted to the same field plus `offset`, facing away; both seen from S1 along its averaged
+/// vertex normals, negative distances allowed, S2's normal aligned with the rays.
+struct OffsetHeightFieldPair {
+  std::shared_ptr<const Surface<2>> s1, s2;
+  ProjectionResult<2> projected;
+  RayCheckReport<2> rays;
+};
+OffsetHeightFieldPair offset_height_fields(const gen::PlanarRecipe& r1, const gen::PlanarRecipe& r2,
+                                           std::uint64_t field_seed, double offset, double dx, double dy) {
+  gen::Rng rng(field_seed);
+  const gen::HeightField field = gen::random_height_field(rng);
+  auto s1 = std::make_shared<const Surface<2>>(gen::lift_to_height_field(gen::make_planar(r1), field));
+  auto s2 = transformed<2>(gen::make_planar(r2), [&](const WorldPoint<2>& p) {
+    const double x = p.x() + dx, y = p.y() + dy;
+    return WorldPoint<2>(x, y, field(x, y) + offset);
+  });
+  ProjectionOptions po{.allow_negative_distance = true, .normal_check = TargetNormalCheck::aligned};
+  auto projected = project<2>(s1, s2, po);
+  RayCheckOptions<2> o;
+  o.directions = averaged_vertex_normals(*s1);
+  o.samples = 20000;
+  o.allow_negative_distance = true;
+  o.normal_check = RayNormalCheck::aligned;
+  auto rays = check_against_rays(projected.map, o);
+  return {s1, s2, std::move(projected), std::move(rays)};
+}
+
+gen::PlanarRecipe recipe(gen::PlanarBase base, int resolution, bool with_hole, bool jitter, std::uint64_t seed) {
+  gen::PlanarRecipe r;
+  r.base = base;
+  r.resolution = resolution;
+  r.with_hole = with_hole;
+  r.jitter = jitter;
+  r.seed = seed;
+  return r;
 }
 
 double fraction_of(const RayCheckReport<2>& r, MissedReason reason) {
@@ -190,4 +231,54 @@ TEST(RayCheckReasons, ImagesMoreThanAnEdgeFromTheHitAreCounted) {
   EXPECT_NEAR(by(MissedReason::farther_sheet), 0.5, 0.05);
   EXPECT_NEAR(by(MissedReason::not_covered), 0.5, 0.05);
   EXPECT_EQ(r.in_domain_defects(), r.samples);
+}
+
+// The next two are the interpolation error at S2's boundary, which the property
+// OffsetHeightFieldsWithAveragedNormals once reported as a defect (seeds of 2026-12-03).
+
+TEST(RayCheckReasons, ExtraAreaAtABoundaryCornerOfS2IsTheInterpolation) {
+  // S2 (two triangles' worth of boundary) ends near a corner where two boundary edges of
+  // different elements meet: rays from D there leave S2 across the neighbour's boundary edge
+  // while Xi(x) lies on the element next to it. That is still the interpolation at S2's boundary.
+  const auto p = offset_height_fields(recipe(gen::PlanarBase::delaunay, 0, true, false, 1),
+                                      recipe(gen::PlanarBase::delaunay, 0, false, false, 7), 2, 0.02, -0.3, -0.3);
+  const auto& r = p.rays;
+  EXPECT_GT(r.extra_by_reason[static_cast<std::size_t>(ExtraReason::beyond_target_boundary)], 0u);
+  EXPECT_EQ(r.extra_defects(), 0u);
+  EXPECT_LT(r.error_max, 1.0);
+}
+
+TEST(RayCheckReasons, MissedJustInsideS2sBoundaryIsTheInterpolation) {
+  // Every S2 edge inserted and every S1 vertex mapped, yet a sliver of S1 next to D's boundary,
+  // the piecewise-linear preimage of S2's boundary, has rays that hit S2 just inside its
+  // boundary: not a farther sheet (the preimage of the hit lies right next to the sample).
+  const auto p = offset_height_fields(recipe(gen::PlanarBase::delaunay, 1, true, false, 199454027113),
+                                      recipe(gen::PlanarBase::grid, 4, false, true, 53329283703), 68753429640, 0.167,
+                                      -0.029, -0.004);
+  const auto& q = p.projected.report;
+  ASSERT_TRUE(q.edges_not_inserted.empty());
+  ASSERT_EQ(q.ghost_nodes + q.vertices_mapped_by_ray, q.domain_vertices);
+  const auto& r = p.rays;
+  EXPECT_GT(r.missed_by_reason[static_cast<std::size_t>(MissedReason::inside_target_boundary)], 0u);
+  EXPECT_EQ(r.missed, r.missed_by_reason[static_cast<std::size_t>(MissedReason::inside_target_boundary)]);
+  EXPECT_EQ(r.missed_defects(), 0u);
+  for (const auto& sample : r.missed_examples)
+    EXPECT_GT(sample.point.x(), 0.95) << "the sliver lies at S2's boundary x = 0.971 (and S1's, x = 1)";
+}
+
+TEST(RayCheckReasons, ExtraAreaPastAFocalPointInsideARegionIsTheInterpolation) {
+  // Averaged normals converge over a hill next to S2's boundary: the fold curve of the field
+  // cuts slivers off regions whose nodes' rays are all unfolded. Where Xi(x) still lies on the
+  // ray, only the check's own focal-point rule rejects the hit: past_focal_point, not a defect.
+  // (Farther past the fold Xi(x) leaves the ray, and those samples stay unexplained: 12 of 20000
+  // here, in one element, not analysed yet.)
+  const auto p = offset_height_fields(recipe(gen::PlanarBase::delaunay, 12, true, false, 165955196268940560),
+                                      recipe(gen::PlanarBase::delaunay, 7, false, false, 268596341725630515),
+                                      67107314507471909, 0.083, -0.087, -0.249);
+  const auto& r = p.rays;
+  const std::size_t past = r.extra_by_reason[static_cast<std::size_t>(ExtraReason::past_focal_point)];
+  EXPECT_GT(past, 0u);
+  EXPECT_EQ(r.extra_defects(),
+            r.extra - past - r.extra_by_reason[static_cast<std::size_t>(ExtraReason::beyond_target_boundary)]);
+  EXPECT_LT(r.fraction(r.extra_defects()), 1e-3);
 }

@@ -30,6 +30,7 @@ std::string_view to_string(MissedReason reason) {
     case MissedReason::target_seen_twice: return "target_seen_twice";
     case MissedReason::past_focal_point: return "past_focal_point";
     case MissedReason::next_to_fold: return "next_to_fold";
+    case MissedReason::inside_target_boundary: return "inside_target_boundary";
   }
   return "unknown";
 }
@@ -41,6 +42,7 @@ std::string_view to_string(ExtraReason reason) {
     case ExtraReason::behind_domain: return "behind_domain";
     case ExtraReason::beyond_distance_limit: return "beyond_distance_limit";
     case ExtraReason::against_normal_check: return "against_normal_check";
+    case ExtraReason::past_focal_point: return "past_focal_point";
   }
   return "unknown";
 }
@@ -253,7 +255,7 @@ class RayChecker {
       ++report.extra;
       const Evaluation<d> e = evaluate_in_region(map_, region, xi);
       const std::optional<double> sliver = beyond_target_boundary(x, nu, e);
-      const ExtraReason reason = sliver ? ExtraReason::beyond_target_boundary : rule_rejecting_image(x, nu, e);
+      const ExtraReason reason = sliver ? ExtraReason::beyond_target_boundary : rule_rejecting_image(t, x, nu, e);
       if (sliver) errors.push_back(*sliver);
       ++report.extra_by_reason[static_cast<std::size_t>(reason)];
       if (report.extra_examples.size() < o_.max_listed)
@@ -262,7 +264,10 @@ class RayChecker {
     } else if (hit) {
       ++report.missed;
       MissedReason reason = classify_missed(x, *hit);
-      if (reason == MissedReason::not_covered) reason = explain_not_covered(t, x, nu, *hit);
+      if (reason == MissedReason::not_covered)
+        reason = explain_not_covered(t, x, nu, *hit);
+      else if (beside_target_boundary_preimage(t, x, *hit))
+        reason = MissedReason::inside_target_boundary;
       ++report.missed_by_reason[static_cast<std::size_t>(reason)];
       if (report.missed_examples.size() < o_.max_listed)
         report.missed_examples.push_back(RaySample<d>{t, x, hit->element, hit->mu, reason});
@@ -272,16 +277,36 @@ class RayChecker {
   }
 
   /// For a sample in D without a hit: if Xi(x) lies on an S2 element next to S2's boundary and
-  /// the ray meets the element's plane outside it only across boundary facets of S2, the
-  /// distance between that point and Xi(x) relative to the element's mean edge length.
+  /// the ray meets the plane of that element, or of an element around one of its boundary
+  /// vertices, outside it only across boundary facets of S2, the distance between that point and
+  /// Xi(x) relative to the image element's mean edge length (the smallest over those elements).
+  /// Near a boundary corner of S2 the ray may leave S2 across a neighbour's boundary facet while
+  /// Xi(x) lies on the element next to it, which is the same interpolation error.
   std::optional<double> beyond_target_boundary(const WorldPoint<d>& x, const WorldPoint<d>& nu,
                                                const Evaluation<d>& e) const {
     const Index tau = e.image.element;
-    const WorldPoint<d> n = s2_.element_normal(tau);
+    std::optional<double> nearest = plane_point_beyond_boundary(x, nu, e, tau);
+    for (Index v : s2_.element(tau)) {
+      if (!s2_.is_boundary_vertex(v)) continue;
+      for (Index sigma : s2_.vertex_elements(v)) {
+        if (sigma == tau) continue;
+        const std::optional<double> distance = plane_point_beyond_boundary(x, nu, e, sigma);
+        if (distance && (!nearest || *distance < *nearest)) nearest = distance;
+      }
+    }
+    if (!nearest) return std::nullopt;
+    return *nearest / mean_edge_length(s2_, tau);
+  }
+
+  /// Where the ray meets S2 element sigma's plane, if that point lies outside sigma only across
+  /// boundary facets of S2: its distance to Xi(x).
+  std::optional<double> plane_point_beyond_boundary(const WorldPoint<d>& x, const WorldPoint<d>& nu,
+                                                    const Evaluation<d>& e, Index sigma) const {
+    const WorldPoint<d> n = s2_.element_normal(sigma);
     const double along = n.dot(nu);
     if (!(std::abs(along) > 1e-12 * nu.norm() * n.norm())) return std::nullopt;
-    const WorldPoint<d> q = x + (n.dot(s2_.corner(tau, 0) - x) / along) * nu;
-    const LocalPoint<d> y = local_on<d>(s2_, tau, q);
+    const WorldPoint<d> q = x + (n.dot(s2_.corner(sigma, 0) - x) / along) * nu;
+    const LocalPoint<d> y = local_on<d>(s2_, sigma, q);
     Eigen::Matrix<double, d + 1, 1> b;
     b(0) = 1.0 - y.sum();
     b.template tail<d>() = y;
@@ -291,19 +316,20 @@ class RayChecker {
       outside = true;
       bool boundary_facet = false;  // the facet opposite corner k has no other element
       if constexpr (d == 2)
-        boundary_facet = s2_.edge_elements(s2_.element_edge(tau, (k + 1) % 3)).size() == 1;
+        boundary_facet = s2_.edge_elements(s2_.element_edge(sigma, (k + 1) % 3)).size() == 1;
       else
-        boundary_facet = s2_.vertex_elements(s2_.element(tau)[1 - k]).size() == 1;
+        boundary_facet = s2_.vertex_elements(s2_.element(sigma)[1 - k]).size() == 1;
       if (!boundary_facet) return std::nullopt;
     }
     if (!outside) return std::nullopt;
-    return (lifted<d>(q) - lifted<d>(e.world)).norm() / mean_edge_length(s2_, tau);
+    return (lifted<d>(q) - lifted<d>(e.world)).norm();
   }
 
   /// For a sample in D without an admissible hit: if Xi(x) lies on the ray (within half the
   /// mean edge length of its S2 element), the acceptance rule of the check that rejects it as a
   /// hit (negative distance, the distance limit, the normal test); else unexplained.
-  ExtraReason rule_rejecting_image(const WorldPoint<d>& x, const WorldPoint<d>& nu, const Evaluation<d>& e) const {
+  ExtraReason rule_rejecting_image(Index t, const WorldPoint<d>& x, const WorldPoint<d>& nu,
+                                   const Evaluation<d>& e) const {
     const double nn = nu.squaredNorm();
     if (!(nn > 0.0)) return ExtraReason::unexplained;
     const double mu = (e.world - x).dot(nu) / nn;
@@ -317,6 +343,7 @@ class RayChecker {
       if (o_.normal_check == RayNormalCheck::facing ? !(c < 0.0) : !(c > 0.0))
         return ExtraReason::against_normal_check;
     }
+    if (passes_focal_point_in(t, nu, mu)) return ExtraReason::past_focal_point;
     return ExtraReason::unexplained;
   }
 
@@ -363,12 +390,18 @@ class RayChecker {
       const double c = nu.dot(s2_.element_normal(tau));
       if (o_.normal_check == RayNormalCheck::facing ? !(c < 0.0) : !(c > 0.0)) return false;
     }
+    return !passes_focal_point_in(t, nu, mu);
+  }
+
+  /// The ray along nu from a point of S1 element t passes a focal point of the element's field
+  /// before distance mu.
+  bool passes_focal_point_in(Index t, const WorldPoint<d>& nu, double mu) const {
     std::array<WorldPoint<d>, d + 1> corners, nus;
     for (int k = 0; k <= d; ++k) {
       corners[k] = s1_.corner(t, k);
       nus[k] = o_.directions[s1_.element(t)[k]];
     }
-    return !passes_focal_point<d>(corners, nus, nu, mu);
+    return passes_focal_point<d>(corners, nus, nu, mu);
   }
 
   /// The region of element t that contains the local point, or invalid_index (outside D).
@@ -383,13 +416,24 @@ class RayChecker {
   }
 
   MissedReason classify_missed(const WorldPoint<d>& x, const Hit& hit) const {
-    const auto& m = map_.data();
-    WorldPoint<d> q;
+    const std::optional<WorldPoint<d>> y = covering_preimage(hit);
+    if (!y) return MissedReason::not_covered;
+    const WorldPoint<d> q = hit_point(hit);
+    return (q - *y).norm() <= (q - x).norm() ? MissedReason::nearer_sheet : MissedReason::farther_sheet;
+  }
+
+  /// The hit in S1's world space (for curves, without the extrusion's z).
+  static WorldPoint<d> hit_point(const Hit& hit) {
     if constexpr (d == 2)
-      q = hit.point;
+      return hit.point;
     else
-      q = hit.point.template head<2>();
-    const LocalPoint<d> on_target = local_on<d>(s2_, hit.element, q);
+      return hit.point.template head<2>();
+  }
+
+  /// The point of D that the map sends to the hit, if a region covers it.
+  std::optional<WorldPoint<d>> covering_preimage(const Hit& hit) const {
+    const auto& m = map_.data();
+    const LocalPoint<d> on_target = local_on<d>(s2_, hit.element, hit_point(hit));
     for (Index r : regions_of_target_[hit.element]) {
       std::array<LocalPoint<d>, d + 1> image;
       for (int k = 0; k <= d; ++k) image[k] = apply<d>(m.region_map[r], m.node_position[m.region_corners[r][k]]);
@@ -397,10 +441,20 @@ class RayChecker {
       if (!(b.minCoeff() >= -1e-9)) continue;
       LocalPoint<d> preimage = LocalPoint<d>::Zero();
       for (int k = 0; k <= d; ++k) preimage += b(k) * m.node_position[m.region_corners[r][k]];
-      const WorldPoint<d> y = s1_.world_position(map_.node_element(m.region_corners[r][0]), preimage);
-      return (q - y).norm() <= (q - x).norm() ? MissedReason::nearer_sheet : MissedReason::farther_sheet;
+      return s1_.world_position(map_.node_element(m.region_corners[r][0]), preimage);
     }
-    return MissedReason::not_covered;
+    return std::nullopt;
+  }
+
+  /// For a missed sample in S1 element t whose hit a region covers: the hit lies on an S2
+  /// element with a corner on S2's boundary, and its preimage lies within the mean edge length
+  /// of t from x (MissedReason::inside_target_boundary).
+  bool beside_target_boundary_preimage(Index t, const WorldPoint<d>& x, const Hit& hit) const {
+    bool at_boundary = false;
+    for (Index v : s2_.element(hit.element)) at_boundary |= s2_.is_boundary_vertex(v);
+    if (!at_boundary) return false;
+    const std::optional<WorldPoint<d>> y = covering_preimage(hit);
+    return y && (*y - x).norm() <= mean_edge_length(s1_, t);
   }
 
   /// Why a sample that no region covers must stay outside D, if a reason is found
@@ -531,7 +585,8 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
   nlohmann::json by_reason = nlohmann::json::object();
   for (MissedReason reason : {MissedReason::nearer_sheet, MissedReason::farther_sheet, MissedReason::not_covered,
                               MissedReason::domain_in_between, MissedReason::target_seen_twice,
-                              MissedReason::past_focal_point, MissedReason::next_to_fold}) {
+                              MissedReason::past_focal_point, MissedReason::next_to_fold,
+                              MissedReason::inside_target_boundary}) {
     const std::size_t n = r.missed_by_reason[static_cast<std::size_t>(reason)];
     by_reason[std::string(to_string(reason))] = {{"samples", n}, {"fraction", r.fraction(n)}};
   }
@@ -545,7 +600,8 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
                  {"examples", examples(r.missed_examples, true)}};
   nlohmann::json extra_by_reason = nlohmann::json::object();
   for (ExtraReason reason : {ExtraReason::beyond_target_boundary, ExtraReason::unexplained, ExtraReason::behind_domain,
-                             ExtraReason::beyond_distance_limit, ExtraReason::against_normal_check}) {
+                             ExtraReason::beyond_distance_limit, ExtraReason::against_normal_check,
+                             ExtraReason::past_focal_point}) {
     const std::size_t n = r.extra_by_reason[static_cast<std::size_t>(reason)];
     extra_by_reason[std::string(to_string(reason))] = {{"samples", n}, {"fraction", r.fraction(n)}};
   }

@@ -90,8 +90,15 @@ enum class MissedReason {
   /// Not covered, x's element does not fold, but one sharing a vertex with it does (the test of
   /// past_focal_point): the construction lost the fold-free elements around a fold. A defect.
   next_to_fold,
+  /// The hit lies on an S2 element at S2's boundary, in the image of a region whose preimage
+  /// lies within one edge length of x: x lies just outside D's boundary there, the
+  /// piecewise-linear preimage of S2's boundary, which differs from the true (curved) one by the
+  /// interpolation error (the counterpart of ExtraReason::beyond_target_boundary). Taken instead
+  /// of nearer_sheet or farther_sheet, which compare two distances that are then nearly equal.
+  /// Outside D for a stated reason.
+  inside_target_boundary,
 };
-constexpr std::size_t missed_reason_count = 7;
+constexpr std::size_t missed_reason_count = 8;
 std::string_view to_string(MissedReason reason);
 
 /// Why a sample in D has no admissible ray hit.
@@ -115,8 +122,15 @@ enum class ExtraReason {
   /// Xi(x) lies on the ray, on an S2 element that the check's normal test rejects (as
   /// behind_domain, for --normal-check).
   against_normal_check,
+  /// Xi(x) lies on the ray and passes the rules the projection applies (distance, normal), but
+  /// the ray passes a focal point of x's element before reaching it, which the check (and not
+  /// the projection's acceptance rules) excludes. The projection judges folds at the nodes: a
+  /// region is the linear interpolation between nodes whose own rays are unfolded, and the fold
+  /// curve of the field may cut a sliver off it (the interpolation at a fold, the counterpart of
+  /// MissedReason::past_focal_point). Not a defect; Xi(x) is within half an edge of the ray.
+  past_focal_point,
 };
-constexpr std::size_t extra_reason_count = 5;
+constexpr std::size_t extra_reason_count = 6;
 std::string_view to_string(ExtraReason reason);
 
 /// One sample listed in the report.
@@ -161,15 +175,17 @@ struct RayCheckReport {
 
   double fraction(std::size_t count) const { return samples ? double(count) / double(samples) : 0.0; }
   /// Missed samples that are not outside D for a stated reason: farther_sheet, not_covered and
-  /// next_to_fold.
+  /// next_to_fold (inside_target_boundary is the interpolation error, as beyond_target_boundary
+  /// for the extra samples).
   std::size_t missed_defects() const {
     return missed_by_reason[static_cast<std::size_t>(MissedReason::farther_sheet)] +
            missed_by_reason[static_cast<std::size_t>(MissedReason::not_covered)] +
            missed_by_reason[static_cast<std::size_t>(MissedReason::next_to_fold)];
   }
-  /// Extra samples not explained by the interpolation at S2's boundary.
+  /// Extra samples not explained by the interpolation at S2's boundary or at a fold.
   std::size_t extra_defects() const {
-    return extra - extra_by_reason[static_cast<std::size_t>(ExtraReason::beyond_target_boundary)];
+    return extra - extra_by_reason[static_cast<std::size_t>(ExtraReason::beyond_target_boundary)] -
+           extra_by_reason[static_cast<std::size_t>(ExtraReason::past_focal_point)];
   }
   /// Samples in D whose image lies more than an edge from the hit, and not because a nearer
   /// part of S1 maps onto the hit.
