@@ -110,6 +110,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   j["edges_outside"] = r.edges_outside;
   j["edges_not_inserted"] = r.edges_not_inserted.size();
   j["reversed_faces"] = r.reversed_faces;
+  j["unmapped_faces"] = r.unmapped_faces;
   j["occluded_faces"] = r.occluded_faces;
   j["folded_faces"] = r.folded_faces;
   j["rim_nodes"] = r.rim_nodes;

@@ -190,6 +190,7 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   if (options.keep_nearer_sheet) keep_nearer_sheet(map, images, terms, ctx.threads, report);
   report.seconds.finalize = seconds_since(t0);
   report.reversed_faces = dropped.reversed_faces;
+  report.unmapped_faces = dropped.unmapped_faces;
   insertion.report_edges_dropped_by_finalize(dropped, report);
 
   report.solver_calls = ctx.solver_calls.load();

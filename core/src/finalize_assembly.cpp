@@ -71,8 +71,10 @@ Index number_regions(const ClosureWorkspace& w, int orientation, AssemblyCursor&
   const auto rbase = static_cast<Index>(at.regions);
   const int nf = static_cast<int>(w.closure.triangles.size());
   at.triangle_region.assign(nf, invalid_index);
-  for (const auto& comp : et.components)
+  for (const auto& comp : et.components) {
     if (comp.target != invalid_index && comp.sign != orientation) ++at.reversed_faces;
+    if (!comp.outside && comp.target == invalid_index) ++at.unmapped_faces;
+  }
   Index nr = 0;
   for (int f = 0; f < nf; ++f) {
     const auto& comp = et.components[w.closure.face[f]];

@@ -19,6 +19,7 @@ namespace plmap::detail {
 struct AssemblyCursor {
   std::size_t elements = 0, nodes = 0, entries = 0, edge_nodes = 0, regions = 0;
   Index reversed_faces = 0;  // faces with a target element but the other orientation
+  Index unmapped_faces = 0;  // faces inside S1's corners whose nodes share no S2 element
   std::vector<Index> triangle_region;  // per closure triangle of the element: its region, or invalid
 };
 

@@ -39,7 +39,7 @@ class ClosingPass {
     workspaces_.clear();
     workspaces_.resize(blocks_);
     parts_.assign(blocks_, MapData<2>{});
-    reversed_faces_.assign(blocks_, 0);
+    face_counts_.assign(blocks_, FaceCounts{});
     std::vector<ElementFailures> failures(blocks_);
     parallel_for_pieces(blocks_, blocks_, threads_, [&](std::size_t k, std::size_t, std::size_t) {
       const Index begin = first[k], end = first[k + 1];
@@ -59,7 +59,7 @@ class ClosingPass {
           if (!drop) return;  // finalize throws: the part and its count are not used
         }
       }
-      reversed_faces_[k] = cursor.reversed_faces;
+      face_counts_[k] = {cursor.reversed_faces, cursor.unmapped_faces};
       trim_part(cursor, parts_[k]);
     });
     ElementFailures failed;
@@ -73,9 +73,16 @@ class ClosingPass {
     for (const auto& w : workspaces_) votes += w.votes;
     return votes >= 0 ? 1 : -1;
   }
-  Index reversed_faces() const {
-    Index sum = 0;
-    for (Index r : reversed_faces_) sum += r;
+  /// FinalizeReport::reversed_faces and unmapped_faces of the last run, over all blocks.
+  struct FaceCounts {
+    Index reversed = 0, unmapped = 0;
+  };
+  FaceCounts face_counts() const {
+    FaceCounts sum;
+    for (const FaceCounts& c : face_counts_) {
+      sum.reversed += c.reversed;
+      sum.unmapped += c.unmapped;
+    }
     return sum;
   }
   std::vector<MapData<2>>& parts() { return parts_; }
@@ -121,7 +128,7 @@ class ClosingPass {
   unsigned blocks_;
   std::vector<ClosureWorkspace> workspaces_;
   std::vector<MapData<2>> parts_;
-  std::vector<Index> reversed_faces_;  // per block, FinalizeReport::reversed_faces
+  std::vector<FaceCounts> face_counts_;  // per block
   const ElementReuse* reuse_;
 };
 
@@ -184,7 +191,10 @@ MapData<2> finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, co
     const ElementFailures failed = pass.run(m.orientation);  // the same graphs: they close again
     if (!failed.empty()) std::rethrow_exception(failed.front().second);
   }
-  if (report) report->reversed_faces += pass.reversed_faces();
+  if (report) {
+    report->reversed_faces += pass.face_counts().reversed;
+    report->unmapped_faces += pass.face_counts().unmapped;
+  }
   join_parts(pass.parts(), n1, pass.threads(), m);
   return m;
 }

@@ -73,6 +73,7 @@ nlohmann::json report_json(const ProjectionResult<d>& result) {
   j["edges_partly_inserted"] = r.edges_partly_inserted;
   j["edges_outside"] = r.edges_outside;
   j["reversed_faces"] = r.reversed_faces;
+  j["unmapped_faces"] = r.unmapped_faces;
   j["occluded_faces"] = r.occluded_faces;
   j["folded_faces"] = r.folded_faces;
   nlohmann::json missing = nlohmann::json::array();

@@ -90,6 +90,10 @@ struct ProjectionReport {
   /// Faces of the graph left out of D because they map with the orientation opposite to the
   /// map's (FinalizeReport::reversed_faces): a fold that no edge failure reports.
   Index reversed_faces = 0;
+  /// Faces left out of D because their nodes map into no one S2 element
+  /// (FinalizeReport::unmapped_faces): an S2 edge's preimage that would split them is missing,
+  /// also where no edge failure names it (a walk that stopped at a fold and went on beyond it).
+  Index unmapped_faces = 0;
   /// Faces left out of D because their images overlap on S2 the images of faces whose points lie
   /// nearer to their images (ProjectionOptions::keep_nearer_sheet), and their regions. An
   /// element whose left-out face lay strictly inside it loses all its regions (core/face_removal.hpp).

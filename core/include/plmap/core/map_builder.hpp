@@ -65,6 +65,11 @@ struct FinalizeReport {
   /// with the orientation opposite to the map's, or onto a degenerate image: they are not
   /// regions, so D has a hole there (the projection is folded).
   Index reversed_faces = 0;
+  /// Faces of the graph (d = 2) with every corner of theirs inside D's reach, whose nodes map
+  /// into no one S2 element: the preimage of an S2 edge that would split them is missing (a walk
+  /// stopped or left it out), so they are not regions and D has a hole there. 0 in a map whose
+  /// graph is complete.
+  Index unmapped_faces = 0;
 };
 
 /// Where the preimage of an S2 edge crosses an S1 edge (d = 2).
