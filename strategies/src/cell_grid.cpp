@@ -164,6 +164,8 @@ CellGrid::CellGrid(const PlMap<2>& map, const CellGridOptions& options)
     }
   }
 
+  images_ = region_images(map);
+
   elements_.resize(static_cast<std::size_t>(element_count));
   double whole_area = 0, split_area = 0;
   Index covered_elements = 0;
@@ -181,6 +183,7 @@ CellGrid::CellGrid(const PlMap<2>& map, const CellGridOptions& options)
     }
     e.side = side;
     e.scale = side;
+    e.highest = side - 0.5;
     const std::size_t cell_count = static_cast<std::size_t>(side) * (side + 1) / 2;
     if (cells_.size() + cell_count > static_cast<std::size_t>(std::numeric_limits<Index>::max()))
       throw Error("cell-grid locator: more than 2^31 cells at element " + std::to_string(t) +
@@ -241,6 +244,7 @@ CellGrid::CellGrid(const PlMap<2>& map, const CellGridOptions& options)
   memory_.whole_area = covered_elements > 0 ? whole_area / covered_elements : 0;
   memory_.split_area = covered_elements > 0 ? split_area / covered_elements : 0;
   memory_.region_record_bytes = records_.capacity() * sizeof(RegionRecord);
+  memory_.region_image_bytes = images_.capacity() * sizeof(RegionImage<2>);
   memory_.cell_bytes = cells_.capacity() * sizeof(Cell);
   memory_.element_bytes = elements_.capacity() * sizeof(ElementGrid);
 }

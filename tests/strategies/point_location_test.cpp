@@ -5,6 +5,7 @@
 #include <plmap/verify/generators/subdivision_maps.hpp>
 
 #include <plmap/core/evaluation.hpp>
+#include <plmap/core/region_image.hpp>
 #include <plmap/core/errors.hpp>
 #include <plmap/strategies/point_locator_registry.hpp>
 
@@ -228,6 +229,7 @@ TEST(PointLocation, CellGridCertifiesMostOfTheAreaAndReportsItsMemory) {
   ASSERT_NE(locator.grid(), nullptr);
   const auto memory = locator.grid()->memory();
   EXPECT_EQ(memory.region_record_bytes, 64u * std::size_t(map.region_count()));
+  EXPECT_EQ(memory.region_image_bytes, 128u * std::size_t(map.region_count()));
   EXPECT_GE(memory.cells, 8u * std::size_t(map.region_count()));
   EXPECT_GT(memory.whole_cells, 0u);
   EXPECT_GT(memory.whole_cells + memory.split_cells, memory.cells / 2);
@@ -385,6 +387,84 @@ TEST(PointLocation, QueriesOnRegionSidesFindARegionContainingThem) {
         ASSERT_TRUE(agrees_with_brute_force<2>(brown_faigle, map, 0, LocalPoint<2>(s, 1 - s)));
         ASSERT_TRUE(agrees_with_brute_force<2>(straight, map, 0, LocalPoint<2>(s, 1 - s)));
       }
+  }
+}
+
+/// Exactly the same evaluation (== on every component): the locator's records must not change a single rounding.
+template <int d>
+::testing::AssertionResult same_evaluation(const Evaluation<d>& got, const Evaluation<d>& expected) {
+  if (got.in_domain != expected.in_domain) return ::testing::AssertionFailure() << "in_domain differs";
+  if (!got.in_domain) return ::testing::AssertionSuccess();
+  if (got.region != expected.region || !(got.image == expected.image) || got.world != expected.world)
+    return ::testing::AssertionFailure()
+           << "region " << got.region << " / " << expected.region << ", image " << got.image.element
+           << " (" << got.image.local.transpose() << ") / " << expected.image.element << " ("
+           << expected.image.local.transpose() << "), world (" << got.world.transpose() << ") / ("
+           << expected.world.transpose() << ")";
+  return ::testing::AssertionSuccess();
+}
+
+TEST(PointLocation, CellGridEvaluatesBitForBitAsTheMapsArrays) {
+  // The cell grid answers whole evaluations from its own per-region records (RegionImage):
+  // evaluate(), the unchecked evaluate_prepared() of evaluate_batch, and the batch itself must
+  // give exactly locate() followed by evaluate_in_region on the map, inside and outside D. One
+  // locator goes through all maps in turn, so evaluate() must also follow the map.
+  CellGridLocator travelling;
+  for (int round = 0; round < 2; ++round)
+    for (std::size_t which = 0; which < maps2().size(); ++which) {
+      const PlMap<2>& map = *maps2()[which].map;
+      CellGridLocator prepared;
+      prepared.prepare(map);
+      std::mt19937_64 rng(40 + which);
+      std::vector<SurfacePoint<2>> points(3000);
+      for (auto& p : points) p.local = random_query(rng, p.element, map.domain().element_count());
+      std::vector<Evaluation<2>> batch(points.size());
+      evaluate_batch<2>(map, points, batch, CellGridLocator{}, 2);
+      std::size_t inside = 0;
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const RegionLocation<2> located = prepared.locate(map, points[i].element, points[i].local);
+        const Evaluation<2> expected =
+            located.found() ? evaluate_in_region(map, located.region, points[i].local) : Evaluation<2>{};
+        inside += expected.in_domain;
+        ASSERT_TRUE(same_evaluation(evaluate(map, points[i], travelling), expected)) << which << " " << i;
+        ASSERT_TRUE(same_evaluation(prepared.evaluate_prepared(points[i]), expected)) << which << " " << i;
+        ASSERT_TRUE(same_evaluation(batch[i], expected)) << which << " " << i;
+      }
+      EXPECT_GT(inside, points.size() / 20) << which;  // map 4 covers a small corner
+    }
+}
+
+TEST(PointLocation, RegionImagesEvaluateBitForBitAsTheMapsArrays) {
+  // At every node of every region (the corners, where the affine maps are exact) and at random
+  // points of the regions, for triangle and curve maps.
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (const auto& sm : maps2()) {
+    const PlMap<2>& map = *sm.map;
+    const auto images = region_images(map);
+    ASSERT_EQ(images.size(), std::size_t(map.region_count()));
+    const MapData<2>& m = map.stored();
+    for (Index r = 0; r < map.region_count(); ++r) {
+      const auto& c = m.region_corners[r];
+      const double a = u(rng), b = u(rng) * (1 - a);
+      const LocalPoint<2> inside = m.node_position[c[0]] + a * (m.node_position[c[1]] - m.node_position[c[0]]) +
+                                   b * (m.node_position[c[2]] - m.node_position[c[0]]);
+      for (const LocalPoint<2>& p : {m.node_position[c[0]], m.node_position[c[1]], m.node_position[c[2]], inside})
+        ASSERT_TRUE(same_evaluation(evaluate_in_region(images[std::size_t(r)], r, p), evaluate_in_region(map, r, p)))
+            << r;
+    }
+  }
+  for (const auto& sm : maps1()) {
+    const PlMap<1>& map = *sm.map;
+    const auto images = region_images(map);
+    const MapData<1>& m = map.stored();
+    for (Index r = 0; r < map.region_count(); ++r) {
+      const auto& c = m.region_corners[r];
+      const LocalPoint<1> inside = m.node_position[c[0]] + u(rng) * (m.node_position[c[1]] - m.node_position[c[0]]);
+      for (const LocalPoint<1>& p : {m.node_position[c[0]], m.node_position[c[1]], inside})
+        ASSERT_TRUE(same_evaluation(evaluate_in_region(images[std::size_t(r)], r, p), evaluate_in_region(map, r, p)))
+            << r;
+    }
   }
 }
 

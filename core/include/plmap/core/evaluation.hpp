@@ -61,13 +61,39 @@ template <int d>
   return e;
 }
 
+/// A locator that keeps each region's image next to its table (a RegionImage, region_image.hpp)
+/// may answer the whole evaluation: `evaluate(map, p)`, returning exactly what
+/// evaluate_in_region returns for the region it locates (and {} outside D). evaluate() then
+/// calls it instead of locate() + evaluate_in_region, which saves the lookups in the map's
+/// arrays behind the located region.
+template <class L, int d>
+concept EvaluatingPointLocator = PointLocator<L, d> &&
+    requires(L& locator, const PlMap<d>& map, const SurfacePoint<d>& p) {
+      { locator.evaluate(map, p) } -> std::same_as<Evaluation<d>>;
+    };
+
+/// An evaluating locator may also offer `evaluate_prepared(p)`: the same answer on the map of its
+/// last prepare(map), without checking per query that its table was built for that map.
+/// evaluate_batch prepares its copies once for one map and then calls it; for a certified
+/// cell-grid query the check cost as much as a sixth of the query's instructions.
+template <class L, int d>
+concept PreparedEvaluatingPointLocator = EvaluatingPointLocator<L, d> &&
+    requires(L& locator, const PlMap<d>& map, const SurfacePoint<d>& p) {
+      locator.prepare(map);
+      { locator.evaluate_prepared(p) } -> std::same_as<Evaluation<d>>;
+    };
+
 /// Xi(p) for p = (element, local coordinates) using the given point-location strategy.
 template <int d, class Locator>
   requires PointLocator<Locator, d>
 Evaluation<d> evaluate(const PlMap<d>& map, const SurfacePoint<d>& p, Locator& locator) {
-  const RegionLocation<d> loc = locator.locate(map, p.element, p.local);
-  if (!loc.found()) return {};
-  return evaluate_in_region(map, loc.region, p.local);
+  if constexpr (EvaluatingPointLocator<Locator, d>) {
+    return locator.evaluate(map, p);
+  } else {
+    const RegionLocation<d> loc = locator.locate(map, p.element, p.local);
+    if (!loc.found()) return {};
+    return evaluate_in_region(map, loc.region, p.local);
+  }
 }
 
 /// Evaluates many points on `threads` threads (0: all hardware threads). Each thread works on a

@@ -22,7 +22,11 @@ void evaluate_batch(const PlMap<d>& map, std::span<const SurfacePoint<d>> points
   prepare_point_locator<d>(prepared, map);
   parallel_ranges(points.size(), threads, [&](std::size_t begin, std::size_t end) {
     Locator local_locator = prepared;
-    for (std::size_t i = begin; i < end; ++i) out[i] = evaluate(map, points[i], local_locator);
+    if constexpr (PreparedEvaluatingPointLocator<Locator, d>) {
+      for (std::size_t i = begin; i < end; ++i) out[i] = local_locator.evaluate_prepared(points[i]);
+    } else {
+      for (std::size_t i = begin; i < end; ++i) out[i] = evaluate(map, points[i], local_locator);
+    }
   });
 }
 

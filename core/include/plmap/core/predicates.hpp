@@ -39,8 +39,10 @@ inline bool obviously_collinear(const Eigen::Vector2d& a, const Eigen::Vector2d&
 }
 }  // namespace detail
 
-/// +1 if a, b, c are counter-clockwise, -1 if clockwise, 0 if exactly collinear.
-inline int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+/// orient2d's sign when its floating-point filter decides it (+1 or -1), else 0 (undecided, not
+/// "collinear"). A few flops and no call: hot loops that test once per query (a point locator's
+/// cells) inline it and call orient2d only when it returns 0.
+inline int orient2d_by_filter(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   const double detleft = (a.x() - c.x()) * (b.y() - c.y());
   const double detright = (a.y() - c.y()) * (b.x() - c.x());
   const double det = detleft - detright;
@@ -52,6 +54,12 @@ inline int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Ei
   const double bound = std::max(error_factor * (std::abs(detleft) + std::abs(detright)), 0x1p-940);
   if (det > bound) return 1;
   if (-det > bound) return -1;
+  return 0;
+}
+
+/// +1 if a, b, c are counter-clockwise, -1 if clockwise, 0 if exactly collinear.
+inline int orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  if (const int sign = orient2d_by_filter(a, b, c)) return sign;
   if (detail::obviously_collinear(a, b, c)) return 0;
   return detail::orient2d_exact(a.x(), a.y(), b.x(), b.y(), c.x(), c.y());
 }

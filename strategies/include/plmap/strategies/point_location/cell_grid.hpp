@@ -27,12 +27,19 @@
 /// back to scanning the element's records, with the same exact containment test as
 /// detail::region_contains.
 ///
+/// The locator also answers whole evaluations (EvaluatingPointLocator): it keeps every region's
+/// RegionImage (its affine map, S2 element and that element's world frame; 128 bytes), so a query
+/// whose cell is certified reads the cell and one two-line record, where evaluate_in_region would
+/// go on through the map's region_target, region_map, S2's element corners and vertices. The
+/// answers are bit for bit those of locate() + evaluate_in_region.
+///
 /// The table is derived from the map on first use (and rebuilt if the locator meets another map);
 /// copies share it. Its memory is reported by CellGrid::memory() and is not part of the map's
 /// compact form.
 
 #include <plmap/core/evaluation.hpp>
 #include <plmap/core/predicates.hpp>
+#include <plmap/core/region_image.hpp>
 
 #include <algorithm>
 #include <array>
@@ -55,6 +62,7 @@ struct CellGridOptions {
 /// What a cell grid holds, for reports.
 struct CellGridMemory {
   std::size_t region_record_bytes = 0;  ///< 64 bytes per region
+  std::size_t region_image_bytes = 0;   ///< 128 bytes per region (RegionImage)
   std::size_t cell_bytes = 0;           ///< 2 bytes per cell
   std::size_t element_bytes = 0;        ///< per-element grid headers
   std::size_t cells = 0;
@@ -62,7 +70,9 @@ struct CellGridMemory {
   std::size_t split_cells = 0;   ///< cells split by one region side: answered by one orient2d
   double whole_area = 0;         ///< share of the covered elements' area in whole cells
   double split_area = 0;         ///< share of the covered elements' area in split cells
-  std::size_t total_bytes() const { return region_record_bytes + cell_bytes + element_bytes; }
+  std::size_t total_bytes() const {
+    return region_record_bytes + region_image_bytes + cell_bytes + element_bytes;
+  }
 };
 
 /// The per-map tables of CellGridLocator.
@@ -79,7 +89,7 @@ class CellGrid {
   Index locate(Index element, const LocalPoint<2>& p) const {
     const ElementGrid& e = elements_[element];
     const double u = p.x() * e.scale, v = p.y() * e.scale;
-    const int i = cell_coordinate(u, e.side), j_in_square = cell_coordinate(v, e.side);
+    const int i = cell_coordinate(u, e.highest), j_in_square = cell_coordinate(v, e.highest);
     const int j = std::min(j_in_square, e.side - 1 - i);  // cells with i + j >= G are not stored
     const unsigned cell = cells_[static_cast<std::size_t>(e.first_cell + row_offset(i, e.side) + j)];
     const unsigned kind = cell & kind_mask;
@@ -90,16 +100,25 @@ class CellGrid {
     // its part inside the triangle only, so there p must also lie on the inner side of that
     // edge (the other two are u >= 0, v >= 0).
     const bool in_cell = u >= 0 && v >= 0 && u < e.scale && v < e.scale && j == j_in_square &&
-                         (i + j + 2 < e.side || orient2d(slanted_edge_from, slanted_edge_to, p) >= 0);
+                         (i + j + 2 < e.side || left_of_or_on(slanted_edge_from, slanted_edge_to, p));
     if (kind <= whole_cell && in_cell) [[likely]] {
       if (kind == whole_cell) return region;
       // A split cell: p is in `region` on its side of the shared side's line, else in the
       // neighbour. One exact orientation test, no walk.
       const RegionRecord& r = records_[static_cast<std::size_t>(region)];
-      const int o = orient2d(r.corner[next_corner[kind]], r.corner[next_corner[kind + 1]], p);
-      return o >= 0 ? region : r.neighbor[kind];
+      return left_of_or_on(r.corner[next_corner[kind]], r.corner[next_corner[kind + 1]], p)
+                 ? region
+                 : r.neighbor[kind];
     }
     return walk(e, p, region);
+  }
+
+  /// Xi at (element, p): locate() and the region's record; exactly what evaluate_in_region on
+  /// the map gives for that region.
+  Evaluation<2> evaluate(Index element, const LocalPoint<2>& p) const {
+    const Index region = locate(element, p);
+    if (region == invalid_index) return {};
+    return evaluate_in_region(images_[static_cast<std::size_t>(region)], region, p);
   }
 
   CellGridMemory memory() const { return memory_; }
@@ -129,18 +148,30 @@ class CellGrid {
   static_assert(sizeof(RegionRecord) == 64);
 
   struct ElementGrid {
-    double scale = 1;  ///< G as a double
+    double scale = 1;      ///< G as a double
+    double highest = 0.5;  ///< G - 0.5: cell coordinates are clamped below it
     int side = 1;      ///< G
     Index first_cell = 0;
     Index first_region = 0;
     Index end_region = 0;
   };
 
-  // Clamped to [0, G - 1]; std::max(0.0, NaN) is 0, so NaN lands in cell 0 (and is not in_cell).
-  static int cell_coordinate(double u, int side) {
-    return static_cast<int>(std::min(std::max(0.0, u), side - 0.5));
+  /// orient2d(a, b, p) >= 0, exactly, with orient2d's filter inlined: the two tests of the query
+  /// path (split cells, the slanted edge) are nearly always decided by it, and the call to
+  /// orient2d cost more than the test.
+  static bool left_of_or_on(const LocalPoint<2>& a, const LocalPoint<2>& b, const LocalPoint<2>& p) {
+    const int sign = orient2d_by_filter(a, b, p);
+    return sign != 0 ? sign > 0 : orient2d(a, b, p) >= 0;
   }
-  static Index row_offset(int i, int side) { return i * side - i * (i - 1) / 2; }
+
+  // Clamped to [0, G - 1]; std::max(0.0, NaN) is 0, so NaN lands in cell 0 (and is not in_cell).
+  static int cell_coordinate(double u, double highest) {
+    return static_cast<int>(std::min(std::max(0.0, u), highest));
+  }
+  // i >= 0, so i (i - 1) >= 0 and halving it unsigned is the same, without a sign fix-up.
+  static Index row_offset(int i, int side) {
+    return i * side - static_cast<Index>(static_cast<unsigned>(i * (i - 1)) / 2);
+  }
 
   /// Randomized-by-hash walk from `region`; scans the element when it leaves D or wanders.
   Index walk(const ElementGrid& e, const LocalPoint<2>& p, Index region) const;
@@ -164,6 +195,7 @@ class CellGrid {
   std::vector<ElementGrid> elements_;
   std::vector<Cell> cells_;
   std::vector<RegionRecord> records_;
+  std::vector<RegionImage<2>> images_;
   CellGridMemory memory_;
 };
 
@@ -174,6 +206,16 @@ class CellGridLocator {
   RegionLocation<2> locate(const PlMap<2>& map, Index element, const LocalPoint<2>& p) {
     prepare(map);
     return {grid_->locate(element, p)};
+  }
+
+  /// Xi(p) through the table's region records (see the file comment): what evaluate() calls.
+  Evaluation<2> evaluate(const PlMap<2>& map, const SurfacePoint<2>& p) {
+    prepare(map);
+    return grid_->evaluate(p.element, p.local);
+  }
+  /// The same on the map of the last prepare(), unchecked (PreparedEvaluatingPointLocator).
+  Evaluation<2> evaluate_prepared(const SurfacePoint<2>& p) const {
+    return grid_->evaluate(p.element, p.local);
   }
 
   /// Builds the tables now (evaluate_batch copies the locator per thread; preparing it first
@@ -193,6 +235,6 @@ class CellGridLocator {
   std::shared_ptr<const CellGrid> grid_;
 };
 
-static_assert(PointLocator<CellGridLocator, 2>);
+static_assert(PreparedEvaluatingPointLocator<CellGridLocator, 2>);
 
 }  // namespace plmap::point_location
