@@ -3,10 +3,12 @@
 #include "image_overlaps.hpp"
 
 #include <plmap/core/element_transfer.hpp>
+#include <plmap/core/parallel_ranges.hpp>
 #include <plmap/core/triangle_overlap.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace plmap::projection {
 
@@ -102,59 +104,95 @@ void for_each_neighbour(const Surface<d>& s, Index t, auto&& f) {
   }
 }
 
+/// Per S2 element, the S1 elements with a region on it, each once and in increasing order, as a
+/// compressed list: elements[first[t2], first[t2 + 1]).
+struct ElementsPerTarget {
+  std::vector<Index> first, elements;
+};
+
+/// Calls f(t, t2) once for every S1 element t in [begin, end) and S2 element t2 that t has a
+/// region on. The regions of one element are consecutive, so one stamp per S2 element (the last
+/// S1 element seen on it) finds the repeats.
+template <int d, class F>
+void for_each_element_and_target(const PlMap<d>& map, Index begin, Index end, std::vector<Index>& last_seen, F&& f) {
+  const auto& target = map.stored().region_target;
+  std::fill(last_seen.begin(), last_seen.end(), invalid_index);
+  for (Index t = begin; t < end; ++t)
+    for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
+      if (const Index t2 = target[r]; last_seen[t2] != t) {
+        last_seen[t2] = t;
+        f(t, t2);
+      }
+}
+
+/// The lists by a counting sort over contiguous pieces of S1 elements, on all threads: each piece
+/// counts its own elements per S2 element, and then writes them after the pieces before it, so
+/// every list is in element order whatever the number of pieces.
+template <int d>
+ElementsPerTarget elements_per_target(const PlMap<d>& map, unsigned threads) {
+  const Index n2 = map.target().element_count(), nt = map.domain().element_count();
+  const std::size_t pieces = std::min<std::size_t>(resolve_thread_count(threads), static_cast<std::size_t>(std::max<Index>(1, nt / 4096)));
+  const std::size_t size = (static_cast<std::size_t>(nt) + pieces - 1) / pieces;
+  std::vector<std::vector<Index>> at(pieces, std::vector<Index>(static_cast<std::size_t>(n2), 0));
+  std::vector<std::vector<Index>> last_seen(pieces, std::vector<Index>(static_cast<std::size_t>(n2)));
+  parallel_for_pieces_of_size(static_cast<std::size_t>(nt), size, threads, [&](std::size_t k, std::size_t begin, std::size_t end) {
+    for_each_element_and_target(map, static_cast<Index>(begin), static_cast<Index>(end), last_seen[k],
+                                [&](Index, Index t2) { ++at[k][t2]; });
+  });
+  ElementsPerTarget lists;
+  lists.first.assign(static_cast<std::size_t>(n2) + 1, 0);
+  for (Index t2 = 0; t2 < n2; ++t2) {  // counts become where each piece writes
+    Index next = lists.first[t2];
+    for (auto& piece : at) next += std::exchange(piece[t2], next);
+    lists.first[t2 + 1] = next;
+  }
+  lists.elements.resize(static_cast<std::size_t>(lists.first[n2]));
+  parallel_for_pieces_of_size(static_cast<std::size_t>(nt), size, threads, [&](std::size_t k, std::size_t begin, std::size_t end) {
+    for_each_element_and_target(map, static_cast<Index>(begin), static_cast<Index>(end), last_seen[k],
+                                [&](Index t, Index t2) { lists.elements[at[k][t2]++] = t; });
+  });
+  return lists;
+}
+
 /// Marks as crowded every S2 element whose regions lie on S1 elements that do not form one
 /// edge-connected set. The preimage of an S2 element on one sheet is connected; it falls apart
 /// where two sheets map onto the element (and, harmlessly, where S1's boundary or a vertex it
-/// passes cuts it: those elements are then checked pairwise for nothing).
+/// passes cuts it: those elements are then checked pairwise for nothing). The S2 elements are
+/// searched independently, in pieces on all threads (two per thread, for balance), each piece
+/// with its own stamp arrays.
 template <int d>
-void mark_disconnected_preimages(const PlMap<d>& map, std::vector<char>& crowded) {
-  const auto& m = map.stored();
+void mark_disconnected_preimages(const PlMap<d>& map, std::vector<char>& crowded, unsigned threads) {
   const Surface<d>& s1 = map.domain();
   const Index n2 = map.target().element_count(), nt = s1.element_count();
-  // per S2 element, the S1 elements with a region on it (each once: regions of one element are
-  // consecutive), as a compressed list
-  std::vector<Index> first(static_cast<std::size_t>(n2) + 1, 0), last_seen(static_cast<std::size_t>(n2), invalid_index);
-  for (Index t = 0; t < nt; ++t)
-    for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
-      if (const Index t2 = m.region_target[r]; last_seen[t2] != t) {
-        last_seen[t2] = t;
-        ++first[t2 + 1];
+  const ElementsPerTarget lists = elements_per_target(map, threads);
+  const unsigned used = resolve_thread_count(threads);
+  const std::size_t pieces = used == 1 ? 1 : 2 * std::size_t{used};
+  parallel_for_pieces(static_cast<std::size_t>(n2), pieces, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
+    // one search through the S1 elements of each S2 element; member and reached are stamped
+    // with the S2 element, so they need no clearing
+    std::vector<Index> member(static_cast<std::size_t>(nt), invalid_index), reached(static_cast<std::size_t>(nt), invalid_index);
+    std::vector<Index> stack;
+    for (auto t2 = static_cast<Index>(begin); t2 < static_cast<Index>(end); ++t2) {
+      const Index list_begin = lists.first[t2], list_end = lists.first[t2 + 1];
+      if (crowded[t2] || list_end - list_begin < 2) continue;
+      for (Index i = list_begin; i < list_end; ++i) member[lists.elements[i]] = t2;
+      Index count = 0;
+      stack.assign(1, lists.elements[list_begin]);
+      reached[lists.elements[list_begin]] = t2;
+      while (!stack.empty()) {
+        const Index t = stack.back();
+        stack.pop_back();
+        ++count;
+        for_each_neighbour(s1, t, [&](Index u) {
+          if (member[u] == t2 && reached[u] != t2) {
+            reached[u] = t2;
+            stack.push_back(u);
+          }
+        });
       }
-  for (Index t2 = 0; t2 < n2; ++t2) first[t2 + 1] += first[t2];
-  std::vector<Index> elements(static_cast<std::size_t>(first[n2]));
-  {
-    std::vector<Index> fill(first.begin(), first.end() - 1);
-    std::fill(last_seen.begin(), last_seen.end(), invalid_index);
-    for (Index t = 0; t < nt; ++t)
-      for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
-        if (const Index t2 = m.region_target[r]; last_seen[t2] != t) {
-          last_seen[t2] = t;
-          elements[fill[t2]++] = t;
-        }
-  }
-  // one search through the S1 elements of each S2 element; member and reached are stamped
-  // with the S2 element, so they need no clearing
-  std::vector<Index> member(static_cast<std::size_t>(nt), invalid_index), reached(static_cast<std::size_t>(nt), invalid_index);
-  std::vector<Index> stack;
-  for (Index t2 = 0; t2 < n2; ++t2) {
-    if (crowded[t2] || first[t2 + 1] - first[t2] < 2) continue;
-    for (Index i = first[t2]; i < first[t2 + 1]; ++i) member[elements[i]] = t2;
-    Index count = 0;
-    stack.assign(1, elements[first[t2]]);
-    reached[elements[first[t2]]] = t2;
-    while (!stack.empty()) {
-      const Index t = stack.back();
-      stack.pop_back();
-      ++count;
-      for_each_neighbour(s1, t, [&](Index u) {
-        if (member[u] == t2 && reached[u] != t2) {
-          reached[u] = t2;
-          stack.push_back(u);
-        }
-      });
+      if (count < list_end - list_begin) crowded[t2] = 1;
     }
-    if (count < first[t2 + 1] - first[t2]) crowded[t2] = 1;
-  }
+  });
 }
 
 }  // namespace
@@ -162,7 +200,7 @@ void mark_disconnected_preimages(const PlMap<d>& map, std::vector<char>& crowded
 template <int d>
   requires SurfaceDimension<d>
 std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageMeasures& images,
-                                               const OverlapTolerances& tolerances) {
+                                               const OverlapTolerances& tolerances, unsigned threads) {
   const auto& m = map.stored();
   const Index n2 = map.target().element_count();
   const Index nt = map.domain().element_count();
@@ -187,7 +225,7 @@ std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageM
     if (sum > 1.0 + tolerances.measure_tolerance || (sum > 0.0 && sum < 1.0 - tolerances.measure_tolerance))
       crowded[static_cast<std::size_t>(t2)] = 1;
   }
-  mark_disconnected_preimages(map, crowded);
+  mark_disconnected_preimages(map, crowded, threads);
   if (std::find(crowded.begin(), crowded.end(), 1) == crowded.end()) return {};
   // The images on the crowded elements, grouped by element, compared pairwise.
   std::vector<std::vector<Image<d>>> on_target(static_cast<std::size_t>(n2));
@@ -217,8 +255,8 @@ std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageM
 }
 
 template std::vector<Index> farther_overlapping_regions<1>(const PlMap<1>&, const ImageMeasures&,
-                                                           const OverlapTolerances&);
+                                                           const OverlapTolerances&, unsigned);
 template std::vector<Index> farther_overlapping_regions<2>(const PlMap<2>&, const ImageMeasures&,
-                                                           const OverlapTolerances&);
+                                                           const OverlapTolerances&, unsigned);
 
 }  // namespace plmap::projection

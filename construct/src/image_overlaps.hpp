@@ -33,15 +33,16 @@ struct OverlapTolerances {
 /// nearer to their images (ties: the larger region index is named). `images` are the map's
 /// image_measures (core/regions.hpp), which project() computes anyway for the covered measures:
 /// only S2 elements whose images add up to more or less than the element, or whose regions lie
-/// on S1 elements that are not edge-connected, are looked at.
+/// on S1 elements that are not edge-connected, are looked at. The connectivity search runs on up
+/// to `threads` threads (0: all); the result does not depend on their number.
 template <int d>
   requires SurfaceDimension<d>
 std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageMeasures& images,
-                                               const OverlapTolerances& tolerances = {});
+                                               const OverlapTolerances& tolerances = {}, unsigned threads = 1);
 
 extern template std::vector<Index> farther_overlapping_regions<1>(const PlMap<1>&, const ImageMeasures&,
-                                                                  const OverlapTolerances&);
+                                                                  const OverlapTolerances&, unsigned);
 extern template std::vector<Index> farther_overlapping_regions<2>(const PlMap<2>&, const ImageMeasures&,
-                                                                  const OverlapTolerances&);
+                                                                  const OverlapTolerances&, unsigned);
 
 }  // namespace plmap::projection

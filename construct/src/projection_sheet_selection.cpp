@@ -72,7 +72,7 @@ std::vector<bool> coincident_preimage_losers(const ProjectionContext<d>& ctx,
 template <int d>
 void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, ImageMeasureTerms& terms, unsigned threads,
                        ProjectionReport<d>& report) {
-  const std::vector<Index> farther = farther_overlapping_regions(map, images);
+  const std::vector<Index> farther = farther_overlapping_regions(map, images, {}, threads);
   if (farther.empty()) return;
   FaceRemovalReport removal;
   map = remove_faces(std::move(map), std::span<const Index>(farther), &removal);

@@ -10,9 +10,9 @@
 
 namespace plmap::detail {
 
-void size_part(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index begin, Index end,
-               MapData<2>& part) {
-  std::size_t nodes = 0, on_edges = 0, triangles = 0, sides = 0;
+PartBounds part_bounds(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index begin, Index end) {
+  PartBounds b;
+  b.elements = static_cast<std::size_t>(end - begin);
   for (Index t = begin; t < end; ++t) {
     std::size_t corners = 0, edge_inner = 0;
     for (int k = 0; k < 3; ++k) {
@@ -20,29 +20,52 @@ void size_part(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& w
       edge_inner += where.edge_nodes[in.s1.element_edge(t, k)].size();
     }
     const std::size_t ns = corners + edge_inner + where.interior_nodes[t].size();
-    nodes += ns;
-    on_edges += 2 * corners + edge_inner;
+    b.nodes += ns;
+    b.on_edges += 2 * corners + edge_inner;
     if (ns == 0) continue;
     const std::size_t n = ns + (3 - corners), h = 3 + edge_inner;
-    triangles += 2 * n - h - 2;
-    sides += 3 * n - h - 3;
+    b.triangles += 2 * n - h - 2;
+    b.sides += 3 * n - h - 3;
   }
-  const std::size_t elements = static_cast<std::size_t>(end - begin);
+  return b;
+}
+
+PartBounds& PartBounds::operator+=(const PartBounds& o) {
+  elements += o.elements;
+  nodes += o.nodes;
+  on_edges += o.on_edges;
+  triangles += o.triangles;
+  sides += o.sides;
+  return *this;
+}
+
+void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part) {
   part = MapData<2>{};
-  part.node_begin.resize(elements + 1);
-  part.region_begin.resize(elements + 1);
-  part.start_region.resize(elements);
-  part.edge_node_begin.resize(3 * elements + 1);
-  size_node_arrays(part, nodes);
-  part.edge_node.resize(on_edges);
+  // room first (address space only: nothing beyond `own` is touched here), then the sizes
+  auto sized = [](auto& array, std::size_t size, std::size_t capacity) {
+    array.reserve(std::max(size, capacity));
+    array.resize(size);
+  };
+  sized(part.node_begin, own.elements + 1, room.elements + 1);
+  sized(part.region_begin, own.elements + 1, room.elements + 1);
+  sized(part.start_region, own.elements, room.elements);
+  sized(part.edge_node_begin, 3 * own.elements + 1, 3 * room.elements + 1);
+  sized(part.node_position, own.nodes, room.nodes);
+  sized(part.node_type, own.nodes, room.nodes);
+  sized(part.node_location, own.nodes, room.nodes);
+  sized(part.node_image_element, own.nodes, room.nodes);
+  sized(part.node_image_local, own.nodes, room.nodes);
+  sized(part.node_target, own.nodes, room.nodes);
+  sized(part.neighbor_begin, own.nodes + 1, room.nodes + 1);
+  sized(part.edge_node, own.on_edges, room.on_edges);
   // Neighbour entries and regions are bounded, not known: reserved (their slack stays
   // untouched, so it costs no resident memory) and sized as they are written.
-  part.neighbor.reserve(2 * sides);
-  part.neighbor_edge_kind.reserve(2 * sides);
-  part.region_corners.reserve(triangles);
-  part.region_neighbors.reserve(triangles);
-  part.region_target.reserve(triangles);
-  part.region_map.reserve(triangles);
+  part.neighbor.reserve(2 * std::max(own.sides, room.sides));
+  part.neighbor_edge_kind.reserve(2 * std::max(own.sides, room.sides));
+  part.region_corners.reserve(std::max(own.triangles, room.triangles));
+  part.region_neighbors.reserve(std::max(own.triangles, room.triangles));
+  part.region_target.reserve(std::max(own.triangles, room.triangles));
+  part.region_map.reserve(std::max(own.triangles, room.triangles));
 }
 
 namespace {

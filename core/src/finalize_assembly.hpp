@@ -23,14 +23,25 @@ struct AssemblyCursor {
   std::vector<Index> triangle_region;  // per closure triangle of the element: its region, or invalid
 };
 
-/// Sizes the arrays of the part for elements [begin, end) before it is assembled: nodes and edge
-/// arrays exactly (written in place: a push_back per value costs more than the store), the rest
-/// reserved by the size of each element's closure (a triangulation of n points, h of them on the
-/// element boundary, has 2n - h - 2 triangles and 3n - h - 3 sides), which is exact unless faces
-/// lie outside D. Growing by push_back instead would copy the map several times and first-touch
-/// up to twice its memory, and the final shrink_to_fit would copy it again.
-void size_part(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index begin, Index end,
-               MapData<2>& part);
+/// What the part of a block of elements holds at most (nodes and edge entries exactly): a
+/// triangulation of n points, h of them on the element boundary, has 2n - h - 2 triangles and
+/// 3n - h - 3 sides, which is exact unless faces lie outside D.
+struct PartBounds {
+  std::size_t elements = 0, nodes = 0, on_edges = 0, triangles = 0, sides = 0;
+  PartBounds& operator+=(const PartBounds& other);
+};
+
+/// The bounds of the part for elements [begin, end).
+PartBounds part_bounds(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index begin, Index end);
+
+/// Sizes the arrays of a part before it is assembled: nodes and edge arrays exactly to `own`
+/// (written in place: a push_back per value costs more than the store), the rest reserved by
+/// `own`'s bounds. Growing by push_back instead would copy the map several times and first-touch
+/// up to twice its memory, and the final shrink_to_fit would copy it again. Every array gets the
+/// capacity of `room` as well (address space only): the first block is given the whole map's
+/// bounds, so that joining (finalize_joining.hpp) keeps its arrays where they are and appends
+/// the other blocks, instead of copying and first-touching the whole map once more.
+void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part);
 
 /// Writes the element closed in w into the part at the cursor, which it advances.
 void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, int orientation, MapData<2>& part,

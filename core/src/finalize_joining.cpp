@@ -5,6 +5,7 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 
+#include <algorithm>
 #include <functional>
 #include <type_traits>
 
@@ -22,11 +23,14 @@ Offsets offsets_of(const std::vector<MapData<2>>& parts, Count count) {
   return at;
 }
 
-/// Joins the parts into one map, an array at a time. The arrays are joined side by side, one
-/// thread per array: sizing an array value-initialises it on the thread that sizes it, and that
-/// first touch of the joined map's memory costs as much as the copy, so both are spread over the
-/// threads (sizing each array on one thread and copying its parts on all left the sizing, half of
-/// the join's time, sequential).
+/// Joins the parts into one map, an array at a time. The first part's arrays become the joined
+/// ones: size_part gave them room for the whole map, and its values need no shift (it starts at
+/// node, region and entry 0), so only the later parts are copied, appended after it (with two
+/// blocks, half of the map instead of all of it: the copy and the first touch of the joined
+/// memory were the join's cost). The arrays are joined side by side, one thread per array, the
+/// largest first: sizing an array value-initialises its new tail on the thread that sizes it, and
+/// that first touch costs as much as the copy, so both are spread over the threads, and no large
+/// array is left to start last.
 class PartJoiner {
  public:
   PartJoiner(std::vector<MapData<2>>& parts, MapData<2>& m) : parts_(parts), m_(m) {}
@@ -35,41 +39,50 @@ class PartJoiner {
   /// value)), then releases the parts' copies.
   template <class Field, class Shift>
   void join(Field MapData<2>::*field, const Offsets& at, Shift shift) {
-    jobs_.push_back([this, field, &at, shift] {
-      auto& out = m_.*field;
-      out.resize(at[parts_.size()]);
-      for (std::size_t k = 0; k < parts_.size(); ++k) {
-        auto& in = parts_[k].*field;
-        for (std::size_t i = 0; i < in.size(); ++i) out[at[k] + i] = shift(k, in[i]);
-        Field().swap(in);
-      }
-    });
+    const std::size_t appended = (at[parts_.size()] - at[1]) * sizeof(typename Field::value_type);
+    jobs_.push_back({appended, [this, field, &at, shift] {
+                       auto& out = m_.*field;
+                       out = std::move(parts_[0].*field);
+                       out.resize(at[parts_.size()]);
+                       for (std::size_t k = 1; k < parts_.size(); ++k) {
+                         auto& in = parts_[k].*field;
+                         for (std::size_t i = 0; i < in.size(); ++i) out[at[k] + i] = shift(k, in[i]);
+                         Field().swap(in);
+                       }
+                     }});
   }
 
   /// The same for a CSR begin array: a leading 0, then each part's ends shifted by the values of
   /// the parts before.
   void join_begins(std::vector<Index> MapData<2>::*field, const Offsets& at, const Offsets& values) {
-    jobs_.push_back([this, field, &at, &values] {
-      auto& out = m_.*field;
-      out.assign(at[parts_.size()] + 1, 0);
-      for (std::size_t k = 0; k < parts_.size(); ++k) {
-        auto& in = parts_[k].*field;
-        for (std::size_t i = 0; i + 1 < in.size(); ++i) out[at[k] + i + 1] = in[i + 1] + static_cast<Index>(values[k]);
-        std::vector<Index>().swap(in);
-      }
-    });
+    const std::size_t appended = (at[parts_.size()] - at[1]) * sizeof(Index);
+    jobs_.push_back({appended, [this, field, &at, &values] {
+                       auto& out = m_.*field;
+                       out = std::move(parts_[0].*field);  // [0, at[1]]: the first part's, unshifted
+                       out.resize(at[parts_.size()] + 1);
+                       for (std::size_t k = 1; k < parts_.size(); ++k) {
+                         auto& in = parts_[k].*field;
+                         for (std::size_t i = 0; i + 1 < in.size(); ++i) out[at[k] + i + 1] = in[i + 1] + static_cast<Index>(values[k]);
+                         std::vector<Index>().swap(in);
+                       }
+                     }});
   }
 
-  /// Runs the joins given, each array on one of up to `threads` threads.
+  /// Runs the joins given, each array on one of up to `threads` threads, the most bytes first.
   void run(unsigned threads) {
-    parallel_for_pieces(jobs_.size(), jobs_.size(), threads, [&](std::size_t k, std::size_t, std::size_t) { jobs_[k](); });
+    std::stable_sort(jobs_.begin(), jobs_.end(), [](const Job& a, const Job& b) { return a.bytes > b.bytes; });
+    parallel_for_pieces(jobs_.size(), jobs_.size(), threads, [&](std::size_t k, std::size_t, std::size_t) { jobs_[k].join(); });
     jobs_.clear();
   }
 
  private:
+  struct Job {
+    std::size_t bytes;  // what the join appends to the first part's array
+    std::function<void()> join;
+  };
   std::vector<MapData<2>>& parts_;
   MapData<2>& m_;
-  std::vector<std::function<void()>> jobs_;
+  std::vector<Job> jobs_;
 };
 
 }  // namespace

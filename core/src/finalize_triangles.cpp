@@ -41,9 +41,16 @@ class ClosingPass {
     parts_.assign(blocks_, MapData<2>{});
     face_counts_.assign(blocks_, FaceCounts{});
     std::vector<ElementFailures> failures(blocks_);
+    // The first block's part becomes the joined map (join_parts): it takes room for all blocks.
+    std::vector<PartBounds> bounds(blocks_);
+    parallel_for_pieces(blocks_, blocks_, threads_, [&](std::size_t k, std::size_t, std::size_t) {
+      bounds[k] = part_bounds(in_, where_, first[k], first[k + 1]);
+    });
+    PartBounds whole;
+    for (const PartBounds& b : bounds) whole += b;
     parallel_for_pieces(blocks_, blocks_, threads_, [&](std::size_t k, std::size_t, std::size_t) {
       const Index begin = first[k], end = first[k + 1];
-      size_part(in_, where_, begin, end, parts_[k]);
+      size_part(bounds[k], k == 0 ? whole : bounds[k], parts_[k]);
       AssemblyCursor cursor;
       for (Index t = begin; t < end; ++t) {
         try {

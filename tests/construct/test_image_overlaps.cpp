@@ -121,3 +121,32 @@ TEST(ImageOverlaps, OneConnectedSheetReachingOverItselfOnAPartlyCoveredElementIs
   EXPECT_TRUE(element == 0 || element == 2) << element;
   EXPECT_EQ(verify_violations(remove_faces(map, std::span<const Index>(farther))), "");
 }
+
+TEST(ImageOverlaps, TheThreadCountDoesNotChangeWhatIsNamed) {
+  // S1: a plane under a narrower plane (two sheets, 10,400 triangles: more than one piece of S1
+  // elements per thread), S2: a plane above both (5,000 triangles: several chunks of S2 elements).
+  // Without the sheet selection both sheets map onto S2 where they overlap.
+  const auto lower = grid(60, 60, 0.0, 1.0, 0.0, 1.0, 0.0, false, 0.15);
+  const auto upper = grid(40, 40, 0.3, 0.7, 0.0, 1.0, 0.4, false, 0.15);
+  std::vector<WorldPoint<2>> v;
+  std::vector<ElementCorners<2>> e;
+  for (const auto* s : {lower.get(), upper.get()}) {
+    const auto base = static_cast<Index>(v.size());
+    for (Index i = 0; i < s->vertex_count(); ++i) v.push_back(s->vertex(i));
+    for (Index t = 0; t < s->element_count(); ++t) {
+      ElementCorners<2> c = s->element(t);
+      for (Index& x : c) x += base;
+      e.push_back(c);
+    }
+  }
+  const auto s1 = std::make_shared<const Surface<2>>(std::move(v), std::move(e));
+  const auto s2 = grid(50, 50, -0.1, 1.1, -0.1, 1.1, 1.0, true, 0.15);
+  const auto r = project<2>(s1, s2, {.keep_nearer_sheet = false});
+  const ImageMeasures images = image_measures(r.map);
+  const auto one = projection::farther_overlapping_regions(r.map, images, {}, 1);
+  ASSERT_GT(one.size(), 100u);
+  EXPECT_EQ(projection::farther_overlapping_regions(r.map, images, {}, 2), one);
+  EXPECT_EQ(projection::farther_overlapping_regions(r.map, images, {}, 3), one);
+  // the lower sheet is the farther one: every region named lies on it
+  for (const Index region : one) EXPECT_LT(r.map.node_element(r.map.data().region_corners[region][0]), lower->element_count());
+}
