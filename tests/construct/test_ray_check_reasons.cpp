@@ -282,3 +282,17 @@ TEST(RayCheckReasons, ExtraAreaPastAFocalPointInsideARegionIsTheInterpolation) {
             r.extra - past - r.extra_by_reason[static_cast<std::size_t>(ExtraReason::beyond_target_boundary)]);
   EXPECT_LT(r.fraction(r.extra_defects()), 1e-3);
 }
+
+TEST(RayCheckReasons, ExtraAreaAtS2sSilhouetteIsTheInterpolation) {
+  // Next to an S2 vertex where S2 turns nearly parallel to the rays, the element across an edge
+  // fails the normal test: the part of S2 the rays may hit ends there (its silhouette along the
+  // rays). A grazing ray passes just outside it while Xi(x) lies on the element next to it: the
+  // interpolation at that boundary, as at S2's own boundary.
+  const auto p = offset_height_fields(recipe(gen::PlanarBase::delaunay, 13, false, false, 5830993296404447939),
+                                      recipe(gen::PlanarBase::delaunay, 12, false, false, 1073081101460284097),
+                                      2168897717131573493, 0.054, -0.183, -0.295);
+  const auto& r = p.rays;
+  EXPECT_GT(r.extra_by_reason[static_cast<std::size_t>(ExtraReason::beyond_target_boundary)], 0u);
+  EXPECT_EQ(r.extra_defects(), 0u);
+  EXPECT_LT(r.error_max, 1.0);
+}

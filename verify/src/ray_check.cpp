@@ -314,12 +314,15 @@ class RayChecker {
     for (int k = 0; k <= d; ++k) {
       if (!(b(k) < 0.0)) continue;
       outside = true;
-      bool boundary_facet = false;  // the facet opposite corner k has no other element
-      if constexpr (d == 2)
-        boundary_facet = s2_.edge_elements(s2_.element_edge(sigma, (k + 1) % 3)).size() == 1;
-      else
-        boundary_facet = s2_.vertex_elements(s2_.element(sigma)[1 - k]).size() == 1;
-      if (!boundary_facet) return std::nullopt;
+      // the facet opposite corner k bounds the part of S2 the rays may hit: no other element
+      // lies across it, or only elements the normal test rejects (S2's silhouette along the rays)
+      if constexpr (d == 2) {
+        for (const EdgeIncidence& across : s2_.edge_elements(s2_.element_edge(sigma, (k + 1) % 3)))
+          if (across.element != sigma && faces_the_rays(nu, across.element)) return std::nullopt;
+      } else {
+        for (Index across : s2_.vertex_elements(s2_.element(sigma)[1 - k]))
+          if (across != sigma && faces_the_rays(nu, across)) return std::nullopt;
+      }
     }
     if (!outside) return std::nullopt;
     return (lifted<d>(q) - lifted<d>(e.world)).norm();
@@ -382,14 +385,18 @@ class RayChecker {
 
   double rank(double mu) const { return o_.allow_negative_distance ? std::abs(mu) : mu; }
 
+  /// S2 element tau passes the check's normal test for rays along nu.
+  bool faces_the_rays(const WorldPoint<d>& nu, Index tau) const {
+    if (o_.normal_check == RayNormalCheck::none) return true;
+    const double c = nu.dot(s2_.element_normal(tau));
+    return o_.normal_check == RayNormalCheck::facing ? c < 0.0 : c > 0.0;
+  }
+
   bool admissible(Index t, const WorldPoint<d>& nu, double mu, Index tau) const {
     const double slack = 1e-9 * mean_edge_length(s2_, tau);
     if (!o_.allow_negative_distance && mu < -slack) return false;
     if (!(std::abs(mu) <= limit_ + slack)) return false;
-    if (o_.normal_check != RayNormalCheck::none) {
-      const double c = nu.dot(s2_.element_normal(tau));
-      if (o_.normal_check == RayNormalCheck::facing ? !(c < 0.0) : !(c > 0.0)) return false;
-    }
+    if (!faces_the_rays(nu, tau)) return false;
     return !passes_focal_point_in(t, nu, mu);
   }
 

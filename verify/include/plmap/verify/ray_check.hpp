@@ -103,10 +103,12 @@ std::string_view to_string(MissedReason reason);
 
 /// Why a sample in D has no admissible ray hit.
 enum class ExtraReason {
-  /// Xi(x) lies on an S2 element at S2's boundary, and the ray meets that element's plane just
-  /// across the boundary: D's boundary there is the piecewise-linear preimage of S2's boundary,
-  /// which differs from the true (curved) one by the interpolation error. The distance between
-  /// Xi(x) and that point counts in the image error.
+  /// Xi(x) lies on an S2 element at the boundary of the part of S2 the rays may hit (S2's own
+  /// boundary, or its silhouette along the rays, where the elements across fail the normal
+  /// test), and the ray meets that element's plane (or a neighbour's around a boundary vertex)
+  /// just across that boundary: D's boundary there is the piecewise-linear preimage of a curve,
+  /// which differs from the true one by the interpolation error. The distance between Xi(x) and
+  /// that point counts in the image error.
   beyond_target_boundary,
   /// Anything else. A defect.
   unexplained,
