@@ -330,7 +330,8 @@ class RayChecker {
 
   /// For a sample in D without an admissible hit: if Xi(x) lies on the ray (within half the
   /// mean edge length of its S2 element), the acceptance rule of the check that rejects it as a
-  /// hit (negative distance, the distance limit, the normal test); else unexplained.
+  /// hit (negative distance, the distance limit, the normal test, or a focal point of the
+  /// direction field between x and Xi(x)); else unexplained.
   ExtraReason rule_rejecting_image(Index t, const WorldPoint<d>& x, const WorldPoint<d>& nu,
                                    const Evaluation<d>& e) const {
     const double nn = nu.squaredNorm();
