@@ -92,6 +92,14 @@ DomainLocation<2> locate_in_plane(const Surface<2>& s, const Eigen::Vector2d& p,
   throw Error(fmt::format("plane overlay: point ({}, {}) is not on {}", p.x(), p.y(), which));
 }
 
+/// True if a point placed at `where` (by locate_in_plane) lies on S1 edge f = (a, b): inside it
+/// or at one of its ends.
+bool placed_on_edge(const DomainLocation<2>& where, Index f, Index a, Index b) {
+  using Kind = DomainLocation<2>::Kind;
+  return (where.kind == Kind::edge && where.index == f) ||
+         (where.kind == Kind::vertex && (where.index == a || where.index == b));
+}
+
 }  // namespace
 
 MapCase<2> plane_overlay_map(std::shared_ptr<const Surface<2>> s1, std::shared_ptr<const Surface<2>> s2,
@@ -105,12 +113,14 @@ MapCase<2> plane_overlay_map(std::shared_ptr<const Surface<2>> s1, std::shared_p
 
   // S2 vertices on S1.
   std::vector<Index> s1_vertex_as_s2_vertex(s1->vertex_count(), invalid_index);
+  std::vector<DomainLocation<2>> s2_vertex_place(s2->vertex_count());
   for (Index v = 0; v < s2->vertex_count(); ++v) {
     if (s2->vertex_elements(v).empty()) {  // isolated: not part of S2, needs no preimage
       c.target_vertex_preimage.push_back(no_preimage<2>());
       continue;
     }
     const DomainLocation<2> loc = locate_in_plane(*s1, xy(s2->vertex(v)), "S1", snap);
+    s2_vertex_place[v] = loc;
     add_vertex_preimage(builder, v, loc);
     c.target_vertex_preimage.push_back(loc.point);
     if (loc.kind == DomainLocation<2>::Kind::vertex) s1_vertex_as_s2_vertex[loc.index] = v;
@@ -141,6 +151,11 @@ MapCase<2> plane_overlay_map(std::shared_ptr<const Surface<2>> s1, std::shared_p
     }
     for (Index f = 0; f < s1->edge_count(); ++f) {
       const auto [a, b] = s1->edge_vertices(f);
+      // Both ends placed on f: e runs along f, so the builder puts its preimage on f and it
+      // crosses nothing there. The test matters when e is collinear with f only up to rounding
+      // (grid points such as 5/6 and 1/6): the exact predicates below may then report a
+      // crossing, and the nearly zero denominator would give it meaningless parameters.
+      if (placed_on_edge(s2_vertex_place[u], f, a, b) && placed_on_edge(s2_vertex_place[v], f, a, b)) continue;
       const Eigen::Vector2d pa = xy(s1->vertex(a)), pb = xy(s1->vertex(b));
       if (orient2d(pu, pv, pa) * orient2d(pu, pv, pb) > 0) continue;
       if (orient2d(pa, pb, pu) * orient2d(pa, pb, pv) > 0) continue;
