@@ -5,6 +5,8 @@
 #include "map_arrays.hpp"
 #include "map_graph_derivation.hpp"
 
+#include <plmap/core/errors.hpp>
+
 #include <algorithm>
 #include <type_traits>
 
@@ -57,9 +59,10 @@ void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part) 
   sized(part.node_image_local, own.nodes, room.nodes);
   sized(part.node_target, own.nodes, room.nodes);
   sized(part.neighbor_begin, own.nodes + 1, room.nodes + 1);
-  sized(part.edge_node, own.on_edges, room.on_edges);
   // Neighbour entries and regions are bounded, not known: reserved (their slack stays
-  // untouched, so it costs no resident memory) and sized as they are written.
+  // untouched, so it costs no resident memory) and sized as they are written. So are the edge
+  // nodes: only the elements that keep their graph write them (finalize_assembly.hpp).
+  part.edge_node.reserve(std::max(own.on_edges, room.on_edges));
   part.neighbor.reserve(2 * std::max(own.sides, room.sides));
   part.neighbor_edge_kind.reserve(2 * std::max(own.sides, room.sides));
   part.region_corners.reserve(std::max(own.triangles, room.triangles));
@@ -135,6 +138,7 @@ void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, bool t
   }
   at.nodes += static_cast<std::size_t>(ns);
   part.node_begin[at.elements + 1] = static_cast<Index>(at.nodes);
+  make_room(part.edge_node, at.edge_nodes + et.edge_slots.size());
   for (int k = 0; k < 3; ++k) {
     for (int q = et.edge_slots_begin[k]; q < et.edge_slots_begin[k + 1]; ++q)
       part.edge_node[at.edge_nodes++] = base + et.edge_slots[q];
@@ -181,7 +185,7 @@ void write_regions(const ClosureWorkspace& w, Index base, Index region_count, Ma
     if (at.triangle_region[f] == invalid_index) continue;
     const auto& tr = closure.triangles[f];
     auto& corners = part.region_corners[at.regions];
-    auto& neighbors = part.region_neighbors[at.regions];
+    auto& neighbors = part.region_neighbors[at.graph_regions++];  // kept only with neighbour entries
     for (int i = 0; i < 3; ++i) {
       corners[i] = base + tr[i];
       const int g = closure.neighbors[f][i];
@@ -202,6 +206,13 @@ void write_regions(const ClosureWorkspace& w, Index base, Index region_count, Ma
 
 }  // namespace
 
+void drop_graph_of_element(std::size_t first_edge_node, std::size_t first_graph_region, MapData<2>& part,
+                           AssemblyCursor& at) {
+  at.edge_nodes = first_edge_node;
+  at.graph_regions = first_graph_region;
+  for (std::size_t k = 1; k <= 3; ++k) part.edge_node_begin[3 * at.elements + k] = static_cast<Index>(first_edge_node);
+}
+
 void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, int orientation, MapData<2>& part,
                       AssemblyCursor& at) {
   const ElementTriangulation& et = w.et;
@@ -215,7 +226,7 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
   make_room(part.neighbor, at.entries + max_entries);
   make_room(part.neighbor_edge_kind, at.entries + max_entries);
   make_room(part.region_corners, at.regions + nf);
-  make_room(part.region_neighbors, at.regions + nf);
+  make_room(part.region_neighbors, at.graph_regions + nf);
   make_room(part.region_target, at.regions + nf);
   make_room(part.region_map, at.regions + nf);
   const Index region_count = number_regions(w, orientation, at);
@@ -232,7 +243,7 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
     has_ghost = has_ghost || in.nodes[slot].kind == BuilderNodeKind::ghost;
     has_rim = has_rim || in.nodes[slot].kind == BuilderNodeKind::rim;
   }
-  const std::size_t first_entry = at.entries;
+  const std::size_t first_entry = at.entries, first_edge_node = at.edge_nodes, first_graph_region = at.graph_regions;
   write_nodes(in, w, tiled && !has_ghost && !has_rim, part, at);
   write_regions(w, base, region_count, part, at);
   if (tiled && has_ghost && !has_rim && ghost_sides_derive_as_written(in.s2, part, base, static_cast<Index>(at.nodes),
@@ -240,14 +251,16 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
     at.entries = first_entry;  // the derivation gives these entries back: drop them
     for (auto n = static_cast<std::size_t>(base); n < at.nodes; ++n) part.neighbor_begin[n + 1] = static_cast<Index>(first_entry);
   }
+  if (at.entries == first_entry) drop_graph_of_element(first_edge_node, first_graph_region, part, at);
   ++at.elements;
 }
 
 void trim_part(const AssemblyCursor& at, MapData<2>& part) {
   part.neighbor.resize(at.entries);
   part.neighbor_edge_kind.resize(at.entries);
+  part.edge_node.resize(at.edge_nodes);
   part.region_corners.resize(at.regions);
-  part.region_neighbors.resize(at.regions);
+  part.region_neighbors.resize(at.graph_regions);
   part.region_target.resize(at.regions);
   part.region_map.resize(at.regions);
 }
@@ -255,6 +268,7 @@ void trim_part(const AssemblyCursor& at, MapData<2>& part) {
 StoredGraph hand_over_stored_form(MapData<2>& m) {
   StoredGraph g;
   const std::size_t nt = m.node_begin.size() - 1;
+  std::size_t graph_region = 0;  // m's region neighbours are those of the elements kept here, in order
   for (std::size_t t = 0; t < nt; ++t) {
     const Index nb = m.node_begin[t], ne = m.node_begin[t + 1];
     if (m.neighbor_begin[nb] == m.neighbor_begin[ne]) continue;  // tiled (or without any edge)
@@ -266,9 +280,13 @@ StoredGraph hand_over_stored_form(MapData<2>& m) {
     for (std::size_t k = 3 * t; k < 3 * t + 3; ++k) g.edge_node_count.push_back(m.edge_node_begin[k + 1] - m.edge_node_begin[k]);
     g.edge_node.insert(g.edge_node.end(), m.edge_node.begin() + m.edge_node_begin[3 * t],
                        m.edge_node.begin() + m.edge_node_begin[3 * t + 3]);
-    g.region_neighbors.insert(g.region_neighbors.end(), m.region_neighbors.begin() + m.region_begin[t],
-                              m.region_neighbors.begin() + m.region_begin[t + 1]);
+    const auto regions = static_cast<std::size_t>(m.region_begin[t + 1] - m.region_begin[t]);
+    g.region_neighbors.insert(g.region_neighbors.end(), m.region_neighbors.begin() + static_cast<std::ptrdiff_t>(graph_region),
+                              m.region_neighbors.begin() + static_cast<std::ptrdiff_t>(graph_region + regions));
+    graph_region += regions;
   }
+  if (graph_region != m.region_neighbors.size())
+    throw BuilderError("internal: the assembled map has region neighbours of elements that store no graph");
   auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
   release(m.neighbor_begin);
   release(m.neighbor);

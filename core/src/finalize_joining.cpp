@@ -100,6 +100,9 @@ void join_parts(std::vector<MapData<2>>& parts, Index elements, unsigned threads
   const Offsets region0 = offsets_of(parts, [](const MapData<2>& p) { return p.region_target.size(); });
   const Offsets entry0 = offsets_of(parts, [](const MapData<2>& p) { return p.neighbor.size(); });
   const Offsets edge0 = offsets_of(parts, [](const MapData<2>& p) { return p.edge_node.size(); });
+  // region neighbours are kept only for the elements with neighbour entries (finalize_assembly.hpp):
+  // placed by their own counts, shifted by the region counts
+  const Offsets graph_region0 = offsets_of(parts, [](const MapData<2>& p) { return p.region_neighbors.size(); });
   const Offsets element0 = offsets_of(parts, [](const MapData<2>& p) { return p.start_region.size(); });
   if (element0.back() != static_cast<std::size_t>(elements))
     throw BuilderError("internal: the assembled blocks do not cover every element");
@@ -127,7 +130,7 @@ void join_parts(std::vector<MapData<2>>& parts, Index elements, unsigned threads
     for (Index& n : c) n = node_index(k, n);
     return c;
   });
-  joiner.join(&MapData<2>::region_neighbors, region0, [&](std::size_t k, std::array<Index, 3> c) {
+  joiner.join(&MapData<2>::region_neighbors, graph_region0, [&](std::size_t k, std::array<Index, 3> c) {
     for (Index& r : c) r = region_index(k, r);
     return c;
   });

@@ -60,6 +60,7 @@ void ElementReuse::copy_element(const BuilderContents<2>& in, const NodesAndSegm
   const StoredGraph& g = previous_.stored_graph();
 
   // nodes, and their neighbour entries where the previous map stores the element's graph
+  const std::size_t first_entry = at.entries, first_edge_node = at.edge_nodes, first_graph_region = at.graph_regions;
   std::size_t entry = stored >= 0 ? entry_[static_cast<std::size_t>(stored)] : 0;
   for (Index n = nb; n < ne; ++n) {
     const std::size_t o = at.nodes + static_cast<std::size_t>(n - nb);
@@ -91,6 +92,7 @@ void ElementReuse::copy_element(const BuilderContents<2>& in, const NodesAndSegm
     if (in.node_at_domain_vertex[in.s1.element(t)[(k + 1) % 3]] != invalid_index) ++count;
     if (stored >= 0 && static_cast<std::size_t>(g.edge_node_count[3 * static_cast<std::size_t>(stored) + static_cast<std::size_t>(k)]) != count)
       throw BuilderError(fmt::format("element {} to be reused has other nodes on its edge {} in the previous map", t, k));
+    room_for(part.edge_node, at.edge_nodes + count);
     for (std::size_t q = 0; q < count; ++q) part.edge_node[at.edge_nodes++] = stored >= 0 ? shift_node(g.edge_node[edge_entry++]) : base;
     part.edge_node_begin[3 * at.elements + static_cast<std::size_t>(k) + 1] = static_cast<Index>(at.edge_nodes);
   }
@@ -98,22 +100,25 @@ void ElementReuse::copy_element(const BuilderContents<2>& in, const NodesAndSegm
   // regions
   const auto regions = static_cast<std::size_t>(re - rb);
   room_for(part.region_corners, at.regions + regions);
-  room_for(part.region_neighbors, at.regions + regions);
+  room_for(part.region_neighbors, at.graph_regions + regions);
   room_for(part.region_target, at.regions + regions);
   room_for(part.region_map, at.regions + regions);
   for (Index r = rb; r < re; ++r) {
     const std::size_t o = at.regions + static_cast<std::size_t>(r - rb);
     for (int i = 0; i < 3; ++i) part.region_corners[o][i] = shift_node(m.region_corners[r][i]);
     for (int i = 0; i < 3; ++i)
-      part.region_neighbors[o][i] =
+      part.region_neighbors[at.graph_regions][i] =
           stored >= 0 ? shift_region(g.region_neighbors[region_[static_cast<std::size_t>(stored)] + static_cast<std::size_t>(r - rb)][i])
                       : invalid_index;
+    ++at.graph_regions;
     part.region_target[o] = m.region_target[r];
     part.region_map[o] = m.region_map[r];
   }
   at.regions += regions;
   part.region_begin[at.elements + 1] = static_cast<Index>(at.regions);
   part.start_region[at.elements] = shift_region(m.start_region[t]);
+  // as assemble_element: only an element with neighbour entries keeps its graph
+  if (at.entries == first_entry) drop_graph_of_element(first_edge_node, first_graph_region, part, at);
   ++at.elements;
 }
 
