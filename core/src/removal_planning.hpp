@@ -107,7 +107,8 @@ struct PlanScratch {
   std::vector<Vec2> unfolded;
   std::vector<char> placed;
   /// The planning call (counted per thread) and the map of the last plan, and the flattening of
-  /// its sheet if it ended as an accepted ranking bound: what continue_from_bound() checks.
+  /// its sheet if it ended as an accepted ranking bound: what plan_vertex_removal checks before
+  /// a full plan continues from that bound.
   std::uint64_t generation = 0;
   const void* owner = nullptr;
   std::vector<Vec2> bound_flat;
