@@ -1,6 +1,6 @@
 // EditableMap: the identity start, the queries, apply() of a planned vertex removal, and the
 // hand-over of the edited state to MapBuilder (which closes the elements and finalizes).
-// Planning a removal lives in editable_map_removal.cpp.
+// Planning a removal lives in editable_map_removal*.cpp (removal_planning.hpp lists its phases).
 
 #include "editable_map_state.hpp"
 

@@ -12,117 +12,20 @@
 // straight segment between its new crossings). Finally each new triangle's segments are checked
 // not to cross, with exact predicates on the shared planar coordinates (only pairs whose bounding
 // boxes overlap, found by a sweep along x).
+//
+// This file holds the entry points and the order of the phases; each phase lives in a file of
+// its own (removal_planning.hpp lists them) and shares the call's state through
+// EditableMap::RemovalPlanning.
 
-#include "editable_map_state.hpp"
-#include "piece_clearance.hpp"
-
-#include <plmap/core/predicates.hpp>
+#include "removal_planning.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 
 namespace plmap {
 
 namespace {
 
-using Vec2 = Eigen::Vector2d;
-using detail::pieces_leave_too_close;
-using detail::within_margin;
-
-/// Barycentric coordinates of p in the planar triangle (a, b, c).
-Eigen::Vector3d planar_barycentric(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& p) {
-  const double det = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
-  const double l1 = ((p.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (p.y() - a.y())) / det;
-  const double l2 = ((b.x() - a.x()) * (p.y() - a.y()) - (p.x() - a.x()) * (b.y() - a.y())) / det;
-  return {1.0 - l1 - l2, l1, l2};
-}
-
-/// A point of a polyline inside the star, with what it lies on in the new triangulation.
-struct PlanarPoint {
-  Vec2 position;
-  Index corner = invalid_index;                             ///< S1 vertex it is, if any
-  std::array<Index, 2> edge{invalid_index, invalid_index};  ///< S1 edge it lies on, if any
-};
-
-/// True if the straight piece between p and q would run along an edge of the new triangulation:
-/// both on one edge, or both corners (in a triangle, two corners always share an edge).
-bool shares_an_edge(const PlanarPoint& p, const PlanarPoint& q) {
-  if (p.corner != invalid_index && q.corner != invalid_index) return true;
-  if (p.edge[0] != invalid_index && q.edge[0] != invalid_index) return p.edge == q.edge;
-  if (p.corner != invalid_index && q.edge[0] != invalid_index) return q.edge[0] == p.corner || q.edge[1] == p.corner;
-  if (q.corner != invalid_index && p.edge[0] != invalid_index) return p.edge[0] == q.corner || p.edge[1] == q.corner;
-  return false;
-}
-
-struct Piece {
-  int triangle;  ///< new triangle
-  Vec2 from, to;
-};
-
-/// One sheet of the star during planning.
-struct SheetPlan {
-  const std::vector<Index>* ring = nullptr;
-  std::span<const Vec2> flat;
-  std::span<const std::array<int, 3>> triangulation;
-  bool closed = true;
-  int first_old = 0, first_new = 0;
-  std::vector<std::array<int, 2>> diagonals;          ///< interior edges of the triangulation
-  std::vector<Eigen::AlignedBox2d> diagonal_boxes;    ///< per diagonal, filled by the cut
-  std::vector<std::pair<Index, Vec2>> moved;          ///< vertex preimages inside, planar
-
-  int size() const { return static_cast<int>(ring->size()); }
-  int ring_index(Index w) const {
-    for (std::size_t i = 0; i < ring->size(); ++i)
-      if ((*ring)[i] == w) return static_cast<int>(i);
-    return -1;
-  }
-  /// The polygon's edges: consecutive ring vertices, and for an open sheet also its last and
-  /// first vertex (the new line edge).
-  bool adjacent(int i, int j) const {
-    const int k = size();
-    return (i + 1) % k == j || (j + 1) % k == i;
-  }
-  const Vec2* moved_position(Index w) const {
-    for (const auto& [u, p] : moved)
-      if (u == w) return &p;
-    return nullptr;
-  }
-};
-
-/// Working buffers of a plan that do not outlive it, kept per thread between plans.
-struct PlanScratch {
-  std::vector<SheetPlan> sheets;
-  std::vector<std::array<Index, 2>> new_edges;
-  std::vector<Index> star_triangles, edges;
-  /// Per S1 triangle slot: its place among the plan's old triangles, or -1; per S2 vertex: the
-  /// sheet and place of its entry in that sheet's `moved`, or -1. Lookups the cut makes for
-  /// every polyline point (a search of the star's lists each, quadratic in a late star's nodes);
-  /// set per plan and reset by SlotReset, so they are -1 everywhere between plans.
-  std::vector<int> star_slot;
-  std::vector<std::array<int, 2>> moved_slot;
-  std::vector<Index> marked_triangles, marked_vertices;
-  /// The planning call (counted per thread) and the map of the last plan, and the flattening of
-  /// its sheet if it ended as an accepted ranking bound: what continue_from_bound() checks.
-  std::uint64_t generation = 0;
-  const void* owner = nullptr;
-  std::vector<Vec2> bound_flat;
-};
-
-/// Resets the slots a plan marked, on every way out of the plan.
-struct SlotReset {
-  PlanScratch& scratch;
-  ~SlotReset() {
-    for (Index t : scratch.marked_triangles) scratch.star_slot[static_cast<std::size_t>(t)] = -1;
-    for (Index w : scratch.marked_vertices) scratch.moved_slot[static_cast<std::size_t>(w)] = {-1, -1};
-    scratch.marked_triangles.clear();
-    scratch.marked_vertices.clear();
-  }
-};
-
-}  // namespace
-
-namespace {
+using removal::Vec2;
 
 /// True if the plan's star, flattening and triangulation are those given: one closed sheet, the
 /// same ring, the flattening `bound_flat` (kept by the planning call that made the plan) and a
@@ -139,6 +42,27 @@ bool same_closed_star(const VertexRemovalPlan& plan, std::span<const StarSheet> 
       if (i < 0 || i >= static_cast<int>(ring.size()) || ring[static_cast<std::size_t>(i)] != plan.new_triangles[n][m]) return false;
     }
   return true;
+}
+
+/// The sheets' layout before any geometry: one closed sheet, or open sheets that all run from
+/// one line neighbour of v to the other (line_key, smaller first) with a ring vertex between.
+RemovalRefusal check_sheet_layout(std::span<const StarSheet> sheets, std::size_t flattened_count,
+                                  std::size_t triangulation_count, std::array<Index, 2>& line_key) {
+  const int sheet_count = static_cast<int>(sheets.size());
+  if (sheet_count == 0 || flattened_count != sheets.size() || triangulation_count != sheets.size())
+    return RemovalRefusal::not_a_disk_star;
+  const bool on_line = !sheets[0].closed;
+  for (const StarSheet& sheet : sheets)
+    if (sheet.closed == on_line || (!on_line && sheet_count != 1)) return RemovalRefusal::not_a_disk_star;
+  if (!on_line) return RemovalRefusal::none;
+  if (sheets[0].ring.size() < 2) return RemovalRefusal::not_a_disk_star;
+  line_key = sorted_pair(sheets[0].ring.front(), sheets[0].ring.back());
+  for (const StarSheet& sheet : sheets) {
+    if (sheet.ring.size() < 2 || sorted_pair(sheet.ring.front(), sheet.ring.back()) != line_key)
+      return RemovalRefusal::not_a_disk_star;
+    if (sheet.ring.size() == 2) return RemovalRefusal::single_triangle_side;
+  }
+  return RemovalRefusal::none;
 }
 
 }  // namespace
@@ -186,8 +110,7 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
                                                    std::span<const std::vector<std::array<int, 3>>> triangulations,
                                                    PlanExtent extent, VertexRemovalPlan storage) const {
   const Impl& s = *impl_;
-  const double clearance = s.options.edge_clearance;
-  thread_local PlanScratch scratch;
+  thread_local removal::PlanScratch scratch;
   // A full plan of a closed star whose `storage` is the accepted ranking bound that the previous
   // planning call on this thread made on this map, with the same star, flattening and
   // triangulation, continues from it: the star's triangles, the new triangles and the relocated
@@ -207,712 +130,52 @@ VertexRemovalPlan EditableMap::plan_vertex_removal(Index v, std::span<const Star
   plan.vertex = v;
   plan.extent = extent;
   plan.triangle_count_at_planning = static_cast<Index>(s.triangles.size());
-  auto refuse = [&plan](RemovalRefusal why) {
+  RemovalRefusal why = RemovalRefusal::none;
+  auto refused = [&why](RemovalRefusal phase_result) {
+    why = phase_result;
+    return why != RemovalRefusal::none;
+  };
+  auto refuse = [&plan, &why] {
     plan.refusal = why;
     return std::move(plan);
   };
 
-  const int sheet_count = static_cast<int>(sheets.size());
-  if (sheet_count == 0 || flattened.size() != sheets.size() || triangulations.size() != sheets.size())
-    return refuse(RemovalRefusal::not_a_disk_star);
-  const bool on_line = !sheets[0].closed;
-  for (const StarSheet& sheet : sheets)
-    if (sheet.closed == on_line || (!on_line && sheet_count != 1)) return refuse(RemovalRefusal::not_a_disk_star);
   std::array<Index, 2> line_key{invalid_index, invalid_index};
-  if (on_line) {
-    if (sheets[0].ring.size() < 2) return refuse(RemovalRefusal::not_a_disk_star);
-    line_key = sorted_pair(sheets[0].ring.front(), sheets[0].ring.back());
-    for (const StarSheet& sheet : sheets) {
-      if (sheet.ring.size() < 2 || sorted_pair(sheet.ring.front(), sheet.ring.back()) != line_key)
-        return refuse(RemovalRefusal::not_a_disk_star);
-      if (sheet.ring.size() == 2) return refuse(RemovalRefusal::single_triangle_side);
-    }
-    plan.line_edge = line_key;
-  }
-  const Vec2 origin = Vec2::Zero();
+  if (refused(check_sheet_layout(sheets, flattened.size(), triangulations.size(), line_key))) return refuse();
+  const bool on_line = !sheets[0].closed;
+  if (on_line) plan.line_edge = line_key;
+  const int sheet_count = static_cast<int>(sheets.size());
+  if (static_cast<int>(scratch.sheets.size()) < sheet_count) scratch.sheets.resize(static_cast<std::size_t>(sheet_count));
+  RemovalPlanning planning{s,           *s.target, plan,     scratch, scratch.sheets, v,
+                           sheet_count, on_line,   line_key, s.options.edge_clearance};
 
-  // ---- the star's triangles, sheet by sheet: sheet triangle i is (v, ring[i], ring[i+1]) ----
-  std::vector<SheetPlan>& sp = scratch.sheets;
-  if (static_cast<int>(sp.size()) < sheet_count) sp.resize(static_cast<std::size_t>(sheet_count));
   if (continuing) {  // the same contents as the bound's, in the caller's objects of this call
-    sp[0].ring = &sheets[0].ring;
-    sp[0].flat = flattened[0];
-    sp[0].triangulation = triangulations[0];
+    removal::SheetPlan& sheet = scratch.sheets[0];
+    sheet.ring = &sheets[0].ring;
+    sheet.flat = flattened[0];
+    sheet.triangulation = triangulations[0];
+  } else if (refused(planning.collect_star_triangles(sheets, flattened, triangulations))) {
+    return refuse();
   }
-  if (!continuing) {
-    for (int g = 0; g < sheet_count; ++g) {
-      SheetPlan& sh = sp[g];
-      sh.diagonals.clear();
-      sh.diagonal_boxes.clear();
-      sh.moved.clear();
-      sh.ring = &sheets[g].ring;
-      sh.flat = flattened[g];
-      sh.triangulation = triangulations[g];
-      sh.closed = sheets[g].closed;
-      const int k = sh.size();
-      if (k < 3 || static_cast<int>(sh.flat.size()) != k) return refuse(RemovalRefusal::not_a_disk_star);
-      const int fan = sh.closed ? k : k - 1;
-      sh.first_old = static_cast<int>(plan.old_triangles.size());
-      for (int i = 0; i < fan; ++i) {
-        const Index x = (*sh.ring)[i], y = (*sh.ring)[(i + 1) % k];
-        Index found = invalid_index;
-        for (Index t : s.vertex_triangles[v]) {
-          const auto& c = s.triangles[t];
-          const int at = c[0] == v ? 0 : c[1] == v ? 1 : 2;
-          if (c[(at + 1) % 3] == x && c[(at + 2) % 3] == y) found = t;
-        }
-        if (found == invalid_index) return refuse(RemovalRefusal::not_a_disk_star);
-        plan.old_triangles.push_back(found);
-        plan.old_triangle_sheet.push_back(g);
-      }
-      for (Index w : *sh.ring)
-        if (std::find(plan.ring.begin(), plan.ring.end(), w) == plan.ring.end()) plan.ring.push_back(w);
-      for (int i = 0; i < fan; ++i)
-        if (orient2d(origin, sh.flat[i], sh.flat[(i + 1) % k]) <= 0) return refuse(RemovalRefusal::flattening_not_simple);
-      if (!sh.closed) {
-        if (sh.flat.front().y() != 0.0 || sh.flat.back().y() != 0.0 || !(sh.flat.front().x() > 0.0) ||
-            !(sh.flat.back().x() < 0.0))
-          return refuse(RemovalRefusal::flattening_not_simple);
-        for (int i = 1; i + 1 < k; ++i)
-          if (!(sh.flat[i].y() > 0.0)) return refuse(RemovalRefusal::flattening_not_simple);
-      }
-    }
-    {
-      std::vector<Index>& all = scratch.star_triangles;
-      all.assign(plan.old_triangles.begin(), plan.old_triangles.end());
-      std::sort(all.begin(), all.end());
-      if (std::adjacent_find(all.begin(), all.end()) != all.end() || all.size() != s.vertex_triangles[v].size())
-        return refuse(RemovalRefusal::not_a_disk_star);
-    }
-  }
-  const SlotReset slot_reset{scratch};
-  if (scratch.star_slot.size() < s.triangles.size()) scratch.star_slot.resize(s.triangles.size(), -1);
-  for (std::size_t i = 0; i < plan.old_triangles.size(); ++i) {
-    scratch.star_slot[static_cast<std::size_t>(plan.old_triangles[i])] = static_cast<int>(i);
-    scratch.marked_triangles.push_back(plan.old_triangles[i]);
-  }
-  const std::vector<int>& star_slot = scratch.star_slot;
-  auto star_position = [&star_slot](Index t) { return star_slot[static_cast<std::size_t>(t)]; };
-  auto planar_corner = [&](int g, Index w) -> Vec2 { return w == v ? origin : sp[g].flat[sp[g].ring_index(w)]; };
-
-  // On a feature line every sheet must place v (the origin) at the same parameter of the new
-  // edge, or the sheets would disagree about where the line's nodes go.
-  auto line_parameter = [&](int g, const Vec2& p) {
-    const Vec2 from = planar_corner(g, line_key[0]), to = planar_corner(g, line_key[1]);
-    return (p.x() - from.x()) / (to.x() - from.x());
-  };
-  if (on_line)
-    for (int g = 1; g < sheet_count; ++g)
-      if (std::abs(line_parameter(g, origin) - line_parameter(0, origin)) > 1e-12)
-        return refuse(RemovalRefusal::flattening_not_simple);
-
-  if (!continuing) {
-    // ---- the new triangles ----
-    const double area_scale = (s.target->bounding_box_max() - s.target->bounding_box_min()).squaredNorm();
-    const Eigen::Vector3d& pv = position(v);
-    if (on_line && s.has_edge(line_key[0], line_key[1])) return refuse(RemovalRefusal::existing_edge);
-    std::vector<std::array<Index, 2>>& new_edges = scratch.new_edges;
-    new_edges.clear();
-    for (int g = 0; g < sheet_count; ++g) {
-      SheetPlan& sh = sp[g];
-      const int k = sh.size();
-      const std::vector<Index>& ring = *sh.ring;
-      Eigen::Vector3d sheet_normal = Eigen::Vector3d::Zero();
-      for (int i = 0; i < (sh.closed ? k : k - 1); ++i)
-        sheet_normal += (position(ring[i]) - pv).cross(position(ring[(i + 1) % k]) - pv);
-      sh.first_new = static_cast<int>(plan.new_triangles.size());
-      if (static_cast<int>(sh.triangulation.size()) != k - 2) return refuse(RemovalRefusal::no_triangulation);
-      for (const auto& tri : sh.triangulation) {
-        for (int m = 0; m < 3; ++m) {
-          const int i = tri[m], j = tri[(m + 1) % 3];
-          if (i < 0 || i >= k || j < 0 || j >= k || i == j) return refuse(RemovalRefusal::no_triangulation);
-          if (!sh.adjacent(i, j)) {
-            if (s.has_edge(ring[i], ring[j])) return refuse(RemovalRefusal::existing_edge);
-            if (i < j) {
-              sh.diagonals.push_back({i, j});
-              new_edges.push_back(sorted_pair(ring[i], ring[j]));
-            }
-          }
-        }
-        if (orient2d(sh.flat[tri[0]], sh.flat[tri[1]], sh.flat[tri[2]]) <= 0) return refuse(RemovalRefusal::no_triangulation);
-        const std::array<Index, 3> corners{ring[tri[0]], ring[tri[1]], ring[tri[2]]};
-        const Eigen::Vector3d normal =
-            (position(corners[1]) - position(corners[0])).cross(position(corners[2]) - position(corners[0]));
-        if (0.5 * normal.norm() <= s.options.min_relative_area * area_scale)
-          return refuse(RemovalRefusal::degenerate_triangle);
-        if (normal.dot(sheet_normal) <= 0.0) return refuse(RemovalRefusal::fold_over);
-        plan.new_triangles.push_back(corners);
-        plan.new_triangle_sheet.push_back(g);
-      }
-      if (sh.closed && k == 3) {  // the hole's one triangle must not exist already (a tetrahedron-like pocket)
-        auto n = plan.new_triangles[sh.first_new];
-        std::sort(n.begin(), n.end());
-        for (Index t : s.vertex_triangles[ring[0]]) {
-          if (star_position(t) >= 0) continue;
-          auto c = s.triangles[t];
-          std::sort(c.begin(), c.end());
-          if (c == n) return refuse(RemovalRefusal::existing_edge);
-        }
-      }
-    }
-    std::sort(new_edges.begin(), new_edges.end());
-    if (std::adjacent_find(new_edges.begin(), new_edges.end()) != new_edges.end())
-      return refuse(RemovalRefusal::existing_edge);
-
-  }
-  // Where a planar point of sheet g falls among the sheet's new triangles.
-  auto locate = [&](int g, const Vec2& p, Eigen::Vector3d* barycentric) {
-    const SheetPlan& sh = sp[g];
-    int best = -1;
-    double best_min = -std::numeric_limits<double>::infinity();
-    for (int n = 0; n < sh.size() - 2; ++n) {
-      const auto& tri = sh.triangulation[n];
-      const Eigen::Vector3d b = planar_barycentric(sh.flat[tri[0]], sh.flat[tri[1]], sh.flat[tri[2]], p);
-      if (b.minCoeff() > best_min) {
-        best_min = b.minCoeff();
-        best = n;
-        if (barycentric) *barycentric = b;
-        // Inside by more than the clearance: the new triangles do not overlap, so no other one
-        // can hold the point with all coordinates above it (rounding is far below 1e-9).
-        if (best_min > std::max(clearance, 1e-9)) break;
-      }
-    }
-    return std::pair{best < 0 ? -1 : sh.first_new + best, best_min};
-  };
-  auto world_on_new = [&](int n, const Eigen::Vector3d& b) {
-    const auto& c = plan.new_triangles[n];
-    return Eigen::Vector3d(b(0) * position(c[0]) + b(1) * position(c[1]) + b(2) * position(c[2]));
-  };
-  const Surface<2>& t2 = *s.target;
-  auto record_node = [&](const Eigen::Vector3d& domain, const Eigen::Vector3d& image) {
-    plan.node_domain_positions.push_back(domain);
-    plan.node_target_positions.push_back(image);
-    plan.max_node_distance = std::max(plan.max_node_distance, (domain - image).norm());
-  };
-
-  if (!continuing) {
-    // ---- merge: planar positions of the vertex preimages of each sheet, and their new places ----
-    if (!on_line) sp[0].moved.emplace_back(v, origin);
-    for (int g = 0; g < sheet_count; ++g) {
-      SheetPlan& sh = sp[g];
-      const int fan = sh.closed ? sh.size() : sh.size() - 1;
-      for (int i = 0; i < fan; ++i) {
-        const Index t = plan.old_triangles[sh.first_old + i];
-        const auto& c = s.triangles[t];
-        for (Index w : s.triangle_vertices[t]) {
-          const Eigen::Vector3d& b = s.preimage_barycentric[w];
-          sh.moved.emplace_back(w, b(0) * planar_corner(g, c[0]) + b(1) * planar_corner(g, c[1]) + b(2) * planar_corner(g, c[2]));
-        }
-      }
-      for (const auto& [w, p] : sh.moved) {
-        Eigen::Vector3d b;
-        const auto [n, min_coordinate] = locate(g, p, &b);
-        if (n < 0 || !(min_coordinate > clearance)) {
-          if (n >= 0) {  // name the new edge it is on, if that is a diagonal, so the caller can avoid it
-            int side = 0;
-            for (int m = 1; m < 3; ++m)
-              if (b(m) < b(side)) side = m;
-            const auto& tri = sh.triangulation[n - sh.first_new];
-            const int i = tri[(side + 1) % 3], j = tri[(side + 2) % 3];
-            if (!sh.adjacent(i, j)) {
-              plan.blocking_diagonal = {std::min(i, j), std::max(i, j)};
-              plan.blocking_sheet = g;
-            }
-          }
-          return refuse(RemovalRefusal::node_on_new_edge);
-        }
-        plan.relocations.push_back({w, n, b, 0.0});
-        record_node(world_on_new(n, b), t2.vertex(w));
-      }
-    }
-
-  }
-  // ---- the line's nodes (v, and the nodes of the two removed line edges) onto the new edge ----
-  // Distance from v along the removed line edge (v, end) of S2 vertex w on it.
-  auto spoke_fraction = [&](Index w) {
-    const double t = s.preimage_edge_parameter[w];
-    return s.preimage_edge[w][0] == v ? t : 1.0 - t;
-  };
-  auto line_end_of = [&](Index w) -> Index {  // the line end whose removed edge w lies on, or invalid
-    if (!on_line || !s.on_edge(w)) return invalid_index;
-    for (Index end : line_key)
-      if (s.preimage_edge[w] == sorted_pair(v, end)) return end;
-    return invalid_index;
-  };
-  if (on_line) {
-    std::vector<std::pair<Index, Vec2>> line_nodes{{v, origin}};
-    for (Index end : line_key)
-      if (const auto* on = s.vertices_on_edge(sorted_pair(v, end)))
-        for (Index w : *on) line_nodes.emplace_back(w, spoke_fraction(w) * planar_corner(0, end));
-    for (const auto& [w, p] : line_nodes) {
-      const double t = line_parameter(0, p);
-      if (!(t > clearance && t < 1.0 - clearance)) return refuse(RemovalRefusal::node_on_new_edge);
-      plan.relocations.push_back({w, -1, Eigen::Vector3d::Zero(), t});
-      record_node((1.0 - t) * position(line_key[0]) + t * position(line_key[1]), t2.vertex(w));
-    }
-  }
+  const removal::SlotReset slot_reset{scratch};
+  planning.mark_star_triangles();
+  if (refused(planning.check_line_parameters())) return refuse();
+  if (!continuing && (refused(planning.make_new_triangles()) || refused(planning.relocate_preimages())))
+    return refuse();
+  if (refused(planning.move_line_nodes())) return refuse();
 
   // A ranking bound ends here: the cut below only adds nodes (crossings) and refusals.
   if (extent == PlanExtent::ranking_bound) {
     plan.bound_generation = scratch.generation;  // a full plan may continue from it (above)
-    scratch.bound_flat.assign(sp[0].flat.begin(), sp[0].flat.end());
+    scratch.bound_flat.assign(scratch.sheets[0].flat.begin(), scratch.sheets[0].flat.end());
     return plan;
   }
 
-  // Where each moved vertex preimage is listed (its first entry), for vertex_point below.
-  if (scratch.moved_slot.size() < static_cast<std::size_t>(s.target->vertex_count()))
-    scratch.moved_slot.resize(static_cast<std::size_t>(s.target->vertex_count()), {-1, -1});
-  for (int g = 0; g < sheet_count; ++g)
-    for (std::size_t i = 0; i < sp[g].moved.size(); ++i) {
-      const Index w = sp[g].moved[i].first;
-      auto& slot = scratch.moved_slot[static_cast<std::size_t>(w)];
-      if (slot[0] >= 0) continue;
-      slot = {g, static_cast<int>(i)};
-      scratch.marked_vertices.push_back(w);
-    }
-  auto moved_position = [&](int g, Index w) -> const Vec2* {
-    const auto& slot = scratch.moved_slot[static_cast<std::size_t>(w)];
-    if (slot[0] == g) return &sp[g].moved[static_cast<std::size_t>(slot[1])].second;
-    return sp[g].moved_position(w);  // listed first in another sheet: search this one's list
-  };
-
-  // The planar point of S2 vertex w in sheet g, as it lies after the step; false if w is not in
-  // that sheet (an inconsistent state; never expected).
-  auto vertex_point = [&](int g, Index w, PlanarPoint& q) {
-    const SheetPlan& sh = sp[g];
-    if (on_line && (w == v || line_end_of(w) != invalid_index)) {
-      q.position = w == v ? origin : spoke_fraction(w) * planar_corner(g, line_end_of(w));
-      q.edge = line_key;
-      return true;
-    }
-    if (s.vertex_live[w] && w != v) {
-      const int i = sh.ring_index(w);
-      if (i < 0) return false;
-      q.position = sh.flat[i];
-      q.corner = w;
-      return true;
-    }
-    if (s.vertex_live[w] || !s.on_edge(w)) {
-      const Vec2* at = moved_position(g, w);
-      if (!at) return false;
-      q.position = *at;
-      return true;
-    }
-    const auto e = s.preimage_edge[w];  // on a ring edge: it stays there
-    const int i = sh.ring_index(e[0]), j = sh.ring_index(e[1]);
-    if (i < 0 || j < 0) return false;
-    q.position = (1.0 - s.preimage_edge_parameter[w]) * sh.flat[i] + s.preimage_edge_parameter[w] * sh.flat[j];
-    q.edge = e;
-    return true;
-  };
-  // The S1 edge (smaller first) that both S2 vertices lie on (as corners or on-edge nodes), if any.
-  auto common_edge = [&](Index w1, Index w2) -> std::array<Index, 2> {
-    const std::array<Index, 2> none{invalid_index, invalid_index};
-    const bool c1 = s.vertex_live[w1] != 0, c2 = s.vertex_live[w2] != 0;
-    const bool e1 = !c1 && s.on_edge(w1), e2 = !c2 && s.on_edge(w2);
-    if (c1 && c2) return s.has_edge(w1, w2) ? sorted_pair(w1, w2) : none;
-    if (c1 && e2) return s.preimage_edge[w2][0] == w1 || s.preimage_edge[w2][1] == w1 ? s.preimage_edge[w2] : none;
-    if (e1 && c2) return s.preimage_edge[w1][0] == w2 || s.preimage_edge[w1][1] == w2 ? s.preimage_edge[w1] : none;
-    if (e1 && e2) return s.preimage_edge[w1] == s.preimage_edge[w2] ? s.preimage_edge[w1] : none;
-    return none;
-  };
-  auto new_triangle_with = [&](int g, Index a, Index b) {
-    for (int n = sp[g].first_new; n < sp[g].first_new + sp[g].size() - 2; ++n) {
-      const auto& c = plan.new_triangles[n];
-      const bool has_a = c[0] == a || c[1] == a || c[2] == a, has_b = c[0] == b || c[1] == b || c[2] == b;
-      if (has_a && has_b) return n;
-    }
-    return -1;
-  };
-
-  // A full plan with the deferred cut ends here: the S2 edges are traced once, on the final S1
-  // (to_map), and the polylines are neither cut nor checked now. What the trace needs of the
-  // step is that the straight segments between the preimages keep S2's orientation where the
-  // trace will draw them: in the new triangles as they lie in space, unfolded into one plane
-  // (a polygon's triangulation has no inner vertex, so each ring vertex gets one position), and
-  // in the S1 triangles just outside the ring, unfolded across the ring edge. Every S2 triangle
-  // with a moved corner whose corners all lie there must stay counter-clockwise; otherwise a
-  // preimage has moved across the straight segment of two others and the traced edges would
-  // cross (RemovalRefusal::straight_fold).
-  if (s.options.defer_cut) {
-    thread_local std::vector<Vec2> unfolded;  // per ring index of the sheet
-    thread_local std::vector<char> placed;
-    // The third corner of a triangle on edge (a, b) (planar pa, pb) away from the side of `away`.
-    auto unfold = [&](Index a, Index b, Index r, const Vec2& pa, const Vec2& pb, const Vec2& away) {
-      const Eigen::Vector3d d = position(b) - position(a), x = position(r) - position(a);
-      const double length = d.norm();
-      const Vec2 unit = (pb - pa).normalized();
-      Vec2 normal(-unit.y(), unit.x());
-      if (normal.dot(away - pa) > 0.0) normal = -normal;
-      return Vec2(pa + (x.dot(d) / length) * unit + (x.cross(d).norm() / length) * normal);
-    };
-    double extent = 0.0;
-    for (int g = 0; g < sheet_count; ++g)
-      for (const Vec2& corner : sp[g].flat) extent = std::max(extent, corner.cwiseAbs().maxCoeff());
-    const double margin = clearance * extent;
-    std::size_t relocation_base = 0;
-    for (int g = 0; g < sheet_count; ++g) {
-      const SheetPlan& sh = sp[g];
-      const std::vector<Index>& ring = *sh.ring;
-      const int k = sh.size();
-      unfolded.assign(static_cast<std::size_t>(k), Vec2::Zero());
-      placed.assign(static_cast<std::size_t>(k), 0);
-      {  // the first new triangle in its own plane, then across shared edges until all are placed
-        const auto& t0 = sh.triangulation[0];
-        const Eigen::Vector3d e1 = position(ring[t0[1]]) - position(ring[t0[0]]), e2 = position(ring[t0[2]]) - position(ring[t0[0]]);
-        const double l1 = e1.norm();
-        unfolded[t0[1]] = Vec2(l1, 0.0);
-        unfolded[t0[2]] = Vec2(e2.dot(e1) / l1, e2.cross(e1).norm() / l1);
-        placed[t0[0]] = placed[t0[1]] = placed[t0[2]] = 1;
-        for (bool progress = true; progress;) {
-          progress = false;
-          for (const auto& tri : sh.triangulation) {
-            int missing = -1, count = 0;
-            for (int m = 0; m < 3; ++m)
-              if (!placed[tri[m]]) missing = m, ++count;
-            if (count != 1) continue;
-            const int i = tri[(missing + 1) % 3], j = tri[(missing + 2) % 3];
-            // The placed triangle on (i, j): its third corner is on the other side.
-            Vec2 other = unfolded[i];
-            for (const auto& u : sh.triangulation)
-              if (&u != &tri) {
-                int has = 0, third = -1;
-                for (int m = 0; m < 3; ++m) {
-                  if (u[m] == i || u[m] == j) ++has;
-                  else third = u[m];
-                }
-                if (has == 2 && placed[third]) other = unfolded[third];
-              }
-            unfolded[tri[missing]] = unfold(ring[i], ring[j], ring[tri[missing]], unfolded[i], unfolded[j], other);
-            placed[tri[missing]] = 1;
-            progress = true;
-          }
-        }
-      }
-      auto ring_point = [&](int i) { return unfolded[static_cast<std::size_t>(i)]; };
-      // The new triangle of sheet g on ring edge (i, i + 1), for the unfolding beyond it.
-      auto straight_point = [&](Index w, Vec2& at) {
-        // The third corner of the S1 triangle t beyond ring edge (c[m0], c[m1]), unfolded.
-        auto beyond = [&](Index t, int unknown, const std::array<int, 3>& at_ring) {
-          const auto& c = s.triangles[t];
-          const int m0 = (unknown + 1) % 3, m1 = (unknown + 2) % 3;
-          Vec2 inside = ring_point(at_ring[m0]);  // away from the new triangle on that ring edge
-          for (const auto& tri : sh.triangulation) {
-            int has = 0, third = -1;
-            for (int m = 0; m < 3; ++m) {
-              if (tri[m] == at_ring[m0] || tri[m] == at_ring[m1]) ++has;
-              else third = tri[m];
-            }
-            if (has == 2) inside = ring_point(third);
-          }
-          return unfold(c[m0], c[m1], c[unknown], ring_point(at_ring[m0]), ring_point(at_ring[m1]), inside);
-        };
-        if (s.vertex_live[w] && w != v) {
-          const int i = sh.ring_index(w);
-          if (i < 0) return false;
-          at = ring_point(i);
-          return true;
-        }
-        const auto& slot = scratch.moved_slot[static_cast<std::size_t>(w)];
-        if (slot[0] == g) {
-          const auto& r = plan.relocations[relocation_base + static_cast<std::size_t>(slot[1])];
-          if (r.new_triangle < 0) return false;
-          const auto& tri = sh.triangulation[r.new_triangle - sh.first_new];
-          at = r.barycentric(0) * ring_point(tri[0]) + r.barycentric(1) * ring_point(tri[1]) + r.barycentric(2) * ring_point(tri[2]);
-          return true;
-        }
-        if (s.vertex_live[w] || s.on_edge(w)) return false;
-        const Index t = s.preimage_triangle[w];
-        if (star_position(t) >= 0) return false;
-        const auto& c = s.triangles[t];
-        std::array<int, 3> at_ring{sh.ring_index(c[0]), sh.ring_index(c[1]), sh.ring_index(c[2])};
-        std::array<Vec2, 3> corner;
-        int known = 0, unknown = -1;
-        for (int m = 0; m < 3; ++m) {
-          if (at_ring[m] >= 0) {
-            corner[m] = ring_point(at_ring[m]);
-            ++known;
-          } else {
-            unknown = m;
-          }
-        }
-        if (known != 2) return false;
-        if (!sh.adjacent(at_ring[(unknown + 1) % 3], at_ring[(unknown + 2) % 3])) return false;
-        corner[unknown] = beyond(t, unknown, at_ring);
-        const Eigen::Vector3d& b = s.preimage_barycentric[w];
-        at = b(0) * corner[0] + b(1) * corner[1] + b(2) * corner[2];
-        return true;
-      };
-      // Counter-clockwise, and each corner farther than the clearance from the opposite side
-      // (the trace's test of near-touching pieces).
-      auto turns_over = [&](Index w, const Vec2& pw) {
-        for (Index f : t2.vertex_elements(w)) {
-          const auto& c = t2.element(f);
-          const int m = t2.local_corner(f, w);
-          Vec2 px, py;
-          if (!straight_point(c[(m + 1) % 3], px) || !straight_point(c[(m + 2) % 3], py)) continue;
-          const double twice_area = (px - pw).x() * (py - pw).y() - (px - pw).y() * (py - pw).x();
-          const double longest = std::max({(px - pw).norm(), (py - pw).norm(), (py - px).norm()});
-          if (orient2d(pw, px, py) <= 0 || twice_area <= 2.0 * margin * longest) return true;
-        }
-        return false;
-      };
-      // The S2 triangles at a moved preimage.
-      for (const auto& [w, unused] : sh.moved) {
-        (void)unused;
-        if (scratch.moved_slot[static_cast<std::size_t>(w)][0] != g) continue;
-        Vec2 pw;
-        if (straight_point(w, pw) && turns_over(w, pw)) return refuse(RemovalRefusal::straight_fold);
-      }
-      // S2 triangles that span the star between the S1 triangles just outside it: their corners
-      // did not move, but their straight edges through the star did.
-      for (int i = 0; i < k; ++i) {
-        if (!sh.closed && i == k - 1) break;  // the new line edge: no triangle beyond in this sheet
-        const Index x = ring[i], y = ring[(i + 1) % k];
-        for (Index t : s.vertex_triangles[x]) {
-          if (star_position(t) >= 0) continue;
-          const auto& c = s.triangles[t];
-          if (c[0] != y && c[1] != y && c[2] != y) continue;
-          for (Index w : s.triangle_vertices[t]) {
-            Vec2 pw;
-            if (straight_point(w, pw) && turns_over(w, pw)) return refuse(RemovalRefusal::straight_fold);
-          }
-        }
-      }
-      relocation_base += sh.moved.size();
-    }
-    return plan;
-  }
-
-  // ---- cut: every S2 edge polyline with a segment in the star ----
-  std::vector<Index>& edges = scratch.edges;
-  edges.clear();
-  for (Index t : plan.old_triangles) edges.insert(edges.end(), s.triangle_edges[t].begin(), s.triangle_edges[t].end());
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-
-  // Buffers of the cut, reused for every polyline (a plan runs many thousands of times).
-  struct Cut {
-    double along;      // parameter on the segment
-    int diagonal;
-    double parameter;  // on the diagonal, from its first ring vertex
-  };
-  thread_local std::vector<Cut> cuts;
-  thread_local std::vector<PlanarPoint> points;
-  thread_local std::vector<Piece> pieces;
-  pieces.clear();
-  for (Index e : edges) {
-    const EdgePolyline& p = s.polylines[e];
-    const int segments = static_cast<int>(p.segment_triangle.size());
-    bool touches_star = false;
-    for (Index t : p.segment_triangle) touches_star = touches_star || star_position(t) >= 0;
-    if (!touches_star) continue;  // a stale entry of triangle_edges
-
-    VertexRemovalPlan::PolylineEdit edit;
-    if (!plan.spare_edits.empty()) {
-      edit = std::move(plan.spare_edits.back());
-      plan.spare_edits.pop_back();
-    }
-    edit.target_edge = e;
-    edit.version_at_planning = s.polyline_version[e];
-    auto push_point = [&edit, &p](int i) {
-      edit.point_vertex.push_back(p.vertex[i]);
-      edit.point_edge.push_back(p.edge[i]);
-      edit.point_edge_parameter.push_back(p.edge_parameter[i]);
-      edit.point_target_parameter.push_back(p.target_parameter[i]);
-    };
-
-    // An S2 edge whose preimage runs along an S1 edge stays along it: along a ring edge, it now
-    // borders the new triangle of its sheet there; along a removed line edge, it is now a piece
-    // of the new line edge.
-    if (segments == 1) {
-      const std::array<Index, 2> along = common_edge(p.vertex[0], p.vertex[1]);
-      const bool on_removed_line_edge =
-          on_line && (along == sorted_pair(v, line_key[0]) || along == sorted_pair(v, line_key[1]));
-      if (along[0] != invalid_index && (on_removed_line_edge || (along[0] != v && along[1] != v))) {
-        const int g = on_removed_line_edge ? 0 : plan.old_triangle_sheet[star_position(p.segment_triangle[0])];
-        const int n = on_removed_line_edge ? new_triangle_with(0, line_key[0], line_key[1]) : new_triangle_with(g, along[0], along[1]);
-        if (n < 0) return refuse(RemovalRefusal::edge_along_new_edge);
-        push_point(0);
-        edit.segment_triangle.push_back(-(n + 1));
-        push_point(1);
-        plan.polyline_edits.push_back(std::move(edit));
-        continue;
-      }
-    }
-
-    push_point(0);
-    int i = 0;
-    while (i < segments) {
-      if (star_position(p.segment_triangle[i]) < 0) {
-        edit.segment_triangle.push_back(p.segment_triangle[i]);
-        push_point(i + 1);
-        ++i;
-        continue;
-      }
-      int run_end = i;  // segments i .. run_end lie in the star, all in one sheet
-      while (run_end + 1 < segments && star_position(p.segment_triangle[run_end + 1]) >= 0) ++run_end;
-      const int g = plan.old_triangle_sheet[star_position(p.segment_triangle[i])];
-      for (int j = i; j <= run_end; ++j)
-        if (plan.old_triangle_sheet[star_position(p.segment_triangle[j])] != g)
-          return refuse(RemovalRefusal::crossing_edges);  // crosses the feature line; never expected
-      SheetPlan& sh = sp[g];  // its diagonal boxes are filled below
-      const std::vector<Index>& ring = *sh.ring;
-
-      // Planar points of the run, each from the first star triangle that holds it.
-      points.clear();
-      for (int j = i; j <= run_end + 1; ++j) {
-        const Index t = p.segment_triangle[std::min(j, run_end)];
-        const auto& c = s.triangles[t];
-        PlanarPoint q;
-        if (p.vertex[j] != invalid_index) {
-          if (!vertex_point(g, p.vertex[j], q)) return refuse(RemovalRefusal::crossing_edges);  // never expected
-        } else {
-          const auto [a, b] = p.edge[j];
-          if ((a != c[0] && a != c[1] && a != c[2]) || (b != c[0] && b != c[1] && b != c[2]))
-            return refuse(RemovalRefusal::crossing_edges);  // inconsistent state; never expected
-          const bool line_spoke = on_line && (p.edge[j] == sorted_pair(v, line_key[0]) || p.edge[j] == sorted_pair(v, line_key[1]));
-          if (line_spoke) return refuse(RemovalRefusal::edge_along_new_edge);  // crosses the feature line; never expected
-          q.position = (1.0 - p.edge_parameter[j]) * planar_corner(g, a) + p.edge_parameter[j] * planar_corner(g, b);
-          if (a != v && b != v) q.edge = p.edge[j];  // on a ring edge: it stays a crossing
-        }
-        points.push_back(q);
-      }
-
-      // Cut every planar segment of the run along the sheet's diagonals.
-      if (sh.diagonal_boxes.size() != sh.diagonals.size()) {
-        sh.diagonal_boxes.clear();
-        for (const auto& [di, dj] : sh.diagonals)
-          sh.diagonal_boxes.emplace_back(sh.flat[di].cwiseMin(sh.flat[dj]), sh.flat[di].cwiseMax(sh.flat[dj]));
-      }
-      PlanarPoint previous = points.front();
-      std::array<Index, 2> previous_diagonal{invalid_index, invalid_index};
-      auto emit_piece_to = [&](const PlanarPoint& to) -> bool {
-        if (shares_an_edge(previous, to)) return false;
-        Vec2 mid = 0.5 * (previous.position + to.position);
-        const auto [n, min_coordinate] = locate(g, mid, nullptr);
-        if (n < 0 || !(min_coordinate > 0.0)) return false;
-        edit.segment_triangle.push_back(-(n + 1));
-        pieces.push_back({n, previous.position, to.position});
-        previous = to;
-        return true;
-      };
-      for (int j = 0; j + 1 < static_cast<int>(points.size()); ++j) {
-        const Vec2& from = points[j].position;
-        const Vec2& to = points[j + 1].position;
-        const Eigen::AlignedBox2d box(from.cwiseMin(to), from.cwiseMax(to));
-        cuts.clear();
-        for (int d = 0; d < static_cast<int>(sh.diagonals.size()); ++d) {
-          // Closed boxes apart: the segment and the diagonal share no point, so the exact tests
-          // below would find neither a crossing nor a touch (most pairs in a large star).
-          if (!box.intersects(sh.diagonal_boxes[d])) continue;
-          const Index da = ring[sh.diagonals[d][0]], db = ring[sh.diagonals[d][1]];
-          // A point that is a diagonal's own end never crosses it.
-          if (points[j].corner == da || points[j].corner == db || points[j + 1].corner == da || points[j + 1].corner == db)
-            continue;
-          const Vec2& d0 = sh.flat[sh.diagonals[d][0]];
-          const Vec2& d1 = sh.flat[sh.diagonals[d][1]];
-          const int o1 = orient2d(from, to, d0), o2 = orient2d(from, to, d1);
-          const int o3 = orient2d(d0, d1, from), o4 = orient2d(d0, d1, to);
-          if (o1 == 0 || o2 == 0 || o3 == 0 || o4 == 0) {
-            if (segments_cross_properly(from, to, d0, d1)) return refuse(RemovalRefusal::edge_along_new_edge);
-            continue;
-          }
-          if (o1 == o2 || o3 == o4) continue;
-          const Vec2 r = to - from, q = d1 - d0;
-          const double denom = r.x() * q.y() - r.y() * q.x();
-          const Vec2 w = d0 - from;
-          const double along = (w.x() * q.y() - w.y() * q.x()) / denom;
-          const double parameter = (w.x() * r.y() - w.y() * r.x()) / denom;
-          if (!(parameter > clearance && parameter < 1.0 - clearance)) return refuse(RemovalRefusal::edge_along_new_edge);
-          cuts.push_back({std::clamp(along, 0.0, 1.0), d, parameter});
-        }
-        std::sort(cuts.begin(), cuts.end(), [](const Cut& x, const Cut& y) { return x.along < y.along; });
-        for (const Cut& cut : cuts) {
-          const int di = sh.diagonals[cut.diagonal][0], dj = sh.diagonals[cut.diagonal][1];
-          const std::array<Index, 2> key = sorted_pair(ring[di], ring[dj]);
-          if (key == previous_diagonal) return refuse(RemovalRefusal::edge_along_new_edge);
-          const double t_on_edge = ring[di] < ring[dj] ? cut.parameter : 1.0 - cut.parameter;
-          PlanarPoint crossing;
-          crossing.position = (1.0 - cut.parameter) * sh.flat[di] + cut.parameter * sh.flat[dj];
-          crossing.edge = key;
-          const double target_parameter =
-              (1.0 - cut.along) * p.target_parameter[i + j] + cut.along * p.target_parameter[i + j + 1];
-          if (!emit_piece_to(crossing)) return refuse(RemovalRefusal::edge_along_new_edge);
-          edit.point_vertex.push_back(invalid_index);
-          edit.point_edge.push_back(key);
-          edit.point_edge_parameter.push_back(t_on_edge);
-          edit.point_target_parameter.push_back(target_parameter);
-          previous_diagonal = key;
-          const auto [sa, sb] = t2.edge_vertices(e);
-          record_node((1.0 - t_on_edge) * position(key[0]) + t_on_edge * position(key[1]),
-                      (1.0 - target_parameter) * t2.vertex(sa) + target_parameter * t2.vertex(sb));
-        }
-      }
-      if (!emit_piece_to(points.back())) return refuse(RemovalRefusal::edge_along_new_edge);
-      push_point(run_end + 1);
-      i = run_end + 1;
-    }
-    // The preimage must meet each new triangle in one straight piece (a minimal embedding): a
-    // polyline that leaves the star and comes back, or bends at the old spokes, can reach one new
-    // triangle twice, in pieces that are not consecutive.
-    for (std::size_t k = 1; k < edit.segment_triangle.size(); ++k) {
-      const Index t = edit.segment_triangle[k];
-      if (t >= 0 || t == edit.segment_triangle[k - 1]) continue;
-      for (std::size_t j = 0; j + 1 < k; ++j)
-        if (edit.segment_triangle[j] == t) return refuse(RemovalRefusal::edge_reenters_triangle);
-    }
-    plan.polyline_edits.push_back(std::move(edit));
-  }
-
-  // ---- check: straightened pieces in one new triangle must not meet except at shared ends ----
-  // Nor come closer than the clearance: a node of one piece (a vertex preimage, a crossing)
-  // within rounding of another S2 edge's piece passes the exact test on the rounded planar
-  // positions on either side, but the hand-over to S1's barycentric coordinates can put it on
-  // that piece, and the S2 triangle between them loses its region (the images no longer tile
-  // S2). So a node within edge_clearance times the star's size of another piece is refused like
-  // a crossing, as a vertex preimage on a new edge is (node_on_new_edge).
-  // Sorted by triangle, then by the left end of the piece's x-range: two pieces that cross or
-  // come that close have x-ranges that overlap within the margin, and the scan over the later
-  // pieces of a triangle stops at the first one that starts right of the current piece's end
-  // (a sweep along x instead of all pairs: late coarse triangles carry many pieces).
-  double star_size = 0.0;
-  for (int g = 0; g < sheet_count; ++g)
-    for (const Vec2& corner : sp[g].flat) star_size = std::max(star_size, corner.cwiseAbs().maxCoeff());
-  const double margin = clearance * star_size;
-  auto min_x = [](const Piece& p) { return std::min(p.from.x(), p.to.x()); };
-  std::sort(pieces.begin(), pieces.end(), [&min_x](const Piece& a, const Piece& b) {
-    return a.triangle != b.triangle ? a.triangle < b.triangle : min_x(a) < min_x(b);
-  });
-  for (std::size_t a = 0; a < pieces.size(); ++a) {
-    const double max_x = std::max(pieces[a].from.x(), pieces[a].to.x()) + margin;
-    const double low_y = std::min(pieces[a].from.y(), pieces[a].to.y()) - margin;
-    const double high_y = std::max(pieces[a].from.y(), pieces[a].to.y()) + margin;
-    for (std::size_t b = a + 1; b < pieces.size() && pieces[b].triangle == pieces[a].triangle; ++b) {
-      if (min_x(pieces[b]) > max_x) break;
-      if (std::max(pieces[b].from.y(), pieces[b].to.y()) < low_y || std::min(pieces[b].from.y(), pieces[b].to.y()) > high_y)
-        continue;
-      const Vec2 &p = pieces[a].from, &q = pieces[a].to, &r = pieces[b].from, &t = pieces[b].to;
-      // Most pairs that get here share an end (consecutive pieces of a polyline, pieces ending
-      // at one node): those cross only if they are collinear, which one orientation of b's
-      // other end decides (segments_cross_properly's answer, at a quarter of its predicates),
-      // and come too close only if they leave the shared end at an angle so small that the
-      // shorter one's other end is within the margin of the longer one.
-      if (p == r || p == t || q == r || q == t) {
-        const Vec2& shared = (p == r || p == t) ? p : q;
-        const Vec2& end_a = shared == p ? q : p;
-        const Vec2& end_b = r == shared ? t : r;
-        if (orient2d(shared, end_a, end_b) != 0) {
-          if (!pieces_leave_too_close(end_a - shared, end_b - shared, margin)) continue;
-          return refuse(RemovalRefusal::crossing_edges);
-        }
-      } else if (within_margin(p, r, t, margin) || within_margin(q, r, t, margin) || within_margin(r, p, q, margin) ||
-                 within_margin(t, p, q, margin)) {
-        return refuse(RemovalRefusal::crossing_edges);
-      }
-      if (segments_cross_properly(p, q, r, t)) return refuse(RemovalRefusal::crossing_edges);
-    }
-  }
+  planning.index_moved_preimages();
+  // With the deferred cut, the S2 edges are traced once, on the final S1 (to_map): the
+  // polylines are neither cut nor checked now, only the straight segments' orientation is.
+  if (s.options.defer_cut) return refused(planning.check_straight_folds()) ? refuse() : std::move(plan);
+  if (refused(planning.cut_polylines()) || refused(planning.check_pieces())) return refuse();
   return plan;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
-// The state behind EditableMap, shared by its two source files: editable_map.cpp (the state, its
-// queries, apply() and the hand-over to MapBuilder) and editable_map_removal.cpp (planning a
-// vertex removal: flatten, merge, relocate, cut, check).
+// The state behind EditableMap, shared by its source files: editable_map.cpp (the state, its
+// queries, apply() and the hand-over to MapBuilder), editable_map_removal*.cpp (planning a
+// vertex removal phase by phase: removal_planning.hpp lists them) and editable_map_trace.cpp
+// (the deferred cut's trace).
 
 #include <plmap/core/editable_map.hpp>
 

@@ -1,7 +1,7 @@
 #pragma once
 // Clearance tests between pieces of S2-edge preimages in a flattened star or a traced corridor,
-// shared by the per-step cut (editable_map_removal.cpp) and the deferred cut's trace check
-// (editable_map_trace.cpp).
+// shared by the per-step cut's check (editable_map_removal_check.cpp) and the deferred cut's
+// trace check (editable_map_trace.cpp).
 
 #include <Eigen/Core>
 

@@ -259,6 +259,7 @@ class EditableMap {
  private:
   struct Impl;
   struct Trace;  ///< the deferred cut's tracing (editable_map_trace.cpp)
+  struct RemovalPlanning;  ///< one plan_vertex_removal call, phase by phase (removal_planning.hpp)
   std::unique_ptr<Impl> impl_;
 };
 
