@@ -58,10 +58,11 @@ void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part) 
   sized(part.node_image_element, own.nodes, room.nodes);
   sized(part.node_image_local, own.nodes, room.nodes);
   sized(part.node_target, own.nodes, room.nodes);
-  sized(part.neighbor_begin, own.nodes + 1, room.nodes + 1);
   // Neighbour entries and regions are bounded, not known: reserved (their slack stays
-  // untouched, so it costs no resident memory) and sized as they are written. So are the edge
-  // nodes: only the elements that keep their graph write them (finalize_assembly.hpp).
+  // untouched, so it costs no resident memory) and sized as they are written. So are the
+  // neighbour ends and the edge nodes: only the elements that keep their graph write them
+  // (finalize_assembly.hpp).
+  sized(part.neighbor_begin, 1, std::max(own.nodes, room.nodes) + 1);
   part.edge_node.reserve(std::max(own.on_edges, room.on_edges));
   part.neighbor.reserve(2 * std::max(own.sides, room.sides));
   part.neighbor_edge_kind.reserve(2 * std::max(own.sides, room.sides));
@@ -120,6 +121,7 @@ void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, bool t
   const auto base = static_cast<Index>(at.nodes);
   const int ns = static_cast<int>(et.slots.size());
   auto is_region = [&](int f) { return f >= 0 && at.triangle_region[f] != invalid_index; };
+  make_room(part.neighbor_begin, at.graph_nodes + 1 + static_cast<std::size_t>(ns));  // kept if entries are written
   for (int i = 0; i < ns; ++i) {
     const auto& bn = in.nodes[et.slots[i]];
     const std::size_t n = at.nodes + static_cast<std::size_t>(i);
@@ -134,7 +136,7 @@ void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, bool t
       part.neighbor[at.entries] = base + entry.vertex;
       part.neighbor_edge_kind[at.entries++] = entry.graph ? GraphEdgeKind::target_edge : GraphEdgeKind::closure;
     });
-    part.neighbor_begin[n + 1] = static_cast<Index>(at.entries);
+    part.neighbor_begin[at.graph_nodes + static_cast<std::size_t>(i) + 1] = static_cast<Index>(at.entries);
   }
   at.nodes += static_cast<std::size_t>(ns);
   part.node_begin[at.elements + 1] = static_cast<Index>(at.nodes);
@@ -146,15 +148,16 @@ void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, bool t
   }
 }
 
-/// Whether every side at a ghost node of the element just written (nodes [nb, ne), regions
-/// [rb, re) of the part) has the kind the derivation gives it (map_graph_derivation.hpp): the
-/// regions' S2 elements differ across it, or, with no region across, its nodes lie on one S2
-/// edge.
-bool ghost_sides_derive_as_written(const Surface<2>& s2, const MapData<2>& part, Index nb, Index ne, std::size_t rb,
-                                   std::size_t re) {
+/// Whether every side at a ghost node of the element just written (nodes [nb, ne), their
+/// neighbour ends from `first_end` on, regions [rb, re) of the part) has the kind the derivation
+/// gives it (map_graph_derivation.hpp): the regions' S2 elements differ across it, or, with no
+/// region across, its nodes lie on one S2 edge.
+bool ghost_sides_derive_as_written(const Surface<2>& s2, const MapData<2>& part, Index nb, Index ne,
+                                   std::size_t first_end, std::size_t rb, std::size_t re) {
   for (Index n = nb; n < ne; ++n) {
     if (part.node_type[n] != NodeType::ghost) continue;
-    for (Index j = part.neighbor_begin[n]; j < part.neighbor_begin[n + 1]; ++j) {
+    const std::size_t end = first_end + static_cast<std::size_t>(n - nb);  // n's neighbour ends
+    for (Index j = part.neighbor_begin[end]; j < part.neighbor_begin[end + 1]; ++j) {
       const Index y = part.neighbor[j];
       Index sides[2] = {invalid_index, invalid_index};
       int count = 0;
@@ -206,8 +209,13 @@ void write_regions(const ClosureWorkspace& w, Index base, Index region_count, Ma
 
 }  // namespace
 
-void drop_graph_of_element(std::size_t first_edge_node, std::size_t first_graph_region, MapData<2>& part,
-                           AssemblyCursor& at) {
+void keep_or_drop_graph_of_element(std::size_t nodes, std::size_t first_entry, std::size_t first_edge_node,
+                                   std::size_t first_graph_region, MapData<2>& part, AssemblyCursor& at) {
+  if (at.entries != first_entry) {
+    at.graph_nodes += nodes;
+    at.graph_elements.push_back(static_cast<Index>(at.elements));
+    return;
+  }
   at.edge_nodes = first_edge_node;
   at.graph_regions = first_graph_region;
   for (std::size_t k = 1; k <= 3; ++k) part.edge_node_begin[3 * at.elements + k] = static_cast<Index>(first_edge_node);
@@ -246,16 +254,16 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
   const std::size_t first_entry = at.entries, first_edge_node = at.edge_nodes, first_graph_region = at.graph_regions;
   write_nodes(in, w, tiled && !has_ghost && !has_rim, part, at);
   write_regions(w, base, region_count, part, at);
-  if (tiled && has_ghost && !has_rim && ghost_sides_derive_as_written(in.s2, part, base, static_cast<Index>(at.nodes),
-                                                         at.regions - static_cast<std::size_t>(region_count), at.regions)) {
+  if (tiled && has_ghost && !has_rim &&
+      ghost_sides_derive_as_written(in.s2, part, base, static_cast<Index>(at.nodes), at.graph_nodes,
+                                    at.regions - static_cast<std::size_t>(region_count), at.regions))
     at.entries = first_entry;  // the derivation gives these entries back: drop them
-    for (auto n = static_cast<std::size_t>(base); n < at.nodes; ++n) part.neighbor_begin[n + 1] = static_cast<Index>(first_entry);
-  }
-  if (at.entries == first_entry) drop_graph_of_element(first_edge_node, first_graph_region, part, at);
+  keep_or_drop_graph_of_element(static_cast<std::size_t>(ns), first_entry, first_edge_node, first_graph_region, part, at);
   ++at.elements;
 }
 
 void trim_part(const AssemblyCursor& at, MapData<2>& part) {
+  part.neighbor_begin.resize(at.graph_nodes + 1);
   part.neighbor.resize(at.entries);
   part.neighbor_edge_kind.resize(at.entries);
   part.edge_node.resize(at.edge_nodes);
@@ -265,18 +273,20 @@ void trim_part(const AssemblyCursor& at, MapData<2>& part) {
   part.region_map.resize(at.regions);
 }
 
-StoredGraph hand_over_stored_form(MapData<2>& m) {
+StoredGraph hand_over_stored_form(AssembledMap& assembled) {
+  MapData<2>& m = assembled.map;
   StoredGraph g;
-  const std::size_t nt = m.node_begin.size() - 1;
   std::size_t graph_region = 0;  // m's region neighbours are those of the elements kept here, in order
-  for (std::size_t t = 0; t < nt; ++t) {
+  std::size_t end = 0;           // m's neighbour ends are those of their nodes, in order
+  for (const Index element : assembled.graph_elements) {
+    const auto t = static_cast<std::size_t>(element);
     const Index nb = m.node_begin[t], ne = m.node_begin[t + 1];
-    if (m.neighbor_begin[nb] == m.neighbor_begin[ne]) continue;  // tiled (or without any edge)
-    g.element.push_back(static_cast<Index>(t));
-    for (Index n = nb; n < ne; ++n) g.neighbor_count.push_back(m.neighbor_begin[n + 1] - m.neighbor_begin[n]);
-    g.neighbor.insert(g.neighbor.end(), m.neighbor.begin() + m.neighbor_begin[nb], m.neighbor.begin() + m.neighbor_begin[ne]);
-    g.neighbor_edge_kind.insert(g.neighbor_edge_kind.end(), m.neighbor_edge_kind.begin() + m.neighbor_begin[nb],
-                                m.neighbor_edge_kind.begin() + m.neighbor_begin[ne]);
+    const std::size_t first_end = end;
+    g.element.push_back(element);
+    for (Index n = nb; n < ne; ++n, ++end) g.neighbor_count.push_back(m.neighbor_begin[end + 1] - m.neighbor_begin[end]);
+    g.neighbor.insert(g.neighbor.end(), m.neighbor.begin() + m.neighbor_begin[first_end], m.neighbor.begin() + m.neighbor_begin[end]);
+    g.neighbor_edge_kind.insert(g.neighbor_edge_kind.end(), m.neighbor_edge_kind.begin() + m.neighbor_begin[first_end],
+                                m.neighbor_edge_kind.begin() + m.neighbor_begin[end]);
     for (std::size_t k = 3 * t; k < 3 * t + 3; ++k) g.edge_node_count.push_back(m.edge_node_begin[k + 1] - m.edge_node_begin[k]);
     g.edge_node.insert(g.edge_node.end(), m.edge_node.begin() + m.edge_node_begin[3 * t],
                        m.edge_node.begin() + m.edge_node_begin[3 * t + 3]);
@@ -285,8 +295,9 @@ StoredGraph hand_over_stored_form(MapData<2>& m) {
                               m.region_neighbors.begin() + static_cast<std::ptrdiff_t>(graph_region + regions));
     graph_region += regions;
   }
-  if (graph_region != m.region_neighbors.size())
-    throw BuilderError("internal: the assembled map has region neighbours of elements that store no graph");
+  if (graph_region != m.region_neighbors.size() || end + 1 != m.neighbor_begin.size())
+    throw BuilderError("internal: the assembled map has region neighbours or neighbour ends of elements that store no graph");
+  std::vector<Index>().swap(assembled.graph_elements);
   auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
   release(m.neighbor_begin);
   release(m.neighbor);

@@ -6,15 +6,18 @@
 //
 // The parts, and the joined map finalize_triangles returns, are in the builder's own form, not
 // yet PlMap's: the nodes, regions, neighbour entries and edge_node_begin are complete, but
-// edge_node and region_neighbors hold values only for the elements that have neighbour entries
-// (those their regions do not tile), in element order; the other elements' edge_node_begin
-// ranges are empty. Those are the only elements whose graph the stored form keeps
-// (hand_over_stored_form), so the rest was written only to be dropped: 29 MiB of the peak on the
-// 200k plane pair and 46 MiB on the L7 spheres.
+// neighbor_begin, edge_node and region_neighbors hold values only for the elements that have
+// neighbour entries (those their regions do not tile), in element order (AssembledMap's
+// graph_elements; neighbor_begin: one end per node of those elements after its leading 0); the
+// other elements' edge_node_begin ranges are empty. Those are the only elements whose graph the
+// stored form keeps (hand_over_stored_form), so the rest was written only to be dropped: 29 MiB
+// of the peak on the 200k plane pair and 46 MiB on the L7 spheres, and 7.5 and 12 MiB more for
+// neighbor_begin.
 
 #include "builder_nodes.hpp"
 #include "finalize_buckets.hpp"
 #include "finalize_closure.hpp"
+#include "finalize_phases.hpp"
 
 #include <plmap/core/pl_map.hpp>
 
@@ -27,6 +30,8 @@ namespace plmap::detail {
 struct AssemblyCursor {
   std::size_t elements = 0, nodes = 0, entries = 0, edge_nodes = 0, regions = 0;
   std::size_t graph_regions = 0;  // region_neighbors written: regions of elements with neighbour entries
+  std::size_t graph_nodes = 0;    // neighbor_begin written (after its leading 0): nodes of those elements
+  std::vector<Index> graph_elements;  // those elements, numbered in the block
   Index reversed_faces = 0;  // faces with a target element but the other orientation
   Index unmapped_faces = 0;  // faces inside S1's corners whose nodes share no S2 element
   std::vector<Index> triangle_region;  // per closure triangle of the element: its region, or invalid
@@ -56,20 +61,22 @@ void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part);
 void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, int orientation, MapData<2>& part,
                       AssemblyCursor& at);
 
-/// Takes back the edge nodes and region neighbours the element at the cursor wrote from
-/// `first_edge_node` and `first_graph_region` on: an element without neighbour entries keeps no
-/// graph (see the top of this file). Its edge_node_begin ranges become empty.
-void drop_graph_of_element(std::size_t first_edge_node, std::size_t first_graph_region, MapData<2>& part,
-                           AssemblyCursor& at);
+/// Keeps the graph of the element at the cursor (its `nodes` nodes' neighbor_begin values, written
+/// at at.graph_nodes on) if it has neighbour entries from `first_entry` on; otherwise takes back
+/// the edge nodes and region neighbours it wrote from `first_edge_node` and `first_graph_region`
+/// on: an element without neighbour entries keeps no graph (see the top of this file), and its
+/// edge_node_begin ranges become empty.
+void keep_or_drop_graph_of_element(std::size_t nodes, std::size_t first_entry, std::size_t first_edge_node,
+                                   std::size_t first_graph_region, MapData<2>& part, AssemblyCursor& at);
 
 /// Cuts the arrays sized ahead back to what was written.
 void trim_part(const AssemblyCursor& at, MapData<2>& part);
 
 /// The joined map's hand-over to PlMap in its stored form (PlMap's second constructor): the
 /// graph arrays of the elements that have neighbour entries (those their regions do not tile,
-/// write_nodes; the only ones m has edge nodes and region neighbours of) move into the returned
-/// StoredGraph, and all graph arrays of `m` are released.
+/// write_nodes; the only ones the map has neighbour ends, edge nodes and region neighbours of)
+/// move into the returned StoredGraph, and all graph arrays of the map are released.
 /// Nothing is derived or compared: that is what keeps finalize as fast as before.
-StoredGraph hand_over_stored_form(MapData<2>& m);
+StoredGraph hand_over_stored_form(AssembledMap& assembled);
 
 }  // namespace plmap::detail

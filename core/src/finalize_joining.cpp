@@ -99,6 +99,8 @@ void join_parts(std::vector<MapData<2>>& parts, Index elements, unsigned threads
   const Offsets node0 = offsets_of(parts, [](const MapData<2>& p) { return p.node_type.size(); });
   const Offsets region0 = offsets_of(parts, [](const MapData<2>& p) { return p.region_target.size(); });
   const Offsets entry0 = offsets_of(parts, [](const MapData<2>& p) { return p.neighbor.size(); });
+  // neighbour ends too, by the nodes of those elements (after each part's leading 0)
+  const Offsets graph_node0 = offsets_of(parts, [](const MapData<2>& p) { return p.neighbor_begin.size() - 1; });
   const Offsets edge0 = offsets_of(parts, [](const MapData<2>& p) { return p.edge_node.size(); });
   // region neighbours are kept only for the elements with neighbour entries (finalize_assembly.hpp):
   // placed by their own counts, shifted by the region counts
@@ -121,7 +123,7 @@ void join_parts(std::vector<MapData<2>>& parts, Index elements, unsigned threads
   joiner.join(&MapData<2>::node_image_element, node0, same);
   joiner.join(&MapData<2>::node_image_local, node0, same);
   joiner.join(&MapData<2>::node_target, node0, same);
-  joiner.join_begins(&MapData<2>::neighbor_begin, node0, entry0);
+  joiner.join_begins(&MapData<2>::neighbor_begin, graph_node0, entry0);
   joiner.join(&MapData<2>::neighbor, entry0, node_index);
   joiner.join(&MapData<2>::neighbor_edge_kind, entry0, same);
   joiner.join_begins(&MapData<2>::edge_node_begin, edge_begin0, edge0);

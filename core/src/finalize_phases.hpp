@@ -15,11 +15,19 @@
 
 #include <plmap/core/pl_map.hpp>
 
+#include <vector>
+
 namespace plmap::detail {
 
 MapData<1> finalize_polylines(BuilderContents<1>& in, FinalizeReport* report);
 class ElementReuse;
 /// `reuse`: elements copied from a previous map instead of closed (MapBuilder::finalize_reusing).
-MapData<2> finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, const ElementReuse* reuse = nullptr);
+/// The assembled map in the builder's own form (finalize_assembly.hpp), and the elements that
+/// keep their graph, in order: neighbor_begin holds values for their nodes only.
+struct AssembledMap {
+  MapData<2> map;
+  std::vector<Index> graph_elements;
+};
+AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, const ElementReuse* reuse = nullptr);
 
 }  // namespace plmap::detail

@@ -62,6 +62,7 @@ void ElementReuse::copy_element(const BuilderContents<2>& in, const NodesAndSegm
   // nodes, and their neighbour entries where the previous map stores the element's graph
   const std::size_t first_entry = at.entries, first_edge_node = at.edge_nodes, first_graph_region = at.graph_regions;
   std::size_t entry = stored >= 0 ? entry_[static_cast<std::size_t>(stored)] : 0;
+  room_for(part.neighbor_begin, at.graph_nodes + 1 + static_cast<std::size_t>(ne - nb));  // kept if entries are written
   for (Index n = nb; n < ne; ++n) {
     const std::size_t o = at.nodes + static_cast<std::size_t>(n - nb);
     part.node_position[o] = m.node_position[n];
@@ -79,7 +80,7 @@ void ElementReuse::copy_element(const BuilderContents<2>& in, const NodesAndSegm
         part.neighbor_edge_kind[at.entries++] = g.neighbor_edge_kind[entry];
       }
     }
-    part.neighbor_begin[o + 1] = static_cast<Index>(at.entries);
+    part.neighbor_begin[at.graph_nodes + static_cast<std::size_t>(n - nb) + 1] = static_cast<Index>(at.entries);
   }
   at.nodes += ns;
   part.node_begin[at.elements + 1] = static_cast<Index>(at.nodes);
@@ -118,7 +119,7 @@ void ElementReuse::copy_element(const BuilderContents<2>& in, const NodesAndSegm
   part.region_begin[at.elements + 1] = static_cast<Index>(at.regions);
   part.start_region[at.elements] = shift_region(m.start_region[t]);
   // as assemble_element: only an element with neighbour entries keeps its graph
-  if (at.entries == first_entry) drop_graph_of_element(first_edge_node, first_graph_region, part, at);
+  keep_or_drop_graph_of_element(ns, first_entry, first_edge_node, first_graph_region, part, at);
   ++at.elements;
 }
 

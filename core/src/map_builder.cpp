@@ -305,10 +305,10 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     return PlMap<1>(im.s1, im.s2, std::move(m));
   } else {
     // The stored form: the graph arrays only of the elements whose regions do not tile them.
-    MapData<2> m = detail::finalize_triangles(contents, report);
-    StoredGraph graph = detail::hand_over_stored_form(m);
-    detail::shrink_to_fit(m);
-    return PlMap<2>(im.s1, im.s2, std::move(m), std::move(graph));
+    detail::AssembledMap assembled = detail::finalize_triangles(contents, report);
+    StoredGraph graph = detail::hand_over_stored_form(assembled);
+    detail::shrink_to_fit(assembled.map);
+    return PlMap<2>(im.s1, im.s2, std::move(assembled.map), std::move(graph));
   }
 }
 
@@ -333,10 +333,10 @@ PlMap<d> MapBuilder<d>::finalize_reusing(const PlMap<d>& previous, std::span<con
     auto& im = *impl;
     detail::BuilderContents<d> contents{*im.s1, *im.s2, im.options, im.nodes, im.node_at_domain_vertex,
                                         im.segments, im.edge_inserted};
-    MapData<2> m = detail::finalize_triangles(contents, report, &reused);
-    StoredGraph graph = detail::hand_over_stored_form(m);
-    detail::shrink_to_fit(m);
-    return PlMap<2>(im.s1, im.s2, std::move(m), std::move(graph));
+    detail::AssembledMap assembled = detail::finalize_triangles(contents, report, &reused);
+    StoredGraph graph = detail::hand_over_stored_form(assembled);
+    detail::shrink_to_fit(assembled.map);
+    return PlMap<2>(im.s1, im.s2, std::move(assembled.map), std::move(graph));
   }
 }
 

@@ -19,6 +19,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <exception>
@@ -58,6 +59,10 @@ struct MapBuilder<d>::Impl {
       throw BuilderError(fmt::format("snap_tolerance {} is outside [0, 0.1)", options.snap_tolerance));
     if (options.orientation < -1 || options.orientation > 1)
       throw BuilderError("orientation must be -1, 0 (automatic) or +1");
+    // a segment keeps its S1 element or edge in 31 bits (detail::Segment)
+    if (std::max(s1->element_count(), s1->edge_count()) >= Index{1} << 30)
+      throw BuilderError(fmt::format("S1 has {} elements and {} edges; the builder takes fewer than 2^30",
+                                     s1->element_count(), s1->edge_count()));
     preimage_of_target_vertex.assign(s2->vertex_count(), invalid_index);
     node_at_domain_vertex.assign(s1->vertex_count(), invalid_index);
     edge_inserted.assign(s2->edge_count(), 0);
@@ -230,7 +235,7 @@ struct MapBuilder<d>::Impl {
   // ---- node entry -----------------------------------------------------------------------------
   Index new_node(const Place<d>& place, BuilderNodeKind kind, Index target, const Support<d>& image) {
     const auto id = static_cast<Index>(nodes.size());
-    nodes.push_back({place, image, target, kind});
+    nodes.emplace_back(place, kind, target, image);
     if (place.kind == PlaceKind::vertex) node_at_domain_vertex[place.index] = id;
     if (kind == BuilderNodeKind::vertex_preimage) preimage_of_target_vertex[target] = id;
     return id;
