@@ -312,7 +312,8 @@ class EdgeWalker {
 
   /// Appends the piece of crossings [begin, end of the buffer).
   static void add_piece(PlanBuffer<d>& buffer, std::size_t begin, PieceStart starts_at, PieceEnd ends_at,
-                        std::uint32_t end_rim = PlanBuffer<d>::no_rim, std::uint32_t start_rim = PlanBuffer<d>::no_rim) {
+                        std::uint32_t end_rim = PlanBuffer<d>::no_rim,
+                        std::uint32_t start_rim = PlanBuffer<d>::no_rim) {
     buffer.pieces.push_back({static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(buffer.crossings.size()),
                              starts_at, ends_at, start_rim, end_rim});
   }

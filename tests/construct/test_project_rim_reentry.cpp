@@ -65,4 +65,5 @@ TEST_P(ProjectRimReentry, EdgesThatComeOutFromBehindS1GoOnFromTheRim) {
   EXPECT_EQ(rays.missed_defects(), 0u);
 }
 
-INSTANTIATE_TEST_SUITE_P(CoarseS2, ProjectRimReentry, ::testing::Values(std::tuple{10, 0.1, 3}, std::tuple{14, 0.08, 3}));
+INSTANTIATE_TEST_SUITE_P(CoarseS2, ProjectRimReentry,
+                         ::testing::Values(std::tuple{10, 0.1, 3}, std::tuple{14, 0.08, 3}));
