@@ -312,9 +312,10 @@ class EdgeWalker {
 
   /// Appends the piece of crossings [begin, end of the buffer).
   static void add_piece(PlanBuffer<d>& buffer, std::size_t begin, PieceStart starts_at, PieceEnd ends_at,
-                        std::uint32_t rim = PlanBuffer<d>::no_rim) {
+                        std::uint32_t end_rim = PlanBuffer<d>::no_rim,
+                        std::uint32_t start_rim = PlanBuffer<d>::no_rim) {
     buffer.pieces.push_back({static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(buffer.crossings.size()),
-                             starts_at, ends_at, rim});
+                             starts_at, ends_at, start_rim, end_rim});
   }
 
   /// Keeps a walk's rim point for a piece, its parameter measured from the edge's first vertex
@@ -475,6 +476,65 @@ class EdgeWalker {
     return FoldExit{at, c};
   }
 
+  /// Where S2 edge e comes out in front of S1 again after the walk `stopped` ended on the rim
+  /// (the edge passed behind S1 there): the first point beyond the rim point, and before
+  /// `before`, at which the edge pierces an S1 element from behind, searched in the elements
+  /// within search_limits.fold_exit_reach rings (sharing a vertex) around the rim point's
+  /// element. Parameters are measured in the walk's `direction`. Between the two pierces the
+  /// edge lies behind S1; beyond the second, its preimage goes on from a rim node inside that
+  /// element. The S1-edge crossings that find_fold_exit looks for lie one element farther on,
+  /// and a walk from that crossing that reaches the second vertex leaves no walk back from there
+  /// to find the stretch between the pierce and the crossing: the faces next to it mapped into
+  /// two S2 triangles and left D (on the bones pair, a fifth of the area not covered).
+  std::optional<RimPoint<d>> find_rim_reentry(Index e, const WalkResult<d>& stopped, double before,
+                                              WalkDirection direction) const
+    requires(d == 2)
+  {
+    if (!stopped.rim) return std::nullopt;
+    const auto& limits = ctx_.options.search_limits;
+    auto tv = ctx_.target_edge_vertices(e);
+    if (direction == WalkDirection::from_second_vertex) std::swap(tv[0], tv[1]);
+    const WorldPoint<2> qa = ctx_.s2.vertex(tv[0]), qb = ctx_.s2.vertex(tv[1]);
+    const double after = stopped.rim->eta;
+    const WorldPoint<2> from = qa + after * (qb - qa);
+    // the rings of elements around the rim point's element
+    std::vector<Index> seen{stopped.rim->element}, ring{stopped.rim->element}, next;
+    const int rings = static_cast<int>(std::ceil(limits.fold_exit_reach));
+    for (int r = 0; r < rings; ++r) {
+      next.clear();
+      for (Index t : ring)
+        for (Index v : ctx_.s1.element(t))
+          for (Index n : ctx_.s1.vertex_elements(v)) next.push_back(n);
+      std::sort(next.begin(), next.end());
+      next.erase(std::unique(next.begin(), next.end()), next.end());
+      ring.clear();
+      std::set_difference(next.begin(), next.end(), seen.begin(), seen.end(), std::back_inserter(ring));
+      next.clear();
+      std::merge(seen.begin(), seen.end(), ring.begin(), ring.end(), std::back_inserter(next));
+      std::swap(seen, next);
+    }
+    std::optional<RimPoint<d>> best;
+    for (Index t : seen) {
+      // the rim point's element holds the rim node of e already (one per element and S2 edge)
+      if (t == stopped.rim->element) continue;
+      const std::array<WorldPoint<2>, 3> tri{ctx_.s1.corner(t, 0), ctx_.s1.corner(t, 1), ctx_.s1.corner(t, 2)};
+      const std::optional<Pierce> p = segment_through_triangle(from, qb, tri);
+      if (!p || !strictly_inside(p->barycentric, 1e3 * ctx_.options.snap_tolerance)) continue;
+      const double at = after + p->s * (1.0 - after);
+      if (!(at > after + limits.edge_parameter_slack) || !(at < before - limits.edge_parameter_slack) ||
+          !(at < 1.0 - limits.end_parameter_slack))
+        continue;
+      if (best && best->eta <= at) continue;
+      // from behind S1 to its front: the distance along the rays grows along the edge
+      const WorldPoint<2> normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+      WorldPoint<2> nu = WorldPoint<2>::Zero();
+      for (int k = 0; k < 3; ++k) nu += p->barycentric[k] * ctx_.vertex_directions[ctx_.s1.element(t)[k]];
+      if (!(normal.dot(qb - qa) * normal.dot(nu) > 0.0)) continue;
+      best = RimPoint<d>{t, LocalPoint<d>(p->barycentric[1], p->barycentric[2]), at};
+    }
+    return best;
+  }
+
   /// After the walk `stopped` from the first vertex or a boundary entry of S2 edge e ended at a
   /// fold (or another restartable place): new pieces from where the edge's preimage comes out
   /// of it, each walked on towards the second vertex, up to search_limits.fold_exits times while
@@ -488,20 +548,39 @@ class EdgeWalker {
          ++round) {
       stopped.eta = std::max(stopped.eta, progress.covered_until);
       const std::optional<FoldExit> exit = find_fold_exit(e, stopped, 1.0, WalkDirection::from_first_vertex, calls, failures);
-      if (!exit) break;
+      // where the edge comes out from behind S1, if that is before the exit
+      const std::optional<RimPoint<d>> reentry =
+          find_rim_reentry(e, stopped, exit ? exit->crossing.eta : 1.0, WalkDirection::from_first_vertex);
+      if (!exit && !reentry) break;
       auto& crossings = buffer.crossings;
       const std::size_t begin = crossings.size();
-      crossings.push_back(EdgeCrossing{exit->place.index, exit->crossing.lambda, exit->crossing.eta});
-      stopped = walk(e, exit->place, exit->crossing.eta, progress.second, WalkDirection::from_first_vertex, buffer);
+      std::uint32_t start_rim = PlanBuffer<d>::no_rim;
+      if (reentry) {
+        start_rim = keep_rim(buffer, *reentry, false);
+        Place<d> inside;
+        inside.kind = PlaceKind::element;
+        inside.index = reentry->element;
+        inside.local = reentry->local;
+        stopped = walk(e, inside, reentry->eta, progress.second, WalkDirection::from_first_vertex, buffer);
+        // one rim node per S1 element and S2 edge: passing behind S1 again in the same element,
+        // the piece ends at its last crossing
+        if (stopped.rim && stopped.rim->element == reentry->element) stopped.rim.reset();
+      } else {
+        crossings.push_back(EdgeCrossing{exit->place.index, exit->crossing.lambda, exit->crossing.eta});
+        stopped = walk(e, exit->place, exit->crossing.eta, progress.second, WalkDirection::from_first_vertex, buffer);
+      }
       const bool reached = stopped.end == WalkEnd::reached;
-      if (stopped.crossing_count == 0 && !reached) {
+      if (stopped.crossing_count == 0 && !reached && !(reentry && stopped.rim)) {
         crossings.resize(begin);
+        if (reentry) buffer.rim_points.pop_back();
         break;
       }
+      const PieceStart starts_at = reentry ? PieceStart::rim_node : PieceStart::first_crossing;
       if (!reached && stopped.rim)
-        add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::rim_node, keep_rim(buffer, *stopped.rim, false));
+        add_piece(buffer, begin, starts_at, PieceEnd::rim_node, keep_rim(buffer, *stopped.rim, false), start_rim);
       else
-        add_piece(buffer, begin, PieceStart::first_crossing, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing);
+        add_piece(buffer, begin, starts_at, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing,
+                  PlanBuffer<d>::no_rim, start_rim);
       progress.covered_until = reached ? 1.0 : (stopped.rim ? stopped.rim->eta : stopped.eta);
       progress.reached_second |= reached;
     }
@@ -627,7 +706,8 @@ class EdgeWalker {
       std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(begin), crossings.end());
       for (std::size_t i = begin; i < crossings.size(); ++i)
         crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
-      add_piece(buffer, begin, PieceStart::rim_node, PieceEnd::second_vertex, keep_rim(buffer, *w.rim, true));
+      add_piece(buffer, begin, PieceStart::rim_node, PieceEnd::second_vertex, PlanBuffer<d>::no_rim,
+                keep_rim(buffer, *w.rim, true));
       progress.reached_second = true;
       if (!progress.first_walk_failed) buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
       if constexpr (d == 2) walk_back_after_folds(e, w, progress.covered_until, buffer);

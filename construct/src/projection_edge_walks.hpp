@@ -34,13 +34,15 @@ template <int d>
 struct PlanBuffer {
   static constexpr std::uint32_t no_rim = ~std::uint32_t{0};
   /// A piece of an S2 edge's preimage: crossings [begin, end) of `crossings`; a piece that starts
-  /// or ends at a rim node (PieceStart::rim_node, PieceEnd::rim_node) has its point in
-  /// rim_points[rim].
+  /// at a rim node (PieceStart::rim_node) has its point in rim_points[start_rim], one that ends
+  /// at a rim node (PieceEnd::rim_node) in rim_points[end_rim]. A piece can do both: the
+  /// stretch of an edge that comes out from behind S1 and passes behind it again.
   struct Piece {
     std::uint32_t begin, end;
     PieceStart starts_at;
     PieceEnd ends_at;
-    std::uint32_t rim = no_rim;
+    std::uint32_t start_rim = no_rim;
+    std::uint32_t end_rim = no_rim;
   };
   std::vector<Crossing<d>> crossings;
   std::vector<Piece> pieces;

@@ -229,17 +229,22 @@ std::uint32_t ProjectionInsertion<d>::insert_planned_edge(Index e, const Planned
     PieceStart starts_at = piece.starts_at;
     PieceEnd ends_at = piece.ends_at;
     PieceRimNodes rims;
-    if (piece.rim != PlanBuffer<d>::no_rim) {
-      const RimPoint<d>& rim = buffer.rim_points[piece.rim];
-      const Index node = rim_node_inside(rim.element, e, rim.local, rim.eta);
-      if (node != invalid_index) {
-        (starts_at == PieceStart::rim_node ? rims.start : rims.end) = node;
-      } else {  // the builder refused the rim node: the piece ends at its last crossing, as before
-        if (starts_at == PieceStart::rim_node) starts_at = PieceStart::first_crossing;
-        if (ends_at == PieceEnd::rim_node) ends_at = PieceEnd::last_crossing;
-        if (crossings.size() + (starts_at == PieceStart::first_vertex) + (ends_at == PieceEnd::second_vertex) < 2)
-          continue;
-      }
+    auto rim_node_of = [&](std::uint32_t rim) {
+      if (rim == PlanBuffer<d>::no_rim) return invalid_index;
+      const RimPoint<d>& point = buffer.rim_points[rim];
+      return rim_node_inside(point.element, e, point.local, point.eta);
+    };
+    if (starts_at == PieceStart::rim_node) rims.start = rim_node_of(piece.start_rim);
+    if (ends_at == PieceEnd::rim_node) rims.end = rim_node_of(piece.end_rim);
+    // the builder refused a rim node: the piece starts at its first crossing or ends at its
+    // last one there, as before rim nodes
+    const bool refused = (starts_at == PieceStart::rim_node && rims.start == invalid_index) ||
+                         (ends_at == PieceEnd::rim_node && rims.end == invalid_index);
+    if (refused) {
+      if (starts_at == PieceStart::rim_node && rims.start == invalid_index) starts_at = PieceStart::first_crossing;
+      if (ends_at == PieceEnd::rim_node && rims.end == invalid_index) ends_at = PieceEnd::last_crossing;
+      if (crossings.size() + (starts_at != PieceStart::first_crossing) + (ends_at != PieceEnd::last_crossing) < 2)
+        continue;
     }
     try {
       if (starts_at == PieceStart::first_vertex && ends_at == PieceEnd::second_vertex) {
