@@ -1,6 +1,7 @@
 // Where S2 passes behind S1, D ends on the curve where the two surfaces meet, inside the S1
 // elements it crosses (ProjectionOptions::end_on_rim; construct/src/projection_rim.cpp).
 #include "projection_fixtures.hpp"
+#include "rays_along_normals.hpp"
 
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/construct/project.hpp>
@@ -28,13 +29,6 @@ std::shared_ptr<const Surface<2>> tilted_plane(double x0) {
   });
 }
 
-RayCheckReport<2> rays_of(const PlMap<2>& map, const Surface<2>& s1) {
-  RayCheckOptions<2> o;
-  o.directions = averaged_vertex_normals(s1);
-  o.samples = 20000;
-  return check_against_rays(map, o);
-}
-
 }  // namespace
 
 class ProjectRim : public ::testing::TestWithParam<double> {};
@@ -49,7 +43,7 @@ TEST_P(ProjectRim, DEndsWhereS2PassesBehindS1) {
   EXPECT_GT(r.report.rim_edges, 0);
   EXPECT_LE(r.measures.covered_domain, 1.0 - x0 + 1e-9);
   EXPECT_GT(r.measures.covered_domain, 1.0 - x0 - 0.005) << describe_failures(r.report);
-  const auto rays = rays_of(r.map, *s1);
+  const auto rays = rays_along_normals(r.map, *s1);
   EXPECT_EQ(rays.extra, 0u);
   EXPECT_LT(rays.missed_defects(), rays.samples / 200);
 }
@@ -63,7 +57,7 @@ TEST(ProjectRimExact, AtX057DEndsExactlyOnTheRim) {
   const auto r = project<2>(s1, tilted_plane(0.57));
   EXPECT_EQ(verify_violations(r.map), "");
   EXPECT_NEAR(r.measures.covered_domain, 1.0 - 0.57, 1e-9) << describe_failures(r.report);
-  const auto rays = rays_of(r.map, *s1);
+  const auto rays = rays_along_normals(r.map, *s1);
   EXPECT_EQ(rays.extra, 0u);
   EXPECT_EQ(rays.missed_defects(), 0u);
 }
@@ -79,7 +73,7 @@ TEST_P(ProjectRim, WithoutTheRimDEndsAtTheLastS1Edges) {
   EXPECT_EQ(verify_violations(r.map), "");
   EXPECT_EQ(r.report.rim_edges, 0);
   EXPECT_LT(r.measures.covered_domain, 1.0 - x0 - 0.01);
-  EXPECT_GT(rays_of(r.map, *s1).missed_defects(), 0u);
+  EXPECT_GT(rays_along_normals(r.map, *s1).missed_defects(), 0u);
 }
 
 // the rim through S1 elements at three places (x0 = 0.5 would run along S1 edges, where D ends

@@ -5,6 +5,7 @@
 // only at the first S1 edge crossing beyond, and the faces between that crossing and the rim
 // mapped into two S2 triangles and left D.
 #include "projection_fixtures.hpp"
+#include "rays_along_normals.hpp"
 
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/construct/project.hpp>
@@ -37,13 +38,6 @@ std::shared_ptr<const Surface<2>> plane_through_the_ridge(int cells) {
   return grid(cells, cells, -0.05, 1.05, -0.05, 1.05, 0.05, true, 0.2);
 }
 
-RayCheckReport<2> rays_of(const PlMap<2>& map, const Surface<2>& s1) {
-  RayCheckOptions<2> o;
-  o.directions = averaged_vertex_normals(s1);
-  o.samples = 20000;
-  return check_against_rays(map, o);
-}
-
 }  // namespace
 
 class ProjectRimReentry : public ::testing::TestWithParam<std::tuple<int, double, int>> {};
@@ -54,7 +48,7 @@ TEST_P(ProjectRimReentry, EdgesThatComeOutFromBehindS1GoOnFromTheRim) {
   const auto r = project<2>(s1, plane_through_the_ridge(s2_cells));
   EXPECT_EQ(verify_violations(r.map), "");
   EXPECT_GT(r.report.rim_edges, 0);
-  const auto rays = rays_of(r.map, *s1);
+  const auto rays = rays_along_normals(r.map, *s1);
   EXPECT_EQ(rays.extra, 0u);
   // Without the re-entry, the walk from the first vertex went on only from the next S1 edge
   // crossing beyond the ridge, reached the second vertex, and so no walk back from there ran:
