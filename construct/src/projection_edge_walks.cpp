@@ -25,6 +25,20 @@ namespace {
 
 enum class WalkEnd : std::uint8_t { reached, left_boundary, failed };
 
+/// Ring searches around a stop: `fresh` := the values of `candidates` (sorted and deduplicated
+/// here) not in `seen`, which takes them in; `seen` stays sorted, `merged` is scratch. A linear
+/// search per value cost more than these sorted set operations on the femur pair.
+void take_unseen_into(std::vector<Index>& candidates, std::vector<Index>& seen, std::vector<Index>& fresh,
+                      std::vector<Index>& merged) {
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  fresh.clear();
+  std::set_difference(candidates.begin(), candidates.end(), seen.begin(), seen.end(), std::back_inserter(fresh));
+  merged.clear();
+  std::merge(seen.begin(), seen.end(), fresh.begin(), fresh.end(), std::back_inserter(merged));
+  std::swap(seen, merged);
+}
+
 /// Walks that stop for these reasons are restarted where the S2 edge's preimage comes out again
 /// (fold_reentry.hpp): beyond a fold, beyond a stretch where the edge passes behind S1 or out of
 /// the distance limit (distance_limit), or beyond a place where no continuation was found.
@@ -435,18 +449,9 @@ class EdgeWalker {
     // crossing in a nearer ring is, but for a preimage that doubles back, also the nearer one
     // along the S2 edge, and most stops have their exit in the first two rings: far fewer
     // edges are solved than by a search of every element within the reach.
-    // `fresh` := the values of `candidates` not in `seen`, which takes them in; both kept sorted
-    // (a linear search per value cost more than the quadratics on the femur pair)
     std::vector<Index> merged;
-    auto take_unseen = [&merged](std::vector<Index>& candidates, std::vector<Index>& seen, std::vector<Index>& fresh) {
-      std::sort(candidates.begin(), candidates.end());
-      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-      fresh.clear();
-      std::set_difference(candidates.begin(), candidates.end(), seen.begin(), seen.end(), std::back_inserter(fresh));
-      merged.clear();
-      std::merge(seen.begin(), seen.end(), fresh.begin(), fresh.end(), std::back_inserter(merged));
-      std::swap(seen, merged);
-    };
+    const auto take_unseen = [&merged](std::vector<Index>& candidates, std::vector<Index>& seen,
+                                       std::vector<Index>& fresh) { take_unseen_into(candidates, seen, fresh, merged); };
     std::vector<Index> candidates;
     ctx_.elements_of(stopped.stop, candidates);
     take_unseen(candidates, seen_elements, ring);
@@ -500,18 +505,13 @@ class EdgeWalker {
     // the rings of elements around the rim point's element
     std::vector<Index> seen{stopped.rim->element}, ring{stopped.rim->element}, next;
     const int rings = static_cast<int>(std::ceil(limits.fold_exit_reach));
+    std::vector<Index> merged;
     for (int r = 0; r < rings; ++r) {
       next.clear();
       for (Index t : ring)
         for (Index v : ctx_.s1.element(t))
           for (Index n : ctx_.s1.vertex_elements(v)) next.push_back(n);
-      std::sort(next.begin(), next.end());
-      next.erase(std::unique(next.begin(), next.end()), next.end());
-      ring.clear();
-      std::set_difference(next.begin(), next.end(), seen.begin(), seen.end(), std::back_inserter(ring));
-      next.clear();
-      std::merge(seen.begin(), seen.end(), ring.begin(), ring.end(), std::back_inserter(next));
-      std::swap(seen, next);
+      take_unseen_into(next, seen, ring, merged);
     }
     std::optional<RimPoint<d>> best;
     for (Index t : seen) {
@@ -755,72 +755,6 @@ class EdgeWalker {
     }
   }
 
-  /// Points where S2 edges cross S1's boundary, per S2 edge, sorted by the edge parameter.
-  std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries() const {
-    std::vector<std::vector<BoundaryEntry<d>>> entries(ctx_.s2.edge_count());
-    if constexpr (d == 1) {
-      for (Index v = 0; v < ctx_.s1.vertex_count(); ++v) {
-        if (!ctx_.s1.is_boundary_vertex(v) || state_.vertex_state[v] != VertexState::ghost || !state_.vertex_image[v]) continue;
-        const auto& image = *state_.vertex_image[v];
-        BoundaryEntry<1> entry;
-        entry.place.kind = PlaceKind::vertex;
-        entry.place.index = v;
-        entry.eta = image.local(0);
-        entry.crossing = VertexCrossing{v, entry.eta};
-        entries[image.element].push_back(entry);
-      }
-    } else {
-      long long calls = 0, failures = 0;
-      const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
-      std::vector<Index> edges;
-      for (Index edge = 0; edge < ctx_.s1.edge_count(); ++edge) {
-        if (ctx_.s1.edge_elements(edge).size() != 1) continue;
-        const auto ev = ctx_.s1.edge_vertices(edge);
-        const auto& ia = state_.vertex_image[ev[0]];
-        const auto& ib = state_.vertex_image[ev[1]];
-        if (!ia && !ib) continue;
-        const double length = (ctx_.s1.vertex(ev[0]) - ctx_.s1.vertex(ev[1])).norm();
-        WorldPoint<2> centre;
-        double radius;
-        if (ia && ib) {
-          const WorldPoint<2> a = ctx_.s2.world_position(ia->element, ia->local);
-          const WorldPoint<2> b = ctx_.s2.world_position(ib->element, ib->local);
-          centre = 0.5 * (a + b);
-          radius = 0.5 * (a - b).norm();
-        } else {
-          const auto& i = ia ? *ia : *ib;
-          centre = ctx_.s2.world_position(i.element, i.local);
-          radius = 2.0 * length;
-        }
-        edges.clear();
-        for (Index t : ctx_.s2_index->within(centre, radius + ctx_.s2_index->radius * 1.01 + 1e-9 * length))
-          for (int k = 0; k < 3; ++k) edges.push_back(ctx_.s2.element_edge(t, k));
-        std::sort(edges.begin(), edges.end());
-        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-        for (Index e : edges) {
-          const auto tv = ctx_.s2.edge_vertices(e);
-          const CrossingCandidate c = crossings_.solve(edge, ctx_.s2.vertex(tv[0]), ctx_.s2.vertex(tv[1]), calls, failures);
-          if (!c.valid || !(c.eta > piece_slack && c.eta < 1.0 - piece_slack)) continue;
-          if (!ctx_.unfolded_at(ctx_.edge_place(edge, c.lambda), c.mu)) continue;
-          BoundaryEntry<2> entry;
-          entry.place = ctx_.edge_place(edge, c.lambda);
-          entry.eta = c.eta;
-          entry.crossing = EdgeCrossing{edge, c.lambda, c.eta};
-          auto& list = entries[e];
-          const bool duplicate = std::any_of(list.begin(), list.end(), [&](const BoundaryEntry<2>& x) {
-            return x.place == entry.place;
-          });
-          if (!duplicate) list.push_back(entry);
-        }
-      }
-      ctx_.solver_calls += calls;
-      ctx_.solver_failures += failures;
-    }
-    for (auto& list : entries)
-      std::sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.eta < y.eta; });
-    return entries;
-  }
-
  private:
   const ProjectionContext<d>& ctx_;
   const ProjectionState<d>& state_;
@@ -828,12 +762,6 @@ class EdgeWalker {
 };
 
 }  // namespace
-
-template <int d, class Solver>
-std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const ProjectionContext<d>& ctx,
-                                                                 const ProjectionState<d>& state, const Solver& solver) {
-  return EdgeWalker<d, Solver>(ctx, state, solver).find_boundary_entries();
-}
 
 template <int d, class Solver>
 void plan_edge_block(const ProjectionContext<d>& ctx, const ProjectionState<d>& state, const Solver& solver,
@@ -846,8 +774,6 @@ void plan_edge_block(const ProjectionContext<d>& ctx, const ProjectionState<d>& 
 }
 
 #define PLMAP_EDGE_WALKS(d, Solver)                                                                          \
-  template std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries<d, Solver>(                      \
-      const ProjectionContext<d>&, const ProjectionState<d>&, const Solver&);                               \
   template void plan_edge_block<d, Solver>(const ProjectionContext<d>&, const ProjectionState<d>&, const Solver&, \
                                            Index, Index, unsigned, PlanBuffer<d>&, std::vector<PlannedEdge>&);
 PLMAP_EDGE_WALKS(1, DampedNewtonSolver)

@@ -1,0 +1,91 @@
+// Normal projection, phase 4: the points where S2 edges enter S1 across its boundary
+// (projection_edge_walks.hpp, find_boundary_entries); the edge walks start there too.
+
+#include "projection_edge_crossings.hpp"
+#include "projection_edge_walks.hpp"
+
+#include <plmap/solvers/projection_systems.hpp>
+#include <plmap/solvers/solver_kind.hpp>
+
+#include <algorithm>
+
+namespace plmap::projection {
+
+template <int d, class Solver>
+std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const ProjectionContext<d>& ctx,
+                                                                 const ProjectionState<d>& state, const Solver& solver) {
+  const EdgeCrossings<d, Solver> crossings(ctx, solver);
+  std::vector<std::vector<BoundaryEntry<d>>> entries(ctx.s2.edge_count());
+  if constexpr (d == 1) {
+    for (Index v = 0; v < ctx.s1.vertex_count(); ++v) {
+      if (!ctx.s1.is_boundary_vertex(v) || state.vertex_state[v] != VertexState::ghost || !state.vertex_image[v]) continue;
+      const auto& image = *state.vertex_image[v];
+      BoundaryEntry<1> entry;
+      entry.place.kind = PlaceKind::vertex;
+      entry.place.index = v;
+      entry.eta = image.local(0);
+      entry.crossing = VertexCrossing{v, entry.eta};
+      entries[image.element].push_back(entry);
+    }
+  } else {
+    long long calls = 0, failures = 0;
+    const double piece_slack = ctx.options.search_limits.piece_parameter_slack;
+    std::vector<Index> edges;
+    for (Index edge = 0; edge < ctx.s1.edge_count(); ++edge) {
+      if (ctx.s1.edge_elements(edge).size() != 1) continue;
+      const auto ev = ctx.s1.edge_vertices(edge);
+      const auto& ia = state.vertex_image[ev[0]];
+      const auto& ib = state.vertex_image[ev[1]];
+      if (!ia && !ib) continue;
+      const double length = (ctx.s1.vertex(ev[0]) - ctx.s1.vertex(ev[1])).norm();
+      WorldPoint<2> centre;
+      double radius;
+      if (ia && ib) {
+        const WorldPoint<2> a = ctx.s2.world_position(ia->element, ia->local);
+        const WorldPoint<2> b = ctx.s2.world_position(ib->element, ib->local);
+        centre = 0.5 * (a + b);
+        radius = 0.5 * (a - b).norm();
+      } else {
+        const auto& i = ia ? *ia : *ib;
+        centre = ctx.s2.world_position(i.element, i.local);
+        radius = 2.0 * length;
+      }
+      edges.clear();
+      for (Index t : ctx.s2_index->within(centre, radius + ctx.s2_index->radius * 1.01 + 1e-9 * length))
+        for (int k = 0; k < 3; ++k) edges.push_back(ctx.s2.element_edge(t, k));
+      std::sort(edges.begin(), edges.end());
+      edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+      for (Index e : edges) {
+        const auto tv = ctx.s2.edge_vertices(e);
+        const CrossingCandidate c = crossings.solve(edge, ctx.s2.vertex(tv[0]), ctx.s2.vertex(tv[1]), calls, failures);
+        if (!c.valid || !(c.eta > piece_slack && c.eta < 1.0 - piece_slack)) continue;
+        if (!ctx.unfolded_at(ctx.edge_place(edge, c.lambda), c.mu)) continue;
+        BoundaryEntry<2> entry;
+        entry.place = ctx.edge_place(edge, c.lambda);
+        entry.eta = c.eta;
+        entry.crossing = EdgeCrossing{edge, c.lambda, c.eta};
+        auto& list = entries[e];
+        const bool duplicate = std::any_of(list.begin(), list.end(), [&](const BoundaryEntry<2>& x) {
+          return x.place == entry.place;
+        });
+        if (!duplicate) list.push_back(entry);
+      }
+    }
+    ctx.solver_calls += calls;
+    ctx.solver_failures += failures;
+  }
+  for (auto& list : entries)
+    std::sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.eta < y.eta; });
+  return entries;
+}
+
+#define PLMAP_BOUNDARY_ENTRIES(d, Solver)                                                \
+  template std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries<d, Solver>( \
+      const ProjectionContext<d>&, const ProjectionState<d>&, const Solver&);
+PLMAP_BOUNDARY_ENTRIES(1, DampedNewtonSolver)
+PLMAP_BOUNDARY_ENTRIES(2, DampedNewtonSolver)
+PLMAP_BOUNDARY_ENTRIES(1, CeresTinySolver)
+PLMAP_BOUNDARY_ENTRIES(2, CeresTinySolver)
+#undef PLMAP_BOUNDARY_ENTRIES
+
+}  // namespace plmap::projection
