@@ -295,8 +295,10 @@ class EdgeWalker {
     for (std::size_t i = begin; i < crossings.size(); ++i)
       crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
     crossings.push_back(exit.crossing);
-    buffer.pieces.push_back({static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(crossings.size()),
-                             PieceStart::first_crossing, PieceEnd::last_crossing});
+    // a walk back that ended on the rim (the edge passes behind S1 there) starts the piece there
+    const bool from_rim = at_fold && w.rim && 1.0 - w.rim->eta > covered_until + piece_slack;
+    add_piece(buffer, begin, from_rim ? PieceStart::rim_node : PieceStart::first_crossing, PieceEnd::last_crossing,
+              PlanBuffer<d>::no_rim, from_rim ? keep_rim(buffer, *w.rim, true) : PlanBuffer<d>::no_rim);
     if constexpr (d == 2) {
       if (at_fold) walk_back_after_folds(e, w, covered_until, buffer);
     }
@@ -590,9 +592,11 @@ class EdgeWalker {
 
   /// After the walk `stopped` backwards from the second vertex, or from where the edge leaves
   /// S1, of S2 edge e ended at a fold or another restartable place (its parameters measured
-  /// from the second vertex): new pieces from where the edge's preimage comes out of it, each
-  /// walked on towards the first vertex and kept only short of what the forward walks covered
-  /// (`covered_until`), up to search_limits.fold_exits times while they stop so again.
+  /// from the second vertex): new pieces from where the edge's preimage comes out of it — where
+  /// the edge comes out from behind S1 (a rim node, as walk_on_after_folds does forwards) or
+  /// else the fold exit's crossing — each walked on towards the first vertex and kept only short
+  /// of what the forward walks covered (`covered_until`), up to search_limits.fold_exits times
+  /// while they stop so again.
   void walk_back_after_folds(Index e, WalkResult<d> stopped, double covered_until, PlanBuffer<d>& buffer) const
     requires(d == 2)
   {
@@ -605,24 +609,44 @@ class EdgeWalker {
                         restartable(stopped.reason);
          ++round) {
       const std::optional<FoldExit> exit = find_fold_exit(e, stopped, before, WalkDirection::from_second_vertex, calls, failures);
-      if (!exit) break;
+      // where the edge comes out from behind S1, if that is before the exit
+      const std::optional<RimPoint<d>> reentry =
+          find_rim_reentry(e, stopped, exit ? exit->crossing.eta : before, WalkDirection::from_second_vertex);
+      if (!exit && !reentry) break;
       const std::size_t begin = crossings.size();
-      crossings.push_back(EdgeCrossing{exit->place.index, exit->crossing.lambda, exit->crossing.eta});
-      stopped = walk(e, exit->place, exit->crossing.eta, std::nullopt, WalkDirection::from_second_vertex, buffer);
+      if (reentry) {
+        Place<d> inside;
+        inside.kind = PlaceKind::element;
+        inside.index = reentry->element;
+        inside.local = reentry->local;
+        stopped = walk(e, inside, reentry->eta, std::nullopt, WalkDirection::from_second_vertex, buffer);
+        // one rim node per S1 element and S2 edge (see walk_on_after_folds)
+        if (stopped.rim && stopped.rim->element == reentry->element) stopped.rim.reset();
+      } else {
+        crossings.push_back(EdgeCrossing{exit->place.index, exit->crossing.lambda, exit->crossing.eta});
+        stopped = walk(e, exit->place, exit->crossing.eta, std::nullopt, WalkDirection::from_second_vertex, buffer);
+      }
       // a walk that comes into the stretch the forward walks covered stops short of it
       std::size_t end = begin;
       while (end < crossings.size() && crossings[end].target_parameter < before - piece_slack) ++end;
       const bool cut = end < crossings.size();
       crossings.resize(end);
-      if (end - begin < 2) {  // no stretch beyond the exit crossing itself
+      // the walk back ended on the rim short of the forward walks: the piece starts there
+      const bool from_rim = !cut && stopped.end == WalkEnd::failed && stopped.rim &&
+                            stopped.rim->eta < before - piece_slack;
+      if ((end - begin) + (reentry ? 1 : 0) + (from_rim ? 1 : 0) < 2) {  // no stretch beyond the restart point
         crossings.resize(begin);
         break;
       }
-      // measured from the first vertex again, in the edge's direction, ending at the exit
+      // measured from the first vertex again, in the edge's direction, ending where the walk
+      // back restarted
       std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(begin), crossings.end());
       for (std::size_t i = begin; i < crossings.size(); ++i)
         crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
-      add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::last_crossing);
+      const std::uint32_t end_rim = reentry ? keep_rim(buffer, *reentry, true) : PlanBuffer<d>::no_rim;
+      const std::uint32_t start_rim = from_rim ? keep_rim(buffer, *stopped.rim, true) : PlanBuffer<d>::no_rim;
+      add_piece(buffer, begin, from_rim ? PieceStart::rim_node : PieceStart::first_crossing,
+                reentry ? PieceEnd::rim_node : PieceEnd::last_crossing, end_rim, start_rim);
       if (cut) break;
     }
     ctx_.solver_calls += calls;

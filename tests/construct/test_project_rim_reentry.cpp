@@ -61,3 +61,42 @@ TEST_P(ProjectRimReentry, EdgesThatComeOutFromBehindS1GoOnFromTheRim) {
 
 INSTANTIATE_TEST_SUITE_P(CoarseS2, ProjectRimReentry,
                          ::testing::Values(std::tuple{10, 0.1, 3}, std::tuple{14, 0.08, 3}));
+
+namespace {
+
+/// S1: [0, 2] x [0, 1], 20 x 10 cells, with a wide ridge at x = 0.7 (width 0.3: S2 passes behind
+/// it over 0.56 in x, farther than the re-entry search reaches from either side) and a narrow
+/// one at x = 1.45 (width 0.08).
+std::shared_ptr<const Surface<2>> wide_and_narrow_ridge() {
+  return transformed<2>(*grid(20, 10, 0.0, 2.0, 0.0, 1.0, 0.0, false, 0.2), [](const WorldPoint<2>& p) {
+    const double u = (p.x() - 0.7) / 0.3, v = (p.x() - 1.45) / 0.08;
+    return WorldPoint<2>(p.x(), p.y(), 0.12 * std::exp(-u * u) + 0.12 * std::exp(-v * v));
+  });
+}
+
+}  // namespace
+
+class ProjectRimReentryBackwards : public ::testing::TestWithParam<double> {};
+
+// S2's edges run from x = x0 (their first vertex) across both ridges to 2 - x0. The walk from
+// the first vertex (or from where the edge enters S1) stops on the wide ridge's rim and finds no
+// way out; the walk back from the other end (from the second vertex's preimage, x0 > 0, or from
+// where the edge leaves S1, x0 < 0) stops on the narrow ridge's rim. The stretch between the two
+// ridges is reached only by the walk back going on where the edge comes out from behind the
+// narrow ridge. Before, that walk went on only from the next S1 edge crossing, and the faces
+// between it and the rim mapped into two S2 triangles and left D.
+TEST_P(ProjectRimReentryBackwards, WalksBackGoOnFromTheRimToo) {
+  const double x0 = GetParam();
+  const auto s1 = wide_and_narrow_ridge();
+  const auto s2 = grid(1, 3, x0, 2.0 - x0, -0.05, 1.05, 0.05, true);
+  const auto r = project<2>(s1, s2);
+  EXPECT_EQ(verify_violations(r.map), "");
+  EXPECT_GT(r.report.rim_edges, 0);
+  const auto rays = rays_along_normals(r.map, *s1);
+  EXPECT_EQ(rays.extra, 0u);
+  EXPECT_EQ(rays.missed_by_reason[static_cast<std::size_t>(MissedReason::not_covered)], 0u)
+      << describe_failures(r.report);
+  EXPECT_EQ(rays.missed_defects(), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothEnds, ProjectRimReentryBackwards, ::testing::Values(0.05, -0.05));
