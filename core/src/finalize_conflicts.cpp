@@ -66,12 +66,42 @@ bool drop_stretch_on_element(const BuilderContents<2>& in, const NodesAndSegment
 
 bool drop_rim_edges_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
                                DroppedEdges& dropped) {
-  std::vector<Index> rim;
-  for (Index s : where.element_segments[t])
-    if (in.segments[s].target_edge == invalid_index) rim.push_back(s);
-  for (int k = 0; k < 3; ++k)
-    for (Index s : where.edge_segments[in.s1.element_edge(t, k)])
-      if (in.segments[s].target_edge == invalid_index) rim.push_back(s);
+  const Surface<2>& s1 = in.s1;
+  std::vector<Index> pieces(where.element_segments[t].begin(), where.element_segments[t].end());
+  for (int k = 0; k < 3; ++k) {
+    const auto& along = where.edge_segments[s1.element_edge(t, k)];
+    pieces.insert(pieces.end(), along.begin(), along.end());
+  }
+  std::vector<Index> nodes(where.interior_nodes[t].begin(), where.interior_nodes[t].end());
+  for (int k = 0; k < 3; ++k) {
+    const auto& on_edge = where.edge_nodes[s1.element_edge(t, k)];
+    nodes.insert(nodes.end(), on_edge.begin(), on_edge.end());
+  }
+  std::vector<Index> rim, crossing;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const auto& si = in.segments[pieces[i]];
+    if (si.target_edge != invalid_index) continue;
+    rim.push_back(pieces[i]);
+    const LocalPoint<2> p = node_local(in, si.a, t), q = node_local(in, si.b, t);
+    bool crosses = false;
+    for (std::size_t j = 0; j < pieces.size() && !crosses; ++j) {
+      if (j == i) continue;
+      const auto& sj = in.segments[pieces[j]];
+      crosses = segments_cross_properly(p, q, node_local(in, sj.a, t), node_local(in, sj.b, t));
+    }
+    for (std::size_t n = 0; n < nodes.size() && !crosses; ++n) {
+      if (nodes[n] == si.a || nodes[n] == si.b) continue;
+      const LocalPoint<2> x = node_local(in, nodes[n], t);
+      crosses = orient2d(p, q, x) == 0 && x.x() >= std::min(p.x(), q.x()) && x.x() <= std::max(p.x(), q.x()) &&
+                x.y() >= std::min(p.y(), q.y()) && x.y() <= std::max(p.y(), q.y());
+    }
+    if (crosses) crossing.push_back(pieces[i]);
+  }
+  if (!crossing.empty()) return dropped.drop_rim_segments(crossing);
+  // no rim edge is in the way: if S2 edges conflict among themselves, their stretches go (in the
+  // same round) and the rim stays; else the element failed for another reason (e.g. two nodes
+  // that coincide) and all its rim edges go
+  if (!conflicting_edges(in, where, t).empty()) return false;
   return dropped.drop_rim_segments(rim);
 }
 

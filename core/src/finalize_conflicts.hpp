@@ -23,9 +23,14 @@ std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAn
 bool drop_stretch_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index e, Index t,
                              DroppedEdges& dropped);
 
-/// Drops the rim edges (MapBuilder::add_rim_edge) on S1 element t and along its edges: where an
-/// element with rim edges cannot be closed, they go, which leaves D ending at the last crossings
-/// there, as without a rim. Returns whether any was still there to drop.
+/// Drops the rim edges (MapBuilder::add_rim_edge) on S1 element t and along its edges that
+/// cross another graph or rim edge there, or pass through a node: where an element with rim
+/// edges cannot be closed, those go, and D ends at the last crossings next to them, as without
+/// a rim. The other rim edges stay and keep their faces in D (on the bones pair a third of the
+/// rim edges on such elements cross something). If none does, the rim stays where S2 edges
+/// conflict among themselves (their stretches go instead, conflicting_edges); else t failed for
+/// another reason (e.g. two nodes that coincide) and all its rim edges go. Returns whether any
+/// was still there to drop.
 bool drop_rim_edges_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
                                DroppedEdges& dropped);
 

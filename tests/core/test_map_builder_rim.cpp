@@ -167,3 +167,33 @@ TEST(MapBuilderRim, RejectsBadRimInput) {
   const auto upper = b.add_rim_node(on_s1(0.3, 0.9), on_s2(0.3, 0.9));  // inside S1 element 1
   EXPECT_THROW(b.add_rim_edge(on_13, upper), BuilderError);
 }
+
+TEST(MapBuilderRim, OnlyTheRimEdgesThatCrossSomethingAreDropped) {
+  // A stray rim edge in S1 element 1 from (0.2, 0.7) to (0.35, 0.9) crosses S2 edge 1-3's piece
+  // (the line x + y = 1 there), so element 1 cannot be closed. With drop_conflicting_edges only
+  // that rim edge goes: the rim x = 0.6 stays whole, and D is the part x <= 0.6 as before. Before,
+  // every rim edge on element 1 went, and the faces next to x = 0.6 above the diagonal reached
+  // the corner (1, 1), which has no node, and left D.
+  BuilderOptions options;
+  options.drop_conflicting_edges = true;
+  RimMap r;
+  r.builder = MapBuilder<2>(r.s1, r.s2, options);
+  const auto rim = r.enter_nodes_and_pieces();
+  for (int i = 0; i + 1 < 4; ++i) r.builder.add_rim_edge(rim[i], rim[i + 1]);
+  const auto a = r.builder.add_rim_node(on_s1(0.2, 0.7), on_s2(0.2, 0.7));
+  const auto b = r.builder.add_rim_node(on_s1(0.35, 0.9), on_s2(0.35, 0.9));
+  r.builder.add_rim_edge(a, b);
+  FinalizeReport report;
+  const PlMap<2> map = std::move(r.builder).finalize(&report);
+  ASSERT_EQ(violations(map), "");
+  EXPECT_TRUE(report.dropped_edges.empty());  // no S2 edge's stretch went
+  EXPECT_NEAR(covered_measure(map).domain, 0.6, 1e-14);
+  DeepestRegion<2> locator;
+  for (const auto& [x, y] : {std::pair{0.59, 0.95}, {0.59, 0.59}, {0.2, 0.75}, {0.4, 0.9}}) {
+    const Evaluation<2> e = evaluate(map, on_s1(x, y), locator);
+    ASSERT_TRUE(e.in_domain) << x << ", " << y;
+    EXPECT_NEAR(e.world(0), x, 1e-14);
+    EXPECT_NEAR(e.world(1), y, 1e-14);
+  }
+  EXPECT_FALSE(evaluate(map, on_s1(0.65, 0.7), locator).in_domain);
+}
