@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 #include <limits>
 #include <optional>
 
@@ -24,20 +23,6 @@ namespace plmap::projection {
 namespace {
 
 enum class WalkEnd : std::uint8_t { reached, left_boundary, failed };
-
-/// Ring searches around a stop: `fresh` := the values of `candidates` (sorted and deduplicated
-/// here) not in `seen`, which takes them in; `seen` stays sorted, `merged` is scratch. A linear
-/// search per value cost more than these sorted set operations on the femur pair.
-void take_unseen_into(std::vector<Index>& candidates, std::vector<Index>& seen, std::vector<Index>& fresh,
-                      std::vector<Index>& merged) {
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  fresh.clear();
-  std::set_difference(candidates.begin(), candidates.end(), seen.begin(), seen.end(), std::back_inserter(fresh));
-  merged.clear();
-  std::merge(seen.begin(), seen.end(), fresh.begin(), fresh.end(), std::back_inserter(merged));
-  std::swap(seen, merged);
-}
 
 /// Walks that stop for these reasons are restarted where the S2 edge's preimage comes out again
 /// (fold_reentry.hpp): beyond a fold, beyond a stretch where the edge passes behind S1 or out of
