@@ -1,0 +1,61 @@
+// finalize(), phase 5: the regions' affine maps (finalize_region_maps.hpp).
+
+#include "finalize_region_maps.hpp"
+
+#include <plmap/core/affine_through.hpp>
+#include <plmap/core/errors.hpp>
+#include <plmap/core/parallel_ranges.hpp>
+
+#include <array>
+
+namespace plmap::detail {
+
+namespace {
+
+/// Node n's image in the local coordinates of S2 element t, which contains it: the value
+/// support_local gives from the node's support. The support's vertices are corners of the image
+/// element e, and their weights are node_image_local's two values and the omitted one; a corner
+/// of t that is no corner of e carries no weight.
+LocalPoint<2> image_on(const Surface<2>& s2, const MapData<2>& m, const std::vector<double>& omitted, Index n, Index t) {
+  const Index e = m.node_image_element[static_cast<std::size_t>(n)];
+  const LocalPoint<2>& local = m.node_image_local[static_cast<std::size_t>(n)];
+  if (e == t) return local;
+  const auto& from = s2.element(e);
+  const auto& to = s2.element(t);
+  const std::array<double, 3> weight{omitted[static_cast<std::size_t>(n)], local(0), local(1)};
+  LocalPoint<2> y = LocalPoint<2>::Zero();
+  for (int k = 1; k <= 2; ++k)
+    for (int j = 0; j < 3; ++j)
+      if (from[j] == to[k]) y(k - 1) = weight[static_cast<std::size_t>(j)];
+  return y;
+}
+
+}  // namespace
+
+double omitted_image_weight(const Surface<2>& s2, const Support<2>& s) {
+  const Index corner0 = s2.element(s.element)[0];
+  for (int i = 0; i < s.count; ++i)
+    if (s.vertex[i] == corner0) return s.weight[i];
+  return 0.0;
+}
+
+void write_region_maps(const Surface<2>& s2, const std::vector<double>& omitted, MapData<2>& m, unsigned threads) {
+  if (omitted.size() != m.node_position.size() || !m.region_map.empty())
+    throw BuilderError("internal: region maps deferred without one omitted weight per node");
+  const std::size_t regions = m.region_target.size();
+  m.region_map.resize(regions);
+  parallel_for_chunks(regions, 16384, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t r = begin; r < end; ++r) {
+      const auto& corners = m.region_corners[r];
+      const Index t = m.region_target[r];
+      std::array<LocalPoint<2>, 3> from, to;
+      for (int i = 0; i < 3; ++i) {
+        from[i] = m.node_position[static_cast<std::size_t>(corners[i])];
+        to[i] = image_on(s2, m, omitted, corners[i], t);
+      }
+      m.region_map[r] = affine_through<2>(from, to);
+    }
+  });
+}
+
+}  // namespace plmap::detail
