@@ -12,22 +12,21 @@ namespace plmap::detail {
 
 namespace {
 
-/// Node n's image in the local coordinates of S2 element t, which contains it: the value
-/// support_local gives from the node's support. The support's vertices are corners of the image
-/// element e, and their weights are node_image_local's two values and the omitted one; a corner
-/// of t that is no corner of e carries no weight.
-LocalPoint<2> image_on(const Surface<2>& s2, const MapData<2>& m, const std::vector<double>& omitted, Index n, Index t) {
-  const Index e = m.node_image_element[static_cast<std::size_t>(n)];
-  const LocalPoint<2>& local = m.node_image_local[static_cast<std::size_t>(n)];
+/// Node n's image in the local coordinates of S2 element t (corners `to`), which contains it: the
+/// value support_local gives from the node's support. The support's vertices are corners of the
+/// image element e, and their weights are node_image_local's two values and the omitted one; a
+/// corner of t that is no corner of e carries no weight (+0.0, as support_local leaves it).
+LocalPoint<2> image_on(const Surface<2>& s2, const MapData<2>& m, const std::vector<double>& omitted, Index n, Index t,
+                       const ElementCorners<2>& to) {
+  const auto i = static_cast<std::size_t>(n);
+  const Index e = m.node_image_element[i];
+  const LocalPoint<2>& local = m.node_image_local[i];
   if (e == t) return local;
   const auto& from = s2.element(e);
-  const auto& to = s2.element(t);
-  const std::array<double, 3> weight{omitted[static_cast<std::size_t>(n)], local(0), local(1)};
-  LocalPoint<2> y = LocalPoint<2>::Zero();
-  for (int k = 1; k <= 2; ++k)
-    for (int j = 0; j < 3; ++j)
-      if (from[j] == to[k]) y(k - 1) = weight[static_cast<std::size_t>(j)];
-  return y;
+  auto weight_of = [&](Index v) {
+    return v == from[0] ? omitted[i] : v == from[1] ? local(0) : v == from[2] ? local(1) : 0.0;
+  };
+  return LocalPoint<2>(weight_of(to[1]), weight_of(to[2]));
 }
 
 }  // namespace
@@ -48,10 +47,11 @@ void write_region_maps(const Surface<2>& s2, const std::vector<double>& omitted,
     for (std::size_t r = begin; r < end; ++r) {
       const auto& corners = m.region_corners[r];
       const Index t = m.region_target[r];
+      const auto& target_corners = s2.element(t);
       std::array<LocalPoint<2>, 3> from, to;
       for (int i = 0; i < 3; ++i) {
         from[i] = m.node_position[static_cast<std::size_t>(corners[i])];
-        to[i] = image_on(s2, m, omitted, corners[i], t);
+        to[i] = image_on(s2, m, omitted, corners[i], t, target_corners);
       }
       m.region_map[r] = affine_through<2>(from, to);
     }
