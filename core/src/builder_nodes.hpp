@@ -83,14 +83,14 @@ static_assert(sizeof(Segment) == 16, "segments are kept compact");
 /// map (the other values say how it was inserted).
 inline constexpr char edge_not_inserted = 0;
 
-/// What finalize() reads of the builder (and the little it changes: the segments are released
-/// early, and dropped S2 edges are marked as not inserted).
+/// What finalize() reads of the builder (and the little it changes: the nodes and segments are
+/// released once every element is closed, and dropped S2 edges are marked as not inserted).
 template <int d>
 struct BuilderContents {
   const Surface<d>& s1;
   const Surface<d>& s2;
   const BuilderOptions& options;
-  const std::vector<BuilderNode<d>>& nodes;
+  std::vector<BuilderNode<d>>& nodes;
   const std::vector<Index>& node_at_domain_vertex;  // per S1 vertex: its node, or invalid_index
   std::vector<Segment>& segments;
   std::vector<char>& edge_inserted;  // per S2 edge (d = 1: S2 element), 0: not inserted

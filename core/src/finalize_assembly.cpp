@@ -2,6 +2,7 @@
 
 #include "finalize_assembly.hpp"
 
+#include "finalize_region_maps.hpp"
 #include "map_arrays.hpp"
 #include "map_graph_derivation.hpp"
 
@@ -41,7 +42,7 @@ PartBounds& PartBounds::operator+=(const PartBounds& o) {
   return *this;
 }
 
-void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part) {
+void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part, const AssemblyCursor& at) {
   part = MapData<2>{};
   // room first (address space only: nothing beyond `own` is touched here), then the sizes
   auto sized = [](auto& array, std::size_t size, std::size_t capacity) {
@@ -69,7 +70,10 @@ void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part) 
   part.region_corners.reserve(std::max(own.triangles, room.triangles));
   part.region_neighbors.reserve(std::max(own.triangles, room.triangles));
   part.region_target.reserve(std::max(own.triangles, room.triangles));
-  part.region_map.reserve(std::max(own.triangles, room.triangles));
+  if (at.omitted_weights != nullptr)
+    sized(*at.omitted_weights, own.nodes, room.nodes);
+  else
+    part.region_map.reserve(std::max(own.triangles, room.triangles));
 }
 
 namespace {
@@ -131,6 +135,7 @@ void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, bool t
     part.node_image_element[n] = bn.image.element;
     part.node_image_local[n] = support_local<2>(in.s2, bn.image, bn.image.element);
     part.node_target[n] = bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target;
+    if (at.omitted_weights != nullptr) (*at.omitted_weights)[n] = omitted_image_weight(in.s2, bn.image);
     if (!tiled) visit_ring(w.closure, i, w.ring_start[i], [&](const RingEntry& entry) {
       if (entry.vertex >= ns || (!entry.graph && !is_region(entry.before) && !is_region(entry.after))) return;
       part.neighbor[at.entries] = base + entry.vertex;
@@ -195,7 +200,8 @@ void write_regions(const ClosureWorkspace& w, Index base, Index region_count, Ma
       neighbors[i] = g >= 0 ? at.triangle_region[g] : invalid_index;
     }
     part.region_target[at.regions] = et.components[closure.face[f]].target;
-    part.region_map[at.regions] = et.corner_maps[f];  // judged with the face (a region's face has sign != 0)
+    // judged with the face (a region's face has sign != 0); or written after the builder is freed
+    if (at.omitted_weights == nullptr) part.region_map[at.regions] = et.corner_maps[f];
     ++at.regions;
   }
   part.region_begin[at.elements + 1] = static_cast<Index>(at.regions);
@@ -236,7 +242,7 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
   make_room(part.region_corners, at.regions + nf);
   make_room(part.region_neighbors, at.graph_regions + nf);
   make_room(part.region_target, at.regions + nf);
-  make_room(part.region_map, at.regions + nf);
+  if (at.omitted_weights == nullptr) make_room(part.region_map, at.regions + nf);
   const Index region_count = number_regions(w, orientation, at);
   const auto base = static_cast<Index>(at.nodes);
   // Tiled: every face of the closure is a region, so the graph follows from the regions. At a
@@ -270,7 +276,7 @@ void trim_part(const AssemblyCursor& at, MapData<2>& part) {
   part.region_corners.resize(at.regions);
   part.region_neighbors.resize(at.graph_regions);
   part.region_target.resize(at.regions);
-  part.region_map.resize(at.regions);
+  if (at.omitted_weights == nullptr) part.region_map.resize(at.regions);
 }
 
 StoredGraph hand_over_stored_form(AssembledMap& assembled) {

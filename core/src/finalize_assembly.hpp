@@ -35,6 +35,10 @@ struct AssemblyCursor {
   Index reversed_faces = 0;  // faces with a target element but the other orientation
   Index unmapped_faces = 0;  // faces inside S1's corners whose nodes share no S2 element
   std::vector<Index> triangle_region;  // per closure triangle of the element: its region, or invalid
+  /// Region maps deferred (finalize_region_maps.hpp): region_map is not written, and this holds
+  /// omitted_image_weight per node of the part instead (sized like the node arrays). Null:
+  /// region_map is written with the regions.
+  std::vector<double>* omitted_weights = nullptr;
 };
 
 /// What the part of a block of elements holds at most (nodes and edge entries exactly): a
@@ -54,8 +58,9 @@ PartBounds part_bounds(const BuilderContents<2>& in, const NodesAndSegmentsByPla
 /// up to twice its memory, and the final shrink_to_fit would copy it again. Every array gets the
 /// capacity of `room` as well (address space only): the first block is given the whole map's
 /// bounds, so that joining (finalize_joining.hpp) keeps its arrays where they are and appends
-/// the other blocks, instead of copying and first-touching the whole map once more.
-void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part);
+/// the other blocks, instead of copying and first-touching the whole map once more. With
+/// at.omitted_weights, region_map is left empty and the omitted weights are sized like the nodes.
+void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part, const AssemblyCursor& at);
 
 /// Writes the element closed in w into the part at the cursor, which it advances.
 void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, int orientation, MapData<2>& part,

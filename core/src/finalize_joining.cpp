@@ -137,7 +137,9 @@ void join_parts(std::vector<MapData<2>>& parts, Index elements, unsigned threads
     return c;
   });
   joiner.join(&MapData<2>::region_target, region0, same);
-  joiner.join(&MapData<2>::region_map, region0, same);
+  // by its own sizes: with deferred region maps (finalize_region_maps.hpp) the parts have none
+  const Offsets region_map0 = offsets_of(parts, [](const MapData<2>& p) { return p.region_map.size(); });
+  joiner.join(&MapData<2>::region_map, region_map0, same);
   joiner.join_begins(&MapData<2>::node_begin, element0, node0);
   joiner.join_begins(&MapData<2>::region_begin, element0, region0);
   joiner.join(&MapData<2>::start_region, element0, region_index);

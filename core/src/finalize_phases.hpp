@@ -6,7 +6,9 @@
 //      each face's S2 element and orientation;
 //   3. assembly (finalize_assembly): per block of elements, the closed elements written into
 //      that block's part of the flat arrays;
-//   4. joining (finalize_joining): the parts concatenated into one map.
+//   4. joining (finalize_joining): the parts concatenated into one map;
+//   5. region maps (finalize_region_maps): the regions' affine maps, written once the builder's
+//      nodes and segments are freed (the assembly keeps one weight per node for them instead).
 // Conflicts (finalize_conflicts) decide which S2 edges are dropped between rounds when
 // BuilderOptions::drop_conflicting_edges asks for it. Curves (d = 1) need no closure and no
 // parts (finalize_polylines.cpp).

@@ -8,6 +8,7 @@
 #include "finalize_conflicts.hpp"
 #include "finalize_joining.hpp"
 #include "finalize_phases.hpp"
+#include "finalize_region_maps.hpp"
 #include "finalize_reuse.hpp"
 
 #include <plmap/core/parallel_ranges.hpp>
@@ -54,10 +55,12 @@ class ClosingPass {
     });
     PartBounds whole;
     for (const PartBounds& b : bounds) whole += b;
+    omitted_weights_.assign(deferred_region_maps() ? blocks_ : 0, {});
     parallel_for_pieces(blocks_, blocks_, threads_, [&](std::size_t k, std::size_t, std::size_t) {
       const Index begin = first[k], end = first[k + 1];
-      size_part(bounds[k], k == 0 ? whole : bounds[k], parts_[k]);
       AssemblyCursor cursor;
+      if (deferred_region_maps()) cursor.omitted_weights = &omitted_weights_[k];
+      size_part(bounds[k], k == 0 ? whole : bounds[k], parts_[k], cursor);
       for (Index t = begin; t < end; ++t) {
         try {
           if (reuse_ != nullptr && reuse_->reuses(t)) {  // copied, not closed (finalize_reuse.hpp)
@@ -109,6 +112,25 @@ class ClosingPass {
   }
   unsigned threads() const { return threads_; }
 
+  /// Whether the assembly leaves region_map out (finalize_region_maps.hpp): not where elements
+  /// are copied from a previous map, whose region maps are copied with them.
+  bool deferred_region_maps() const { return reuse_ == nullptr; }
+  /// The omitted image weights of the last run, joined in the order of the parts' nodes (the
+  /// first part's array has room for all of them, as its map arrays do).
+  std::vector<double> joined_omitted_weights() {
+    if (omitted_weights_.empty()) return {};
+    std::vector<double> all = std::move(omitted_weights_[0]);
+    for (std::size_t k = 1; k < omitted_weights_.size(); ++k) {
+      all.insert(all.end(), omitted_weights_[k].begin(), omitted_weights_[k].end());
+      std::vector<double>().swap(omitted_weights_[k]);
+    }
+    omitted_weights_.clear();
+    return all;
+  }
+  /// Frees the closure workspaces (slot_of_node alone has an entry per builder node) once the
+  /// pass will not run again.
+  void release_workspaces() { std::vector<ClosureWorkspace>().swap(workspaces_); }
+
  private:
   /// One block per thread, and at least 64 elements per block. (More blocks than threads would
   /// balance by taking turns, but the smaller parts fall under malloc's mmap threshold, and the
@@ -151,6 +173,7 @@ class ClosingPass {
   std::vector<MapData<2>> parts_;
   std::vector<FaceCounts> face_counts_;  // per block
   std::vector<std::vector<Index>> graph_elements_;  // per block
+  std::vector<std::vector<double>> omitted_weights_;  // per block, with deferred region maps
   const ElementReuse* reuse_;
 };
 
@@ -230,13 +253,17 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
     report->reversed_faces += pass.face_counts().reversed;
     report->unmapped_faces += pass.face_counts().unmapped;
   }
-  // Everything is closed: the segments and their buckets are not read again. Freed before the
-  // join, which with several blocks first-touches the later blocks' share of the map once more
-  // (31 MiB of the 200k plane pair's peak with two threads).
+  // Everything is closed: the builder's nodes and segments and their buckets are not read again.
+  // Freed before the join, which with several blocks first-touches the later blocks' share of the
+  // map once more (31 MiB of the 200k plane pair's peak with two threads), and before the region
+  // maps are written (finalize_region_maps.hpp).
+  pass.release_workspaces();
   std::vector<Segment>().swap(in.segments);
+  std::vector<BuilderNode<2>>().swap(in.nodes);
   where.release();
   join_parts(pass.parts(), n1, pass.threads(), m);
   assembled.graph_elements = pass.graph_elements();
+  if (pass.deferred_region_maps()) write_region_maps(in.s2, pass.joined_omitted_weights(), m, pass.threads());
   return assembled;
 }
 

@@ -1,0 +1,67 @@
+// The regions' affine maps that finalize() writes after the builder is freed, from one kept
+// weight per node (core/src/finalize_region_maps.hpp), against those finalize_reusing() writes
+// with the regions from the closure's own corner images (reusing nothing, it closes every
+// element that way). The images of intersection nodes are re-expressed from their image element
+// onto the S2 element across their S2 edge; every rotation of the S2 elements' corners is tried,
+// so that the weight node_image_local leaves out (corner 0's) is needed in some of them.
+
+#include <plmap/core/map_builder.hpp>
+
+#include <gtest/gtest.h>
+
+#include <array>
+
+using namespace plmap;
+
+namespace {
+
+WorldPoint<2> P(double x, double y) { return {x, y, 0.0}; }
+
+ElementCorners<2> rotated(ElementCorners<2> c, int by) {
+  for (int i = 0; i < by; ++i) c = {c[1], c[2], c[0]};
+  return c;
+}
+
+/// S1: the unit square split along diagonal 0-2; S2: split along 1-3 (corners rotated by r0,
+/// r1), its diagonal's preimage crossing S1's at the given parameter of both. With `previous`,
+/// on its surfaces, every element closed again by finalize_reusing.
+PlMap<2> square_map(int r0, int r1, double crossing, int orientation, const PlMap<2>* previous) {
+  const std::vector<WorldPoint<2>> corners{P(0, 0), P(1, 0), P(1, 1), P(0, 1)};
+  static std::shared_ptr<const Surface<2>> s1 = std::make_shared<const Surface<2>>(
+      corners, std::vector<ElementCorners<2>>{{0, 1, 2}, {0, 2, 3}});
+  auto s2 = previous != nullptr
+                ? previous->target_ptr()
+                : std::make_shared<const Surface<2>>(
+                      corners, std::vector<ElementCorners<2>>{rotated({0, 1, 3}, r0), rotated({1, 2, 3}, r1)});
+  BuilderOptions options;
+  options.orientation = orientation;
+  MapBuilder<2> b(s1, s2, options);
+  for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
+  const Index diagonal = s2->find_edge(1, 3);
+  for (Index e = 0; e < s2->edge_count(); ++e) {
+    if (e == diagonal) {
+      const EdgeCrossing c{s1->find_edge(0, 2), crossing, crossing};
+      b.add_edge(e, std::span(&c, 1));
+    } else {
+      b.add_edge(e);
+    }
+  }
+  if (previous == nullptr) return std::move(b).finalize();
+  const std::vector<char> none(2, 0);
+  return std::move(b).finalize_reusing(*previous, none);
+}
+
+}  // namespace
+
+TEST(MapBuilderRegionMaps, WrittenAfterTheBuilderEqualTheClosuresOwnForEveryCornerOrder) {
+  for (int r0 = 0; r0 < 3; ++r0)
+    for (int r1 = 0; r1 < 3; ++r1)
+      for (const double crossing : {0.3, 0.5, 0.7}) {
+        SCOPED_TRACE(testing::Message() << "rotations " << r0 << ", " << r1 << ", crossing " << crossing);
+        const PlMap<2> deferred = square_map(r0, r1, crossing, 0, nullptr);
+        ASSERT_EQ(deferred.region_count(), 4);
+        const PlMap<2> closed = square_map(r0, r1, crossing, deferred.stored().orientation, &deferred);
+        EXPECT_TRUE(closed.stored().region_map == deferred.stored().region_map);
+        EXPECT_TRUE(closed.stored() == deferred.stored());
+      }
+}
