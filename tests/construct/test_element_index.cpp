@@ -96,3 +96,71 @@ TEST(NearestElements, AnswersAsTheTreeOnAGridSurface) {
     for (int i = 0; i < 2 * n; ++i) points.emplace_back(0.5 * i, 0.5 * j, (i + j) % 3 == 0 ? 0.0 : 0.25);
   expect_same_as_tree<2>(index, points, 8);
 }
+
+namespace {
+
+/// Every answer of ElementIndex (its points stored in leaf order) against a nanoflann tree built
+/// on the centroids in element order, as the index was before: the same elements, in the same
+/// order (ties included), with the same squared distances; and the same radius searches.
+template <int d>
+void expect_same_as_element_order_tree(const Surface<d>& s, const std::vector<WorldPoint<d>>& points) {
+  const ElementIndex<d> index(s);
+  plmap::projection::PointCloud<d + 1> cloud;
+  for (Index t = 0; t < s.element_count(); ++t) {
+    WorldPoint<d> c = WorldPoint<d>::Zero();
+    for (int k = 0; k <= d; ++k) c += s.corner(t, k);
+    cloud.points.push_back(c / (d + 1));
+  }
+  const plmap::projection::KdTree<d + 1> plain(d + 1, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (const int k : {1, 8, 32}) {
+      std::array<std::uint32_t, 32> got, expected;
+      std::array<double, 32> got_squared, expected_squared;
+      const int n = index.nearest(points[i], k, got.data(), got_squared.data());
+      const int m = static_cast<int>(plain.knnSearch(points[i].data(), k, expected.data(), expected_squared.data()));
+      ASSERT_EQ(n, m) << "query " << i;
+      for (int j = 0; j < n; ++j) {
+        ASSERT_EQ(got[j], expected[j]) << "query " << i << ", k " << k << ", neighbour " << j;
+        ASSERT_EQ(got_squared[j], expected_squared[j]) << "query " << i << ", neighbour " << j;
+        ASSERT_EQ(index.squared_distance(points[i], got[j]), got_squared[j]);
+      }
+    }
+    const double r = 0.05 * static_cast<double>(i % 7);
+    std::vector<std::pair<std::uint32_t, double>> hits;
+    plain.radiusSearch(points[i].data(), r * r, hits, nanoflann::SearchParams());
+    std::vector<Index> expected;
+    for (const auto& h : hits) expected.push_back(static_cast<Index>(h.first));
+    std::sort(expected.begin(), expected.end());
+    ASSERT_EQ(index.within(points[i], r), expected) << "query " << i;
+  }
+}
+
+}  // namespace
+
+TEST(ElementIndex, LeafOrderGivesTheAnswersOfTheElementOrderTree) {
+  // exact ties: the unjittered grid and a regular polygon, queried on their symmetry points
+  std::vector<WorldPoint<2>> v;
+  std::vector<ElementCorners<2>> e;
+  const int n = 30;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) v.emplace_back(0.1 * i, 0.1 * j, 0.0);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i;
+      e.push_back({a, a + 1, a + n + 2});
+      e.push_back({a, a + n + 2, a + n + 1});
+    }
+  const Surface<2> grid(std::move(v), std::move(e));
+  std::vector<WorldPoint<2>> grid_points;
+  for (int j = 0; j < 2 * n; ++j)
+    for (int i = 0; i < 2 * n; i += 3) grid_points.emplace_back(0.05 * i, 0.05 * j, (i + j) % 3 == 0 ? 0.0 : 0.025);
+  expect_same_as_element_order_tree<2>(grid, grid_points);
+
+  const auto polygon = test::circle(700, 1.0);
+  std::vector<WorldPoint<1>> polygon_points{WorldPoint<1>::Zero()};
+  for (int i = 0; i < 1400; ++i) {
+    const double a = std::numbers::pi * i / 700.0;
+    polygon_points.emplace_back((i % 2 == 0 ? 1.0 : 0.97) * std::cos(a), std::sin(a));
+  }
+  expect_same_as_element_order_tree<1>(*polygon, polygon_points);
+}
