@@ -36,59 +36,38 @@ using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<
                                                    PointCloud<dim>, dim, std::uint32_t>;
 
 /// Centroids of a surface's elements, their kd-tree, and the largest centroid-to-corner distance.
-///
-/// The tree is nanoflann's, built on the centroids in element order; then its points are stored
-/// in the order of its leaves and its index array is made the identity (the leaf position), and
-/// answers are translated back to elements. The tree, the order in which a query visits it, the
-/// distances and hence the answers and the order of ties are those of the tree built on the
-/// element order; only the memory layout changes: a leaf's points are read one after the other
-/// instead of from all over the centroid array (on the real-mesh pairs the queries took twice
-/// their share of the instructions in time, waiting for those reads).
 template <int d>
 struct ElementIndex {
   static constexpr int max_neighbours = 64;
-  /// The centroids in leaf order (the tree's data set).
   PointCloud<d + 1> cloud;
   std::unique_ptr<KdTree<d + 1>> tree;
-  /// The element at each leaf position.
-  std::vector<std::uint32_t> element_at;
-  /// The centroids by element.
-  std::vector<WorldPoint<d>> centroid;
   double radius = 0.0;
 
   explicit ElementIndex(const Surface<d>& s) {
-    centroid.resize(s.element_count());
+    cloud.points.resize(s.element_count());
     for (Index t = 0; t < s.element_count(); ++t) {
       WorldPoint<d> c = WorldPoint<d>::Zero();
       for (int k = 0; k <= d; ++k) c += s.corner(t, k);
       c /= d + 1;
-      centroid[t] = c;
+      cloud.points[t] = c;
       for (int k = 0; k <= d; ++k) radius = std::max(radius, (s.corner(t, k) - c).norm());
     }
-    cloud.points = centroid;
     tree = std::make_unique<KdTree<d + 1>>(d + 1, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-    element_at = tree->vAcc;
-    for (std::size_t i = 0; i < element_at.size(); ++i) {
-      cloud.points[i] = centroid[element_at[i]];
-      tree->vAcc[i] = static_cast<std::uint32_t>(i);
-    }
   }
 
-  Index size() const { return static_cast<Index>(centroid.size()); }
+  Index size() const { return static_cast<Index>(cloud.points.size()); }
 
   /// Up to `k` (<= max_neighbours) nearest elements, nearest first, and their squared distances.
   int nearest(const WorldPoint<d>& x, int k, std::uint32_t* out, double* squared_distances) const {
-    if (centroid.empty()) return 0;
-    const int n = static_cast<int>(tree->knnSearch(x.data(), static_cast<std::size_t>(k), out, squared_distances));
-    for (int i = 0; i < n; ++i) out[i] = element_at[out[i]];
-    return n;
+    if (cloud.points.empty()) return 0;
+    return static_cast<int>(tree->knnSearch(x.data(), static_cast<std::size_t>(k), out, squared_distances));
   }
 
   /// The squared distance from x to the centroid of element t, computed as nanoflann computes it.
   double squared_distance(const WorldPoint<d>& x, std::uint32_t t) const {
     double result = 0.0;
     for (int k = 0; k <= d; ++k) {
-      const double diff = x(k) - centroid[t](k);
+      const double diff = x(k) - cloud.points[t](k);
       result += diff * diff;
     }
     return result;
@@ -96,9 +75,9 @@ struct ElementIndex {
 
   std::vector<Index> within(const WorldPoint<d>& x, double r) const {
     std::vector<std::pair<std::uint32_t, double>> hits;
-    if (!centroid.empty()) tree->radiusSearch(x.data(), r * r, hits, nanoflann::SearchParams());
+    if (!cloud.points.empty()) tree->radiusSearch(x.data(), r * r, hits, nanoflann::SearchParams());
     std::vector<Index> out;
-    for (const auto& h : hits) out.push_back(static_cast<Index>(element_at[h.first]));
+    for (const auto& h : hits) out.push_back(static_cast<Index>(h.first));
     std::sort(out.begin(), out.end());
     return out;
   }
