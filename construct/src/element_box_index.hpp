@@ -14,7 +14,8 @@
 /// of the elements a little larger than those around the point are asked with a radius of
 /// several of their sizes. And a kd-tree bounds its cells by splitting planes only, so for a point
 /// a gap of many element sizes above a flat surface every cell under the ball is entered. Here the
-/// question is asked of the boxes themselves: a bounding volume hierarchy of the elements'
+/// question is asked of the boxes themselves (where the element sizes are uneven, see the
+/// constructor): a bounding volume hierarchy of the elements'
 /// bounding boxes (median splits of the centroids along the longest axis, up to `leaf_size`
 /// elements per leaf), whose search only enters nodes whose box lies within r, so it costs about
 /// the depth of the tree plus the elements near the point, whatever the element sizes and the
@@ -44,20 +45,15 @@ class ElementBoxIndex {
     WorldPoint<d> low, high;
   };
 
-  /// When the hierarchy is built.
-  enum class Build {
-    /// always (surfaces: the vertex preimage search asks it whether a walk can be skipped)
-    always,
-    /// only where the element sizes are uneven (reaches, centroid to farthest box corner, spread
-    /// over more than a factor 2: the remeshed real meshes, a few odd elements of the planes);
-    /// elsewhere the caller's one centroid query is as tight for the long elements, and building
-    /// the tree would cost more than it saves (curves: a segment's box is loose where it runs
-    /// at 45 degrees to the axes, so the walks a tree would let the search skip cost about as
-    /// much to prove skippable, and the 1M circles would pay the tree for nothing)
-    when_sizes_are_uneven,
-  };
-
-  ElementBoxIndex(const Surface<d>& s, Build build) {
+  /// The tree is built only where the element sizes are uneven (reaches, centroid to farthest box
+  /// corner, spread over more than a factor 2: the remeshed real meshes, a few odd elements of the
+  /// planes). Elsewhere the caller's one centroid query is as tight for the long elements, and the
+  /// tree costs more than it saves: built for the vertex preimage search's skipped walks
+  /// (preimage_rank_floor.hpp) on the L7 spheres (327k even elements), it took 0.2 s of set-up
+  /// and gave back 0.03 s of walks (it saves more instructions than it costs, but its median
+  /// splits wait on memory); on a curve a segment's box is loose where it runs at 45 degrees to
+  /// the axes, so the walks it lets the search skip cost about as much to prove skippable.
+  explicit ElementBoxIndex(const Surface<d>& s) {
     const Index n = s.element_count();
     boxes_.resize(static_cast<std::size_t>(n));
     double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
@@ -68,14 +64,12 @@ class ElementBoxIndex {
         box.low = box.low.cwiseMin(s.corner(t, k));
         box.high = box.high.cwiseMax(s.corner(t, k));
       }
-      if (build == Build::when_sizes_are_uneven) {
-        const WorldPoint<d> c = element_centroid(s, t);
-        const double reach = (c - box.low).cwiseAbs().cwiseMax((box.high - c).cwiseAbs()).norm();
-        if (reach > 0.0) smallest = std::min(smallest, reach);
-        largest = std::max(largest, reach);
-      }
+      const WorldPoint<d> c = element_centroid(s, t);
+      const double reach = (c - box.low).cwiseAbs().cwiseMax((box.high - c).cwiseAbs()).norm();
+      if (reach > 0.0) smallest = std::min(smallest, reach);
+      largest = std::max(largest, reach);
     }
-    if (n == 0 || (build == Build::when_sizes_are_uneven && !(largest >= 2.0 * smallest))) return;
+    if (n == 0 || !(largest >= 2.0 * smallest)) return;
     build_tree(s);
   }
 

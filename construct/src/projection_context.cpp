@@ -32,8 +32,7 @@ ProjectionContext<d>::ProjectionContext(std::shared_ptr<const Surface<d>> s1_sur
   threads = resolve_thread_count(options.threads);
   parallel_for_pieces(3, 3, threads, [&](std::size_t k, std::size_t, std::size_t) {  // independent indexes
     if (k == 2)
-      s1_boxes = std::make_unique<ElementBoxIndex<d>>(
-          s1, d == 2 ? ElementBoxIndex<d>::Build::always : ElementBoxIndex<d>::Build::when_sizes_are_uneven);
+      s1_boxes = std::make_unique<ElementBoxIndex<d>>(s1);
     else
       (k == 0 ? s1_index : s2_index) = std::make_unique<ElementIndex<d>>(k == 0 ? s1 : s2);
   });

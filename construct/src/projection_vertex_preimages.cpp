@@ -384,7 +384,7 @@ class VertexPreimageSearch {
   const ProjectionContext<d>& ctx_;
   const Solver& solver_;
   /// Whether walks are skipped when they cannot change the answer (no_rival_left; needs the box
-  /// hierarchy, which curves of even segment lengths do not build).
+  /// hierarchy, which surfaces of even element sizes do not build).
   bool may_skip_walks_;
   PreimageAcceptance accept_;
   /// S1's longest edge (slightly enlarged) and largest coordinate: the margins of the rivals' search.

@@ -32,7 +32,7 @@ double box_distance(const Surface<d>& s, Index t, const WorldPoint<d>& x) {
 template <int d>
 std::size_t expect_superset(const Surface<d>& s, const WorldPoint<d>& low, const WorldPoint<d>& high, double largest,
                             std::uint32_t seed) {
-  const ElementBoxIndex<d> index(s, ElementBoxIndex<d>::Build::when_sizes_are_uneven);
+  const ElementBoxIndex<d> index(s);
   EXPECT_TRUE(index.has_tree());  // uneven sizes: the tree is what is tested
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);

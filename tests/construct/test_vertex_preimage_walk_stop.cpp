@@ -253,8 +253,11 @@ TEST(PreimageRankFloor, NoAcceptedSolutionRanksBelowTheFloorOnTriangles) {
 
 TEST(VertexPreimageWalkStop, OffsetGridNeedsFarFewerSolves) {
   // S2 a little above S1, vertical directions: each S2 vertex's first walk finds its preimage,
-  // and nothing else lies as near, so the other seven walks are not needed
-  auto s1 = test::grid(20, 20, 0.0, 1.0, 0.0, 1.0, 0.0, false, 0.2);
+  // and nothing else lies as near, so the other seven walks are not needed. S1's cells narrow
+  // towards x = 0 (uneven sizes: the box hierarchy the rule needs is built).
+  auto s1 = test::transformed<2>(*test::grid(20, 20, 0.0, 1.0, 0.0, 1.0, 0.0, false, 0.2), [](const WorldPoint<2>& p) {
+    return WorldPoint<2>(p.x() * p.x(), p.y(), p.z());
+  });
   auto s2 = test::grid(26, 26, 0.1, 0.9, 0.1, 0.9, 0.02, true, 0.2);
   ProjectionOptions o;
   o.directions = test::constant_directions<2>(*s1, WorldPoint<2>(0.0, 0.0, 1.0));
