@@ -11,18 +11,30 @@ namespace plmap {
 template <int d>
   requires SurfaceDimension<d>
 std::vector<WorldPoint<d>> averaged_vertex_normals(const Surface<d>& surface, unsigned threads) {
+  // Each element's measure and normal once (a vertex star shares every element with d others, and
+  // each is a scaled cross product: computed per star they were most of the projection's set-up
+  // on the real-mesh pairs); the sums below add the same products in the same order.
+  const auto elements = static_cast<std::size_t>(surface.element_count());
+  std::vector<double> measure(elements);
+  std::vector<WorldPoint<d>> normal(elements);
+  parallel_for_chunks(elements, 4096, threads, [&](std::size_t begin, std::size_t end) {
+    for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) {
+      measure[t] = surface.element_measure(t);
+      normal[t] = surface.element_normal(t);
+    }
+  });
   std::vector<WorldPoint<d>> out(surface.vertex_count(), WorldPoint<d>::Zero());
   parallel_for_chunks(static_cast<std::size_t>(surface.vertex_count()), 4096, threads, [&](std::size_t begin, std::size_t end) {
     for (auto v = static_cast<Index>(begin); v < static_cast<Index>(end); ++v) {
       const auto star = surface.vertex_elements(v);
       if (star.empty()) continue;
       WorldPoint<d> sum = WorldPoint<d>::Zero();
-      for (Index t : star) sum += surface.element_measure(t) * surface.element_normal(t);
+      for (Index t : star) sum += measure[t] * normal[t];
       const double norm = sum.norm();
       // Cancellation is judged relative to the weights, so the rule does not depend on the scale.
       double weight = 0.0;
-      for (Index t : star) weight += surface.element_measure(t);
-      out[v] = norm > 1e-12 * weight ? WorldPoint<d>(sum / norm) : surface.element_normal(star.front());
+      for (Index t : star) weight += measure[t];
+      out[v] = norm > 1e-12 * weight ? WorldPoint<d>(sum / norm) : normal[star.front()];
     }
   });
   return out;

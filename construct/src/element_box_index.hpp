@@ -1,8 +1,9 @@
 #pragma once
 /// \file
-/// Which elements of a surface may pass within a distance r of a point: the question of the
+/// Which elements of a surface may pass within a distance r of a point: the questions of the
 /// vertex preimage search (projection_vertex_preimages.cpp) when it adds the long elements that
-/// the nearest centroids miss.
+/// the nearest centroids miss, and when it asks whether any element that could hold a nearer
+/// preimage than the one found is left unsolved (preimage_rank_floor.hpp).
 ///
 /// Asked of the centroid kd-tree alone, the question needs the radius r + R, R the largest
 /// centroid-to-corner distance of the whole surface, and on meshes of uneven element size (the
@@ -11,11 +12,14 @@
 /// a factor 2, each class asked with r plus its own reach) still descended every class's tree for
 /// every query, and on the armadillo pair that was a tenth of the projection's time: the classes
 /// of the elements a little larger than those around the point are asked with a radius of
-/// several of their sizes. Here the question is asked of the boxes themselves: a bounding volume
-/// hierarchy of the elements' bounding boxes (median splits of the centroids along the longest
-/// axis, up to `leaf_size` elements per leaf), whose search only enters nodes whose box lies
-/// within r, so it costs about the depth of the tree plus the elements near the point, whatever
-/// the element sizes.
+/// several of their sizes. And a kd-tree bounds its cells by splitting planes only, so for a point
+/// a gap of many element sizes above a flat surface every cell under the ball is entered. Here the
+/// question is asked of the boxes themselves (where the element sizes are uneven, see the
+/// constructor): a bounding volume hierarchy of the elements'
+/// bounding boxes (median splits of the centroids along the longest axis, up to `leaf_size`
+/// elements per leaf), whose search only enters nodes whose box lies within r, so it costs about
+/// the depth of the tree plus the elements near the point, whatever the element sizes and the
+/// point's distance to the surface.
 ///
 /// The answer is a superset of the elements whose bounding box lies within r of the point (those
 /// within r times 1 + 1e-9, the margin covering rounding); the caller filters it with its own
@@ -41,10 +45,17 @@ class ElementBoxIndex {
     WorldPoint<d> low, high;
   };
 
+  /// The tree is built only where the element sizes are uneven (reaches, centroid to farthest box
+  /// corner, spread over more than a factor 2: the remeshed real meshes, a few odd elements of the
+  /// planes). Elsewhere the caller's one centroid query is as tight for the long elements, and the
+  /// tree costs more than it saves: built for the vertex preimage search's skipped walks
+  /// (preimage_rank_floor.hpp) on the L7 spheres (327k even elements), it took 0.2 s of set-up
+  /// and gave back 0.03 s of walks (it saves more instructions than it costs, but its median
+  /// splits wait on memory); on a curve a segment's box is loose where it runs at 45 degrees to
+  /// the axes, so the walks it lets the search skip cost about as much to prove skippable.
   explicit ElementBoxIndex(const Surface<d>& s) {
     const Index n = s.element_count();
     boxes_.resize(static_cast<std::size_t>(n));
-    std::vector<double> reach(static_cast<std::size_t>(n));
     double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
     for (Index t = 0; t < n; ++t) {
       Box& box = boxes_[t];
@@ -54,19 +65,16 @@ class ElementBoxIndex {
         box.high = box.high.cwiseMax(s.corner(t, k));
       }
       const WorldPoint<d> c = element_centroid(s, t);
-      reach[t] = (c - box.low).cwiseAbs().cwiseMax((box.high - c).cwiseAbs()).norm();
-      if (reach[t] > 0.0) smallest = std::min(smallest, reach[t]);
-      largest = std::max(largest, reach[t]);
+      const double reach = (c - box.low).cwiseAbs().cwiseMax((box.high - c).cwiseAbs()).norm();
+      if (reach > 0.0) smallest = std::min(smallest, reach);
+      largest = std::max(largest, reach);
     }
-    // Reaches within a factor 2 (the spheres): the caller's one centroid query is as tight, and
-    // building the tree would cost more than it saves. A few odd elements are enough to make the
-    // tree pay (the 200k planes: 19 elements reach more than twice the smallest reach).
-    if (!(largest >= 2.0 * smallest)) return;
+    if (n == 0 || !(largest >= 2.0 * smallest)) return;
     build_tree(s);
   }
 
-  /// Whether the element sizes are uneven enough for the tree (else visit_near must not be
-  /// called: the caller asks the centroid tree).
+  /// Whether the tree was built (else visit_near must not be called: the caller asks the centroid
+  /// tree).
   bool has_tree() const { return !nodes_.empty(); }
 
   const Box& box(Index t) const { return boxes_[t]; }
@@ -75,16 +83,18 @@ class ElementBoxIndex {
   /// more within r (1 + 1e-9); each once, in no particular order.
   template <class Visit>
   void visit_near(const WorldPoint<d>& x, double r, Visit&& visit) const {
-    const double reach = r * (1.0 + 1e-9);
+    // squared distances: no root per box (the margin covers their rounding)
+    const double reach2 = r * r * (1.0 + 1.9e-9);
+    if (nodes_.empty()) return;
     std::array<std::uint32_t, 64> stack;
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
       const Node& node = nodes_[stack[--top]];
-      if (box_distance(x, node.box) > reach) continue;
+      if (squared_box_distance(x, node.box) > reach2) continue;
       if (node.count > 0) {
         for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
-          if (box_distance(x, ordered_boxes_[i]) <= reach) visit(ordered_element_[i]);
+          if (squared_box_distance(x, ordered_boxes_[i]) <= reach2) visit(ordered_element_[i]);
       } else {
         stack[top++] = node.first;
         stack[top++] = node.first + 1;
@@ -103,6 +113,10 @@ class ElementBoxIndex {
   /// Distance from x to a box (0 inside it).
   static double box_distance(const WorldPoint<d>& x, const Box& box) {
     return (x.cwiseMax(box.low).cwiseMin(box.high) - x).norm();
+  }
+
+  static double squared_box_distance(const WorldPoint<d>& x, const Box& box) {
+    return (x.cwiseMax(box.low).cwiseMin(box.high) - x).squaredNorm();
   }
 
  private:

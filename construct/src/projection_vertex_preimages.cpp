@@ -2,6 +2,7 @@
 
 #include "projection_vertex_preimages.hpp"
 
+#include "preimage_rank_floor.hpp"
 #include "projection_seeds.hpp"
 #include "simplex_distance.hpp"
 
@@ -23,7 +24,16 @@ namespace {
 template <int d, class Solver>
 class VertexPreimageSearch {
  public:
-  VertexPreimageSearch(const ProjectionContext<d>& ctx, const Solver& solver) : ctx_(ctx), solver_(solver) {}
+  VertexPreimageSearch(const ProjectionContext<d>& ctx, const Solver& solver, SeedWalks walks)
+      : ctx_(ctx), solver_(solver),
+        may_skip_walks_(walks == SeedWalks::until_no_rival_left && ctx.s1_boxes->has_tree()) {
+    accept_.solver_tolerance = solver.options.relative_tolerance;
+    accept_.inside_tolerance = ctx.options.search_limits.inside_tolerance;
+    accept_.allow_negative_distance = ctx.options.allow_negative_distance;
+    longest_edge_ = ctx.s1.max_edge_length() * (1.0 + 1e-12);
+    coordinate_magnitude_ =
+        std::max(ctx.s1.bounding_box_min().cwiseAbs().maxCoeff(), ctx.s1.bounding_box_max().cwiseAbs().maxCoeff());
+  }
 
   /// A plain flag and value rather than std::optional, on which GCC 12 warns falsely
   /// (maybe-uninitialized) for Eigen members.
@@ -149,20 +159,92 @@ class VertexPreimageSearch {
     return ElementBoxIndex<d>::box_distance(x, ctx_.s1_boxes->box(t));
   }
 
+  std::array<WorldPoint<d>, d + 1> corners_of(Index t) const {
+    std::array<WorldPoint<d>, d + 1> corners;
+    for (int k = 0; k <= d; ++k) corners[k] = ctx_.s1.corner(t, k);
+    return corners;
+  }
+
+  /// Beyond this many times the best element's longest edge from q, the walks are not skipped.
+  static constexpr double rival_gap_limit = 4.0;
+
+  /// The elements solved so far by the walks for one S2 vertex (the first 64 of them).
+  struct SolvedElements {
+    std::array<Index, 64> elements;
+    int count = 0;
+    bool contains(Index t) const { return std::find(elements.begin(), elements.begin() + count, t) != elements.begin() + count; }
+    void add(Index t) {
+      if (count < 64) elements[count++] = t;
+    }
+  };
+
+  /// The elements not yet solved on which a walk could still accept a preimage of lower rank
+  /// than the best one found (their rank floor, preimage_rank_floor.hpp, lies below it).
+  struct Rivals {
+    static constexpr int capacity = 16;
+    std::array<std::pair<double, Index>, capacity> floor_and_element;
+    int count = 0;
+    bool collected = false;
+    bool too_many = false;  ///< more than `capacity`: the walks go on as before
+  };
+
+  /// Whether no element is left on which a walk could find a preimage of rank below
+  /// `best_rank`. Then the walks still to come cannot change the answer: an element not solved
+  /// yet cannot beat it, and one solved already gives the same solution again (same element,
+  /// same target), which did not beat it then. The rivals are collected once, at the first
+  /// preimage found, and only filtered afterwards (a lower rank has fewer rivals, and solved
+  /// elements stay solved).
+  bool no_rival_left(const WorldPoint<d>& q, double best_rank, Index best_element, const SolvedElements& solved,
+                     Rivals& rivals) const {
+    if (!(best_rank > 0.0)) return true;  // no rank lies below 0
+    if (rivals.too_many) return false;
+    if (!rivals.collected) {
+      rivals.collected = true;
+      // Every element whose box lies within the rank of q is a candidate, and where q lies many
+      // element sizes from S1 those are many (they pass by q at about that distance): proving
+      // the walks skippable would cost more than walking them.
+      if (best_rank > rival_gap_limit * longest_edge<d>(corners_of(best_element))) {
+        rivals.too_many = true;
+        return false;
+      }
+      const double radius = rival_search_radius<d>(q, best_rank, longest_edge_, coordinate_magnitude_, accept_);
+      ctx_.s1_boxes->visit_near(q, radius, [&](Index t) {
+        if (rivals.too_many || solved.contains(t)) return;
+        const double floor = preimage_rank_floor<d>(q, corners_of(t), accept_);
+        if (!(floor < best_rank)) return;
+        if (rivals.count == Rivals::capacity) {
+          rivals.too_many = true;
+          return;
+        }
+        rivals.floor_and_element[rivals.count++] = {floor, t};
+      });
+      if (rivals.too_many) return false;
+    }
+    int kept = 0;
+    for (int i = 0; i < rivals.count; ++i) {
+      const auto [floor, t] = rivals.floor_and_element[i];
+      if (floor < best_rank && !solved.contains(t)) rivals.floor_and_element[kept++] = {floor, t};
+    }
+    rivals.count = kept;
+    return kept == 0;
+  }
+
   /// Eq. (3) for S2 vertex q on walks across S1 from the first `count` of `seeds`: the solution
-  /// of least rank among those that pass every check, or nothing.
+  /// of least rank among those that pass every check, or nothing. The walks stop early when no
+  /// later walk can change that (no_rival_left), unless all of them were asked for.
   SeededSearch walk_to_preimage(Index q, const SeedElements& seeds, int count) const {
     const WorldPoint<d>& target = ctx_.s2.vertex(q);
     std::optional<SurfacePoint<d>> best;
     double best_rank = std::numeric_limits<double>::infinity();
-    std::array<Index, 64> visited;
-    int nvisited = 0;
+    SolvedElements solved;
+    Rivals rivals;
     long long calls = 0, failures = 0;
     for (int s = 0; s < count; ++s) {
+      if (may_skip_walks_ && best && no_rival_left(target, best_rank, best->element, solved, rivals)) break;
       Index t = static_cast<Index>(seeds[s]);
       for (int step = 0; step < ctx_.options.search_limits.seed_walk_steps && t != invalid_index; ++step) {
-        if (std::find(visited.begin(), visited.begin() + nvisited, t) != visited.begin() + nvisited) break;
-        if (nvisited < 64) visited[nvisited++] = t;
+        if (solved.contains(t)) break;  // walked from here already
+        solved.add(t);
         VertexProjectionSystem<d> sys;
         for (int k = 0; k <= d; ++k) {
           sys.corners[k] = ctx_.s1.corner(t, k);
@@ -301,15 +383,21 @@ class VertexPreimageSearch {
  private:
   const ProjectionContext<d>& ctx_;
   const Solver& solver_;
+  /// Whether walks are skipped when they cannot change the answer (no_rival_left; needs the box
+  /// hierarchy, which surfaces of even element sizes do not build).
+  bool may_skip_walks_;
+  PreimageAcceptance accept_;
+  /// S1's longest edge (slightly enlarged) and largest coordinate: the margins of the rivals' search.
+  double longest_edge_ = 0.0, coordinate_magnitude_ = 0.0;
 };
 
 }  // namespace
 
 template <int d, class Solver>
 VertexPreimages<d> find_vertex_preimages(const ProjectionContext<d>& ctx, const Solver& solver,
-                                         const std::vector<std::optional<SurfacePoint<d>>>& ray_hits) {
+                                         const std::vector<std::optional<SurfacePoint<d>>>& ray_hits, SeedWalks walks) {
   using Search = VertexPreimageSearch<d, Solver>;
-  Search search(ctx, solver);
+  Search search(ctx, solver, walks);
   VertexPreimages<d> result;
   auto& preimage = result.preimage;
   preimage.resize(ctx.s2.vertex_count());
@@ -331,7 +419,7 @@ VertexPreimages<d> find_vertex_preimages(const ProjectionContext<d>& ctx, const 
 
 #define PLMAP_VERTEX_PREIMAGES(d, Solver)                                                           \
   template VertexPreimages<d> find_vertex_preimages<d, Solver>(const ProjectionContext<d>&, const Solver&, \
-                                                               const std::vector<std::optional<SurfacePoint<d>>>&);
+                                                               const std::vector<std::optional<SurfacePoint<d>>>&, SeedWalks);
 PLMAP_VERTEX_PREIMAGES(1, DampedNewtonSolver)
 PLMAP_VERTEX_PREIMAGES(2, DampedNewtonSolver)
 PLMAP_VERTEX_PREIMAGES(1, CeresTinySolver)

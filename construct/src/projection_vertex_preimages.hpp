@@ -19,10 +19,20 @@ struct VertexPreimages {
   Index found_by_ray_hits = 0;
 };
 
+/// How many of a search's seeds are walked from. The answer is the same either way
+/// (preimage_rank_floor.hpp explains why); `all` is for the tests that show it.
+enum class SeedWalks {
+  /// stop once no element on which a nearer preimage could be accepted is left unsolved
+  until_no_rival_left,
+  /// walk from every seed
+  all,
+};
+
 /// The preimages of all S2 vertices. `ray_hits` are the ghost rays' hits (per S1 vertex).
 /// Independent of ctx.threads.
 template <int d, class Solver>
 VertexPreimages<d> find_vertex_preimages(const ProjectionContext<d>& ctx, const Solver& solver,
-                                         const std::vector<std::optional<SurfacePoint<d>>>& ray_hits);
+                                         const std::vector<std::optional<SurfacePoint<d>>>& ray_hits,
+                                         SeedWalks walks = SeedWalks::until_no_rival_left);
 
 }  // namespace plmap::projection

@@ -5,6 +5,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
@@ -65,7 +66,10 @@ void Measurement::stop() {
 
 std::optional<double> Measurement::exact_peak_increase_mib() const {
   if (!reset_ok_ || !peak_read_ || baseline_kib_ < 0) return std::nullopt;
-  return double(peak_kib_ - baseline_kib_) / 1024.0;
+  // The baseline is read just after the reset, and reading /proc/self/status may itself touch a
+  // page; when the measured part then gives memory back, the kernel's lazily kept high-water mark
+  // can end a page below that baseline. No part holds less than nothing above its start.
+  return double(std::max(peak_kib_ - baseline_kib_, 0L)) / 1024.0;
 }
 
 QuietStdout::QuietStdout() {
