@@ -11,20 +11,42 @@
 
 namespace plmap::detail {
 
-std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t) {
-  const Surface<2>& s1 = in.s1;
+namespace {
+
+/// The builder's segments on element t: inside it and along its three edges.
+std::vector<Index> segments_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t) {
   std::vector<Index> pieces(where.element_segments[t].begin(), where.element_segments[t].end());
   for (int k = 0; k < 3; ++k) {
-    const auto& along = where.edge_segments[s1.element_edge(t, k)];
+    const auto& along = where.edge_segments[in.s1.element_edge(t, k)];
     pieces.insert(pieces.end(), along.begin(), along.end());
   }
+  return pieces;
+}
+
+/// The nodes inside element t and on its edges (not at its corners).
+std::vector<Index> nodes_inside_or_on_edges(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where,
+                                            Index t) {
   std::vector<Index> nodes(where.interior_nodes[t].begin(), where.interior_nodes[t].end());
   for (int k = 0; k < 3; ++k) {
-    const auto& on_edge = where.edge_nodes[s1.element_edge(t, k)];
+    const auto& on_edge = where.edge_nodes[in.s1.element_edge(t, k)];
     nodes.insert(nodes.end(), on_edge.begin(), on_edge.end());
-    const Index corner = in.node_at_domain_vertex[s1.element(t)[k]];
-    if (corner != invalid_index) nodes.push_back(corner);
   }
+  return nodes;
+}
+
+/// x lies on the closed segment pq (exactly); the caller excludes pq's own end nodes.
+bool lies_on_segment(const LocalPoint<2>& p, const LocalPoint<2>& q, const LocalPoint<2>& x) {
+  return orient2d(p, q, x) == 0 && x.x() >= std::min(p.x(), q.x()) && x.x() <= std::max(p.x(), q.x()) &&
+         x.y() >= std::min(p.y(), q.y()) && x.y() <= std::max(p.y(), q.y());
+}
+
+}  // namespace
+
+std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t) {
+  const std::vector<Index> pieces = segments_on_element(in, where, t);
+  std::vector<Index> nodes = nodes_inside_or_on_edges(in, where, t);
+  for (int k = 0; k < 3; ++k)
+    if (const Index corner = in.node_at_domain_vertex[in.s1.element(t)[k]]; corner != invalid_index) nodes.push_back(corner);
   std::vector<Index> edges;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const auto& si = in.segments[pieces[i]];
@@ -42,10 +64,7 @@ std::vector<Index> conflicting_edges(const BuilderContents<2>& in, const NodesAn
     }
     for (Index n : nodes) {
       if (n == si.a || n == si.b) continue;
-      const LocalPoint<2> x = node_local(in, n, t);
-      if (orient2d(p, q, x) == 0 && x.x() >= std::min(p.x(), q.x()) && x.x() <= std::max(p.x(), q.x()) &&
-          x.y() >= std::min(p.y(), q.y()) && x.y() <= std::max(p.y(), q.y()))
-        edges.push_back(si.target_edge);
+      if (lies_on_segment(p, q, node_local(in, n, t))) edges.push_back(si.target_edge);
     }
   }
   std::sort(edges.begin(), edges.end());
@@ -66,17 +85,8 @@ bool drop_stretch_on_element(const BuilderContents<2>& in, const NodesAndSegment
 
 bool drop_rim_edges_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
                                DroppedEdges& dropped) {
-  const Surface<2>& s1 = in.s1;
-  std::vector<Index> pieces(where.element_segments[t].begin(), where.element_segments[t].end());
-  for (int k = 0; k < 3; ++k) {
-    const auto& along = where.edge_segments[s1.element_edge(t, k)];
-    pieces.insert(pieces.end(), along.begin(), along.end());
-  }
-  std::vector<Index> nodes(where.interior_nodes[t].begin(), where.interior_nodes[t].end());
-  for (int k = 0; k < 3; ++k) {
-    const auto& on_edge = where.edge_nodes[s1.element_edge(t, k)];
-    nodes.insert(nodes.end(), on_edge.begin(), on_edge.end());
-  }
+  const std::vector<Index> pieces = segments_on_element(in, where, t);
+  const std::vector<Index> nodes = nodes_inside_or_on_edges(in, where, t);
   std::vector<Index> rim, crossing;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const auto& si = in.segments[pieces[i]];
@@ -91,9 +101,7 @@ bool drop_rim_edges_on_element(const BuilderContents<2>& in, const NodesAndSegme
     }
     for (std::size_t n = 0; n < nodes.size() && !crosses; ++n) {
       if (nodes[n] == si.a || nodes[n] == si.b) continue;
-      const LocalPoint<2> x = node_local(in, nodes[n], t);
-      crosses = orient2d(p, q, x) == 0 && x.x() >= std::min(p.x(), q.x()) && x.x() <= std::max(p.x(), q.x()) &&
-                x.y() >= std::min(p.y(), q.y()) && x.y() <= std::max(p.y(), q.y());
+      crosses = lies_on_segment(p, q, node_local(in, nodes[n], t));
     }
     if (crosses) crossing.push_back(pieces[i]);
   }
