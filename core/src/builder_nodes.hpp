@@ -136,6 +136,12 @@ class DroppedEdges {
   }
   /// Drops rim edges (no S2 edge, nothing to report); false if none of them was still in the map.
   bool drop_rim_segments(std::span<const Index> segments) {
+    const bool any = drop_segments(segments);
+    rim_segments_dropped_ = rim_segments_dropped_ || any;
+    return any;
+  }
+  /// Drops the given segments without a report; false if none of them was still in the map.
+  bool drop_segments(std::span<const Index> segments) {
     bool any = false;
     for (Index s : segments) {
       char& flag = segment_dropped_[static_cast<std::size_t>(s)];
@@ -144,6 +150,14 @@ class DroppedEdges {
     }
     return any;
   }
+  /// Whether any rim edge was dropped (only then can a rim node be left without its rim).
+  bool dropped_rim_segments() const { return rim_segments_dropped_; }
+  /// Leaves rim node n out of the map (drop_rim_nodes_left_without_rim).
+  void drop_rim_node(Index n, std::size_t node_count) {
+    if (node_dropped_.empty()) node_dropped_.assign(node_count, 0);
+    node_dropped_[static_cast<std::size_t>(n)] = 1;
+  }
+  bool drops_node(Index n) const { return !node_dropped_.empty() && node_dropped_[static_cast<std::size_t>(n)] != 0; }
 
  private:
   void report(Index e, Index t) {
@@ -156,6 +170,8 @@ class DroppedEdges {
   std::vector<char> dropped_;
   std::vector<char> reported_;
   std::vector<char> segment_dropped_;
+  std::vector<char> node_dropped_;  // per builder node once a rim node is dropped, else empty
+  bool rim_segments_dropped_ = false;
   std::vector<char>& edge_inserted_;
   FinalizeReport* report_;
 };

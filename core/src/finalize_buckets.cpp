@@ -17,10 +17,12 @@ void NodesAndSegmentsByPlace<d>::build(const BuilderContents<d>& in, const Dropp
   const Index edges = d == 2 ? in.s1.edge_count() : 0;
   const Index node_count = static_cast<Index>(in.nodes.size());
   const Index segment_count = static_cast<Index>(in.segments.size());
-  // Intersection nodes belong to the S2 edge that created them, and go with it.
+  // Intersection nodes belong to the S2 edge that created them, and go with it; rim nodes go
+  // with their rim (drop_rim_nodes_left_without_rim).
   auto live = [&](Index n) {
     const auto& node = in.nodes[n];
-    return !(d == 2 && node.kind == BuilderNodeKind::intersection && dropped.contains(node.target));
+    return !(d == 2 && node.kind == BuilderNodeKind::intersection && dropped.contains(node.target)) &&
+           !dropped.drops_node(n);
   };
   // The four counting sorts are independent (each one pass over all nodes or all segments, too
   // little work per item to cut them further): they run side by side.

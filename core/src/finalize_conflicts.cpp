@@ -8,6 +8,7 @@
 #include <plmap/core/predicates.hpp>
 
 #include <algorithm>
+#include <cstdint>
 
 namespace plmap::detail {
 
@@ -111,6 +112,42 @@ bool drop_rim_edges_on_element(const BuilderContents<2>& in, const NodesAndSegme
   // that coincide) and all its rim edges go
   if (!conflicting_edges(in, where, t).empty()) return false;
   return dropped.drop_rim_segments(rim);
+}
+
+bool drop_rim_nodes_left_without_rim(const BuilderContents<2>& in, DroppedEdges& dropped) {
+  if (!dropped.dropped_rim_segments()) return false;
+  // per node: some rim edge ends here (1), a live rim edge does (2)
+  std::vector<std::uint8_t> ends(in.nodes.size(), 0);
+  const auto segment_count = static_cast<Index>(in.segments.size());
+  for (Index s = 0; s < segment_count; ++s) {
+    const auto& seg = in.segments[s];
+    const bool rim = seg.target_edge == invalid_index, live = !dropped.drops_segment(s, seg.target_edge);
+    if (!rim) continue;
+    const auto bits = static_cast<std::uint8_t>(live ? 3 : 1);
+    ends[static_cast<std::size_t>(seg.a)] |= bits;
+    ends[static_cast<std::size_t>(seg.b)] |= bits;
+  }
+  bool any = false;
+  std::vector<char> gone(in.nodes.size(), 0);
+  for (std::size_t n = 0; n < in.nodes.size(); ++n) {
+    if (in.nodes[n].kind != BuilderNodeKind::rim || dropped.drops_node(static_cast<Index>(n))) continue;
+    if ((ends[n] & 1) == 0 || (ends[n] & 2) != 0) continue;  // never had a rim edge, or still has one
+    dropped.drop_rim_node(static_cast<Index>(n), in.nodes.size());
+    gone[n] = 1;
+    any = true;
+  }
+  if (!any) return false;
+  // the pieces of S2 edges that ended at those nodes now end at their last crossing, as where no
+  // rim was made
+  std::vector<Index> pieces;
+  for (Index s = 0; s < segment_count; ++s) {
+    const auto& seg = in.segments[s];
+    if (!dropped.drops_segment(s, seg.target_edge) &&
+        (gone[static_cast<std::size_t>(seg.a)] != 0 || gone[static_cast<std::size_t>(seg.b)] != 0))
+      pieces.push_back(s);
+  }
+  dropped.drop_segments(pieces);
+  return any;
 }
 
 namespace {

@@ -34,6 +34,13 @@ bool drop_stretch_on_element(const BuilderContents<2>& in, const NodesAndSegment
 bool drop_rim_edges_on_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
                                DroppedEdges& dropped);
 
+/// Drops the rim nodes whose rim edges have all been dropped (drop_rim_edges_on_element), and the
+/// last segments of S2 edge pieces that end at them: such a node no longer bounds D, but its
+/// image (often on another sheet of S2) would keep the face around it from mapping into one S2
+/// triangle, so the face would leave D. Does nothing unless a rim edge was dropped. Returns
+/// whether any node was dropped (the buckets are then stale).
+bool drop_rim_nodes_left_without_rim(const BuilderContents<2>& in, DroppedEdges& dropped);
+
 /// Drops, on each S1 element that the preimage of an S2 edge meets in two or more separate
 /// pieces (where a projection is discontinuous a preimage can enter an element twice), that
 /// edge's stretch on the element. Returns whether any was dropped (the buckets are then stale).

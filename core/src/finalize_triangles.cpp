@@ -240,6 +240,8 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
       for (Index e : conflicting_edges(in, where, t)) any = drop_stretch_on_element(in, where, e, t, dropped) || any;
     }
     if (!any) std::rethrow_exception(failed.front().second);
+    // rim nodes whose rim went with it go too (their images would spoil the faces around them)
+    drop_rim_nodes_left_without_rim(in, dropped);
     where.build(in, dropped);
   }
   AssembledMap assembled;

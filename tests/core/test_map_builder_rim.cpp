@@ -197,3 +197,67 @@ TEST(MapBuilderRim, OnlyTheRimEdgesThatCrossSomethingAreDropped) {
   }
   EXPECT_FALSE(evaluate(map, on_s1(0.65, 0.7), locator).in_domain);
 }
+
+TEST(MapBuilderRim, RimNodesGoWithTheirDroppedRimEdges) {
+  // As above, a stray rim edge crosses S2 edge 1-3's piece in S1 element 1 and is dropped, but
+  // now its nodes' images lie on the other side of S2's diagonal from where the identity puts
+  // them (as where a rim belongs to another sheet of S2). Left in the element, each node kept
+  // the face around it from mapping into one S2 triangle, and element 1's whole part of D (0.42
+  // of the 0.6) was lost. The nodes now go with their rim edge, and D is x <= 0.6.
+  BuilderOptions options;
+  options.drop_conflicting_edges = true;
+  RimMap r;
+  r.builder = MapBuilder<2>(r.s1, r.s2, options);
+  const auto rim = r.enter_nodes_and_pieces();
+  for (int i = 0; i + 1 < 4; ++i) r.builder.add_rim_edge(rim[i], rim[i + 1]);
+  const auto a = r.builder.add_rim_node(on_s1(0.2, 0.7), on_s2(0.5, 0.9));   // image beyond x + y = 1
+  const auto b = r.builder.add_rim_node(on_s1(0.35, 0.9), on_s2(0.1, 0.3));  // image before it
+  r.builder.add_rim_edge(a, b);
+  FinalizeReport report;
+  const PlMap<2> map = std::move(r.builder).finalize(&report);
+  ASSERT_EQ(violations(map), "");
+  EXPECT_TRUE(report.dropped_edges.empty());
+  EXPECT_EQ(count_type(map, NodeType::rim_inside), 1);  // the end of S2 edge 1-3's piece only
+  EXPECT_NEAR(covered_measure(map).domain, 0.6, 1e-14);
+  DeepestRegion<2> locator;
+  for (const auto& [x, y] : {std::pair{0.2, 0.7}, {0.1, 0.5}, {0.35, 0.9}, {0.5, 0.8}}) {
+    const Evaluation<2> e = evaluate(map, on_s1(x, y), locator);
+    ASSERT_TRUE(e.in_domain) << x << ", " << y;
+    EXPECT_NEAR(e.world(0), x, 1e-14);
+    EXPECT_NEAR(e.world(1), y, 1e-14);
+  }
+}
+
+TEST(MapBuilderRim, PiecesEndingAtARimNodeLeftWithoutRimEndAtTheirLastCrossing) {
+  // Two stray rim edges in S1 element 0 cross the rim x = 0.6 below and above (0.6, 0.4), where
+  // S2 edge 1-3's piece starts: all four rim edges are dropped, and rim nodes (0.6, 0) and
+  // (0.6, 0.4) are left without a rim. They go, with the stretches of S2 edges 0-1 and 1-3 that
+  // ended there, and so do the stray nodes: the map stays valid, element 0 (whose faces reach
+  // its corners (1, 0) and (1, 1), which have no node) holds no region, and element 1 keeps its
+  // part x <= 0.6 (0.5 - 0.08).
+  BuilderOptions options;
+  options.drop_conflicting_edges = true;
+  RimMap r;
+  r.builder = MapBuilder<2>(r.s1, r.s2, options);
+  const auto rim = r.enter_nodes_and_pieces();
+  for (int i = 0; i + 1 < 4; ++i) r.builder.add_rim_edge(rim[i], rim[i + 1]);
+  for (const auto& [p, q] : {std::pair{std::pair{0.55, 0.1}, std::pair{0.65, 0.3}}, {{0.55, 0.45}, {0.65, 0.55}}}) {
+    const auto a = r.builder.add_rim_node(on_s1(p.first, p.second), on_s2(p.first, p.second));
+    const auto b = r.builder.add_rim_node(on_s1(q.first, q.second), on_s2(q.first, q.second));
+    r.builder.add_rim_edge(a, b);
+  }
+  FinalizeReport report;
+  const PlMap<2> map = std::move(r.builder).finalize(&report);
+  ASSERT_EQ(violations(map), "");
+  EXPECT_EQ(count_type(map, NodeType::rim_inside), 0);
+  EXPECT_NEAR(covered_measure(map).domain, 0.42, 1e-14);
+  DeepestRegion<2> locator;
+  for (const auto& [x, y] : {std::pair{0.2, 0.7}, {0.59, 0.95}, {0.4, 0.9}}) {
+    const Evaluation<2> e = evaluate(map, on_s1(x, y), locator);
+    ASSERT_TRUE(e.in_domain) << x << ", " << y;
+    EXPECT_NEAR(e.world(0), x, 1e-14);
+    EXPECT_NEAR(e.world(1), y, 1e-14);
+  }
+  for (const auto& [x, y] : {std::pair{0.3, 0.1}, {0.55, 0.5}, {0.65, 0.7}})
+    EXPECT_FALSE(evaluate(map, on_s1(x, y), locator).in_domain) << x << ", " << y;
+}
