@@ -319,6 +319,14 @@ class EdgeWalker {
                              starts_at, ends_at, start_rim, end_rim});
   }
 
+  /// How many of a walk back's crossings [begin, end), from the first on, lie beyond `covered`
+  /// (an edge parameter measured from the first vertex; theirs are measured from the second).
+  static std::size_t crossings_beyond(const std::vector<Crossing<d>>& crossings, std::size_t begin, double covered) {
+    std::size_t kept = 0;
+    while (begin + kept < crossings.size() && 1.0 - crossings[begin + kept].target_parameter > covered) ++kept;
+    return kept;
+  }
+
   /// Keeps a walk's rim point for a piece, its parameter measured from the edge's first vertex
   /// (`backwards`: the walk ran from the second vertex); returns its index.
   static std::uint32_t keep_rim(PlanBuffer<d>& buffer, RimPoint<d> rim, bool backwards) {
@@ -728,6 +736,12 @@ class EdgeWalker {
                          (w.end == WalkEnd::failed || (progress.first_walk_failed && w.end == WalkEnd::left_boundary));
     if (partial) {
       if (walked_back_to > progress.covered_until + piece_slack) {
+        reverse_into_piece(begin);
+      } else if (const std::size_t kept = crossings_beyond(crossings, begin, progress.covered_until + piece_slack);
+                 kept > 0) {
+        // the walk back ran on into what the forward walks covered: its stretch up to the last
+        // crossing short of that is still reached from nowhere else
+        crossings.resize(begin + kept);
         reverse_into_piece(begin);
       } else {
         crossings.resize(begin);
