@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace plmap {
@@ -229,6 +230,16 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
   for (const auto& edit : plan.polyline_edits) {
     EdgePolyline& p = s.polylines[edit.target_edge];
     ++s.polyline_version[edit.target_edge];
+    // A polyline gains points as S1 coarsens: its arrays grow by half at least, not by the
+    // few points of one step (a copy into a too small vector allocates exactly its size).
+    if (p.vertex.capacity() < edit.point_vertex.size()) {
+      const std::size_t grown = std::max(edit.point_vertex.size(), p.vertex.capacity() * 3 / 2);
+      p.vertex.reserve(grown);
+      p.edge.reserve(grown);
+      p.edge_parameter.reserve(grown);
+      p.target_parameter.reserve(grown);
+      p.segment_triangle.reserve(grown);
+    }
     p.vertex = edit.point_vertex;
     p.edge = edit.point_edge;
     p.edge_parameter = edit.point_edge_parameter;
