@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace plmap {
@@ -188,6 +189,23 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
     s.triangle_edges.emplace_back();
     for (Index v : c) s.vertex_triangles[v].push_back(t);
   }
+  {
+    // Each new triangle's lists of vertex preimages and S2 edges get their final sizes at once,
+    // counted from the plan, so that filling them below does not reallocate push by push (a
+    // simplification applies thousands of removals, each filling a few dozen lists).
+    std::array<std::uint32_t, 64> vertices{}, edges{};  // the holes of a simplification are small
+    if (plan.new_triangles.size() <= vertices.size()) {
+      for (const auto& r : plan.relocations)
+        if (r.new_triangle >= 0) ++vertices[static_cast<std::size_t>(r.new_triangle)];
+      for (const auto& edit : plan.polyline_edits)
+        for (Index t : edit.segment_triangle)
+          if (t < 0) ++edges[static_cast<std::size_t>(-t - 1)];
+      for (std::size_t n = 0; n < plan.new_triangles.size(); ++n) {
+        s.triangle_vertices[static_cast<std::size_t>(base) + n].reserve(vertices[n]);
+        s.triangle_edges[static_cast<std::size_t>(base) + n].reserve(edges[n]);
+      }
+    }
+  }
   s.live_triangles += static_cast<Index>(plan.new_triangles.size()) - static_cast<Index>(plan.old_triangles.size());
 
   if (plan.line_edge[0] != invalid_index) {
@@ -212,6 +230,16 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
   for (const auto& edit : plan.polyline_edits) {
     EdgePolyline& p = s.polylines[edit.target_edge];
     ++s.polyline_version[edit.target_edge];
+    // A polyline gains points as S1 coarsens: its arrays grow by half at least, not by the
+    // few points of one step (a copy into a too small vector allocates exactly its size).
+    if (p.vertex.capacity() < edit.point_vertex.size()) {
+      const std::size_t grown = std::max(edit.point_vertex.size(), p.vertex.capacity() * 3 / 2);
+      p.vertex.reserve(grown);
+      p.edge.reserve(grown);
+      p.edge_parameter.reserve(grown);
+      p.target_parameter.reserve(grown);
+      p.segment_triangle.reserve(grown);
+    }
     p.vertex = edit.point_vertex;
     p.edge = edit.point_edge;
     p.edge_parameter = edit.point_edge_parameter;

@@ -88,6 +88,18 @@ RemovalRefusal EditableMap::RemovalPlanning::cut_polyline(Index e) {
   }
   edit.target_edge = e;
   edit.version_at_planning = s.polyline_version[e];
+  // Room for the polyline and a few crossings at once: the edit then grows without
+  // reallocating point by point. Spare edits come back in any order, so one too small for this
+  // polyline at least doubles: after a few plans every spare is large enough.
+  const std::size_t room = p.vertex.size() + 8;
+  if (edit.point_vertex.capacity() < room) {
+    const std::size_t grown = std::max(room, 2 * edit.point_vertex.capacity());
+    edit.point_vertex.reserve(grown);
+    edit.point_edge.reserve(grown);
+    edit.point_edge_parameter.reserve(grown);
+    edit.point_target_parameter.reserve(grown);
+    edit.segment_triangle.reserve(grown);
+  }
 
   if (segments == 1) {
     const auto [runs_along, n] = triangle_along_kept_edge(p);

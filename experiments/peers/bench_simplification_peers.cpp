@@ -10,7 +10,7 @@
 //
 // Usage: bench_simplification_peers --tool plmap|psurface|cgal --mesh FILE.off --target N
 //            [--oracle NAME[:WEIGHT]]... [--ranking exact|estimate] [--cut per-step|deferred] [--feature-angle DEG] [--sweeps K] [--weights NAME]
-//            [--refine-levels L] [--psurface-aspect-ratio W] [--psurface-hausdorff W]
+//            [--no-quadrilaterals] [--refine-levels L] [--psurface-aspect-ratio W] [--psurface-hausdorff W]
 //        bench_simplification_peers --list-tools
 // Exit 2 with one line on stderr for bad arguments or an unreadable mesh.
 
@@ -54,6 +54,7 @@ int run(int argc, char** argv) {
     else if (a.name() == "--cut") request.cut = a.value();
     else if (a.name() == "--sweeps") request.smooth_sweeps = std::stoi(a.value());
     else if (a.name() == "--weights") request.smoothing_weights = a.value();
+    else if (a.name() == "--no-quadrilaterals") request.smooth_quadrilaterals = false;
     else if (a.name() == "--refine-levels") request.refine_levels = std::stoi(a.value());
     else if (a.name() == "--psurface-aspect-ratio") request.psurface_aspect_ratio = std::stod(a.value());
     else if (a.name() == "--psurface-hausdorff") request.psurface_hausdorff = std::stod(a.value());

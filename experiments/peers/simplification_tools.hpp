@@ -36,6 +36,9 @@ struct SimplificationRequest {
   /// over all base edges); 0: no smoothing.
   int smooth_sweeps = 1;
   std::string smoothing_weights = "floater";
+  /// plmap's smoothing also over edge quadrilaterals (SmoothOptions::quadrilaterals); false:
+  /// inside each element only.
+  bool smooth_quadrilaterals = true;
   /// Uniform refinement levels of the coarse surface through the map for the refined surface's
   /// quality (0: skip).
   int refine_levels = 2;

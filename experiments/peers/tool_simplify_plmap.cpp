@@ -43,6 +43,7 @@ SimplificationOutcome simplify_with_plmap(const SimplificationRequest& request, 
   SmoothOptions smoothing;
   smoothing.sweeps = std::max(1, request.smooth_sweeps);
   smoothing.weights = request.smoothing_weights;
+  smoothing.quadrilaterals = request.smooth_quadrilaterals;
   try {
     clock.start();
     auto t0 = std::chrono::steady_clock::now();
@@ -52,7 +53,12 @@ SimplificationOutcome simplify_with_plmap(const SimplificationRequest& request, 
     const double c1 = process_cpu_seconds();
     PlMap<2> map = std::move(simplified.map);
     std::optional<PlMap<2>> smoothed;
-    if (request.smooth_sweeps > 0) smoothed = smooth(map, smoothing).map;
+    Index quadrilaterals_smoothed = 0;
+    if (request.smooth_sweeps > 0) {
+      SmoothResult result = smooth(map, smoothing);
+      for (const auto& sweep : result.report.sweeps) quadrilaterals_smoothed += sweep.quadrilaterals_smoothed;
+      smoothed = std::move(result.map);
+    }
     auto t2 = std::chrono::steady_clock::now();
     const double c2 = process_cpu_seconds();
     clock.stop();
@@ -69,6 +75,8 @@ SimplificationOutcome simplify_with_plmap(const SimplificationRequest& request, 
     f["nodes"] = map.node_count();
     f["regions"] = map.region_count();
     f["ranking"] = r.ranking;
+    f["smooth_quadrilaterals"] = request.smooth_quadrilaterals;
+    f["quadrilaterals_smoothed"] = quadrilaterals_smoothed;
     f["ranking_plans"] = r.ranking_plans;
     f["cut"] = r.cut;
     f["cut_fell_back"] = r.cut_fell_back;

@@ -153,6 +153,48 @@ TEST(SimplificationSteps, TwoOraclesOnTwoMeshesAreOneConfig) {
   EXPECT_NE(rows[0].metrics["simplify.coarse_aspect_mean"], rows[1].metrics["simplify.coarse_aspect_mean"]);
 }
 
+// Smoothing inside each element only is one key, in the runner's own step and in the peer
+// benchmark's: no quadrilateral is smoothed then, and with the default some are.
+TEST(SimplificationSteps, SmoothingWithoutQuadrilateralsIsOneKey) {
+  if (!projection_available()) GTEST_SKIP() << "built without plmap::construct";
+  const auto config = parse(kExperiment + kGrid +
+                            "[[inputs]]\nname = \"bumpy\"\nkind = \"grid\"\ncells = 8\nheight = 0.5\nseed = 7\n"
+                            "[[pipeline]]\nstep = \"simplify\"\ntarget_elements = 40\n"
+                            "[[pipeline]]\nstep = \"smooth\"\n"
+                            "[[pipeline]]\nstep = \"check\"\nparametrization = true\n"
+                            "[sweep]\n\"smooth.quadrilaterals\" = [true, false]\n");
+  const auto rows = run_all(config, fresh_directory("smooth_quadrilaterals_cache"));
+  ASSERT_EQ(rows.size(), 4u);
+  for (const auto& row : rows) {
+    SCOPED_TRACE(row.config.dump());
+    const auto& m = row.metrics;
+    EXPECT_TRUE(m["check.ok"].get<bool>()) << m.dump();
+    if (row.config["smooth.quadrilaterals"].get<bool>())
+      EXPECT_GT(m["smooth.quadrilaterals_smoothed"].get<long>(), 0);
+    else
+      EXPECT_EQ(m["smooth.quadrilaterals_smoothed"].get<long>(), 0);
+  }
+  if (!simplification_benchmark_available()) return;
+  const auto dir = fresh_directory("peer_quadrilaterals_cache");
+  generators::Rng rng(5);
+  write_surface<2>(dir / "sphere.off", generators::icosphere({.subdivisions = 3, .radial_jitter = 0.05}, rng));
+  const auto peers = parse(kExperiment + "[[inputs]]\nkind = \"file\"\npath = \"sphere.off\"\n"
+                                         "[[pipeline]]\nstep = \"peer_simplify\"\ntool = \"plmap\"\ntarget_elements = 300\n"
+                                         "[sweep]\n\"peer_simplify.quadrilaterals\" = [true, false]\n",
+                           dir);
+  const auto peer_rows = run_all(peers, dir);
+  ASSERT_EQ(peer_rows.size(), 2u);
+  for (const auto& row : peer_rows) {
+    SCOPED_TRACE(row.config.dump());
+    const auto& m = row.metrics;
+    ASSERT_TRUE(m["peer_simplify.ok"].get<bool>()) << m.dump();
+    if (row.config["peer_simplify.quadrilaterals"].get<bool>())
+      EXPECT_GT(m["peer_simplify.quadrilaterals_smoothed"].get<long>(), 0);
+    else
+      EXPECT_EQ(m["peer_simplify.quadrilaterals_smoothed"].get<long>(), 0);
+  }
+}
+
 TEST(SimplificationSteps, TheShippedConfigsAreValid) {
   if (!simplification_benchmark_available() || !projection_available()) GTEST_SKIP() << "built without the steps";
   if (cgal_data_location().empty()) GTEST_SKIP() << "libcgal-demo's data set is missing";

@@ -344,6 +344,7 @@ class Pipeline {
     SmoothOptions options;
     options.sweeps = int(p.integer("sweeps"));
     options.weights = p.text("weights");
+    options.quadrilaterals = p.boolean("quadrilaterals");
     peers::Measurement clock;
     clock.start();
     SmoothResult result = plmap::smooth(*map_, options);
@@ -353,6 +354,9 @@ class Pipeline {
     record_kappa(m, prefix, "");
     m.metrics[prefix + "hausdorff"] = relative_hausdorff();
     m.metrics[prefix + "nodes_moved"] = result.report.sweeps.empty() ? 0 : result.report.sweeps.back().nodes_moved;
+    Index quadrilaterals = 0;
+    for (const auto& sweep : result.report.sweeps) quadrilaterals += sweep.quadrilaterals_smoothed;
+    m.metrics[prefix + "quadrilaterals_smoothed"] = quadrilaterals;
   }
 
   void refine_step(const ParameterSet& p, Measurements& m, const std::string& prefix) {
@@ -395,6 +399,7 @@ class Pipeline {
                                      "--psurface-hausdorff", fmt::format("{}", p.real("psurface_hausdorff"))};
     for (const auto& spec : detail::split_oracles(p.text("oracles"))) argv.insert(argv.end(), {"--oracle", spec});
     argv.insert(argv.end(), {"--ranking", p.text("ranking"), "--cut", p.text("cut")});
+    if (!p.boolean("quadrilaterals")) argv.push_back("--no-quadrilaterals");
     const auto outcome = detail::run_peer_benchmark("peer_simplify", argv, p.real("timeout_seconds"), true);
     m.metrics[prefix + "ok"] = outcome.ok;
     m.metrics[prefix + "error"] = outcome.error;
@@ -406,6 +411,7 @@ class Pipeline {
     m.metrics[prefix + "elements"] = field(nullptr, "elements");
     m.metrics[prefix + "hausdorff_before_smoothing"] = field(nullptr, "hausdorff_before_smoothing");
     m.metrics[prefix + "hausdorff"] = field(nullptr, "hausdorff");
+    m.metrics[prefix + "quadrilaterals_smoothed"] = field(nullptr, "quadrilaterals_smoothed");  // plmap only
     for (const char* q : {"max", "mean", "p99"}) {
       m.metrics[prefix + "kappa_" + q + "_before"] = field("kappa_before", q);
       m.metrics[prefix + "kappa_" + q] = field("kappa_after", q);

@@ -287,7 +287,10 @@ const std::vector<ParameterSpec>& step_schema(const std::string& kind) {
   static const std::vector<ParameterSpec> smooth = {
       integer("sweeps", 1, 1, 1000, "passes over all elements"),
       choice("weights", "floater", names_of(smoothing_weights_names()), "smoothing weights",
-             "convex-combination weights")};
+             "convex-combination weights"),
+      boolean("quadrilaterals", true,
+              "also smooth over the quadrilateral of every pair of S1 triangles sharing an edge (false: inside each "
+              "element only)")};
   static const std::vector<ParameterSpec> refine = {
       integer("levels", 2, 0, 8, "uniform refinement levels of S1 (each splits every triangle into four)")};
   static const std::vector<ParameterSpec> peer_simplify = {
@@ -304,6 +307,8 @@ const std::vector<ParameterSpec>& step_schema(const std::string& kind) {
       real("psurface_hausdorff", 0.5, 0.0, unbounded, "PSurface's QualityRequest Hausdorff weight"),
       integer("sweeps", 1, 0, 1000, "smoothing sweeps (0: none)"),
       choice("weights", "floater", names_of(smoothing_weights_names()), "smoothing weights", "plmap's smoothing weights"),
+      boolean("quadrilaterals", true,
+              "plmap's smoothing also over edge quadrilaterals (false: inside each element only)"),
       integer("refine_levels", 2, 0, 6, "refinement levels for the refined surface's quality (0: skip)"),
       real("timeout_seconds", 1800, 1, 1e6, "a child still running after this long is killed; the run records why")};
   if (kind == "build") return build;
@@ -391,6 +396,7 @@ const std::vector<MetricSpec>& step_metrics(const std::string& kind) {
       {"kappa_p99", false, "99th percentile of kappa after"},
       {"hausdorff", false, "modified Hausdorff distance after smoothing / S2's bounding-box diagonal"},
       {"nodes_moved", false, "free nodes moved (last sweep)"},
+      {"quadrilaterals_smoothed", false, "quadrilateral steps kept, over all sweeps (0 without quadrilaterals)"},
       {"seconds", true, "wall time of the smoothing"},
       {"peak_mib", true, "peak resident memory of the step above the process's before it (MiB; Linux)"}};
   static const std::vector<MetricSpec> refine = {
@@ -411,6 +417,7 @@ const std::vector<MetricSpec>& step_metrics(const std::string& kind) {
       {"elements", false, "triangles of the coarse surface"},
       {"hausdorff_before_smoothing", false, "largest node-to-image distance / bounding-box diagonal, before smoothing"},
       {"hausdorff", false, "the same after smoothing (the maps' tools only)"},
+      {"quadrilaterals_smoothed", false, "plmap's quadrilateral steps kept in the smoothing (null for the peers)"},
       {"kappa_max_before", false, "largest kappa before smoothing"},
       {"kappa_mean_before", false, "mean kappa before smoothing"},
       {"kappa_p99_before", false, "99th percentile of kappa before smoothing"},
