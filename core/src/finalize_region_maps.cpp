@@ -11,6 +11,7 @@
 
 #if defined(__linux__)
 #include <sys/mman.h>
+#include <unistd.h>
 #endif
 
 namespace plmap::detail {
@@ -55,7 +56,8 @@ void write_region_maps(const Surface<2>& s2, const std::vector<double>& omitted,
   // alternating runs, docs/benchmarks.md). Without the call (older kernels: EINVAL, ignored)
   // the pages fault in as they are written, to the same result.
   {
-    const auto page = std::uintptr_t{4096};
+    const long page_size = sysconf(_SC_PAGESIZE);  // 4 KiB on x86-64, 16 or 64 KiB on some ARM systems
+    const auto page = static_cast<std::uintptr_t>(page_size > 0 ? page_size : 4096);
     const auto first = (reinterpret_cast<std::uintptr_t>(m.region_map.data()) + page - 1) & ~(page - 1);
     const auto last = reinterpret_cast<std::uintptr_t>(m.region_map.data() + regions) & ~(page - 1);
     if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
