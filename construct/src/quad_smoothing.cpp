@@ -169,10 +169,13 @@ void QuadSmoother::reindex_quadrilateral(Index t1, Index t2, const std::vector<I
   for (Index te : relevant) {
     const std::size_t n = polyline_size(g_, te);
     bool in1 = false, in2 = false;
+    DomainPlace here = polyline_point(g_, s2_, te, 0);
     for (std::size_t i = 0; i + 1 < n && !(in1 && in2); ++i) {
-      const Index t = common_element(s1_, polyline_point(g_, s2_, te, i), polyline_point(g_, s2_, te, i + 1), nullptr);
+      const DomainPlace next = polyline_point(g_, s2_, te, i + 1);
+      const Index t = common_element(s1_, here, next, nullptr);
       in1 = in1 || t == t1;
       in2 = in2 || t == t2;
+      here = next;
     }
     if (in1) edges_in_element_[t1].push_back(te);
     if (in2) edges_in_element_[t2].push_back(te);
@@ -280,11 +283,14 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   for (Index te : relevant) {
     const std::size_t n = polyline_size(g_, te);
     inside.assign(n - 1, 0);
+    DomainPlace here = polyline_point(g_, s2_, te, 0);  // each point looked up once, not twice
     for (std::size_t i = 0; i + 1 < n; ++i) {
       bool along = false;
-      const Index t = common_element(s1_, polyline_point(g_, s2_, te, i), polyline_point(g_, s2_, te, i + 1), &along);
+      const DomainPlace next = polyline_point(g_, s2_, te, i + 1);
+      const Index t = common_element(s1_, here, next, &along);
       if (along) return refuse("S2 edge along an S1 edge");
       inside[i] = (t == u.t1 || t == u.t2);
+      here = next;
     }
     for (std::size_t i = 0; i + 1 < n;) {
       if (!inside[i]) {
@@ -365,8 +371,10 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   if (!system_.solve()) return refuse("solver");
 
   // ---- checks ----
-  std::vector<Vec2> position(unknown_vertex.size());
-  std::vector<DomainPlace> new_place(unknown_vertex.size());
+  thread_local std::vector<Vec2> position;
+  thread_local std::vector<DomainPlace> new_place;
+  position.resize(unknown_vertex.size());
+  new_place.resize(unknown_vertex.size());
   for (int i = 0; i < unknowns; ++i) {
     position[i] = system_.solution(i);
     const int side = orient2d(u.pa, u.pb, position[i]);
@@ -420,7 +428,8 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     }
     return worst;
   };
-  std::vector<Vec2> old_position(unknown_vertex.size());
+  thread_local std::vector<Vec2> old_position;
+  old_position.resize(unknown_vertex.size());
   for (int i = 0; i < unknowns; ++i) old_position[i] = *u.place(s1_, g_.vertex[unknown_vertex[i]]);
   // the old positions' worst is needed only if the new one is above free_condition
   if (const double worst_new = worst_spoke(position);
@@ -428,7 +437,8 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     return refuse("would raise the worst condition number");
 
   // new crossings with e
-  std::vector<std::optional<EdgeCrossing>> cut(pieces.size());
+  thread_local std::vector<std::optional<EdgeCrossing>> cut;
+  cut.assign(pieces.size(), std::nullopt);
   // per piece: bit 0 if it has a segment in T1 after the cut, bit 1 in T2 (an end off e lies on
   // e's side of its triangle; an end on e is A or B)
   thread_local std::vector<std::uint8_t> piece_sides;
@@ -457,7 +467,8 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     old = new_place[i];
   }
   // pieces of one S2 edge from the last to the first, so that earlier point indices stay valid
-  std::vector<std::size_t> order(pieces.size());
+  thread_local std::vector<std::size_t> order;
+  order.resize(pieces.size());
   for (std::size_t p = 0; p < order.size(); ++p) order[p] = p;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return pieces[a].edge != pieces[b].edge ? pieces[a].edge < pieces[b].edge : pieces[a].first > pieces[b].first;
