@@ -389,9 +389,15 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   // all pairs of pieces, by a sweep (a late coarse quadrilateral carries hundreds of pieces)
   thread_local std::vector<PlanarSegment> segments;
   segments.clear();
-  for (const Piece& p : pieces) segments.push_back({end_position(p, 0), end_position(p, 1)});
+  thread_local std::vector<std::array<int, 2>> segment_ends;
+  segment_ends.clear();
+  for (const Piece& p : pieces) {
+    segments.push_back({end_position(p, 0), end_position(p, 1)});
+    segment_ends.push_back(p.unknown);
+  }
   thread_local std::vector<PieceBox> boxes;
-  if (any_pieces_meet(segments, boxes)) return refuse("fold-over");
+  // two spokes of one unknown are left to the winding check below (piece_crossings.hpp)
+  if (pieces_apart_from_shared_ends_meet(segments, segment_ends, boxes)) return refuse("fold-over");
   for (int i = 0; i < unknowns; ++i) {
     // Each turn from one segment's direction to the next, counter-clockwise, is in (0, 2π]; they
     // add up to 2π times the number of turns that pass the +x direction, so the segments wind
@@ -466,14 +472,10 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     out.max_displacement = std::max(out.max_displacement, shift);
     old = new_place[i];
   }
-  // pieces of one S2 edge from the last to the first, so that earlier point indices stay valid
-  thread_local std::vector<std::size_t> order;
-  order.resize(pieces.size());
-  for (std::size_t p = 0; p < order.size(); ++p) order[p] = p;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return pieces[a].edge != pieces[b].edge ? pieces[a].edge < pieces[b].edge : pieces[a].first > pieces[b].first;
-  });
-  for (std::size_t p : order) {
+  // Pieces of one S2 edge from the last to the first, so that earlier point indices stay valid:
+  // they were collected edge by edge, each edge's by increasing point index, so the pieces in
+  // reverse order do that (without sorting them; each edge's list is edited on its own).
+  for (std::size_t p = pieces.size(); p-- > 0;) {
     auto& list = g_.crossings[pieces[p].edge];
     const auto first = list.begin() + static_cast<std::ptrdiff_t>(pieces[p].first);  // crossing index of point first + 1
     list.erase(first, first + static_cast<std::ptrdiff_t>(pieces[p].last - pieces[p].first - 1));
