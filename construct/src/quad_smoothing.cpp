@@ -84,10 +84,10 @@ struct Piece {
   std::array<double, 2> target_parameter{0.0, 0.0};
 };
 
-/// What QuadSmoother::reindex_quadrilateral finds by walking the edited polylines, read off a
-/// step's pieces: every segment of a relevant S2 edge in T1 or T2 belongs to one of its pieces,
-/// which after the cut lies in T1, in T2 or (cut) in both (`sides`: bit 0 T1, bit 1 T2). The
-/// lists are appended in the order of `relevant`, as reindex_quadrilateral does.
+/// The lists of T1 and T2 as walking the edited polylines of `relevant` (in that order) would
+/// find them, read off a step's pieces: every segment of a relevant S2 edge in T1 or T2 belongs
+/// to one of its pieces, which after the cut lies in T1, in T2 or (cut) in both (`sides`: bit 0
+/// T1, bit 1 T2). A step changes the graph only inside T1 ∪ T2, so only their lists change.
 /// `position` is scratch indexed by S2 edge.
 void index_quadrilateral_from_pieces(EdgesInElement& index, Index t1, Index t2, const std::vector<Index>& relevant,
                                      const std::vector<Piece>& pieces, const std::vector<std::uint8_t>& sides,
@@ -158,28 +158,6 @@ void QuadSmoother::index_edges(const EdgesInElement* index) {
   }
   edges_in_element_.assign(static_cast<std::size_t>(s1_.element_count()), {});
   for (Index e = 0; e < s2_.edge_count(); ++e) index_edge(e);
-}
-
-void QuadSmoother::reindex_quadrilateral(Index t1, Index t2, const std::vector<Index>& relevant) {
-  // A step changes the graph only inside T1 ∪ T2, so only their lists can change; the S2 edges
-  // with a segment there are among `relevant`, and appending them in its order gives the lists
-  // index_edge would give.
-  edges_in_element_[t1].clear();
-  edges_in_element_[t2].clear();
-  for (Index te : relevant) {
-    const std::size_t n = polyline_size(g_, te);
-    bool in1 = false, in2 = false;
-    DomainPlace here = polyline_point(g_, s2_, te, 0);
-    for (std::size_t i = 0; i + 1 < n && !(in1 && in2); ++i) {
-      const DomainPlace next = polyline_point(g_, s2_, te, i + 1);
-      const Index t = common_element(s1_, here, next, nullptr);
-      in1 = in1 || t == t1;
-      in2 = in2 || t == t2;
-      here = next;
-    }
-    if (in1) edges_in_element_[t1].push_back(te);
-    if (in2) edges_in_element_[t2].push_back(te);
-  }
 }
 
 void QuadSmoother::index_edge(Index target_edge) {
@@ -487,6 +465,7 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     record->places.clear();
     for (int i = 0; i < unknowns; ++i) record->places.emplace_back(unknown_vertex[i], new_place[i]);
     record->relevant = relevant;
+    record->index = {edges_in_element_[u.t1], edges_in_element_[u.t2]};
     record->cuts.clear();
     for (std::size_t p = 0; p < pieces.size(); ++p)
       if (cut[p]) record->cuts.emplace_back(pieces[p].edge, *cut[p]);
@@ -508,8 +487,10 @@ void QuadSmoother::replay(Index e, const QuadStepRecord& record) {
       list.insert(at, crossing);
     }
   }
+  // the lists the step made: the same graph around e gives the same lists (no polyline walk)
   const auto inc = s1_.edge_elements(e);
-  reindex_quadrilateral(inc[0].element, inc[1].element, record.relevant);
+  edges_in_element_[inc[0].element] = record.index[0];
+  edges_in_element_[inc[1].element] = record.index[1];
 }
 
 QuadPassTally run_quadrilateral_pass(QuadSmoother& smoother, const Surface<2>& domain, const std::vector<char>& frozen,
