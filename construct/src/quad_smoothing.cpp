@@ -88,11 +88,11 @@ struct Piece {
 /// find them, read off a step's pieces: every segment of a relevant S2 edge in T1 or T2 belongs
 /// to one of its pieces, which after the cut lies in T1, in T2 or (cut) in both (`sides`: bit 0
 /// T1, bit 1 T2). A step changes the graph only inside T1 ∪ T2, so only their lists change.
+/// `edge_sides` gets the same per relevant edge (the lists are `relevant` filtered by it).
 /// `position` is scratch indexed by S2 edge.
 void index_quadrilateral_from_pieces(EdgesInElement& index, Index t1, Index t2, const std::vector<Index>& relevant,
                                      const std::vector<Piece>& pieces, const std::vector<std::uint8_t>& sides,
-                                     std::vector<Index>& position) {
-  thread_local std::vector<std::uint8_t> edge_sides;
+                                     std::vector<Index>& position, std::vector<std::uint8_t>& edge_sides) {
   edge_sides.assign(relevant.size(), 0);
   for (std::size_t i = 0; i < relevant.size(); ++i) position[static_cast<std::size_t>(relevant[i])] = static_cast<Index>(i);
   for (std::size_t p = 0; p < pieces.size(); ++p)
@@ -459,13 +459,15 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     list.erase(first, first + static_cast<std::ptrdiff_t>(pieces[p].last - pieces[p].first - 1));
     if (cut[p]) list.insert(list.begin() + static_cast<std::ptrdiff_t>(pieces[p].first), *cut[p]);
   }
-  index_quadrilateral_from_pieces(edges_in_element_, u.t1, u.t2, relevant, pieces, piece_sides, position_in_relevant_);
+  thread_local std::vector<std::uint8_t> edge_sides;
+  index_quadrilateral_from_pieces(edges_in_element_, u.t1, u.t2, relevant, pieces, piece_sides, position_in_relevant_,
+                                  edge_sides);
   if (record != nullptr) {
     record->wrote = true;
     record->places.clear();
     for (int i = 0; i < unknowns; ++i) record->places.emplace_back(unknown_vertex[i], new_place[i]);
     record->relevant = relevant;
-    record->index = {edges_in_element_[u.t1], edges_in_element_[u.t2]};
+    record->sides = edge_sides;
     record->cuts.clear();
     for (std::size_t p = 0; p < pieces.size(); ++p)
       if (cut[p]) record->cuts.emplace_back(pieces[p].edge, *cut[p]);
@@ -489,8 +491,14 @@ void QuadSmoother::replay(Index e, const QuadStepRecord& record) {
   }
   // the lists the step made: the same graph around e gives the same lists (no polyline walk)
   const auto inc = s1_.edge_elements(e);
-  edges_in_element_[inc[0].element] = record.index[0];
-  edges_in_element_[inc[1].element] = record.index[1];
+  std::vector<Index>& list1 = edges_in_element_[inc[0].element];
+  std::vector<Index>& list2 = edges_in_element_[inc[1].element];
+  list1.clear();
+  list2.clear();
+  for (std::size_t i = 0; i < record.relevant.size(); ++i) {
+    if (record.sides[i] & 1) list1.push_back(record.relevant[i]);
+    if (record.sides[i] & 2) list2.push_back(record.relevant[i]);
+  }
 }
 
 QuadPassTally run_quadrilateral_pass(QuadSmoother& smoother, const Surface<2>& domain, const std::vector<char>& frozen,

@@ -26,6 +26,7 @@
 #include <plmap/strategies/smoothing/smoothing_weights_registry.hpp>
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -51,8 +52,10 @@ struct QuadStepRecord {
   std::vector<std::pair<Index, DomainPlace>> places;  ///< (S2 vertex, new place)
   std::vector<Index> relevant;                         ///< S2 edges with a segment in T1 or T2
   std::vector<std::pair<Index, EdgeCrossing>> cuts;    ///< (S2 edge, new crossing of e)
-  /// edges_in_element() of e's two triangles (edge_elements(e) order) after the step
-  std::array<std::vector<Index>, 2> index;
+  /// per S2 edge of `relevant`: bit 0 if it is in edges_in_element() of e's first triangle
+  /// (edge_elements(e) order) after the step, bit 1 of the second (their lists are `relevant`
+  /// filtered by these, in its order)
+  std::vector<std::uint8_t> sides;
 };
 
 /// Per S1 triangle, the S2 edges that have a segment in it (the order matters: it is the order

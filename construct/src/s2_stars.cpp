@@ -5,7 +5,6 @@
 #include <plmap/strategies/smoothing/uniform_weights.hpp>
 
 #include <algorithm>
-#include <cstring>
 #include <utility>
 
 namespace plmap::smoothing {
@@ -15,8 +14,7 @@ S2Stars::S2Stars(const Surface<2>& target, AnySmoothingWeights weights)
       weights_(std::move(weights)),
       ring_known_(static_cast<std::size_t>(target.vertex_count()), 0),
       ring_edges_(static_cast<std::size_t>(target.vertex_count())),
-      star_weights_(static_cast<std::size_t>(target.vertex_count())),
-      recent_(static_cast<std::size_t>(target.vertex_count())) {}
+      star_weights_(static_cast<std::size_t>(target.vertex_count())) {}
 
 const std::vector<Index>* S2Stars::ring_edges(Index v) {
   signed char& known = ring_known_[static_cast<std::size_t>(v)];
@@ -56,17 +54,8 @@ std::vector<double> S2Stars::compute(Index v, std::span<const Eigen::Vector3d> r
 
 std::span<const double> S2Stars::weights(Index v, std::span<const Eigen::Vector3d> ring, bool whole_star, bool& fallback) {
   if (!whole_star) {
-    RecentRing& recent = recent_[static_cast<std::size_t>(v)];
-    // compared bit for bit (memcmp): == would take -0.0 for 0.0, which the weights need not
-    const bool same = recent.weights.known && recent.ring.size() == ring.size() &&
-                      std::memcmp(recent.ring.data(), ring.data(), ring.size() * sizeof(Eigen::Vector3d)) == 0;
-    if (!same) {
-      recent.ring.assign(ring.begin(), ring.end());
-      recent.weights.values = compute(v, ring, recent.weights.fallback);
-      recent.weights.known = true;
-    }
-    fallback = recent.weights.fallback;
-    return recent.weights.values;
+    scratch_ = compute(v, ring, fallback);
+    return scratch_;
   }
   CachedWeights& cached = star_weights_[static_cast<std::size_t>(v)];
   if (!cached.known) {

@@ -33,9 +33,7 @@ class S2Stars {
   const std::vector<Index>* ring_edges(Index v);
 
   /// Weights of v for `ring` (world positions of its ring points, in ring_edges(v)'s order);
-  /// `whole_star`: every ring point is the other vertex of its edge, so the weights are cached;
-  /// otherwise the last such ring of v is kept, and its weights are reused when the same ring
-  /// (bit for bit) comes again: the weights are a function of the ring alone.
+  /// `whole_star`: every ring point is the other vertex of its edge, so the weights are cached.
   /// Falls back to uniform weights where the model refuses the star, and then sets `fallback`.
   std::span<const double> weights(Index v, std::span<const Eigen::Vector3d> ring, bool whole_star, bool& fallback);
 
@@ -52,15 +50,7 @@ class S2Stars {
   std::vector<signed char> ring_known_;            ///< per S2 vertex: 0 not yet, 1 closed fan, -1 open
   std::vector<std::vector<Index>> ring_edges_;     ///< per S2 vertex with a closed fan
   std::vector<CachedWeights> star_weights_;        ///< per S2 vertex: its whole star's weights
-  /// Per S2 vertex: the last ring that was not its whole star, and its weights. A step's ring
-  /// point on ∂Q is where the S2 edge crosses the quadrilateral's boundary, which only the step
-  /// on that S1 edge moves; so the same ring comes back in later steps (an unknown of the three
-  /// quadrilaterals of its element, and again in a repeated run), bit for bit.
-  struct RecentRing {
-    std::vector<Eigen::Vector3d> ring;
-    CachedWeights weights;
-  };
-  std::vector<RecentRing> recent_;
+  std::vector<double> scratch_;                    ///< the last uncached weights
 };
 
 }  // namespace plmap::smoothing

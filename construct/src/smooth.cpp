@@ -470,6 +470,7 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
       }
       conditions.element[static_cast<std::size_t>(t)] = worst;
     }
+    std::vector<double>().swap(moved_kappa);  // not held through the quadrilateral pass (the memory peak)
     if (options.quadrilaterals) smooth_quadrilaterals(current, conditions, worst_at_sweep_start, stars, report, sweep);
     if (options.measure_kappa)
       sweep.kappa = options.measure_kappa(current);
