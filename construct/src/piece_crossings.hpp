@@ -74,6 +74,39 @@ inline bool any_pieces_meet(const std::vector<PlanarSegment>& segments, std::vec
   return false;
 }
 
+/// any_pieces_meet, except that pairs of pieces that end at the same unknown are not tested:
+/// `ends[i]` names the unknown (>= 0) or not (-1) at each end of segments[i]. Such a pair meets
+/// exactly when both leave the unknown in the same direction, which the step's winding check
+/// refuses with the same reason (directions that wind once are distinct), so the step decides as
+/// with any_pieces_meet; and these pairs, every two spokes of an unknown, are most of the pairs
+/// the sweep finds.
+inline bool pieces_apart_from_shared_ends_meet(const std::vector<PlanarSegment>& segments,
+                                               const std::vector<std::array<int, 2>>& ends, std::vector<PieceBox>& boxes) {
+  boxes.clear();
+  for (const PlanarSegment& s : segments)
+    boxes.push_back({std::min(s[0].x(), s[1].x()), std::max(s[0].x(), s[1].x()), std::min(s[0].y(), s[1].y()),
+                     std::max(s[0].y(), s[1].y()), &s});
+  std::sort(boxes.begin(), boxes.end(), [](const PieceBox& a, const PieceBox& b) { return a.min_x < b.min_x; });
+  const auto share_an_unknown = [&](const PlanarSegment* x, const PlanarSegment* y) {
+    const auto& a = ends[static_cast<std::size_t>(x - segments.data())];
+    const auto& b = ends[static_cast<std::size_t>(y - segments.data())];
+    return (a[0] >= 0 && (a[0] == b[0] || a[0] == b[1])) || (a[1] >= 0 && (a[1] == b[0] || a[1] == b[1]));
+  };
+  for (std::size_t a = 0; a < boxes.size(); ++a) {
+    const PieceBox& s = boxes[a];
+    for (std::size_t b = a + 1; b < boxes.size(); ++b) {
+      const PieceBox& o = boxes[b];
+      if (o.min_x > s.max_x) break;
+      if (o.max_y < s.min_y || o.min_y > s.max_y) continue;
+      if (share_an_unknown(s.segment, o.segment)) continue;
+      const PlanarSegment& x = *s.segment;
+      const PlanarSegment& y = *o.segment;
+      if (pieces_meet(x[0], x[1], y[0], y[1])) return true;
+    }
+  }
+  return false;
+}
+
 /// 0 for a direction whose angle from +x, counter-clockwise, is in [0, π), 1 for [π, 2π).
 inline int half_turn(const Eigen::Vector2d& d) { return d.y() < 0.0 || (d.y() == 0.0 && d.x() < 0.0) ? 1 : 0; }
 

@@ -84,15 +84,15 @@ struct Piece {
   std::array<double, 2> target_parameter{0.0, 0.0};
 };
 
-/// What QuadSmoother::reindex_quadrilateral finds by walking the edited polylines, read off a
-/// step's pieces: every segment of a relevant S2 edge in T1 or T2 belongs to one of its pieces,
-/// which after the cut lies in T1, in T2 or (cut) in both (`sides`: bit 0 T1, bit 1 T2). The
-/// lists are appended in the order of `relevant`, as reindex_quadrilateral does.
+/// The lists of T1 and T2 as walking the edited polylines of `relevant` (in that order) would
+/// find them, read off a step's pieces: every segment of a relevant S2 edge in T1 or T2 belongs
+/// to one of its pieces, which after the cut lies in T1, in T2 or (cut) in both (`sides`: bit 0
+/// T1, bit 1 T2). A step changes the graph only inside T1 ∪ T2, so only their lists change.
+/// `edge_sides` gets the same per relevant edge (the lists are `relevant` filtered by it).
 /// `position` is scratch indexed by S2 edge.
 void index_quadrilateral_from_pieces(EdgesInElement& index, Index t1, Index t2, const std::vector<Index>& relevant,
                                      const std::vector<Piece>& pieces, const std::vector<std::uint8_t>& sides,
-                                     std::vector<Index>& position) {
-  thread_local std::vector<std::uint8_t> edge_sides;
+                                     std::vector<Index>& position, std::vector<std::uint8_t>& edge_sides) {
   edge_sides.assign(relevant.size(), 0);
   for (std::size_t i = 0; i < relevant.size(); ++i) position[static_cast<std::size_t>(relevant[i])] = static_cast<Index>(i);
   for (std::size_t p = 0; p < pieces.size(); ++p)
@@ -158,25 +158,6 @@ void QuadSmoother::index_edges(const EdgesInElement* index) {
   }
   edges_in_element_.assign(static_cast<std::size_t>(s1_.element_count()), {});
   for (Index e = 0; e < s2_.edge_count(); ++e) index_edge(e);
-}
-
-void QuadSmoother::reindex_quadrilateral(Index t1, Index t2, const std::vector<Index>& relevant) {
-  // A step changes the graph only inside T1 ∪ T2, so only their lists can change; the S2 edges
-  // with a segment there are among `relevant`, and appending them in its order gives the lists
-  // index_edge would give.
-  edges_in_element_[t1].clear();
-  edges_in_element_[t2].clear();
-  for (Index te : relevant) {
-    const std::size_t n = polyline_size(g_, te);
-    bool in1 = false, in2 = false;
-    for (std::size_t i = 0; i + 1 < n && !(in1 && in2); ++i) {
-      const Index t = common_element(s1_, polyline_point(g_, s2_, te, i), polyline_point(g_, s2_, te, i + 1), nullptr);
-      in1 = in1 || t == t1;
-      in2 = in2 || t == t2;
-    }
-    if (in1) edges_in_element_[t1].push_back(te);
-    if (in2) edges_in_element_[t2].push_back(te);
-  }
 }
 
 void QuadSmoother::index_edge(Index target_edge) {
@@ -280,11 +261,14 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   for (Index te : relevant) {
     const std::size_t n = polyline_size(g_, te);
     inside.assign(n - 1, 0);
+    DomainPlace here = polyline_point(g_, s2_, te, 0);  // each point looked up once, not twice
     for (std::size_t i = 0; i + 1 < n; ++i) {
       bool along = false;
-      const Index t = common_element(s1_, polyline_point(g_, s2_, te, i), polyline_point(g_, s2_, te, i + 1), &along);
+      const DomainPlace next = polyline_point(g_, s2_, te, i + 1);
+      const Index t = common_element(s1_, here, next, &along);
       if (along) return refuse("S2 edge along an S1 edge");
       inside[i] = (t == u.t1 || t == u.t2);
+      here = next;
     }
     for (std::size_t i = 0; i + 1 < n;) {
       if (!inside[i]) {
@@ -365,8 +349,10 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   if (!system_.solve()) return refuse("solver");
 
   // ---- checks ----
-  std::vector<Vec2> position(unknown_vertex.size());
-  std::vector<DomainPlace> new_place(unknown_vertex.size());
+  thread_local std::vector<Vec2> position;
+  thread_local std::vector<DomainPlace> new_place;
+  position.resize(unknown_vertex.size());
+  new_place.resize(unknown_vertex.size());
   for (int i = 0; i < unknowns; ++i) {
     position[i] = system_.solution(i);
     const int side = orient2d(u.pa, u.pb, position[i]);
@@ -381,9 +367,15 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   // all pairs of pieces, by a sweep (a late coarse quadrilateral carries hundreds of pieces)
   thread_local std::vector<PlanarSegment> segments;
   segments.clear();
-  for (const Piece& p : pieces) segments.push_back({end_position(p, 0), end_position(p, 1)});
+  thread_local std::vector<std::array<int, 2>> segment_ends;
+  segment_ends.clear();
+  for (const Piece& p : pieces) {
+    segments.push_back({end_position(p, 0), end_position(p, 1)});
+    segment_ends.push_back(p.unknown);
+  }
   thread_local std::vector<PieceBox> boxes;
-  if (any_pieces_meet(segments, boxes)) return refuse("fold-over");
+  // two spokes of one unknown are left to the winding check below (piece_crossings.hpp)
+  if (pieces_apart_from_shared_ends_meet(segments, segment_ends, boxes)) return refuse("fold-over");
   for (int i = 0; i < unknowns; ++i) {
     // Each turn from one segment's direction to the next, counter-clockwise, is in (0, 2π]; they
     // add up to 2π times the number of turns that pass the +x direction, so the segments wind
@@ -420,7 +412,8 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     }
     return worst;
   };
-  std::vector<Vec2> old_position(unknown_vertex.size());
+  thread_local std::vector<Vec2> old_position;
+  old_position.resize(unknown_vertex.size());
   for (int i = 0; i < unknowns; ++i) old_position[i] = *u.place(s1_, g_.vertex[unknown_vertex[i]]);
   // the old positions' worst is needed only if the new one is above free_condition
   if (const double worst_new = worst_spoke(position);
@@ -428,7 +421,8 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     return refuse("would raise the worst condition number");
 
   // new crossings with e
-  std::vector<std::optional<EdgeCrossing>> cut(pieces.size());
+  thread_local std::vector<std::optional<EdgeCrossing>> cut;
+  cut.assign(pieces.size(), std::nullopt);
   // per piece: bit 0 if it has a segment in T1 after the cut, bit 1 in T2 (an end off e lies on
   // e's side of its triangle; an end on e is A or B)
   thread_local std::vector<std::uint8_t> piece_sides;
@@ -456,24 +450,24 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     out.max_displacement = std::max(out.max_displacement, shift);
     old = new_place[i];
   }
-  // pieces of one S2 edge from the last to the first, so that earlier point indices stay valid
-  std::vector<std::size_t> order(pieces.size());
-  for (std::size_t p = 0; p < order.size(); ++p) order[p] = p;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return pieces[a].edge != pieces[b].edge ? pieces[a].edge < pieces[b].edge : pieces[a].first > pieces[b].first;
-  });
-  for (std::size_t p : order) {
+  // Pieces of one S2 edge from the last to the first, so that earlier point indices stay valid:
+  // they were collected edge by edge, each edge's by increasing point index, so the pieces in
+  // reverse order do that (without sorting them; each edge's list is edited on its own).
+  for (std::size_t p = pieces.size(); p-- > 0;) {
     auto& list = g_.crossings[pieces[p].edge];
     const auto first = list.begin() + static_cast<std::ptrdiff_t>(pieces[p].first);  // crossing index of point first + 1
     list.erase(first, first + static_cast<std::ptrdiff_t>(pieces[p].last - pieces[p].first - 1));
     if (cut[p]) list.insert(list.begin() + static_cast<std::ptrdiff_t>(pieces[p].first), *cut[p]);
   }
-  index_quadrilateral_from_pieces(edges_in_element_, u.t1, u.t2, relevant, pieces, piece_sides, position_in_relevant_);
+  thread_local std::vector<std::uint8_t> edge_sides;
+  index_quadrilateral_from_pieces(edges_in_element_, u.t1, u.t2, relevant, pieces, piece_sides, position_in_relevant_,
+                                  edge_sides);
   if (record != nullptr) {
     record->wrote = true;
     record->places.clear();
     for (int i = 0; i < unknowns; ++i) record->places.emplace_back(unknown_vertex[i], new_place[i]);
     record->relevant = relevant;
+    record->sides = edge_sides;
     record->cuts.clear();
     for (std::size_t p = 0; p < pieces.size(); ++p)
       if (cut[p]) record->cuts.emplace_back(pieces[p].edge, *cut[p]);
@@ -495,8 +489,16 @@ void QuadSmoother::replay(Index e, const QuadStepRecord& record) {
       list.insert(at, crossing);
     }
   }
+  // the lists the step made: the same graph around e gives the same lists (no polyline walk)
   const auto inc = s1_.edge_elements(e);
-  reindex_quadrilateral(inc[0].element, inc[1].element, record.relevant);
+  std::vector<Index>& list1 = edges_in_element_[inc[0].element];
+  std::vector<Index>& list2 = edges_in_element_[inc[1].element];
+  list1.clear();
+  list2.clear();
+  for (std::size_t i = 0; i < record.relevant.size(); ++i) {
+    if (record.sides[i] & 1) list1.push_back(record.relevant[i]);
+    if (record.sides[i] & 2) list2.push_back(record.relevant[i]);
+  }
 }
 
 QuadPassTally run_quadrilateral_pass(QuadSmoother& smoother, const Surface<2>& domain, const std::vector<char>& frozen,

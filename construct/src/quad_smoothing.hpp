@@ -25,6 +25,8 @@
 
 #include <plmap/strategies/smoothing/smoothing_weights_registry.hpp>
 
+#include <array>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -50,6 +52,10 @@ struct QuadStepRecord {
   std::vector<std::pair<Index, DomainPlace>> places;  ///< (S2 vertex, new place)
   std::vector<Index> relevant;                         ///< S2 edges with a segment in T1 or T2
   std::vector<std::pair<Index, EdgeCrossing>> cuts;    ///< (S2 edge, new crossing of e)
+  /// per S2 edge of `relevant`: bit 0 if it is in edges_in_element() of e's first triangle
+  /// (edge_elements(e) order) after the step, bit 1 of the second (their lists are `relevant`
+  /// filtered by these, in its order)
+  std::vector<std::uint8_t> sides;
 };
 
 /// Per S1 triangle, the S2 edges that have a segment in it (the order matters: it is the order
@@ -80,7 +86,6 @@ class QuadSmoother {
   QuadOutcome step(Index e, QuadStepRecord* record);
   void index_edges(const EdgesInElement* index);
   void index_edge(Index target_edge);
-  void reindex_quadrilateral(Index t1, Index t2, const std::vector<Index>& relevant);
   PreimageGraph& g_;
   const Surface<2>& s1_;
   const Surface<2>& s2_;

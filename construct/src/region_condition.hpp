@@ -54,11 +54,10 @@ inline Eigen::Matrix2d frame_coordinates(const std::array<Eigen::Vector3d, 3>& p
   return scale * m;
 }
 
-/// Condition number of the affine map taking triangle `from` to triangle `to` (both in 3D, each
-/// within its own plane); infinite if `from` is degenerate or the map is singular.
-inline double triangle_condition(const std::array<Eigen::Vector3d, 3>& from, const std::array<Eigen::Vector3d, 3>& to) {
+/// triangle_condition (below) from the two triangles' frame_coordinates: a guard that tries
+/// several positions of a region's corners against the same image computes the image's frame once.
+inline double frames_condition(const Eigen::Matrix2d& p, const Eigen::Matrix2d& q) {
   constexpr double inf = std::numeric_limits<double>::infinity();
-  const Eigen::Matrix2d p = frame_coordinates(from), q = frame_coordinates(to);
   if (!(p(0, 0) * p(1, 1) > 0.0)) return inf;
   const Eigen::Matrix2d a = q * p.inverse();
   // singular values of a 2 × 2 matrix in closed form
@@ -69,15 +68,26 @@ inline double triangle_condition(const std::array<Eigen::Vector3d, 3>& from, con
   return smallest > 0.0 ? largest / smallest : inf;
 }
 
+/// Condition number of the affine map taking triangle `from` to triangle `to` (both in 3D, each
+/// within its own plane); infinite if `from` is degenerate or the map is singular.
+inline double triangle_condition(const std::array<Eigen::Vector3d, 3>& from, const std::array<Eigen::Vector3d, 3>& to) {
+  return frames_condition(frame_coordinates(from), frame_coordinates(to));
+}
+
 /// World position on S2 of corner k of region r, as the quality report takes it: the corner's
 /// image moved onto the region's S2 element exactly where it can be (a vertex, an edge), else
 /// the region's affine map at the corner (remote_intersection in core/regions.hpp).
-inline Eigen::Vector3d region_corner_target_world(const PlMap<2>& map, Index r, int k) {
+/// The same in the local coordinates of the region's S2 element; `fitted` (if given) is set when
+/// the position came from the region's affine map (the image is not on that element's closure).
+inline LocalPoint<2> region_corner_target_local(const PlMap<2>& map, Index r, int k, bool* fitted = nullptr) {
   const auto& m = map.stored();
   const Index n = m.region_corners[r][k];
-  const LocalPoint<2> at = transfer_to_element(map.target(), m.node_image(n), m.region_target[r])
-                               .value_or(apply<2>(m.region_map[r], m.node_position[n]));
-  return map.target().world_position(m.region_target[r], at);
+  const std::optional<LocalPoint<2>> moved = transfer_to_element(map.target(), m.node_image(n), m.region_target[r]);
+  if (fitted != nullptr) *fitted = !moved;
+  return moved ? *moved : LocalPoint<2>(apply<2>(m.region_map[r], m.node_position[n]));
+}
+inline Eigen::Vector3d region_corner_target_world(const PlMap<2>& map, Index r, int k) {
+  return map.target().world_position(map.stored().region_target[r], region_corner_target_local(map, r, k));
 }
 
 /// κ of region r of a surface map.

@@ -33,6 +33,14 @@ struct ElementOutcome {
   std::vector<LocalPoint<2>> positions;  ///< indexed by node - node_begin[T]; empty if skipped
   const char* skipped = nullptr;
   bool shortened = false;  ///< the κ guard kept only part of the solve's move
+  /// With positions: per region of T (region - region_begin[T]), its corners' images in its S2
+  /// element's local coordinates, as region_corner_target_local gives them on the input map.
+  std::vector<std::array<LocalPoint<2>, 3>> region_images;
+  /// With positions: per region of T, κ at the new positions, as the guard computed it. It is
+  /// MapConditions::update's value on the new map when `kappa_exact` (no corner's image came from
+  /// a region's affine map, which the new map re-fits), so the update need not evaluate T again.
+  std::vector<double> region_kappa;
+  bool kappa_exact = false;
 };
 
 class ElementSmoother {
@@ -102,11 +110,23 @@ class ElementSmoother {
     std::vector<LocalPoint<2>> solved(m_.node_position.begin() + nb, m_.node_position.begin() + ne);
     for (Index n = nb; n < ne; ++n)
       if (unknown_[local(n)] >= 0) solved[local(n)] = system_.solution(unknown_[local(n)]);
-    // the images of t's region corners do not move: computed once for all the trials below
-    targets_.clear();
-    for (Index r = rb; r < re; ++r)
-      targets_.push_back({smoothing::region_corner_target_world(map_, r, 0), smoothing::region_corner_target_world(map_, r, 1),
-                          smoothing::region_corner_target_world(map_, r, 2)});
+    // The images of t's region corners do not move: their positions and frames are computed once
+    // for all the trials below, and the positions again serve to re-fit the region maps.
+    images_.clear();
+    target_frames_.clear();
+    bool any_fitted = false;
+    for (Index r = rb; r < re; ++r) {
+      std::array<LocalPoint<2>, 3> image;
+      std::array<Eigen::Vector3d, 3> world;
+      for (int k = 0; k < 3; ++k) {
+        bool fitted = false;
+        image[k] = smoothing::region_corner_target_local(map_, r, k, &fitted);
+        any_fitted = any_fitted || fitted;
+        world[k] = map_.target().world_position(m_.region_target[r], image[k]);
+      }
+      images_.push_back(image);
+      target_frames_.push_back(smoothing::frame_coordinates(world));
+    }
     const double worst_before = worst_now_ != nullptr
                                     ? (*worst_now_)[static_cast<std::size_t>(t)]
                                     : worst_condition(t, {m_.node_position.begin() + nb, m_.node_position.begin() + ne});
@@ -122,6 +142,9 @@ class ElementSmoother {
       if (worst_condition(t, candidate) <= allowed) {
         out.positions = candidate;
         out.shortened = halvings > 0;
+        out.region_images = images_;
+        out.region_kappa = kappa_;
+        out.kappa_exact = !any_fitted;
         return out;
       }
     }
@@ -151,17 +174,22 @@ class ElementSmoother {
     return true;
   }
 
-  /// The largest κ_Ξ of t's regions with t's nodes at `positions` (their images unchanged, in
-  /// targets_): exactly what the quality report measures on these regions.
+  /// The largest κ_Ξ of t's regions with t's nodes at `positions` (their images unchanged, their
+  /// frames in target_frames_), each region's in kappa_: exactly what the quality report measures
+  /// on these regions.
   double worst_condition(Index t, const std::vector<LocalPoint<2>>& positions) {
     const Index nb = m_.node_begin[t];
     world_.resize(positions.size());
     for (std::size_t i = 0; i < positions.size(); ++i) world_[i] = map_.domain().world_position(t, positions[i]);
     double worst = 1.0;
+    kappa_.clear();
     for (Index r = m_.region_begin[t]; r < m_.region_begin[t + 1]; ++r) {
       const auto& c = m_.region_corners[r];
       const std::array<Eigen::Vector3d, 3> from = {world_[c[0] - nb], world_[c[1] - nb], world_[c[2] - nb]};
-      worst = std::max(worst, smoothing::triangle_condition(from, targets_[static_cast<std::size_t>(r - m_.region_begin[t])]));
+      const double kappa = smoothing::frames_condition(smoothing::frame_coordinates(from),
+                                                       target_frames_[static_cast<std::size_t>(r - m_.region_begin[t])]);
+      kappa_.push_back(kappa);
+      worst = std::max(worst, kappa);
     }
     return worst;
   }
@@ -179,14 +207,18 @@ class ElementSmoother {
   std::vector<char> free_;
   smoothing::ConvexCombinationSystem system_;
   std::vector<Eigen::Vector3d> ring_, world_;
-  std::vector<std::array<Eigen::Vector3d, 3>> targets_;  ///< per region of the element being solved
+  /// per region of the element being solved: its corners' images (local to its S2 element), the
+  /// frame of the image triangle (region_condition.hpp), κ at the last positions tried
+  std::vector<std::array<LocalPoint<2>, 3>> images_;
+  std::vector<Eigen::Matrix2d> target_frames_;
+  std::vector<double> kappa_;
 };
 
 /// Writes the kept positions of element t into `out` and recomputes its regions' maps from them,
-/// the images (on each region's S2 element) unchanged.
+/// the images (on each region's S2 element, `images` per region) unchanged.
 /// Returns whether a node moved.
-bool apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>>& positions, MapData<2>& out,
-                   SmoothSweepReport& sweep) {
+bool apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>>& positions,
+                   const std::vector<std::array<LocalPoint<2>, 3>>& images, MapData<2>& out, SmoothSweepReport& sweep) {
   const MapData<2>& old = map.stored();
   const Index nb = old.node_begin[t];
   bool moved_any = false;
@@ -202,14 +234,10 @@ bool apply_outcome(const PlMap<2>& map, Index t, const std::vector<LocalPoint<2>
   if (!moved_any) return false;
   for (Index r = old.region_begin[t]; r < old.region_begin[t + 1]; ++r) {
     const auto& c = old.region_corners[r];
-    std::array<LocalPoint<2>, 3> from, to;
-    for (int k = 0; k < 3; ++k) {
-      from[k] = out.node_position[c[k]];
-      // the image on the region's S2 element, exactly where it is a vertex or on an edge
-      to[k] = transfer_to_element(map.target(), old.node_image(c[k]), old.region_target[r])
-                  .value_or(apply<2>(old.region_map[r], old.node_position[c[k]]));
-    }
-    out.region_map[r] = affine_through<2>(from, to);
+    std::array<LocalPoint<2>, 3> from;
+    for (int k = 0; k < 3; ++k) from[k] = out.node_position[c[k]];
+    // the images on the region's S2 element, exactly where they are vertices or on edges
+    out.region_map[r] = affine_through<2>(from, images[static_cast<std::size_t>(r - old.region_begin[t])]);
   }
   return true;
 }
@@ -405,6 +433,9 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
     // the quadrilateral pass's
     const double worst_at_sweep_start = std::ranges::max(conditions.element);
     std::vector<Index> moved;
+    // per moved element whose guard's κ are the new map's: where they start in moved_kappa, else -1
+    std::vector<std::ptrdiff_t> kappa_at;
+    std::vector<double> moved_kappa;
     MapData<2> next = stored_arrays(current);
     ElementSmoother smoother(current, current.stored(), weights, report, &conditions.element);
     report.skipped_elements.clear();
@@ -416,10 +447,30 @@ SmoothResult smooth(const PlMap<2>& map, const SmoothOptions& options) {
         continue;
       }
       if (outcome.shortened) ++sweep.elements_shortened;
-      if (!outcome.positions.empty() && apply_outcome(current, t, outcome.positions, next, sweep)) moved.push_back(t);
+      if (!outcome.positions.empty() && apply_outcome(current, t, outcome.positions, outcome.region_images, next, sweep)) {
+        moved.push_back(t);
+        kappa_at.push_back(outcome.kappa_exact ? static_cast<std::ptrdiff_t>(moved_kappa.size()) : -1);
+        if (outcome.kappa_exact) moved_kappa.insert(moved_kappa.end(), outcome.region_kappa.begin(), outcome.region_kappa.end());
+      }
     }
     current = PlMap<2>(map.domain_ptr(), map.target_ptr(), std::move(next), StoredGraph(current.stored_graph()));
-    for (Index t : moved) conditions.update(current, t);
+    for (std::size_t i = 0; i < moved.size(); ++i) {
+      const Index t = moved[i];
+      if (kappa_at[i] < 0) {
+        conditions.update(current, t);
+        continue;
+      }
+      // the guard's values for the kept positions: the same function of the same numbers
+      const auto& begin = current.stored().region_begin;
+      double worst = 1.0;  // in region order, as MapConditions::update takes the maximum
+      for (Index r = begin[t]; r < begin[t + 1]; ++r) {
+        const double kappa = moved_kappa[static_cast<std::size_t>(kappa_at[i] + (r - begin[t]))];
+        conditions.region[static_cast<std::size_t>(r)] = kappa;
+        worst = std::max(worst, kappa);
+      }
+      conditions.element[static_cast<std::size_t>(t)] = worst;
+    }
+    std::vector<double>().swap(moved_kappa);  // not held through the quadrilateral pass (the memory peak)
     if (options.quadrilaterals) smooth_quadrilaterals(current, conditions, worst_at_sweep_start, stars, report, sweep);
     if (options.measure_kappa)
       sweep.kappa = options.measure_kappa(current);
