@@ -13,6 +13,7 @@
 #include <plmap/core/segment_sweep.hpp>
 
 #include <algorithm>
+#include <array>
 #include <vector>
 
 namespace plmap::smoothing {
@@ -54,7 +55,10 @@ struct PieceBox {
   const PlanarSegment* segment;
 };
 
-inline bool any_pieces_meet(const std::vector<PlanarSegment>& segments, std::vector<PieceBox>& boxes) {
+/// The sweep: true if two pieces meet, skipping the pairs `skip(x, y)` names (pointers into
+/// `segments`).
+template <typename SkipPair>
+bool pieces_meet_in_sweep(const std::vector<PlanarSegment>& segments, std::vector<PieceBox>& boxes, SkipPair skip) {
   boxes.clear();
   for (const PlanarSegment& s : segments)
     boxes.push_back({std::min(s[0].x(), s[1].x()), std::max(s[0].x(), s[1].x()), std::min(s[0].y(), s[1].y()),
@@ -66,12 +70,17 @@ inline bool any_pieces_meet(const std::vector<PlanarSegment>& segments, std::vec
       const PieceBox& o = boxes[b];
       if (o.min_x > s.max_x) break;
       if (o.max_y < s.min_y || o.min_y > s.max_y) continue;
+      if (skip(s.segment, o.segment)) continue;
       const PlanarSegment& x = *s.segment;
       const PlanarSegment& y = *o.segment;
       if (pieces_meet(x[0], x[1], y[0], y[1])) return true;
     }
   }
   return false;
+}
+
+inline bool any_pieces_meet(const std::vector<PlanarSegment>& segments, std::vector<PieceBox>& boxes) {
+  return pieces_meet_in_sweep(segments, boxes, [](const PlanarSegment*, const PlanarSegment*) { return false; });
 }
 
 /// any_pieces_meet, except that pairs of pieces that end at the same unknown are not tested:
@@ -82,29 +91,11 @@ inline bool any_pieces_meet(const std::vector<PlanarSegment>& segments, std::vec
 /// the sweep finds.
 inline bool pieces_apart_from_shared_ends_meet(const std::vector<PlanarSegment>& segments,
                                                const std::vector<std::array<int, 2>>& ends, std::vector<PieceBox>& boxes) {
-  boxes.clear();
-  for (const PlanarSegment& s : segments)
-    boxes.push_back({std::min(s[0].x(), s[1].x()), std::max(s[0].x(), s[1].x()), std::min(s[0].y(), s[1].y()),
-                     std::max(s[0].y(), s[1].y()), &s});
-  std::sort(boxes.begin(), boxes.end(), [](const PieceBox& a, const PieceBox& b) { return a.min_x < b.min_x; });
-  const auto share_an_unknown = [&](const PlanarSegment* x, const PlanarSegment* y) {
+  return pieces_meet_in_sweep(segments, boxes, [&](const PlanarSegment* x, const PlanarSegment* y) {
     const auto& a = ends[static_cast<std::size_t>(x - segments.data())];
     const auto& b = ends[static_cast<std::size_t>(y - segments.data())];
     return (a[0] >= 0 && (a[0] == b[0] || a[0] == b[1])) || (a[1] >= 0 && (a[1] == b[0] || a[1] == b[1]));
-  };
-  for (std::size_t a = 0; a < boxes.size(); ++a) {
-    const PieceBox& s = boxes[a];
-    for (std::size_t b = a + 1; b < boxes.size(); ++b) {
-      const PieceBox& o = boxes[b];
-      if (o.min_x > s.max_x) break;
-      if (o.max_y < s.min_y || o.min_y > s.max_y) continue;
-      if (share_an_unknown(s.segment, o.segment)) continue;
-      const PlanarSegment& x = *s.segment;
-      const PlanarSegment& y = *o.segment;
-      if (pieces_meet(x[0], x[1], y[0], y[1])) return true;
-    }
-  }
-  return false;
+  });
 }
 
 /// 0 for a direction whose angle from +x, counter-clockwise, is in [0, π), 1 for [π, 2π).

@@ -4,6 +4,7 @@
 // Before, the whole walk back was dropped, and with it the faces along the edge next to its
 // second vertex. Cases found by ProjectProperties.OffsetHeightFieldsWithAveragedNormals (seeds 2
 // and 5 of 2026-12-04), checked against rays cast along the same direction field.
+#include "offset_height_field_pair.hpp"
 #include "projection_fixtures.hpp"
 
 #include <plmap/construct/direction_field.hpp>
@@ -29,33 +30,6 @@ gen::PlanarRecipe delaunay(int resolution, bool with_hole, std::uint64_t seed) {
   return r;
 }
 
-struct Checked {
-  ProjectionResult<2> projected;
-  RayCheckReport<2> rays;
-};
-
-/// S1 on a random height field, S2 a remeshed copy shifted by (dx, dy) and lifted by `offset`,
-/// projected along S1's averaged vertex normals (as the property does) and checked against rays.
-Checked project_offset_pair(const gen::PlanarRecipe& r1, const gen::PlanarRecipe& r2, std::uint64_t field_seed,
-                            double offset, double dx, double dy) {
-  gen::Rng rng(field_seed);
-  const gen::HeightField field = gen::random_height_field(rng);
-  auto s1 = std::make_shared<const Surface<2>>(gen::lift_to_height_field(gen::make_planar(r1), field));
-  auto s2 = transformed<2>(gen::make_planar(r2), [&](const WorldPoint<2>& p) {
-    const double x = p.x() + dx, y = p.y() + dy;
-    return WorldPoint<2>(x, y, field(x, y) + offset);
-  });
-  ProjectionOptions po{.allow_negative_distance = true, .normal_check = TargetNormalCheck::aligned};
-  auto projected = project<2>(s1, s2, po);
-  RayCheckOptions<2> o;
-  o.directions = averaged_vertex_normals(*s1);
-  o.samples = 20000;
-  o.allow_negative_distance = true;
-  o.normal_check = RayNormalCheck::aligned;
-  auto rays = check_against_rays(projected.map, o);
-  return {std::move(projected), std::move(rays)};
-}
-
 std::size_t not_covered(const RayCheckReport<2>& r) {
   return r.missed_by_reason[static_cast<std::size_t>(MissedReason::not_covered)];
 }
@@ -66,7 +40,7 @@ TEST(ProjectWalkBackOverlap, CoarseS1) {
   // S2 edge 11's walk back from its second vertex fails after running on past the stop of its
   // walk from the first vertex: 1,208 of 20,000 samples were not covered (1,424 defects), 58
   // now (92); the rest lies around the failures themselves.
-  const auto c = project_offset_pair(delaunay(0, false, 831762790446481090u), delaunay(4, false, 1149399788989728679u),
+  const auto c = offset_height_fields(delaunay(0, false, 831762790446481090u), delaunay(4, false, 1149399788989728679u),
                                      4403904135659727109u, 0.232, 0.009, -0.016);
   EXPECT_TRUE(verify(c.projected.map).ok());
   EXPECT_EQ(c.rays.extra_defects(), 0u);
@@ -77,7 +51,7 @@ TEST(ProjectWalkBackOverlap, CoarseS1) {
 TEST(ProjectWalkBackOverlap, FineS1WithAHole) {
   // Here the stretch kept (two crossings of S2 edge 33) lies next to a fold: 2,905 of 20,000
   // samples were defects, 2,256 now (most of the rest next to folds, not changed here).
-  const auto c = project_offset_pair(delaunay(10, true, 792676312041302u), delaunay(6, false, 534312830191274u),
+  const auto c = offset_height_fields(delaunay(10, true, 792676312041302u), delaunay(6, false, 534312830191274u),
                                      1217031005043222u, 0.11, -0.139, -0.191);
   EXPECT_TRUE(verify(c.projected.map).ok());
   EXPECT_EQ(c.rays.extra_defects(), 0u);

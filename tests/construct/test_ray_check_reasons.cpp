@@ -3,6 +3,7 @@
 // an edge length, a fold of the projection in or next to the sample's element. Each case
 // projects with a distance limit far below the gap, so that the map covers nothing, and checks
 // without the limit: every sample with a hit is missed, and its class is known from the geometry.
+#include "offset_height_field_pair.hpp"
 #include "projection_fixtures.hpp"
 
 #include <plmap/construct/direction_field.hpp>
@@ -47,35 +48,6 @@ RayCheckReport<2> check_of_empty_map(const std::shared_ptr<const Surface<2>>& s1
   o.samples = 20000;
   o.max_listed = o.samples;
   return check_against_rays(r.map, o);
-}
-
-/// A pair of ProjectProperties.OffsetHeightFieldsWithAveragedNormals: S1 a planar triangulation
-/// lifted to a random height field, S2 another one over a footprint shifted by (dx, dy) and
-/// lifted to the same field plus `offset`, facing away; both seen from S1 along its averaged
-/// vertex normals, negative distances allowed, S2's normal aligned with the rays.
-struct OffsetHeightFieldPair {
-  std::shared_ptr<const Surface<2>> s1, s2;
-  ProjectionResult<2> projected;
-  RayCheckReport<2> rays;
-};
-OffsetHeightFieldPair offset_height_fields(const gen::PlanarRecipe& r1, const gen::PlanarRecipe& r2,
-                                           std::uint64_t field_seed, double offset, double dx, double dy) {
-  gen::Rng rng(field_seed);
-  const gen::HeightField field = gen::random_height_field(rng);
-  auto s1 = std::make_shared<const Surface<2>>(gen::lift_to_height_field(gen::make_planar(r1), field));
-  auto s2 = transformed<2>(gen::make_planar(r2), [&](const WorldPoint<2>& p) {
-    const double x = p.x() + dx, y = p.y() + dy;
-    return WorldPoint<2>(x, y, field(x, y) + offset);
-  });
-  ProjectionOptions po{.allow_negative_distance = true, .normal_check = TargetNormalCheck::aligned};
-  auto projected = project<2>(s1, s2, po);
-  RayCheckOptions<2> o;
-  o.directions = averaged_vertex_normals(*s1);
-  o.samples = 20000;
-  o.allow_negative_distance = true;
-  o.normal_check = RayNormalCheck::aligned;
-  auto rays = check_against_rays(projected.map, o);
-  return {s1, s2, std::move(projected), std::move(rays)};
 }
 
 gen::PlanarRecipe recipe(gen::PlanarBase base, int resolution, bool with_hole, bool jitter, std::uint64_t seed) {

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include <unistd.h>
@@ -91,6 +92,18 @@ struct RimMap {
     return std::move(builder).finalize();
   }
 };
+
+/// A RimMap whose builder drops conflicting edges, with everything entered and the rim x = 0.6
+/// joined: the tests below add stray rim edges to it.
+std::unique_ptr<RimMap> rim_map_dropping_conflicts() {
+  BuilderOptions options;
+  options.drop_conflicting_edges = true;
+  auto r = std::make_unique<RimMap>();
+  r->builder = MapBuilder<2>(r->s1, r->s2, options);
+  const auto rim = r->enter_nodes_and_pieces();
+  for (int i = 0; i + 1 < 4; ++i) r->builder.add_rim_edge(rim[i], rim[i + 1]);
+  return r;
+}
 
 }  // namespace
 
@@ -174,12 +187,8 @@ TEST(MapBuilderRim, OnlyTheRimEdgesThatCrossSomethingAreDropped) {
   // that rim edge goes: the rim x = 0.6 stays whole, and D is the part x <= 0.6 as before. Before,
   // every rim edge on element 1 went, and the faces next to x = 0.6 above the diagonal reached
   // the corner (1, 1), which has no node, and left D.
-  BuilderOptions options;
-  options.drop_conflicting_edges = true;
-  RimMap r;
-  r.builder = MapBuilder<2>(r.s1, r.s2, options);
-  const auto rim = r.enter_nodes_and_pieces();
-  for (int i = 0; i + 1 < 4; ++i) r.builder.add_rim_edge(rim[i], rim[i + 1]);
+  const auto holder = rim_map_dropping_conflicts();
+  RimMap& r = *holder;
   const auto a = r.builder.add_rim_node(on_s1(0.2, 0.7), on_s2(0.2, 0.7));
   const auto b = r.builder.add_rim_node(on_s1(0.35, 0.9), on_s2(0.35, 0.9));
   r.builder.add_rim_edge(a, b);
@@ -204,12 +213,8 @@ TEST(MapBuilderRim, RimNodesGoWithTheirDroppedRimEdges) {
   // them (as where a rim belongs to another sheet of S2). Left in the element, each node kept
   // the face around it from mapping into one S2 triangle, and element 1's whole part of D (0.42
   // of the 0.6) was lost. The nodes now go with their rim edge, and D is x <= 0.6.
-  BuilderOptions options;
-  options.drop_conflicting_edges = true;
-  RimMap r;
-  r.builder = MapBuilder<2>(r.s1, r.s2, options);
-  const auto rim = r.enter_nodes_and_pieces();
-  for (int i = 0; i + 1 < 4; ++i) r.builder.add_rim_edge(rim[i], rim[i + 1]);
+  const auto holder = rim_map_dropping_conflicts();
+  RimMap& r = *holder;
   const auto a = r.builder.add_rim_node(on_s1(0.2, 0.7), on_s2(0.5, 0.9));   // image beyond x + y = 1
   const auto b = r.builder.add_rim_node(on_s1(0.35, 0.9), on_s2(0.1, 0.3));  // image before it
   r.builder.add_rim_edge(a, b);
@@ -235,12 +240,8 @@ TEST(MapBuilderRim, PiecesEndingAtARimNodeLeftWithoutRimEndAtTheirLastCrossing) 
   // ended there, and so do the stray nodes: the map stays valid, element 0 (whose faces reach
   // its corners (1, 0) and (1, 1), which have no node) holds no region, and element 1 keeps its
   // part x <= 0.6 (0.5 - 0.08).
-  BuilderOptions options;
-  options.drop_conflicting_edges = true;
-  RimMap r;
-  r.builder = MapBuilder<2>(r.s1, r.s2, options);
-  const auto rim = r.enter_nodes_and_pieces();
-  for (int i = 0; i + 1 < 4; ++i) r.builder.add_rim_edge(rim[i], rim[i + 1]);
+  const auto holder = rim_map_dropping_conflicts();
+  RimMap& r = *holder;
   for (const auto& [p, q] : {std::pair{std::pair{0.55, 0.1}, std::pair{0.65, 0.3}}, {{0.55, 0.45}, {0.65, 0.55}}}) {
     const auto a = r.builder.add_rim_node(on_s1(p.first, p.second), on_s2(p.first, p.second));
     const auto b = r.builder.add_rim_node(on_s1(q.first, q.second), on_s2(q.first, q.second));
