@@ -5,6 +5,7 @@
 /// nearest-centroid queries at nearby points mostly without the tree and always exactly as the
 /// tree would.
 
+#include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/surface.hpp>
 
 #include <nanoflann.hpp>
@@ -44,6 +45,8 @@ struct ElementIndex {
   double radius = 0.0;
 
   explicit ElementIndex(const Surface<d>& s) {
+    // the kd-tree's queries read the centroids at random: on huge pages (huge_page_allocator.hpp)
+    reserve_on_huge_pages(cloud.points, static_cast<std::size_t>(s.element_count()));
     cloud.points.resize(s.element_count());
     for (Index t = 0; t < s.element_count(); ++t) {
       WorldPoint<d> c = WorldPoint<d>::Zero();

@@ -7,6 +7,7 @@
 #include "map_graph_derivation.hpp"
 
 #include <plmap/core/errors.hpp>
+#include <plmap/core/huge_page_allocator.hpp>
 
 #include <algorithm>
 #include <type_traits>
@@ -45,8 +46,14 @@ PartBounds& PartBounds::operator+=(const PartBounds& o) {
 void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part, const AssemblyCursor& at) {
   part = MapData<2>{};
   // room first (address space only: nothing beyond `own` is touched here), then the sizes
-  auto sized = [](auto& array, std::size_t size, std::size_t capacity) {
-    array.reserve(std::max(size, capacity));
+  // Each array on transparent huge pages where it spans them (huge_page_allocator.hpp): marked
+  // before its first write, so that the assembly's writes fault in 2 MiB pages.
+  auto reserved = [](auto& array, std::size_t capacity) {
+    array.reserve(capacity);
+    advise_huge_pages(array.data(), array.capacity() * sizeof(array[0]));
+  };
+  auto sized = [&](auto& array, std::size_t size, std::size_t capacity) {
+    reserved(array, std::max(size, capacity));
     array.resize(size);
   };
   sized(part.node_begin, own.elements + 1, room.elements + 1);
@@ -64,16 +71,16 @@ void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part, 
   // neighbour ends and the edge nodes: only the elements that keep their graph write them
   // (finalize_assembly.hpp).
   sized(part.neighbor_begin, 1, std::max(own.nodes, room.nodes) + 1);
-  part.edge_node.reserve(std::max(own.on_edges, room.on_edges));
-  part.neighbor.reserve(2 * std::max(own.sides, room.sides));
-  part.neighbor_edge_kind.reserve(2 * std::max(own.sides, room.sides));
-  part.region_corners.reserve(std::max(own.triangles, room.triangles));
-  part.region_neighbors.reserve(std::max(own.triangles, room.triangles));
-  part.region_target.reserve(std::max(own.triangles, room.triangles));
+  reserved(part.edge_node, std::max(own.on_edges, room.on_edges));
+  reserved(part.neighbor, 2 * std::max(own.sides, room.sides));
+  reserved(part.neighbor_edge_kind, 2 * std::max(own.sides, room.sides));
+  reserved(part.region_corners, std::max(own.triangles, room.triangles));
+  reserved(part.region_neighbors, std::max(own.triangles, room.triangles));
+  reserved(part.region_target, std::max(own.triangles, room.triangles));
   if (at.omitted_weights != nullptr)
     sized(*at.omitted_weights, own.nodes, room.nodes);
   else
-    part.region_map.reserve(std::max(own.triangles, room.triangles));
+    reserved(part.region_map, std::max(own.triangles, room.triangles));
 }
 
 namespace {

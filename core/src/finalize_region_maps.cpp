@@ -4,6 +4,7 @@
 
 #include <plmap/core/affine_through.hpp>
 #include <plmap/core/errors.hpp>
+#include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 
 #include <array>
@@ -48,6 +49,8 @@ void write_region_maps(const Surface<2>& s2, const std::vector<double>& omitted,
   if (omitted.size() != m.node_position.size() || !m.region_map.empty())
     throw BuilderError("internal: region maps deferred without one omitted weight per node");
   const std::size_t regions = m.region_target.size();
+  m.region_map.reserve(regions);
+  advise_huge_pages(m.region_map.data(), regions * sizeof(m.region_map[0]));  // before the first write
   m.region_map.resize(regions);
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
   // The array is first-touched here, in a tight loop of stores, one page fault per 85 regions

@@ -43,10 +43,10 @@ struct MapBuilder<d>::Impl {
   using Segment = detail::Segment;
   std::shared_ptr<const Surface<d>> s1, s2;
   BuilderOptions options;
-  std::vector<BuilderNode<d>> nodes;
+  detail::BuilderNodes<d> nodes;
   std::vector<Index> preimage_of_target_vertex;  // per S2 vertex
   std::vector<Index> node_at_domain_vertex;      // per S1 vertex
-  std::vector<Segment> segments;
+  detail::BuilderSegments segments;
   // per S2 edge (d = 2) or S2 element (d = 1): not inserted, inserted whole, or in pieces
   std::vector<char> edge_inserted;
   static constexpr char edge_complete = 1, edge_partial = 2, edge_outside_domain = 3;
@@ -90,8 +90,8 @@ struct MapBuilder<d>::Impl {
       nodes.reserve(n1v + static_cast<std::size_t>(s2->vertex_count()) + crossings);
       segments.reserve(static_cast<std::size_t>(s2->edge_count()) + n1v + crossings);
     } catch (const std::exception&) {  // std::bad_alloc, or std::length_error beyond max_size()
-      std::vector<BuilderNode<d>>().swap(nodes);
-      std::vector<Segment>().swap(segments);
+      detail::BuilderNodes<d>().swap(nodes);
+      detail::BuilderSegments().swap(segments);
     }
   }
 

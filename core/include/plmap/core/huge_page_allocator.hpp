@@ -9,6 +9,7 @@
 /// either way: this changes only where the memory comes from.
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <memory>
 #include <new>
@@ -18,6 +19,28 @@
 #endif
 
 namespace plmap {
+
+/// Marks the 2 MiB-aligned part of [p, p + bytes) for transparent huge pages (Linux; a hint, and
+/// a no-op elsewhere or for less than one huge page). Meant for an array that is allocated but
+/// not yet written: its first writes then fault in 2 MiB pages instead of 4 KiB ones (512 times
+/// fewer page faults, which also serialise threads on the process's page tables, and fewer TLB
+/// misses in random reads). The contents are the same either way.
+inline void advise_huge_pages([[maybe_unused]] const void* p, [[maybe_unused]] std::size_t bytes) noexcept {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::uintptr_t huge = std::uintptr_t{2} << 20;
+  const auto begin = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t first = (begin + huge - 1) & ~(huge - 1), last = (begin + bytes) & ~(huge - 1);
+  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+#endif
+}
+
+/// Reserves room for n elements in vector v and marks it for huge pages before anything is
+/// written there (a no-op for the part already written, and for small vectors).
+template <class Vector>
+void reserve_on_huge_pages(Vector& v, std::size_t n) {
+  v.reserve(n);
+  advise_huge_pages(v.data(), v.capacity() * sizeof(typename Vector::value_type));
+}
 
 template <class T>
 struct HugePageAllocator {
