@@ -46,7 +46,7 @@ struct ElementIndex {
 
   explicit ElementIndex(const Surface<d>& s) {
     // the kd-tree's queries read the centroids at random: on huge pages (huge_page_allocator.hpp)
-    reserve_on_huge_pages(cloud.points, static_cast<std::size_t>(s.element_count()));
+    if constexpr (d == 2) reserve_on_huge_pages(cloud.points, static_cast<std::size_t>(s.element_count()));
     cloud.points.resize(s.element_count());
     for (Index t = 0; t < s.element_count(); ++t) {
       WorldPoint<d> c = WorldPoint<d>::Zero();

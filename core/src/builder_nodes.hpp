@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace plmap::detail {
@@ -81,12 +82,16 @@ struct Segment {
 static_assert(sizeof(Segment) == 16, "segments are kept compact");
 
 /// The builder's node and segment arrays: the largest it keeps (hundreds of MiB on a million
-/// elements), grown push by push and read at random by the closure, on transparent huge pages
+/// triangles), grown push by push and read at random by the closure, on transparent huge pages
 /// (huge_page_allocator.hpp): on the 200k planes this took a third of the projection's page
-/// faults and TLB misses away.
+/// faults away. Curves (d = 1) keep the plain allocator: their arrays are smaller and read in
+/// order, and the 2 MiB granularity showed in their peak (1M circles +5.6 MiB).
+template <int d, class T>
+using BuilderArray = std::conditional_t<d == 2, std::vector<T, HugePageAllocator<T>>, std::vector<T>>;
 template <int d>
-using BuilderNodes = std::vector<BuilderNode<d>, HugePageAllocator<BuilderNode<d>>>;
-using BuilderSegments = std::vector<Segment, HugePageAllocator<Segment>>;
+using BuilderNodes = BuilderArray<d, BuilderNode<d>>;
+template <int d>
+using BuilderSegments = BuilderArray<d, Segment>;
 
 /// MapBuilder's record of an S2 edge (d = 2) or S2 element (d = 1) whose preimage is not in the
 /// map (the other values say how it was inserted).
@@ -101,7 +106,7 @@ struct BuilderContents {
   const BuilderOptions& options;
   BuilderNodes<d>& nodes;
   const std::vector<Index>& node_at_domain_vertex;  // per S1 vertex: its node, or invalid_index
-  BuilderSegments& segments;
+  BuilderSegments<d>& segments;
   std::vector<char>& edge_inserted;  // per S2 edge (d = 1: S2 element), 0: not inserted
 };
 

@@ -242,7 +242,7 @@ MapData<1> finalize_polylines(BuilderContents<1>& in, FinalizeReport* report) {
   // From here on only the slots, the pending regions and the nodes are read. The segments and
   // the buckets go before the map's arrays are sized, which is where finalize's memory peaks
   // (1M circles: 510 -> 449 MiB above the inputs).
-  BuilderSegments().swap(in.segments);
+  BuilderSegments<1>().swap(in.segments);
   where.release();
   // Sizes are known now (nodes; regions and neighbour entries once the orientation has
   // filtered the regions): the arrays are sized once and written in place.

@@ -260,7 +260,7 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   // map once more (31 MiB of the 200k plane pair's peak with two threads), and before the region
   // maps are written (finalize_region_maps.hpp).
   pass.release_workspaces();
-  BuilderSegments().swap(in.segments);
+  BuilderSegments<2>().swap(in.segments);
   BuilderNodes<2>().swap(in.nodes);
   where.release();
   join_parts(pass.parts(), n1, pass.threads(), m);

@@ -46,7 +46,7 @@ struct MapBuilder<d>::Impl {
   detail::BuilderNodes<d> nodes;
   std::vector<Index> preimage_of_target_vertex;  // per S2 vertex
   std::vector<Index> node_at_domain_vertex;      // per S1 vertex
-  detail::BuilderSegments segments;
+  detail::BuilderSegments<d> segments;
   // per S2 edge (d = 2) or S2 element (d = 1): not inserted, inserted whole, or in pieces
   std::vector<char> edge_inserted;
   static constexpr char edge_complete = 1, edge_partial = 2, edge_outside_domain = 3;
@@ -91,7 +91,7 @@ struct MapBuilder<d>::Impl {
       segments.reserve(static_cast<std::size_t>(s2->edge_count()) + n1v + crossings);
     } catch (const std::exception&) {  // std::bad_alloc, or std::length_error beyond max_size()
       detail::BuilderNodes<d>().swap(nodes);
-      detail::BuilderSegments().swap(segments);
+      detail::BuilderSegments<d>().swap(segments);
     }
   }
 

@@ -65,10 +65,10 @@ template <int d>
 void Surface<d>::build_adjacency() {
   const auto nv = static_cast<Index>(vertices_.size());
   const auto nt = static_cast<Index>(elements_.size());
-  // Walks and point location read these arrays at random: on transparent huge pages they miss
-  // the TLB far less (huge_page_allocator.hpp). The given vertices and elements move onto such
-  // pages in one copy (a few MiB per million elements); the arrays built here are marked before
-  // they are written.
+  // Walks and point location on a triangle surface read these arrays at random: on transparent
+  // huge pages they miss the TLB far less (huge_page_allocator.hpp). The given vertices and
+  // elements move onto such pages in one copy (a few MiB per million elements); the arrays built
+  // here are marked before they are written.
   const auto on_huge_pages = [](auto& array) {
     using Array = std::remove_reference_t<decltype(array)>;
     if (array.size() * sizeof(typename Array::value_type) < HugePageAllocator<char>::huge_page_bytes) return;
@@ -77,10 +77,12 @@ void Surface<d>::build_adjacency() {
     moved.assign(array.begin(), array.end());
     array.swap(moved);
   };
-  on_huge_pages(vertices_);
-  on_huge_pages(elements_);
-  reserve_on_huge_pages(vertex_element_begin_, static_cast<std::size_t>(nv) + 1);
-  reserve_on_huge_pages(vertex_element_, static_cast<std::size_t>(d + 1) * static_cast<std::size_t>(nt));
+  if constexpr (d == 2) {  // curves' arrays are smaller and read in order (see builder_nodes.hpp)
+    on_huge_pages(vertices_);
+    on_huge_pages(elements_);
+    reserve_on_huge_pages(vertex_element_begin_, static_cast<std::size_t>(nv) + 1);
+    reserve_on_huge_pages(vertex_element_, static_cast<std::size_t>(d + 1) * static_cast<std::size_t>(nt));
+  }
 
   if (nv > 0) {
     box_min_ = box_max_ = vertices_[0];
