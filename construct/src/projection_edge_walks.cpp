@@ -4,6 +4,7 @@
 
 #include "fold_reentry.hpp"
 #include "rim_geometry.hpp"
+#include "rim_reentry.hpp"
 #include "projection_edge_crossings.hpp"
 #include "walk_acceptance.hpp"
 
@@ -476,58 +477,16 @@ class EdgeWalker {
     return FoldExit{at, c};
   }
 
-  /// Where S2 edge e comes out in front of S1 again after the walk `stopped` ended on the rim
-  /// (the edge passed behind S1 there): the first point beyond the rim point, and before
-  /// `before`, at which the edge pierces an S1 element from behind, searched in the elements
-  /// within search_limits.fold_exit_reach rings (sharing a vertex) around the rim point's
-  /// element. Parameters are measured in the walk's `direction`. Between the two pierces the
-  /// edge lies behind S1; beyond the second, its preimage goes on from a rim node inside that
-  /// element. The S1-edge crossings that find_fold_exit looks for lie one element farther on,
-  /// and a walk from that crossing that reaches the second vertex leaves no walk back from there
-  /// to find the stretch between the pierce and the crossing: the faces next to it mapped into
-  /// two S2 triangles and left D (on the bones pair, a fifth of the area not covered).
+  /// Where S2 edge e comes out in front of S1 again after the walk `stopped` ended on the rim,
+  /// before `before`; parameters in the walk's `direction` (rim_reentry.hpp).
   std::optional<RimPoint<d>> find_rim_reentry(Index e, const WalkResult<d>& stopped, double before,
                                               WalkDirection direction) const
     requires(d == 2)
   {
     if (!stopped.rim) return std::nullopt;
-    const auto& limits = ctx_.options.search_limits;
     auto tv = ctx_.target_edge_vertices(e);
     if (direction == WalkDirection::from_second_vertex) std::swap(tv[0], tv[1]);
-    const WorldPoint<2> qa = ctx_.s2.vertex(tv[0]), qb = ctx_.s2.vertex(tv[1]);
-    const double after = stopped.rim->eta;
-    const WorldPoint<2> from = qa + after * (qb - qa);
-    // the rings of elements around the rim point's element
-    std::vector<Index> seen{stopped.rim->element}, ring{stopped.rim->element}, next;
-    const int rings = static_cast<int>(std::ceil(limits.fold_exit_reach));
-    std::vector<Index> merged;
-    for (int r = 0; r < rings; ++r) {
-      next.clear();
-      for (Index t : ring)
-        for (Index v : ctx_.s1.element(t))
-          for (Index n : ctx_.s1.vertex_elements(v)) next.push_back(n);
-      take_unseen_into(next, seen, ring, merged);
-    }
-    std::optional<RimPoint<d>> best;
-    for (Index t : seen) {
-      // the rim point's element holds the rim node of e already (one per element and S2 edge)
-      if (t == stopped.rim->element) continue;
-      const std::array<WorldPoint<2>, 3> tri{ctx_.s1.corner(t, 0), ctx_.s1.corner(t, 1), ctx_.s1.corner(t, 2)};
-      const std::optional<Pierce> p = segment_through_triangle(from, qb, tri);
-      if (!p || !strictly_inside(p->barycentric, 1e3 * ctx_.options.snap_tolerance)) continue;
-      const double at = after + p->s * (1.0 - after);
-      if (!(at > after + limits.edge_parameter_slack) || !(at < before - limits.edge_parameter_slack) ||
-          !(at < 1.0 - limits.end_parameter_slack))
-        continue;
-      if (best && best->eta <= at) continue;
-      // from behind S1 to its front: the distance along the rays grows along the edge
-      const WorldPoint<2> normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-      WorldPoint<2> nu = WorldPoint<2>::Zero();
-      for (int k = 0; k < 3; ++k) nu += p->barycentric[k] * ctx_.vertex_directions[ctx_.s1.element(t)[k]];
-      if (!(normal.dot(qb - qa) * normal.dot(nu) > 0.0)) continue;
-      best = RimPoint<d>{t, LocalPoint<d>(p->barycentric[1], p->barycentric[2]), at};
-    }
-    return best;
+    return rim_reentry(ctx_, *stopped.rim, ctx_.s2.vertex(tv[0]), ctx_.s2.vertex(tv[1]), before);
   }
 
   /// After the walk `stopped` from the first vertex or a boundary entry of S2 edge e ended at a
