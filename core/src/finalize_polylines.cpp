@@ -12,6 +12,7 @@
 
 #include <plmap/core/affine_through.hpp>
 #include <plmap/core/errors.hpp>
+#include <plmap/core/huge_page_allocator.hpp>
 
 #include <fmt/format.h>
 
@@ -262,23 +263,25 @@ void reserve_map_arrays(const ElementCounts& counts, MapData<1>& m) {
     regions += static_cast<std::size_t>(kept[t]);
   }
   const std::size_t elements = counts.nodes.size();
-  m.node_begin.reserve(elements + 1);
-  m.region_begin.reserve(elements + 1);
-  m.start_region.reserve(elements);
-  m.node_position.reserve(nodes);
-  m.node_type.reserve(nodes);
-  m.node_location.reserve(nodes);
-  m.node_image_element.reserve(nodes);
-  m.node_image_local.reserve(nodes);
-  m.node_target.reserve(nodes);
-  m.neighbor_begin.reserve(nodes + 1);
+  // on transparent huge pages (huge_page_allocator.hpp): every array is first written here,
+  // front to back, and with 4 KiB pages that was a page fault per 4 KiB (1M circles: 200 MB)
+  reserve_on_huge_pages(m.node_begin, elements + 1);
+  reserve_on_huge_pages(m.region_begin, elements + 1);
+  reserve_on_huge_pages(m.start_region, elements);
+  reserve_on_huge_pages(m.node_position, nodes);
+  reserve_on_huge_pages(m.node_type, nodes);
+  reserve_on_huge_pages(m.node_location, nodes);
+  reserve_on_huge_pages(m.node_image_element, nodes);
+  reserve_on_huge_pages(m.node_image_local, nodes);
+  reserve_on_huge_pages(m.node_target, nodes);
+  reserve_on_huge_pages(m.neighbor_begin, nodes + 1);
   // two entries per region, fewer where two regions join the same slots
-  m.neighbor.reserve(2 * regions);
-  m.neighbor_edge_kind.reserve(2 * regions);
-  m.region_corners.reserve(regions);
-  m.region_neighbors.reserve(regions);
-  m.region_target.reserve(regions);
-  m.region_map.reserve(regions);
+  reserve_on_huge_pages(m.neighbor, 2 * regions);
+  reserve_on_huge_pages(m.neighbor_edge_kind, 2 * regions);
+  reserve_on_huge_pages(m.region_corners, regions);
+  reserve_on_huge_pages(m.region_neighbors, regions);
+  reserve_on_huge_pages(m.region_target, regions);
+  reserve_on_huge_pages(m.region_map, regions);
 }
 
 }  // namespace
