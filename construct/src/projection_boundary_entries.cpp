@@ -15,7 +15,13 @@ template <int d, class Solver>
 std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const ProjectionContext<d>& ctx,
                                                                  const ProjectionState<d>& state, const Solver& solver) {
   const EdgeCrossings<d, Solver> crossings(ctx, solver);
-  std::vector<std::vector<BoundaryEntry<d>>> entries(ctx.s2.edge_count());
+  // One list per S2 edge, made only once an entry is found: on a closed S1 there is none, and
+  // the million empty lists of the 1M circles cost their page faults and frees for nothing.
+  std::vector<std::vector<BoundaryEntry<d>>> entries;
+  auto list_of = [&](Index e) -> std::vector<BoundaryEntry<d>>& {
+    if (entries.empty()) entries.resize(static_cast<std::size_t>(ctx.s2.edge_count()));
+    return entries[static_cast<std::size_t>(e)];
+  };
   if constexpr (d == 1) {
     for (Index v = 0; v < ctx.s1.vertex_count(); ++v) {
       if (!ctx.s1.is_boundary_vertex(v) || state.vertex_state[v] != VertexState::ghost || !state.vertex_image[v]) continue;
@@ -25,7 +31,7 @@ std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const Projectio
       entry.place.index = v;
       entry.eta = image.local(0);
       entry.crossing = VertexCrossing{v, entry.eta};
-      entries[image.element].push_back(entry);
+      list_of(image.element).push_back(entry);
     }
   } else {
     long long calls = 0, failures = 0;
@@ -64,7 +70,7 @@ std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const Projectio
         entry.place = ctx.edge_place(edge, c.lambda);
         entry.eta = c.eta;
         entry.crossing = EdgeCrossing{edge, c.lambda, c.eta};
-        auto& list = entries[e];
+        auto& list = list_of(e);
         const bool duplicate = std::any_of(list.begin(), list.end(), [&](const BoundaryEntry<2>& x) {
           return x.place == entry.place;
         });

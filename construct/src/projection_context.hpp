@@ -315,7 +315,8 @@ struct ProjectionState {
   std::vector<VertexState> vertex_state;
   /// Per S1 vertex that is a node: its image on S2.
   std::vector<std::optional<SurfacePoint<d>>> vertex_image;
-  /// Per S2 edge: where it crosses S1's boundary, sorted by the edge parameter (edge walks).
+  /// Per S2 edge: where it crosses S1's boundary, sorted by the edge parameter (edge walks);
+  /// empty if no S2 edge does.
   std::vector<std::vector<BoundaryEntry<d>>> boundary_entries;
 
   ProjectionState(Index s1_vertices, Index s2_vertices)

@@ -72,8 +72,9 @@ struct PlannedEdge {
 inline constexpr Index edge_plan_block = 1024;
 
 /// Points where S2 edges cross S1's boundary (d = 2: a boundary edge, d = 1: a boundary vertex
-/// with a ghost image), per S2 edge, sorted by the edge parameter; walks start there too. Reads
-/// state.vertex_state and vertex_image.
+/// with a ghost image), per S2 edge, sorted by the edge parameter; walks start there too. Empty
+/// (no list at all) where no S2 edge crosses the boundary. Reads state.vertex_state and
+/// vertex_image.
 template <int d, class Solver>
 std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const ProjectionContext<d>& ctx,
                                                                  const ProjectionState<d>& state, const Solver& solver);
