@@ -1,5 +1,6 @@
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/core/errors.hpp>
+#include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 
 #include <fmt/format.h>
@@ -15,15 +16,19 @@ std::vector<WorldPoint<d>> averaged_vertex_normals(const Surface<d>& surface, un
   // each is a scaled cross product: computed per star they were most of the projection's set-up
   // on the real-mesh pairs); the sums below add the same products in the same order.
   const auto elements = static_cast<std::size_t>(surface.element_count());
-  std::vector<double> measure(elements);
-  std::vector<WorldPoint<d>> normal(elements);
+  // per element and per vertex, millions on large surfaces: on huge pages (huge_page_allocator.hpp)
+  std::vector<double> measure;
+  std::vector<WorldPoint<d>> normal;
+  assign_on_huge_pages(measure, elements);
+  assign_on_huge_pages(normal, elements, WorldPoint<d>::Zero());
   parallel_for_chunks(elements, 4096, threads, [&](std::size_t begin, std::size_t end) {
     for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) {
       measure[t] = surface.element_measure(t);
       normal[t] = surface.element_normal(t);
     }
   });
-  std::vector<WorldPoint<d>> out(surface.vertex_count(), WorldPoint<d>::Zero());
+  std::vector<WorldPoint<d>> out;
+  assign_on_huge_pages(out, static_cast<std::size_t>(surface.vertex_count()), WorldPoint<d>::Zero());
   parallel_for_chunks(static_cast<std::size_t>(surface.vertex_count()), 4096, threads, [&](std::size_t begin, std::size_t end) {
     for (auto v = static_cast<Index>(begin); v < static_cast<Index>(end); ++v) {
       const auto star = surface.vertex_elements(v);

@@ -54,7 +54,7 @@ ProjectionContext<d>::ProjectionContext(std::shared_ptr<const Surface<d>> s1_sur
         limits.second_search_reach, limits.farther_hit_retry));
   retry_seed_count = limits.retry_seeds;
   edge_walk_steps = limits.edge_walk_steps > 0 ? limits.edge_walk_steps : 2 * static_cast<int>(s1.element_count()) + 16;
-  focal_free_reach.resize(s1.element_count());
+  assign_on_huge_pages(focal_free_reach, static_cast<std::size_t>(s1.element_count()));
   parallel_ranges(s1.element_count(), threads, [&](std::size_t begin, std::size_t end) {
     for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) {
       std::array<WorldPoint<d>, d + 1> corners, directions;

@@ -15,6 +15,7 @@
 #include "walk_acceptance.hpp"
 
 #include <plmap/construct/projection_options.hpp>
+#include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/map_builder.hpp>
 #include <plmap/core/snapping.hpp>
 #include <plmap/core/surface.hpp>
@@ -319,8 +320,12 @@ struct ProjectionState {
   /// empty if no S2 edge does.
   std::vector<std::vector<BoundaryEntry<d>>> boundary_entries;
 
-  ProjectionState(Index s1_vertices, Index s2_vertices)
-      : target_place(s2_vertices), vertex_state(s1_vertices, VertexState::free), vertex_image(s1_vertices) {}
+  ProjectionState(Index s1_vertices, Index s2_vertices) {
+    // per vertex of a large surface: on huge pages (huge_page_allocator.hpp)
+    assign_on_huge_pages(target_place, static_cast<std::size_t>(s2_vertices));
+    assign_on_huge_pages(vertex_state, static_cast<std::size_t>(s1_vertices), VertexState::free);
+    assign_on_huge_pages(vertex_image, static_cast<std::size_t>(s1_vertices));
+  }
 
   void release() {
     auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };

@@ -19,15 +19,16 @@ template <int d>
 ProjectionInsertion<d>::ProjectionInsertion(const ProjectionContext<d>& ctx, ProjectionState<d>& state,
                                             MapBuilder<d>& builder)
     : ctx_(ctx), state_(state), builder_(builder) {
-  if constexpr (d == 2) used_first_.assign(ctx_.s1.edge_count(), invalid_index);
-  crossed_vertex_.assign(ctx_.s1.vertex_count(), invalid_index);
-  inserted_.assign(ctx_.s2.edge_count(), 0);
+  // per S1 edge, S1 vertex and S2 edge: on huge pages (huge_page_allocator.hpp)
+  if constexpr (d == 2) assign_on_huge_pages(used_first_, static_cast<std::size_t>(ctx_.s1.edge_count()), invalid_index);
+  assign_on_huge_pages(crossed_vertex_, static_cast<std::size_t>(ctx_.s1.vertex_count()), invalid_index);
+  assign_on_huge_pages(inserted_, static_cast<std::size_t>(ctx_.s2.edge_count()));
   // One used parameter per crossing inside an S1 edge, grown to millions: room taken once, as
   // the builder does for its nodes (MapBuilder::Impl::reserve_expected_sizes, which explains the
   // estimate; room never written costs address space only).
   if constexpr (d == 2) {
     try {
-      used_parameters_.reserve(static_cast<std::size_t>(
+      reserve_on_huge_pages(used_parameters_, static_cast<std::size_t>(
           8.0 * std::sqrt(static_cast<double>(ctx_.s1.edge_count()) * static_cast<double>(ctx_.s2.edge_count()))));
     } catch (const std::bad_alloc&) {
       // address space refused (strict overcommit, huge inputs): a hint only, the list grows as needed

@@ -400,7 +400,7 @@ VertexPreimages<d> find_vertex_preimages(const ProjectionContext<d>& ctx, const 
   Search search(ctx, solver, walks);
   VertexPreimages<d> result;
   auto& preimage = result.preimage;
-  preimage.resize(ctx.s2.vertex_count());
+  assign_on_huge_pages(preimage, static_cast<std::size_t>(ctx.s2.vertex_count()));
   parallel_for_chunks(ctx.s2.vertex_count(), search_chunk, ctx.threads, [&](Index begin, Index end) {
     typename Search::SearchOffset offset;  // target minus preimage of the previous vertex found
     NearestElements<d> nearest(*ctx.s1_index);

@@ -40,6 +40,18 @@ TEST(HugePages, ReservingKeepsWhatIsWrittenAndMarkingAnyRangeIsHarmless) {
   EXPECT_EQ(v[2], 3.5);
 }
 
+TEST(HugePages, AssigningOnHugePagesFillsLikeAssign) {
+  std::vector<int> big;
+  assign_on_huge_pages(big, 2'000'000, -1);  // several huge pages
+  EXPECT_EQ(big, std::vector<int>(2'000'000, -1));
+  std::vector<double> zeros;
+  assign_on_huge_pages(zeros, 5);  // value-initialized, below a huge page
+  EXPECT_EQ(zeros, std::vector<double>(5, 0.0));
+  std::vector<int> refilled = {1, 2, 3};
+  assign_on_huge_pages(refilled, 2, 9);  // replaces what was there, as assign does
+  EXPECT_EQ(refilled, (std::vector<int>{9, 9}));
+}
+
 TEST(HugePages, ASurfaceMovedOntoHugePagesKeepsItsVerticesAndElements) {
   // above one huge page of vertices: Surface copies them onto marked pages
   const int n = 400;

@@ -2,7 +2,7 @@
 /// \file
 /// Transparent huge pages for large arrays that are read at random (the inverse-evaluation
 /// index, the builder's nodes and segments) or first written in bulk (the map's arrays, a
-/// surface's adjacency): an allocator whose blocks of 2 MiB and more are aligned to 2 MiB and, on
+/// surface's adjacency, the projection's per-vertex results): an allocator whose blocks of 2 MiB and more are aligned to 2 MiB and, on
 /// Linux, marked for transparent huge pages (madvise MADV_HUGEPAGE; the system default "madvise"
 /// gives them only to memory so marked), and helpers that mark a std::vector's reserved room.
 /// A random read into a 100 MB array with 4 KiB pages misses the TLB almost every time, and on a
@@ -42,6 +42,15 @@ template <class Vector>
 void reserve_on_huge_pages(Vector& v, std::size_t n) {
   v.reserve(n);
   advise_huge_pages(v.data(), v.capacity() * sizeof(typename Vector::value_type));
+}
+
+/// `v.assign(n, value)` on memory marked for huge pages before its first write (room reserved
+/// first): for the per-vertex and per-element arrays of a large surface that the projection fills
+/// right away (on the 1M circles they were a third of the run's page faults).
+template <class Vector>
+void assign_on_huge_pages(Vector& v, std::size_t n, const typename Vector::value_type& value = {}) {
+  reserve_on_huge_pages(v, n);
+  v.assign(n, value);
 }
 
 template <class T>
