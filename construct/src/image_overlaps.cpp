@@ -3,6 +3,7 @@
 #include "image_overlaps.hpp"
 
 #include <plmap/core/element_transfer.hpp>
+#include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 #include <plmap/core/triangle_overlap.hpp>
 
@@ -205,7 +206,8 @@ std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageM
   const Index n2 = map.target().element_count();
   const Index nt = map.domain().element_count();
 
-  std::vector<char> crowded(static_cast<std::size_t>(n2), 0);
+  std::vector<char> crowded;
+  assign_on_huge_pages(crowded, static_cast<std::size_t>(n2), char{0});  // per S2 element: on huge pages
   // Where the preimage of an S2 element tau on one sheet of S1 is bounded by the preimages of
   // tau's own edges, its images tile tau exactly once: they are positively oriented and their
   // boundary runs once around tau, so the map has degree 1 on all of tau (the builder has

@@ -5,6 +5,7 @@
 #include "image_overlaps.hpp"
 
 #include <plmap/core/face_removal.hpp>
+#include <plmap/core/huge_page_allocator.hpp>
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -21,14 +22,18 @@ std::vector<bool> coincident_preimage_losers(const ProjectionContext<d>& ctx,
   const Index n2v = static_cast<Index>(target_place.size());
   const Index edge_keys = d == 2 ? ctx.s1.edge_count() : 0;
   auto key = [&](const Place<d>& p) { return p.kind == PlaceKind::edge ? p.index : edge_keys + p.index; };
-  std::vector<Index> group_begin(static_cast<std::size_t>(edge_keys + ctx.s1.element_count()) + 1, 0);
+  std::vector<Index> group_begin;  // per S1 edge and element: on huge pages (huge_page_allocator.hpp)
+  assign_on_huge_pages(group_begin, static_cast<std::size_t>(edge_keys + ctx.s1.element_count()) + 1, Index{0});
   auto grouped = [&](Index q) { return target_place[q] && target_place[q]->kind != PlaceKind::vertex; };
   for (Index q = 0; q < n2v; ++q)
     if (grouped(q)) ++group_begin[key(*target_place[q]) + 1];
   for (std::size_t k = 1; k < group_begin.size(); ++k) group_begin[k] += group_begin[k - 1];
-  std::vector<Index> members(static_cast<std::size_t>(group_begin.back()));
+  std::vector<Index> members;
+  assign_on_huge_pages(members, static_cast<std::size_t>(group_begin.back()));
   {
-    std::vector<Index> cursor(group_begin.begin(), group_begin.end() - 1);
+    std::vector<Index> cursor;
+    reserve_on_huge_pages(cursor, group_begin.size() - 1);
+    cursor.assign(group_begin.begin(), group_begin.end() - 1);
     for (Index q = 0; q < n2v; ++q)
       if (grouped(q)) members[cursor[key(*target_place[q])]++] = q;
   }

@@ -63,9 +63,10 @@ struct MapBuilder<d>::Impl {
     if (std::max(s1->element_count(), s1->edge_count()) >= Index{1} << 30)
       throw BuilderError(fmt::format("S1 has {} elements and {} edges; the builder takes fewer than 2^30",
                                      s1->element_count(), s1->edge_count()));
-    preimage_of_target_vertex.assign(s2->vertex_count(), invalid_index);
-    node_at_domain_vertex.assign(s1->vertex_count(), invalid_index);
-    edge_inserted.assign(s2->edge_count(), 0);
+    // per vertex and per edge of surfaces with millions of them: on huge pages
+    assign_on_huge_pages(preimage_of_target_vertex, static_cast<std::size_t>(s2->vertex_count()), invalid_index);
+    assign_on_huge_pages(node_at_domain_vertex, static_cast<std::size_t>(s1->vertex_count()), invalid_index);
+    assign_on_huge_pages(edge_inserted, static_cast<std::size_t>(s2->edge_count()), char{0});
     reserve_expected_sizes();
   }
 

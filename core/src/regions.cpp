@@ -1,4 +1,5 @@
 #include <plmap/core/element_transfer.hpp>
+#include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 #include <plmap/core/regions.hpp>
 #include <plmap/core/scaled_geometry.hpp>
@@ -133,7 +134,7 @@ ImageMeasures sum_terms(const PlMap<d>& map, unsigned threads, ImageMeasureTerms
   const auto& m = map.stored();
   const Index n1 = map.domain().element_count(), n2 = map.target().element_count();
   ImageMeasures out;
-  out.per_target.assign(static_cast<std::size_t>(n2), 0.0);
+  assign_on_huge_pages(out.per_target, static_cast<std::size_t>(n2), 0.0);
   for (Index t = 0; t < n1; ++t) {
     if (map.regions_begin(t) == map.regions_end(t)) continue;
     for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
@@ -142,6 +143,7 @@ ImageMeasures sum_terms(const PlMap<d>& map, unsigned threads, ImageMeasureTerms
   }
   // A removal only takes regions away, so every S2 element with images had them before and has
   // its measure already; a first call computes them.
+  reserve_on_huge_pages(terms.target_measure, static_cast<std::size_t>(n2));
   terms.target_measure.resize(static_cast<std::size_t>(n2), 0.0);
   parallel_for_chunks(static_cast<std::size_t>(n2), 4096, threads, [&](std::size_t begin, std::size_t end) {
     for (auto t2 = static_cast<Index>(begin); t2 < static_cast<Index>(end); ++t2)
@@ -160,8 +162,9 @@ template <int d>
 ImageMeasures image_measures(const PlMap<d>& map, unsigned threads, ImageMeasureTerms& terms) {
   const Index n1 = map.domain().element_count();
   terms.region_begin = map.stored().region_begin;
-  terms.region_target.assign(static_cast<std::size_t>(map.region_count()), 0.0);
-  terms.element_domain.assign(static_cast<std::size_t>(n1), 0.0);
+  // per region and per element of large surfaces: on huge pages (huge_page_allocator.hpp)
+  assign_on_huge_pages(terms.region_target, static_cast<std::size_t>(map.region_count()), 0.0);
+  assign_on_huge_pages(terms.element_domain, static_cast<std::size_t>(n1), 0.0);
   terms.target_measure.clear();
   parallel_for_chunks(static_cast<std::size_t>(n1), 1024, threads, [&](std::size_t begin, std::size_t end) {
     for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) element_terms(map, t, terms);
@@ -200,7 +203,7 @@ ImageMeasures image_measures(const PlMap<d>& map, unsigned threads) {
   const Surface<d>& s2 = map.target();
   const Index n1 = map.domain().element_count(), n2 = s2.element_count();
   ImageMeasures out;
-  out.per_target.assign(static_cast<std::size_t>(n2), 0.0);
+  assign_on_huge_pages(out.per_target, static_cast<std::size_t>(n2), 0.0);
   for (Index t = 0; t < n1; ++t) {
     if (map.regions_begin(t) == map.regions_end(t)) continue;
     for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
