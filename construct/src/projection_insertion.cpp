@@ -20,7 +20,8 @@ ProjectionInsertion<d>::ProjectionInsertion(const ProjectionContext<d>& ctx, Pro
                                             MapBuilder<d>& builder)
     : ctx_(ctx), state_(state), builder_(builder) {
   // per S1 edge, S1 vertex and S2 edge: on huge pages (huge_page_allocator.hpp)
-  if constexpr (d == 2) assign_on_huge_pages(used_first_, static_cast<std::size_t>(ctx_.s1.edge_count()), invalid_index);
+  if constexpr (d == 2)
+    assign_on_huge_pages(used_first_, static_cast<std::size_t>(ctx_.s1.edge_count()), invalid_index);
   assign_on_huge_pages(crossed_vertex_, static_cast<std::size_t>(ctx_.s1.vertex_count()), invalid_index);
   assign_on_huge_pages(inserted_, static_cast<std::size_t>(ctx_.s2.edge_count()));
   // One used parameter per crossing inside an S1 edge, grown to millions: room taken once, as
