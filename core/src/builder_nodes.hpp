@@ -87,12 +87,12 @@ static_assert(sizeof(Segment) == 16, "segments are kept compact");
 /// faults away. Curves (d = 1) too, since their finalize no longer keeps per-element copies of
 /// the nodes (1M circles: insertion 1.2 -> 0.85 s, peak +2.3 MiB of 2 MiB granularity, far
 /// below half of ContactMerge's now).
-template <int d, class T>
+template <class T>
 using BuilderArray = std::vector<T, HugePageAllocator<T>>;
 template <int d>
-using BuilderNodes = BuilderArray<d, BuilderNode<d>>;
-template <int d>
-using BuilderSegments = BuilderArray<d, Segment>;
+using BuilderNodes = BuilderArray<BuilderNode<d>>;
+template <int d>  // segments are the same for both dimensions; d keeps the builder's names uniform
+using BuilderSegments = BuilderArray<Segment>;
 
 /// MapBuilder's record of an S2 edge (d = 2) or S2 element (d = 1) whose preimage is not in the
 /// map (the other values say how it was inserted).
