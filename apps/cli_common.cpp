@@ -25,7 +25,23 @@ void require_readable_file(const std::filesystem::path& path) {
     throw Error(path.string() + ": is a directory, expected a file");
 }
 
+namespace {
+
+/// Peeking at an input consumes what a pipe delivers, and the reader that follows would see the
+/// rest only (it reported an unknown format), or, opening the pipe again, wait forever.
+void refuse_pipe_or_device(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_fifo(status) || std::filesystem::is_socket(status) ||
+      std::filesystem::is_character_file(status))
+    throw Error(path.string() +
+                ": is a pipe or a device; plmap reads this input more than once, so save it to a file first");
+}
+
+}  // namespace
+
 bool looks_like_map_file(const std::filesystem::path& path) {
+  refuse_pipe_or_device(path);
   std::ifstream in(path, std::ios::binary);
   std::string head(64, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
@@ -51,6 +67,7 @@ std::optional<SurfaceFormat> guess_format(const std::filesystem::path& path) {
 
 AnySurface read_any_surface(const std::filesystem::path& path, int forced_dimension) {
   require_readable_file(path);
+  refuse_pipe_or_device(path);  // read_surface_pair may read S2 twice
   if (forced_dimension == 1) return read_surface<1>(path);
   if (forced_dimension == 2) return read_surface<2>(path);
   if (looks_like_map_file(path))

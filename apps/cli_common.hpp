@@ -48,6 +48,8 @@ AnySurface read_any_surface(const std::filesystem::path& path,
                             int forced_dimension = 0);
 
 /// True if the file starts with the map-file magic word (it is a `.plmap` map, not a surface).
+/// Fails with plmap::Error for a pipe, socket or character device: the peek would consume what
+/// the reader after it needs.
 bool looks_like_map_file(const std::filesystem::path& path);
 
 /// Text map files above this size get a hint to use the binary format (docs/map-format.md,

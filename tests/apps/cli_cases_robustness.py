@@ -271,3 +271,16 @@ def threads_default_to_all_cores():
     out, _, _ = run("eval", "--help")
     expect("all hardware threads" in out, f"eval --help should say what 0 threads means: {out}")
     expect_clean_error(["eval", m, "--threads", "100000"], code=64, mention="--threads")
+
+
+@case
+def a_pipe_as_input_is_refused_at_once():
+    # The commands that peek at an input to tell a map from a surface would consume what a pipe
+    # delivers (the reader then saw the rest only), and opening a pipe nobody writes to would wait.
+    s = grid("v.off", cells=2)
+    os.mkfifo(os.path.join(WORK, "pipe.off"))
+    for args in (["info", "pipe.off"], ["project", "pipe.off", s, "-o", "p.plmap"],
+                 ["project", s, "pipe.off", "-o", "p.plmap"], ["convert", "pipe.off", "c.obj"]):
+        expect_clean_error(args, code=2, mention="pipe")
+    stray = [f for f in ("p.plmap", "c.obj") if os.path.exists(os.path.join(WORK, f))]
+    expect(not stray, f"refused commands wrote {stray}")

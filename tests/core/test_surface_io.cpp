@@ -13,6 +13,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
+
+#include <sys/stat.h>
 
 using namespace plmap;
 using namespace plmap::surface_io_test;
@@ -91,6 +94,33 @@ TEST(SurfaceIo, TriangleSurfacesRoundTripThroughEveryFormat) {
       expect_same(s, read_triangle_surface(path));
     }
   }
+}
+
+TEST(SurfaceIo, ReadsAPipeWhoseSizeIsNotKnownAhead) {
+  // The reader reads a file with one call of its known size; a pipe has none, and is read in
+  // growing pieces: a surface of about 0.9 MB, many times a pipe's buffer and the first piece.
+  std::vector<WorldPoint<2>> vertices;
+  Triangles triangles;
+  const int n = 120;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) vertices.emplace_back(i + 0.1 * j, j - 0.01 * i, 0.001 * i * j);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Index a = j * (n + 1) + i, b = a + 1, c = a + n + 1, e = c + 1;
+      triangles.push_back({a, b, e});
+      triangles.push_back({a, e, c});
+    }
+  const Surface<2> grid(std::move(vertices), std::move(triangles));
+  const fs::path file = scratch_dir() / "grid.off", pipe = scratch_dir() / "grid-pipe.off";
+  write_surface(file, grid);
+  const std::string bytes = slurp(file);
+  ASSERT_GT(bytes.size(), std::size_t{800'000});
+  fs::remove(pipe);
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+  std::thread writer([&] { spit(pipe, bytes); });
+  const Surface<2> read = read_triangle_surface(pipe);
+  writer.join();
+  expect_same(grid, read);
 }
 
 TEST(SurfaceIo, BinaryStlRoundsToFloat) {

@@ -7,6 +7,8 @@
 #include "plmap/core/io/surface_format.hpp"
 #include "plmap/core/map_validation.hpp"
 
+#include "whole_file.hpp"
+
 #include <fmt/format.h>
 
 #include <array>
@@ -16,7 +18,6 @@
 #include <memory>
 #include <limits>
 #include <ostream>
-#include <sstream>
 #include <string>
 #include <system_error>
 
@@ -469,34 +470,8 @@ PlMap<d> read_map_body(MapFileReader& r, int orientation) {
   }
 }
 
-/// The whole file in one read: a binary map is a few large arrays, and a text map is parsed
-/// from memory; either way this is the one copy of the bytes (no zero-filling, no stream
-/// buffering). Not in huge pages: on the virtual machine measured (docs/benchmarks.md, "Binary
-/// map files"), first touches of fresh 2 MiB pages cost more system time than the 4 KiB faults
-/// they save.
-struct FileBytes {
-  std::unique_ptr<char[]> data;
-  std::size_t size = 0;
-  std::string_view view() const { return {data.get(), size}; }
-};
-
-FileBytes read_whole_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) {
-    throw ParseError(path.string(), "",
-                     fmt::format("cannot open: {}",
-                                 std::error_code(errno, std::generic_category()).message()));
-  }
-  const std::streamoff size = in.tellg();
-  if (size < 0) throw ParseError(path.string(), "", "cannot determine the file's size");
-  in.seekg(0);
-  FileBytes bytes;
-  bytes.size = static_cast<std::size_t>(size);
-  bytes.data = std::make_unique_for_overwrite<char[]>(bytes.size);
-  in.read(bytes.data.get(), size);
-  if (in.gcount() != size) throw ParseError(path.string(), "", "read error (the file changed while being read?)");
-  return bytes;
-}
+using io_detail::FileBytes;
+using io_detail::read_whole_file;
 
 template <int d>
 PlMap<d> of_dimension(AnyPlMap&& any, const std::string& file) {

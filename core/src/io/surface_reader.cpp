@@ -1,31 +1,15 @@
 #include <plmap/core/io/surface_reader.hpp>
 
 #include "surface_parse_support.hpp"
+#include "whole_file.hpp"
 
-#include <cerrno>
-#include <fstream>
 #include <optional>
-#include <sstream>
-#include <system_error>
 
 namespace plmap {
 
 namespace {
 
 using namespace surface_io_detail;
-
-std::string read_whole_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    const int e = errno;
-    throw ParseError(path.string(), "", "cannot open file: " +
-                                            std::error_code(e, std::generic_category()).message());
-  }
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) throw ParseError(path.string(), "", "read error");
-  return std::move(content).str();
-}
 
 /// Reads a decimal number at `at` in `text`, advancing `at` past it.
 std::optional<std::size_t> number_at(std::string_view text, std::size_t& at) {
@@ -124,9 +108,10 @@ template <int d>
   requires SurfaceDimension<d>
 Surface<d> read_surface(const std::filesystem::path& path, const SurfaceReadOptions& options) {
   const std::string name = path.string();
-  const std::string bytes = read_whole_file(path);
+  const io_detail::FileBytes file = io_detail::read_whole_file(path);
+  const std::string_view bytes = file.view();
   auto format = format_from_extension(path);
-  if (!format) format = format_from_content(std::string_view(bytes).substr(0, 4096));
+  if (!format) format = format_from_content(bytes.substr(0, 4096));
   if (!format)
     throw ParseError(name, "",
                      "unknown surface format: use the extension .off, .obj, .stl, .ply, .msh or "
