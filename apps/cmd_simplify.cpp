@@ -15,6 +15,8 @@
 
 #include <fmt/format.h>
 
+#include <iostream>
+
 namespace plmap::cli {
 
 namespace {
@@ -85,6 +87,27 @@ int run_simplify(const SimplifyCommand& o) {
   return report_simplification(o, result.map, result.report, bar);
 }
 
+/// A run that stops above its element or vertex target still writes a valid map (exit 0), but
+/// the user asked for something else: say on stderr why it stopped, so that the JSON on stdout
+/// stays clean and the reason is not only a `false` among thirty fields. Prefixed "note: ", like
+/// the "hint: " lines, so that it is not taken for an error ("plmap: ").
+void note_missed_target(const SimplifyCommand& o, const SimplifyReport& r) {
+  if (r.target_reached || (o.target_elements == 0 && o.target_vertices == 0)) return;
+  const std::string asked = o.target_elements > 0
+                                ? fmt::format("{} elements, above --target-elements {}", r.elements_after, o.target_elements)
+                                : fmt::format("{} vertices, above --target-vertices {}", r.vertices_after, o.target_vertices);
+  std::string reasons;
+  for (const auto& [why, count] : r.skipped_by_reason)
+    reasons += fmt::format("{}{} {}", reasons.empty() ? "" : ", ", why, count);
+  std::string line = fmt::format("note: stopped at {}: {} feature corners are never removed", asked,
+                                 r.feature_corners);
+  line += r.skipped_vertices > 0
+              ? fmt::format(" and {} other vertices could not be removed ({})", r.skipped_vertices, reasons)
+              : std::string(" and no other vertex is left to remove");
+  if (r.feature_corners > 0) line += "; a larger --feature-angle may keep fewer features";
+  std::cerr << line << '\n';
+}
+
 /// Writes the outputs and prints the summary, for surfaces and curves alike.
 template <int d>
 int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const SimplifyReport& r, ProgressBar& bar) {
@@ -131,6 +154,7 @@ int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const S
   j["seconds"] = r.seconds_total;
   j["seconds_by_phase"] = {{"simplify", r.seconds_simplify}, {"finalize", r.seconds_finalize}};
   print_result(j, o.json);
+  note_missed_target(o, r);
   return exit_code::success;
 }
 

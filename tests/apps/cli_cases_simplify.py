@@ -64,8 +64,16 @@ def simplify_bad_input_leaves_no_output():
     expect_clean_error(["simplify", "flat.off", "-o", outputs[0], "--target-elements", 1])
     # a mesh that has nothing to remove: the target cannot be met, but the map is still valid
     write("quad.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")
-    j = run_json("simplify", "quad.off", "-o", "quad.plmap", "--target-elements", 1, "--json")
+    out, err, _ = run("simplify", "quad.off", "-o", "quad.plmap", "--target-elements", 1, "--json")
+    j = json.loads(out)
     expect(not j["target_reached"] and j["elements_after"] == 2, j)
+    # ... and says why on stderr, one line, leaving stdout to the JSON
+    expect(err.strip().splitlines() == [err.strip()] and err.startswith("note: stopped at 2 elements, above --target-elements 1")
+           and "4 feature corners" in err, f"missed target should be explained on stderr: {err!r}")
+    run("check", "quad.plmap")
+    # a run that reaches its target says nothing on stderr
+    _, err, _ = run("simplify", fine, "-o", "reached.plmap", "--target-elements", 10, "--json")
+    expect(err == "", f"a run that reaches its target should print nothing on stderr: {err!r}")
     # curves are simplified too (cli_cases_simplify_features.py); an oracle for triangles is not
     expect_clean_error(["simplify", polyline(), "-o", outputs[0], "--target-elements", 1, "--oracle",
                         "aspect-ratio"], mention="curves")
