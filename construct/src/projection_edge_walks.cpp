@@ -608,8 +608,8 @@ class EdgeWalker {
   /// The walks from the points where the edge enters S1 across its boundary, beyond what the
   /// walks before them covered.
   void walk_from_boundary_entries(Index e, EdgeProgress& progress, PlanBuffer<d>& buffer) const {
-    const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
     if (state_.boundary_entries.empty()) return;  // no S2 edge enters S1 across its boundary
+    const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
     auto& crossings = buffer.crossings;
     for (const auto& entry : state_.boundary_entries[e]) {
       if (entry.eta <= progress.covered_until + piece_slack) continue;
