@@ -4,6 +4,7 @@
 #include <plmap/core/io/map_file_binary.hpp>
 #include <plmap/core/io/surface_format.hpp>
 #include <plmap/core/io/surface_reader.hpp>
+#include <plmap/core/parallel_ranges.hpp>
 
 #include <sys/stat.h>
 
@@ -13,7 +14,6 @@
 #include <fstream>
 #include <iostream>
 #include <system_error>
-#include <thread>
 
 namespace plmap::cli {
 
@@ -286,14 +286,12 @@ void check_output_directory(const std::filesystem::path& directory,
 
 CLI::Option* add_threads_option(CLI::App& command, unsigned& threads, const std::string& help) {
   threads = 0;
-  return command.add_option("--threads", threads, help + " (0, the default: all hardware threads)")
+  return command.add_option("--threads", threads, help + " (0, the default: all hardware threads this process may run on)")
       ->check(CLI::Range(0u, max_threads))
       ->capture_default_str();
 }
 
-unsigned resolved_threads(unsigned threads) {
-  return threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
-}
+unsigned resolved_threads(unsigned threads) { return resolve_thread_count(threads); }
 
 CLI::Option* add_dimension_option(CLI::App& command, int& dimension) {
   return command

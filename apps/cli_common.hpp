@@ -153,10 +153,11 @@ void check_output_directory(const std::filesystem::path& directory,
 /// More worker threads than this is a typo, not a wish: each one is a system thread.
 inline constexpr unsigned max_threads = 1024;
 
-/// The `--threads` option: 0 (the default) means all hardware threads (DESIGN §6).
+/// The `--threads` option: 0 (the default) means all hardware threads, those the process may run
+/// on (its affinity mask: plmap::available_threads; DESIGN §6).
 CLI::Option* add_threads_option(CLI::App& command, unsigned& threads, const std::string& help);
 
-/// The thread count a `--threads` value stands for (0: all hardware threads).
+/// The thread count a `--threads` value stands for (0: all hardware threads the process may run on).
 unsigned resolved_threads(unsigned threads);
 
 /// A subcommand's work, run after the whole command line has been parsed; returns the exit code.

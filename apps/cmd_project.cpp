@@ -145,7 +145,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
 int run_project(const ProjectCommand& o) {
   check_output_file(o.output, OutputKind::map,
                     {{"S1", o.s1}, {"S2", o.s2}, {"--directions", o.directions_file}});
-  auto [a, b] = read_surface_pair(o.s1, o.s2, o.dimension);
+  auto [a, b] = read_surface_pair(o.s1, o.s2, o.dimension, o.threads);
   if (a.index() != b.index())
     throw Error(fmt::format("{} is a {}-dimensional surface but {} is {}-dimensional", o.s1,
                             a.index() + 1, o.s2, b.index() + 1));

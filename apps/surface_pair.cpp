@@ -2,17 +2,19 @@
 
 #include <plmap/core/parallel_ranges.hpp>
 
+#include <algorithm>
 #include <exception>
 #include <optional>
 
 namespace plmap::cli {
 
 std::pair<AnySurface, AnySurface> read_surface_pair(const std::filesystem::path& s1,
-                                                    const std::filesystem::path& s2, int forced_dimension) {
+                                                    const std::filesystem::path& s2, int forced_dimension,
+                                                    unsigned threads) {
   std::optional<AnySurface> a, b;
   std::exception_ptr b_failure;
   // Piece 0 is S1: if both fail, S1's error is the one rethrown (parallel_ranges.hpp).
-  parallel_for_pieces_of_size(2, 1, 2, [&](std::size_t piece, std::size_t, std::size_t) {
+  parallel_for_pieces_of_size(2, 1, std::min(2u, resolve_thread_count(threads)), [&](std::size_t piece, std::size_t, std::size_t) {
     if (piece == 0) {
       a = read_any_surface(s1, forced_dimension);
       return;

@@ -264,13 +264,39 @@ def interrupted_write_leaves_no_temporary():
 def threads_default_to_all_cores():
     s = grid("v.off", cells=2)
     m = identity_map(s, "m.plmap")
+    cores = len(os.sched_getaffinity(0))  # the CPUs this process may run on (all, unless restricted)
     j = run_json("eval", m, "--random", 100, "--json")
-    expect(j["threads"] == os.cpu_count(), f"eval: threads {j['threads']}, cores {os.cpu_count()}")
+    expect(j["threads"] == cores, f"eval: threads {j['threads']}, cores {cores}")
     j = run_json("project", s, s, "-o", "p.plmap", "--json")
-    expect(j["threads"] == os.cpu_count(), f"project: threads {j['threads']}, cores {os.cpu_count()}")
+    expect(j["threads"] == cores, f"project: threads {j['threads']}, cores {cores}")
     out, _, _ = run("eval", "--help")
     expect("all hardware threads" in out, f"eval --help should say what 0 threads means: {out}")
     expect_clean_error(["eval", m, "--threads", "100000"], code=64, mention="--threads")
+
+
+@case
+def more_threads_than_cpus_run_quietly_on_the_cpus_there_are():
+    # oneTBB printed "TBB Warning: The number of workers is currently limited to ..." for every
+    # run that asked for more threads than the process may use (--threads 4 on two cores; any
+    # run in a batch job or under taskset given one core, where the default counted the
+    # machine's cores). The default is now the CPUs the process may run on, and more threads
+    # than that are not asked of oneTBB; the map is the same for every count.
+    s = grid("v.off", cells=6)
+    run("project", s, s, "-o", "one.plmapb", "--threads", 1)
+    _, err, _ = run("project", s, s, "-o", "many.plmapb", "--threads", 2 * os.cpu_count() + 2)
+    expect("TBB" not in err and not err.strip(), f"--threads above the CPU count printed: {err}")
+    expect(_read("many.plmapb") == _read("one.plmapb"), "--threads above the CPU count changed the map")
+    cpu = min(os.sched_getaffinity(0))
+    for extra in ([], ["--threads", 2]):
+        done = subprocess.run([PLMAP, "project", s, s, "-o", "pinned.plmapb", "--json"] + [str(a) for a in extra],
+                              cwd=WORK, capture_output=True, text=True, timeout=120,
+                              preexec_fn=lambda: os.sched_setaffinity(0, {cpu}))
+        expect(done.returncode == 0, f"project on one CPU {extra}: exit {done.returncode}: {done.stderr}")
+        expect("TBB" not in done.stderr and not done.stderr.strip(), f"project on one CPU {extra} printed: {done.stderr}")
+        if not extra:
+            threads = json.loads(done.stdout)["threads"]
+            expect(threads == 1, f"the default on one CPU should be 1 thread, got {threads}")
+        expect(_read("pinned.plmapb") == _read("one.plmapb"), f"project on one CPU {extra} changed the map")
 
 
 @case

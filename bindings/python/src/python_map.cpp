@@ -7,6 +7,7 @@
 #include <plmap/core/evaluation.hpp>
 #include <plmap/core/inverse_evaluation.hpp>
 #include <plmap/core/io/map_file.hpp>
+#include <plmap/core/parallel_ranges.hpp>
 #include <plmap/core/regions.hpp>
 #include <plmap/strategies/point_locator_registry.hpp>
 #include <plmap/verify/check.hpp>
@@ -23,7 +24,6 @@
 #include <limits>
 #include <optional>
 #include <span>
-#include <thread>
 
 namespace plmap::python {
 
@@ -158,7 +158,7 @@ void answer_in_batches(const QueryArrays& q, unsigned threads, AnswerArrays<d>& 
   Index* el = a.element.mutable_data();
   double* lo = a.local.mutable_data();
   double* w = a.world.mutable_data();
-  const unsigned workers = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned workers = resolve_thread_count(threads);
   const std::size_t points_per_batch = points_per_thread_and_batch * workers;
   std::vector<SurfacePoint<d>> points;
   std::vector<Result> out;

@@ -12,6 +12,7 @@
 /// rethrown in the caller after every running piece has stopped.
 
 #include <tbb/blocked_range.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
@@ -29,6 +30,13 @@
 #include <vector>
 
 namespace plmap {
+
+/// The CPUs this process may run on: its affinity mask and cgroup limits, as oneTBB reads them
+/// (`taskset -c 0`, a batch job given one core: 1), not the machine's hardware threads.
+inline unsigned available_threads() {
+  static const unsigned available = static_cast<unsigned>(std::max(1, tbb::info::default_concurrency()));
+  return available;
+}
 
 namespace detail {
 
@@ -61,7 +69,10 @@ inline tbb::task_arena& reusable_arena(unsigned threads) {
   static auto* const arenas = new std::map<Key, std::unique_ptr<tbb::task_arena>>();
   const std::lock_guard<std::mutex> lock(mutex);
   auto& arena = (*arenas)[Key{std::this_thread::get_id(), threads, arena_depth}];
-  if (!arena) arena = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
+  // More threads than the process may run would only be asked of oneTBB in vain (it prints a
+  // warning and runs them on the CPUs it has): the arena gets what can run. The work is cut by
+  // the count asked for, so the results stay those of that count.
+  if (!arena) arena = std::make_unique<tbb::task_arena>(static_cast<int>(std::min(threads, available_threads())));
   return *arena;
 }
 
@@ -79,10 +90,9 @@ void execute_in_arena(unsigned threads, F&& f) {
 
 }  // namespace detail
 
-/// The thread count that `threads == 0` stands for: all hardware threads.
-inline unsigned resolve_thread_count(unsigned threads) {
-  return threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
-}
+/// The thread count that `threads == 0` stands for: all hardware threads the process may run on
+/// (available_threads).
+inline unsigned resolve_thread_count(unsigned threads) { return threads != 0 ? threads : available_threads(); }
 
 /// Calls work(piece, begin, end) for [0, n) cut into contiguous pieces of `size` items (piece k
 /// covers [k size, (k + 1) size) within [0, n)), on up to `threads` threads (0: all hardware
