@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <utility>
 
 namespace plmap::projection {
@@ -134,9 +135,11 @@ ElementsPerTarget elements_per_target(const PlMap<d>& map, unsigned threads) {
   const Index n2 = map.target().element_count(), nt = map.domain().element_count();
   const std::size_t pieces = std::min<std::size_t>(resolve_thread_count(threads), static_cast<std::size_t>(std::max<Index>(1, nt / 4096)));
   const std::size_t size = (static_cast<std::size_t>(nt) + pieces - 1) / pieces;
-  std::vector<std::vector<Index>> at(pieces, std::vector<Index>(static_cast<std::size_t>(n2), 0));
-  std::vector<std::vector<Index>> last_seen(pieces, std::vector<Index>(static_cast<std::size_t>(n2)));
+  // each piece's arrays made (first touched) by the thread that counts it
+  std::vector<std::vector<Index>> at(pieces), last_seen(pieces);
   parallel_for_pieces_of_size(static_cast<std::size_t>(nt), size, threads, [&](std::size_t k, std::size_t begin, std::size_t end) {
+    at[k].assign(static_cast<std::size_t>(n2), 0);
+    last_seen[k].resize(static_cast<std::size_t>(n2));
     for_each_element_and_target(map, static_cast<Index>(begin), static_cast<Index>(end), last_seen[k],
                                 [&](Index, Index t2) { ++at[k][t2]; });
   });
@@ -144,7 +147,8 @@ ElementsPerTarget elements_per_target(const PlMap<d>& map, unsigned threads) {
   lists.first.assign(static_cast<std::size_t>(n2) + 1, 0);
   for (Index t2 = 0; t2 < n2; ++t2) {  // counts become where each piece writes
     Index next = lists.first[t2];
-    for (auto& piece : at) next += std::exchange(piece[t2], next);
+    for (auto& piece : at)
+      if (!piece.empty()) next += std::exchange(piece[t2], next);  // (a piece with no elements has no counts)
     lists.first[t2 + 1] = next;
   }
   lists.elements.resize(static_cast<std::size_t>(lists.first[n2]));
@@ -229,28 +233,30 @@ std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageM
   }
   mark_disconnected_preimages(map, crowded, threads);
   if (std::find(crowded.begin(), crowded.end(), 1) == crowded.end()) return {};
-  // The images on the crowded elements, grouped by element, compared pairwise.
-  std::vector<std::vector<Image<d>>> on_target(static_cast<std::size_t>(n2));
+  // The images on the crowded elements, compared pairwise per element: gathered into one list
+  // sorted by element (then as below), not into one list per S2 element, whose million empty
+  // lists on a large S2 cost a serial first touch of their memory for the few elements crowded.
+  std::vector<std::pair<Index, Image<d>>> gathered;
   for (Index t = 0; t < nt; ++t)
     for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
-      if (crowded[static_cast<std::size_t>(m.region_target[r])])
-        on_target[static_cast<std::size_t>(m.region_target[r])].push_back(image_of(map, t, r));
+      if (crowded[static_cast<std::size_t>(m.region_target[r])]) gathered.emplace_back(m.region_target[r], image_of(map, t, r));
   // Pairs by a sweep along the first coordinate: an element may carry thousands of regions
-  // where S1 is much finer than S2.
+  // where S1 is much finer than S2. (The region number orders ties, so that the pairs are
+  // compared in an order that does not depend on the sort.)
+  std::sort(gathered.begin(), gathered.end(), [](const auto& a, const auto& b) {
+    return std::tie(a.first, a.second.low(0), a.second.region) < std::tie(b.first, b.second.low(0), b.second.region);
+  });
   std::vector<Index> farther;
-  for (auto& list : on_target) {
-    std::sort(list.begin(), list.end(), [](const Image<d>& a, const Image<d>& b) { return a.low(0) < b.low(0); });
-    for (std::size_t i = 0; i < list.size(); ++i)
-      for (std::size_t j = i + 1; j < list.size() && list[j].low(0) <= list[i].high(0); ++j) {
-        const Image<d>& a = list[i];
-        const Image<d>& b = list[j];
-        const double explained = tolerances.position_tolerance * std::min(a.boundary, b.boundary);
-        if (!(overlap(a, b) > std::max(tolerances.measure_tolerance * std::min(a.measure, b.measure), explained)))
-          continue;
-        const bool a_farther = a.distance > b.distance || (a.distance == b.distance && a.region > b.region);
-        farther.push_back(a_farther ? a.region : b.region);
-      }
-  }
+  for (std::size_t i = 0; i < gathered.size(); ++i)
+    for (std::size_t j = i + 1;
+         j < gathered.size() && gathered[j].first == gathered[i].first && gathered[j].second.low(0) <= gathered[i].second.high(0); ++j) {
+      const Image<d>& a = gathered[i].second;
+      const Image<d>& b = gathered[j].second;
+      const double explained = tolerances.position_tolerance * std::min(a.boundary, b.boundary);
+      if (!(overlap(a, b) > std::max(tolerances.measure_tolerance * std::min(a.measure, b.measure), explained))) continue;
+      const bool a_farther = a.distance > b.distance || (a.distance == b.distance && a.region > b.region);
+      farther.push_back(a_farther ? a.region : b.region);
+    }
   std::sort(farther.begin(), farther.end());
   farther.erase(std::unique(farther.begin(), farther.end()), farther.end());
   return farther;

@@ -134,7 +134,7 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   // ---- 3. and 5. the nodes: vertex preimages (the nearest of coincident ones), ghost nodes ---
   t0 = Clock::now();
   MapBuilder<d> builder = builder_for(ctx);
-  ProjectionState<d> state(n1v, n2v);
+  ProjectionState<d> state(n1v, n2v, ctx.threads);
   ProjectionInsertion<d> insertion(ctx, state, builder);
   report.target_vertices = n2v;
   report.domain_vertices = n1v;

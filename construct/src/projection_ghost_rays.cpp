@@ -4,6 +4,7 @@
 
 #include "projection_seeds.hpp"
 
+#include <plmap/core/parallel_first_touch.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 #include <plmap/solvers/small_lu.hpp>
 
@@ -129,7 +130,7 @@ template <int d>
 std::vector<std::optional<SurfacePoint<d>>> cast_rays_from_s1_vertices(const ProjectionContext<d>& ctx) {
   const Index n1v = ctx.s1.vertex_count();
   std::vector<std::optional<SurfacePoint<d>>> hit;
-  assign_on_huge_pages(hit, static_cast<std::size_t>(n1v));
+  assign_on_huge_pages(hit, static_cast<std::size_t>(n1v), {}, ctx.threads);
   parallel_for_chunks(n1v, search_chunk, ctx.threads, [&](Index begin, Index end) {
     GhostRays<d> rays(ctx);
     std::optional<double> mu;  // ray parameter of the previous hit

@@ -5,6 +5,7 @@
 #include "projection_sheet_selection.hpp"
 
 #include <plmap/core/errors.hpp>
+#include <plmap/core/parallel_first_touch.hpp>
 #include <plmap/core/snapping.hpp>
 
 #include <fmt/format.h>
@@ -19,11 +20,12 @@ template <int d>
 ProjectionInsertion<d>::ProjectionInsertion(const ProjectionContext<d>& ctx, ProjectionState<d>& state,
                                             MapBuilder<d>& builder)
     : ctx_(ctx), state_(state), builder_(builder) {
-  // per S1 edge, S1 vertex and S2 edge: on huge pages (huge_page_allocator.hpp)
+  // per S1 edge, S1 vertex and S2 edge: on huge pages, first touched on all threads
+  // (parallel_first_touch.hpp)
   if constexpr (d == 2)
-    assign_on_huge_pages(used_first_, static_cast<std::size_t>(ctx_.s1.edge_count()), invalid_index);
-  assign_on_huge_pages(crossed_vertex_, static_cast<std::size_t>(ctx_.s1.vertex_count()), invalid_index);
-  assign_on_huge_pages(inserted_, static_cast<std::size_t>(ctx_.s2.edge_count()));
+    assign_on_huge_pages(used_first_, static_cast<std::size_t>(ctx_.s1.edge_count()), invalid_index, ctx_.threads);
+  assign_on_huge_pages(crossed_vertex_, static_cast<std::size_t>(ctx_.s1.vertex_count()), invalid_index, ctx_.threads);
+  assign_on_huge_pages(inserted_, static_cast<std::size_t>(ctx_.s2.edge_count()), {}, ctx_.threads);
   // One used parameter per crossing inside an S1 edge, grown to millions: room taken once, as
   // the builder does for its nodes (MapBuilder::Impl::reserve_expected_sizes, which explains the
   // estimate; room never written costs address space only).

@@ -6,6 +6,7 @@
 #include "projection_seeds.hpp"
 #include "simplex_distance.hpp"
 
+#include <plmap/core/parallel_first_touch.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 #include <plmap/solvers/projection_systems.hpp>
 #include <plmap/solvers/solver_kind.hpp>
@@ -400,7 +401,7 @@ VertexPreimages<d> find_vertex_preimages(const ProjectionContext<d>& ctx, const 
   Search search(ctx, solver, walks);
   VertexPreimages<d> result;
   auto& preimage = result.preimage;
-  assign_on_huge_pages(preimage, static_cast<std::size_t>(ctx.s2.vertex_count()));
+  assign_on_huge_pages(preimage, static_cast<std::size_t>(ctx.s2.vertex_count()), {}, ctx.threads);
   parallel_for_chunks(ctx.s2.vertex_count(), search_chunk, ctx.threads, [&](Index begin, Index end) {
     typename Search::SearchOffset offset;  // target minus preimage of the previous vertex found
     NearestElements<d> nearest(*ctx.s1_index);

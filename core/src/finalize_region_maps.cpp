@@ -5,15 +5,11 @@
 #include <plmap/core/affine_through.hpp>
 #include <plmap/core/errors.hpp>
 #include <plmap/core/huge_page_allocator.hpp>
+#include <plmap/core/parallel_first_touch.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 
 #include <array>
-#include <cstdint>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#include <unistd.h>
-#endif
 
 namespace plmap::detail {
 
@@ -52,20 +48,12 @@ void write_region_maps(const Surface<2>& s2, const std::vector<double>& omitted,
   m.region_map.reserve(regions);
   advise_huge_pages(m.region_map.data(), regions * sizeof(m.region_map[0]));  // before the first write
   m.region_map.resize(regions);
-#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
   // The array is first-touched here, in a tight loop of stores, one page fault per 85 regions
-  // (the assembly used to spread them over the closing pass): prefaulting its pages in one call
-  // took the 200k plane pair's finalize from a median 2.37 s back to 2.31 s (main: 2.21 s; seven
-  // alternating runs, docs/benchmarks.md). Without the call (older kernels: EINVAL, ignored)
-  // the pages fault in as they are written, to the same result.
-  {
-    const long page_size = sysconf(_SC_PAGESIZE);  // 4 KiB on x86-64, 16 or 64 KiB on some ARM systems
-    const auto page = static_cast<std::uintptr_t>(page_size > 0 ? page_size : 4096);
-    const auto first = (reinterpret_cast<std::uintptr_t>(m.region_map.data()) + page - 1) & ~(page - 1);
-    const auto last = reinterpret_cast<std::uintptr_t>(m.region_map.data() + regions) & ~(page - 1);
-    if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
-  }
-#endif
+  // (the assembly used to spread them over the closing pass): backing its pages ahead in one call
+  // took the 200k plane pair's finalize from a median 2.37 s back to 2.31 s (seven alternating
+  // runs, docs/benchmarks.md), and doing so on all threads keeps it from being a serial phase of
+  // its own (parallel_first_touch.hpp).
+  populate_in_parallel(m.region_map.data(), regions * sizeof(m.region_map[0]), threads);
   parallel_for_chunks(regions, 16384, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t r = begin; r < end; ++r) {
       const auto& corners = m.region_corners[r];

@@ -15,6 +15,7 @@
 #include <plmap/core/element_transfer.hpp>
 #include <plmap/core/errors.hpp>
 #include <plmap/core/map_builder.hpp>
+#include <plmap/core/parallel_first_touch.hpp>
 #include <plmap/core/snapping.hpp>
 
 #include <fmt/format.h>
@@ -64,9 +65,12 @@ struct MapBuilder<d>::Impl {
       throw BuilderError(fmt::format("S1 has {} elements and {} edges; the builder takes fewer than 2^30",
                                      s1->element_count(), s1->edge_count()));
     // per vertex and per edge of surfaces with millions of them: on huge pages
-    assign_on_huge_pages(preimage_of_target_vertex, static_cast<std::size_t>(s2->vertex_count()), invalid_index);
-    assign_on_huge_pages(node_at_domain_vertex, static_cast<std::size_t>(s1->vertex_count()), invalid_index);
-    assign_on_huge_pages(edge_inserted, static_cast<std::size_t>(s2->edge_count()), char{0});
+    // (first touched on all threads: parallel_first_touch.hpp)
+    assign_on_huge_pages(preimage_of_target_vertex, static_cast<std::size_t>(s2->vertex_count()), invalid_index,
+                         options.threads);
+    assign_on_huge_pages(node_at_domain_vertex, static_cast<std::size_t>(s1->vertex_count()), invalid_index,
+                         options.threads);
+    assign_on_huge_pages(edge_inserted, static_cast<std::size_t>(s2->edge_count()), char{0}, options.threads);
     reserve_expected_sizes();
   }
 

@@ -1,5 +1,6 @@
 #include <plmap/core/element_transfer.hpp>
 #include <plmap/core/huge_page_allocator.hpp>
+#include <plmap/core/parallel_first_touch.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 #include <plmap/core/regions.hpp>
 #include <plmap/core/scaled_geometry.hpp>
@@ -134,7 +135,7 @@ ImageMeasures sum_terms(const PlMap<d>& map, unsigned threads, ImageMeasureTerms
   const auto& m = map.stored();
   const Index n1 = map.domain().element_count(), n2 = map.target().element_count();
   ImageMeasures out;
-  assign_on_huge_pages(out.per_target, static_cast<std::size_t>(n2), 0.0);
+  assign_on_huge_pages(out.per_target, static_cast<std::size_t>(n2), 0.0, threads);
   for (Index t = 0; t < n1; ++t) {
     if (map.regions_begin(t) == map.regions_end(t)) continue;
     for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
@@ -143,8 +144,7 @@ ImageMeasures sum_terms(const PlMap<d>& map, unsigned threads, ImageMeasureTerms
   }
   // A removal only takes regions away, so every S2 element with images had them before and has
   // its measure already; a first call computes them.
-  reserve_on_huge_pages(terms.target_measure, static_cast<std::size_t>(n2));
-  terms.target_measure.resize(static_cast<std::size_t>(n2), 0.0);
+  if (terms.target_measure.empty()) assign_on_huge_pages(terms.target_measure, static_cast<std::size_t>(n2), 0.0, threads);
   parallel_for_chunks(static_cast<std::size_t>(n2), 4096, threads, [&](std::size_t begin, std::size_t end) {
     for (auto t2 = static_cast<Index>(begin); t2 < static_cast<Index>(end); ++t2)
       if (out.per_target[static_cast<std::size_t>(t2)] != 0.0 && terms.target_measure[static_cast<std::size_t>(t2)] == 0.0)
@@ -163,8 +163,8 @@ ImageMeasures image_measures(const PlMap<d>& map, unsigned threads, ImageMeasure
   const Index n1 = map.domain().element_count();
   terms.region_begin = map.stored().region_begin;
   // per region and per element of large surfaces: on huge pages (huge_page_allocator.hpp)
-  assign_on_huge_pages(terms.region_target, static_cast<std::size_t>(map.region_count()), 0.0);
-  assign_on_huge_pages(terms.element_domain, static_cast<std::size_t>(n1), 0.0);
+  assign_on_huge_pages(terms.region_target, static_cast<std::size_t>(map.region_count()), 0.0, threads);
+  assign_on_huge_pages(terms.element_domain, static_cast<std::size_t>(n1), 0.0, threads);
   terms.target_measure.clear();
   parallel_for_chunks(static_cast<std::size_t>(n1), 1024, threads, [&](std::size_t begin, std::size_t end) {
     for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) element_terms(map, t, terms);
@@ -203,7 +203,7 @@ ImageMeasures image_measures(const PlMap<d>& map, unsigned threads) {
   const Surface<d>& s2 = map.target();
   const Index n1 = map.domain().element_count(), n2 = s2.element_count();
   ImageMeasures out;
-  assign_on_huge_pages(out.per_target, static_cast<std::size_t>(n2), 0.0);
+  assign_on_huge_pages(out.per_target, static_cast<std::size_t>(n2), 0.0, threads);
   for (Index t = 0; t < n1; ++t) {
     if (map.regions_begin(t) == map.regions_end(t)) continue;
     for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)

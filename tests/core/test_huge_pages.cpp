@@ -1,8 +1,10 @@
-// The huge-page helpers (core/huge_page_allocator.hpp) change only where memory comes from, never
+// The huge-page helpers (core/huge_page_allocator.hpp) and the parallel first touch
+// (core/parallel_first_touch.hpp) change only where memory comes from and which thread backs it, never
 // what it holds: large arrays keep every value, are aligned to 2 MiB, and marking a range that
 // is small, unaligned or already written is harmless. (Whether the kernel then backs a range
 // with huge pages depends on its settings, so that is measured by benchmarks, not asserted.)
 #include <plmap/core/huge_page_allocator.hpp>
+#include <plmap/core/parallel_first_touch.hpp>
 #include <plmap/core/surface.hpp>
 
 #include <gtest/gtest.h>
@@ -50,6 +52,28 @@ TEST(HugePages, AssigningOnHugePagesFillsLikeAssign) {
   std::vector<int> refilled = {1, 2, 3};
   assign_on_huge_pages(refilled, 2, 9);  // replaces what was there, as assign does
   EXPECT_EQ(refilled, (std::vector<int>{9, 9}));
+}
+
+TEST(HugePages, BackingMemoryOnSeveralThreadsKeepsWhatItHolds) {
+  // 12 MiB: several 2 MiB pieces, the range starting and ending inside pages
+  std::vector<std::uint32_t> v(3'000'000);
+  std::iota(v.begin(), v.end(), 11u);
+  for (unsigned threads : {0u, 1u, 2u, 3u}) {
+    populate_in_parallel(reinterpret_cast<char*>(v.data()) + 3, v.size() * sizeof(std::uint32_t) - 5, threads);
+    for (std::size_t i = 0; i < v.size(); i += 7'919) ASSERT_EQ(v[i], 11u + i) << threads << " threads";
+    EXPECT_EQ(v.back(), 11u + 2'999'999u);
+  }
+  populate_in_parallel(nullptr, 0, 2);
+  populate_in_parallel(v.data(), 1, 2);  // less than a page
+  EXPECT_EQ(v.front(), 11u);
+  // fresh room, backed first: reads as what assign writes there
+  for (unsigned threads : {1u, 2u, 3u}) {
+    std::vector<std::int64_t> filled = {1, 2, 3};
+    assign_on_huge_pages(filled, 2'500'000, std::int64_t{-4}, threads);
+    EXPECT_EQ(filled, std::vector<std::int64_t>(2'500'000, -4)) << threads << " threads";
+    assign_on_huge_pages(filled, 2, std::int64_t{9}, threads);  // fewer than there are, as assign does
+    EXPECT_EQ(filled, (std::vector<std::int64_t>{9, 9}));
+  }
 }
 
 TEST(HugePages, ASurfaceMovedOntoHugePagesKeepsItsVerticesAndElements) {
