@@ -152,7 +152,7 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   const Index n2e = ctx.s2.edge_count();
   report_progress(options.progress, "S2 edges", 0, n2e);
   state.boundary_entries = find_boundary_entries(ctx, state, solver);
-  for (const auto& list : state.boundary_entries) report.boundary_entries += static_cast<Index>(list.size());
+  report.boundary_entries = static_cast<Index>(state.boundary_entries.size());
   report.seconds.edge_walks += seconds_since(t0);
   report.target_edges = n2e;
   walk_and_insert_edges(ctx, state, solver, insertion, report);

@@ -15,16 +15,15 @@
 namespace plmap::projection {
 
 template <int d, class Solver>
-std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const ProjectionContext<d>& ctx,
-                                                                 const ProjectionState<d>& state, const Solver& solver) {
+BoundaryEntries<d> find_boundary_entries(const ProjectionContext<d>& ctx, const ProjectionState<d>& state,
+                                         const Solver& solver) {
   const EdgeCrossings<d, Solver> crossings(ctx, solver);
-  // One list per S2 edge, made only once an entry is found: on a closed S1 there is none, and
-  // the million empty lists of the 1M circles cost their page faults and frees for nothing.
-  std::vector<std::vector<BoundaryEntry<d>>> entries;
-  auto list_of = [&](Index e) -> std::vector<BoundaryEntry<d>>& {
-    if (entries.empty()) entries.resize(static_cast<std::size_t>(ctx.s2.edge_count()));
-    return entries[static_cast<std::size_t>(e)];
+  // (S2 edge, entry) in the order found: by S1 vertex (d = 1) or S1 edge (d = 2)
+  struct Found {
+    Index target_edge;
+    BoundaryEntry<d> entry;
   };
+  std::vector<Found> all;
   if constexpr (d == 1) {
     for (Index v = 0; v < ctx.s1.vertex_count(); ++v) {
       if (!ctx.s1.is_boundary_vertex(v) || state.vertex_state[v] != VertexState::ghost || !state.vertex_image[v]) continue;
@@ -34,16 +33,12 @@ std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const Projectio
       entry.place.index = v;
       entry.eta = image.local(0);
       entry.crossing = VertexCrossing{v, entry.eta};
-      list_of(image.element).push_back(entry);
+      all.push_back({image.element, entry});
     }
   } else {
     // The S1 edges are searched in pieces on all threads, each piece listing what it finds in
     // edge order; the lists are then taken in piece order, so the entries, and which of two at
     // the same place is kept, are those of one thread whatever the thread count.
-    struct Found {
-      Index target_edge;
-      BoundaryEntry<2> entry;
-    };
     const std::size_t piece_size = 4096;
     const auto s1_edges = static_cast<std::size_t>(ctx.s1.edge_count());
     std::vector<std::vector<Found>> found((s1_edges + piece_size - 1) / piece_size);
@@ -90,23 +85,31 @@ std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const Projectio
       ctx.solver_calls += calls;
       ctx.solver_failures += failures;
     });
-    for (const auto& piece : found)
-      for (const auto& [e, entry] : piece) {
-        auto& list = list_of(e);
-        const bool duplicate = std::any_of(list.begin(), list.end(), [&](const BoundaryEntry<2>& x) {
-          return x.place == entry.place;
-        });
-        if (!duplicate) list.push_back(entry);
-      }
+    for (const auto& piece : found) all.insert(all.end(), piece.begin(), piece.end());
   }
-  for (auto& list : entries)
-    std::sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.eta < y.eta; });
-  return entries;
+  // By S2 edge, each edge's entries in the order found; of two at the same place the first found
+  // is kept; then each edge's by the edge parameter (stable: ties keep the order found).
+  std::stable_sort(all.begin(), all.end(), [](const Found& a, const Found& b) { return a.target_edge < b.target_edge; });
+  BoundaryEntries<d> out;
+  for (std::size_t i = 0; i < all.size();) {
+    const Index e = all[i].target_edge;
+    const std::size_t first = out.entry.size();
+    for (; i < all.size() && all[i].target_edge == e; ++i) {
+      const auto& place = all[i].entry.place;
+      if (std::none_of(out.entry.begin() + static_cast<std::ptrdiff_t>(first), out.entry.end(),
+                       [&](const BoundaryEntry<d>& x) { return x.place == place; }))
+        out.entry.push_back(all[i].entry);
+    }
+    std::stable_sort(out.entry.begin() + static_cast<std::ptrdiff_t>(first), out.entry.end(),
+                     [](const BoundaryEntry<d>& x, const BoundaryEntry<d>& y) { return x.eta < y.eta; });
+    out.edge.resize(out.entry.size(), e);
+  }
+  return out;
 }
 
-#define PLMAP_BOUNDARY_ENTRIES(d, Solver)                                                \
-  template std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries<d, Solver>( \
-      const ProjectionContext<d>&, const ProjectionState<d>&, const Solver&);
+#define PLMAP_BOUNDARY_ENTRIES(d, Solver)                                                              \
+  template BoundaryEntries<d> find_boundary_entries<d, Solver>(const ProjectionContext<d>&, const ProjectionState<d>&, \
+                                                               const Solver&);
 PLMAP_BOUNDARY_ENTRIES(1, DampedNewtonSolver)
 PLMAP_BOUNDARY_ENTRIES(2, DampedNewtonSolver)
 PLMAP_BOUNDARY_ENTRIES(1, CeresTinySolver)

@@ -30,11 +30,14 @@ ProjectionContext<d>::ProjectionContext(std::shared_ptr<const Surface<d>> s1_sur
   if (!(distance_limit >= 0.0)) throw Error(fmt::format("max_distance {} is not >= 0", options.max_distance));
   seed_count = std::clamp(options.search_seeds, 1, max_search_seeds);
   threads = resolve_thread_count(options.threads);
-  parallel_for_pieces(3, 3, threads, [&](std::size_t k, std::size_t, std::size_t) {  // independent indexes
-    if (k == 2)
+  // Independent indexes, the box index first: it takes about as long as both kd-trees, so with
+  // two threads one builds it while the other builds the kd-trees (started last, it ran alone for
+  // a third of the set-up on the 200k plane pair).
+  parallel_for_pieces(3, 3, threads, [&](std::size_t k, std::size_t, std::size_t) {
+    if (k == 0)
       s1_boxes = std::make_unique<ElementBoxIndex<d>>(s1);
     else
-      (k == 0 ? s1_index : s2_index) = std::make_unique<ElementIndex<d>>(k == 0 ? s1 : s2);
+      (k == 1 ? s1_index : s2_index) = std::make_unique<ElementIndex<d>>(k == 1 ? s1 : s2);
   });
   const ProjectionSearchLimits& limits = options.search_limits;
   if (!(limits.seed_walk_steps > 0) || !(limits.edge_walk_steps >= 0) || !(limits.inside_tolerance >= 0.0) ||

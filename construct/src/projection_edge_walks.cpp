@@ -611,7 +611,7 @@ class EdgeWalker {
     if (state_.boundary_entries.empty()) return;  // no S2 edge enters S1 across its boundary
     const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
     auto& crossings = buffer.crossings;
-    for (const auto& entry : state_.boundary_entries[e]) {
+    for (const auto& entry : state_.boundary_entries.of(e)) {
       if (entry.eta <= progress.covered_until + piece_slack) continue;
       const std::size_t begin = crossings.size();
       crossings.push_back(entry.crossing);  // the piece starts where the edge enters S1

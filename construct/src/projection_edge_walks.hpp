@@ -72,12 +72,11 @@ struct PlannedEdge {
 inline constexpr Index edge_plan_block = 1024;
 
 /// Points where S2 edges cross S1's boundary (d = 2: a boundary edge, d = 1: a boundary vertex
-/// with a ghost image), per S2 edge, sorted by the edge parameter; walks start there too. Empty
-/// (no list at all) where no S2 edge crosses the boundary. Reads state.vertex_state and
-/// vertex_image.
+/// with a ghost image), by S2 edge, each edge's sorted by the edge parameter; walks start there
+/// too. Reads state.vertex_state and vertex_image. The same for every ctx.threads.
 template <int d, class Solver>
-std::vector<std::vector<BoundaryEntry<d>>> find_boundary_entries(const ProjectionContext<d>& ctx,
-                                                                 const ProjectionState<d>& state, const Solver& solver);
+BoundaryEntries<d> find_boundary_entries(const ProjectionContext<d>& ctx, const ProjectionState<d>& state,
+                                         const Solver& solver);
 
 /// Plans S2 edges [block, block_end) on the calling thread into `buffer` (cleared here), which the
 /// caller numbers `slot`: planned[e - block] (resized here) holds edge e's pieces and failures.
