@@ -16,8 +16,8 @@
 
 #include <plmap/construct/projection_options.hpp>
 #include <plmap/core/huge_page_allocator.hpp>
-#include <plmap/core/parallel_first_touch.hpp>
 #include <plmap/core/map_builder.hpp>
+#include <plmap/core/parallel_first_touch.hpp>
 #include <plmap/core/snapping.hpp>
 #include <plmap/core/surface.hpp>
 #include <plmap/solvers/focal_points.hpp>

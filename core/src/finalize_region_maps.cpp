@@ -10,7 +10,6 @@
 
 #include <array>
 
-
 namespace plmap::detail {
 
 namespace {

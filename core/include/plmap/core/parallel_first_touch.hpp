@@ -12,11 +12,13 @@
 #include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
 #if defined(__linux__)
 #include <sys/mman.h>
+#include <unistd.h>
 #endif
 
 namespace plmap {
@@ -28,13 +30,15 @@ namespace plmap {
 inline void populate_in_parallel([[maybe_unused]] void* p, [[maybe_unused]] std::size_t bytes,
                                  [[maybe_unused]] unsigned threads) {
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-  constexpr std::uintptr_t page = 4096;  // the smallest page of any Linux system: only its multiples are passed
+  // madvise takes whole pages of the system's size: 4 KiB on x86-64, 16 or 64 KiB on some ARM systems
+  static const auto page = static_cast<std::uintptr_t>(std::max(4096L, sysconf(_SC_PAGESIZE)));
   constexpr std::size_t piece = std::size_t{2} << 20;
   const auto begin = reinterpret_cast<std::uintptr_t>(p);
   const std::uintptr_t first = (begin + page - 1) & ~(page - 1), last = (begin + bytes) & ~(page - 1);
   if (last <= first) return;
   const std::size_t length = last - first;
-  // pieces on 2 MiB boundaries, so that no huge page is split between two threads
+  // pieces on 2 MiB boundaries (whole pages of any size up to 2 MiB), so that no huge page is
+  // split between two threads
   const std::uintptr_t aligned_first = first & ~(std::uintptr_t{piece} - 1);
   const std::size_t pieces = (last - aligned_first + piece - 1) / piece;
   if (pieces <= 1 || resolve_thread_count(threads) <= 1) {

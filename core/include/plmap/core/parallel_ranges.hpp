@@ -31,8 +31,9 @@
 
 namespace plmap {
 
-/// The CPUs this process may run on: its affinity mask and cgroup limits, as oneTBB reads them
-/// (`taskset -c 0`, a batch job given one core: 1), not the machine's hardware threads.
+/// The CPUs this process may run on, as oneTBB reads them (its affinity mask: `taskset -c 0`, a
+/// batch job given one core: 1; newer oneTBB versions also read cgroup CPU limits), not the
+/// machine's hardware threads.
 inline unsigned available_threads() {
   static const unsigned available = static_cast<unsigned>(std::max(1, tbb::info::default_concurrency()));
   return available;
