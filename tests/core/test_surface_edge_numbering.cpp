@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -109,6 +110,47 @@ TEST(SurfaceEdgeNumbering, DuplicateTrianglesAreReportedAsBySortingThem) {
       EXPECT_EQ(std::string(e.what()), expected);
     }
   }
+}
+
+/// The message of duplicate segments by its definition: the segments sorted by their sorted
+/// vertex pair (then number), the first two equal neighbours.
+std::string duplicate_segment_message_by_definition(const std::vector<ElementCorners<1>>& elements) {
+  std::vector<std::pair<std::array<Index, 2>, Index>> keys;
+  for (Index t = 0; t < static_cast<Index>(elements.size()); ++t)
+    keys.push_back({{std::min(elements[t][0], elements[t][1]), std::max(elements[t][0], elements[t][1])}, t});
+  std::sort(keys.begin(), keys.end());
+  for (std::size_t i = 1; i < keys.size(); ++i)
+    if (keys[i].first == keys[i - 1].first)
+      return "elements " + std::to_string(keys[i - 1].second) + " and " + std::to_string(keys[i].second) +
+             " join the same two vertices";
+  return "";
+}
+
+TEST(SurfaceEdgeNumbering, DuplicateSegmentsAreReportedAsBySortingThem) {
+  // A closed polygon of 12 vertices plus chords from vertex 0 (a junction of degree 8), then
+  // copies of some segments in either orientation, appended out of order.
+  std::vector<WorldPoint<1>> vertices;
+  for (int i = 0; i < 12; ++i) vertices.emplace_back(std::cos(0.5 * i), std::sin(0.5 * i));
+  std::vector<ElementCorners<1>> base;
+  for (Index i = 0; i < 12; ++i) base.push_back({i, (i + 1) % 12});
+  for (Index i = 3; i < 9; ++i) base.push_back({i, 0});
+  const std::vector<std::vector<Index>> copies = {{5}, {16, 2}, {2, 16, 2}, {11, 13, 0}, {7, 17}};
+  for (const auto& copy : copies) {
+    std::vector<ElementCorners<1>> elements = base;
+    for (const Index t : copy) {
+      const ElementCorners<1> e = elements[t];
+      elements.push_back(elements.size() % 2 == 0 ? e : ElementCorners<1>{e[1], e[0]});
+    }
+    const std::string expected = duplicate_segment_message_by_definition(elements);
+    ASSERT_FALSE(expected.empty());
+    try {
+      const Surface<1> s(vertices, elements);
+      ADD_FAILURE() << "duplicate segments were accepted";
+    } catch (const InvalidSurfaceError& e) {
+      EXPECT_EQ(std::string(e.what()), expected);
+    }
+  }
+  EXPECT_NO_THROW(Surface<1>(vertices, base));
 }
 
 }  // namespace
