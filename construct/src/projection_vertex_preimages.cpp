@@ -2,6 +2,7 @@
 
 #include "projection_vertex_preimages.hpp"
 
+#include "curve_solution_side.hpp"
 #include "preimage_rank_floor.hpp"
 #include "projection_seeds.hpp"
 #include "simplex_distance.hpp"
@@ -27,7 +28,8 @@ class VertexPreimageSearch {
  public:
   VertexPreimageSearch(const ProjectionContext<d>& ctx, const Solver& solver, SeedWalks walks)
       : ctx_(ctx), solver_(solver),
-        may_skip_walks_(walks == SeedWalks::until_no_rival_left && ctx.s1_boxes->has_tree()) {
+        may_skip_walks_(walks == SeedWalks::until_no_rival_left && ctx.s1_boxes->has_tree()),
+        may_skip_rootless_steps_(d == 1 && walks == SeedWalks::until_no_rival_left) {
     accept_.solver_tolerance = solver.options.relative_tolerance;
     accept_.inside_tolerance = ctx.options.search_limits.inside_tolerance;
     accept_.allow_negative_distance = ctx.options.allow_negative_distance;
@@ -252,6 +254,7 @@ class VertexPreimageSearch {
           sys.directions[k] = ctx_.vertex_directions[ctx_.s1.element(t)[k]];
         }
         sys.target = target;
+        if (best && rootless_step_ends_walk(t, sys, solved)) break;
         ++calls;
         const auto r = solver_.solve(sys, sys.initial_guess());
         if (!r.converged) {
@@ -283,6 +286,31 @@ class VertexPreimageSearch {
     ctx_.solver_failures += failures;
     return SeededSearch{best, failures > 0};
   }
+
+  /// Whether a curve's walk step on segment t can be decided without solving: no solution of
+  /// eq. (3) lies on t (so none would be accepted), they all lie to one side
+  /// (curve_solution_side.hpp), and the segment on that side, where the walk would go on, is
+  /// solved already or missing. Then the walk ends here, as it would after the solve. Asked only
+  /// once a preimage is known: before, a failed solve matters (it calls for more seeds), and
+  /// the closed form does not say whether the solver would fail.
+  bool rootless_step_ends_walk(Index t, const VertexProjectionSystem<d>& sys, const SolvedElements& solved) const {
+    if constexpr (d == 1) {
+      if (!may_skip_rootless_steps_) return false;
+      const int side = curve_solution_side(sys.corners[0], sys.corners[1], sys.directions[0], sys.directions[1],
+                                           sys.target, accept_.inside_tolerance + rootless_margin);
+      if (side == 0) return false;
+      // beyond corner 1 (xi > 1) the walk crosses the facet opposite corner 0, and vice versa
+      const Index next = element_across(ctx_.s1, t, side > 0 ? 0 : 1);
+      return next == invalid_index || solved.contains(next);
+    } else {
+      (void)t, (void)sys, (void)solved;
+      return false;
+    }
+  }
+
+  /// How far (in segment lengths) beyond the accepted range a solution must lie for a curve's
+  /// walk step to be decided without solving: far above a converged solver's error.
+  static constexpr double rootless_margin = 1e-6;
 
   /// Whether the rays from the corners of S1 element t all hit S2 and their hits span a simplex
   /// of the element's orientation (seen along the mean direction). Preimages found by the second
@@ -387,6 +415,9 @@ class VertexPreimageSearch {
   /// Whether walks are skipped when they cannot change the answer (no_rival_left; needs the box
   /// hierarchy, which surfaces of even element sizes do not build).
   bool may_skip_walks_;
+  /// Whether a curve's walk steps that cannot find anything are decided without a solve
+  /// (rootless_step_ends_walk).
+  bool may_skip_rootless_steps_;
   PreimageAcceptance accept_;
   /// S1's longest edge (slightly enlarged) and largest coordinate: the margins of the rivals' search.
   double longest_edge_ = 0.0, coordinate_magnitude_ = 0.0;

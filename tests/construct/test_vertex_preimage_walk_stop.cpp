@@ -9,6 +9,7 @@
 //  - on random surface pairs (manifold or not, curves and triangle surfaces, averaged normals or
 //    random directions, Newton and Ceres) the search that stops gives every S2 vertex the
 //    preimage that walking from every seed gives, bit for bit, with no more solver calls.
+#include "curve_solution_side.hpp"
 #include "preimage_rank_floor.hpp"
 #include "projection_context.hpp"
 #include "projection_fixtures.hpp"
@@ -264,6 +265,54 @@ TEST(VertexPreimageWalkStop, OffsetGridNeedsFarFewerSolves) {
   const Comparison c = compare_with_solver<2>(s1, s2, o);
   EXPECT_EQ(c.difference, "");
   EXPECT_LT(4 * c.stopping_calls, c.all_calls) << c.stopping_calls << " solves against " << c.all_calls;
+}
+
+TEST(VertexPreimageWalkStop, ConcentricCirclesNeedAboutOneSolvePerVertex) {
+  // Segments of even length build no box hierarchy, so the rivals' rule cannot stop the walks;
+  // the closed form of curve_solution_side.hpp does: once the first walk has found the preimage,
+  // each other seed's segment holds no solution and its walk would step into a solved segment.
+  // S2 lies 300 segment lengths outside S1, where every seed walks towards the same segment.
+  auto s1 = test::circle(2000, 1.0);
+  auto s2 = test::circle(2600, 1.1, 0.3);
+  const Comparison c = compare_with_solver<1>(s1, s2, ProjectionOptions{});
+  EXPECT_EQ(c.difference, "");
+  EXPECT_GE(c.all_calls, 8 * 2600) << "every seed walked and solved";
+  EXPECT_LT(c.stopping_calls, 2 * 2600) << c.stopping_calls << " solves against " << c.all_calls;
+}
+
+TEST(CurveSolutionSide, AgreesWithTheSolverOnRandomSegments) {
+  // Wherever the closed form names a side, the solver started as the search starts it either
+  // fails or converges on that side, beyond the margin; and it names a side for most segments
+  // that hold no solution (a third here, with directions turning at random; on smooth curves,
+  // whose other solution lies far away, nearly all).
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  DampedNewtonSolver solver;
+  int decided = 0, outside = 0;
+  for (int i = 0; i < 20000; ++i) {
+    VertexProjectionSystem<1> sys;
+    sys.corners = {WorldPoint<1>(unit(rng), unit(rng)), WorldPoint<1>(unit(rng), unit(rng))};
+    const WorldPoint<1> e = sys.corners[1] - sys.corners[0];
+    const WorldPoint<1> normal(-e.y(), e.x());
+    for (auto& n : sys.directions) n = normal + 0.5 * WorldPoint<1>(unit(rng), unit(rng));
+    sys.target = WorldPoint<1>(4.0 * unit(rng), 4.0 * unit(rng));
+    const double margin = 1e-6;
+    const int side = curve_solution_side(sys.corners[0], sys.corners[1], sys.directions[0], sys.directions[1],
+                                         sys.target, margin);
+    const auto r = solver.solve(sys, sys.initial_guess());
+    if (!r.converged) continue;
+    const double xi = r.x(0);
+    if (xi >= -margin && xi <= 1.0 + margin) {
+      ASSERT_EQ(side, 0) << "case " << i << ": a solution at xi " << xi << " on the segment";
+      continue;
+    }
+    ++outside;
+    if (side == 0) continue;
+    ++decided;
+    ASSERT_EQ(side, xi > 1.0 ? 1 : -1) << "case " << i << ": the solver converged at xi " << xi;
+  }
+  EXPECT_GT(outside, 5000);
+  EXPECT_GT(decided, outside / 4);
 }
 
 RC_GTEST_PROP(VertexPreimageWalkStop, SamePreimagesOnRandomTriangleSurfacePairs, ()) {
