@@ -26,6 +26,7 @@
 
 #include <plmap/core/evaluation.hpp>
 #include <plmap/core/io/map_file.hpp>
+#include <plmap/core/parallel_ranges.hpp>
 #include <plmap/strategies/point_locator_registry.hpp>
 
 
@@ -38,7 +39,6 @@
 #include <ctime>
 #include <fstream>
 #include <string>
-#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -252,7 +252,7 @@ int main(int argc, char** argv) {
     }
   }
   const double target_seconds = quick ? 0.05 : 0.4;
-  const unsigned all_threads = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned all_threads = plmap::available_threads();  // the CPUs this process may run on
 
   try {
     // Growth series: k x k sub-triangles per element, S1 sized so that every map has about

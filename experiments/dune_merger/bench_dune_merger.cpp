@@ -10,6 +10,7 @@
 #include "peers/dune_contact.hpp"
 #include "peers/inputs.hpp"
 
+#include <plmap/core/parallel_ranges.hpp>
 #include <plmap/dune/plmap_merge.hh>
 
 #include <dune/grid-glue/merging/contactmerge.hh>
@@ -24,7 +25,6 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
-#include <thread>
 #include <string>
 #include <vector>
 
@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
     else if (a == "--seed") seed = std::stoull(v);
     else usage("unknown option " + a);
   }
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  threads = plmap::resolve_thread_count(threads);  // 0: the CPUs this process may run on
   try {
     if (which == "femur" || which == "femur-offset") {
       if (femur.empty()) usage("--case femur needs --femur FILE.off");
