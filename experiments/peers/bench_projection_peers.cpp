@@ -13,6 +13,7 @@
 
 #include "command_line.hpp"
 #include "plain_mesh_surface.hpp"
+#include "spatial_order.hpp"
 #include "tools.hpp"
 
 #include <plmap/core/io/surface_writer.hpp>
@@ -28,6 +29,7 @@ namespace {
 
 struct Arguments {
   std::string tool = "plmap", family = "plane", femur, write_inputs;
+  std::string order = "as-generated";  ///< or "spatial" (spatial_order.hpp)
   long size = 2000;
   std::uint64_t seed = 1;
   unsigned threads = 1;
@@ -115,6 +117,7 @@ int run(int argc, char** argv) {
     else if (a.name() == "--threads") args.threads = static_cast<unsigned>(std::stoul(a.value()));
     else if (a.name() == "--femur") args.femur = a.value();
     else if (a.name() == "--write-inputs") args.write_inputs = a.value();
+    else if (a.name() == "--order") args.order = a.value();
     else if (a.name() == "--list-tools") {
       print_tools(built_in_tools());
       return 0;
@@ -122,10 +125,21 @@ int run(int argc, char** argv) {
       a.reject();
     }
   }
+  if (args.order != "as-generated" && args.order != "spatial")
+    throw std::invalid_argument(fmt::format("unknown --order '{}' (as-generated or spatial)", args.order));
+  // Only the numbering changes (spatial_order.hpp); the generated inputs have no isolated points.
+  auto ordered = [&](auto input) {
+    if (args.order == "spatial") {
+      input.s1 = spatially_ordered(input.s1);
+      input.s2 = spatially_ordered(input.s2);
+      input.label += " (spatial order)";
+    }
+    return input;
+  };
   const double t0 = now_seconds();
   nlohmann::json line;
   if (args.family == "circle") {
-    const auto input = concentric_circles(args.size, args.seed);
+    const auto input = ordered(concentric_circles(args.size, args.seed));
     line = measure<1>(args, input, now_seconds() - t0);
   } else {
     SurfacePair<2> input;
@@ -134,6 +148,7 @@ int run(int argc, char** argv) {
     else if (args.family == "femur") input = femur_pair(args.femur, true, args.seed);
     else if (args.family == "femur-offset") input = femur_pair(args.femur, false, args.seed);
     else throw std::invalid_argument(fmt::format("unknown case '{}'", args.family));
+    input = ordered(std::move(input));
     line = measure<2>(args, input, now_seconds() - t0);
   }
   print_result_line(line);
