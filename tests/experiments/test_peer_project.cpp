@@ -64,6 +64,25 @@ TEST_F(PeerProject, PlmapOnAPlanePairAndACirclePairCoversTheExactOverlap) {
   EXPECT_EQ(rows[1].metrics["input.elements"], 40);
 }
 
+TEST_F(PeerProject, TheInputOrderIsPassedOnAndKeepsTheGeometry) {
+  // the same sphere pair as generated and renumbered along a Morton curve: the benchmark names the
+  // order it ran, and plmap covers the same area either way
+  const auto config = config_with("[[inputs]]\nkind = \"contact-pair\"\ncase = \"sphere\"\nsize = 2\n",
+                                  "tool = \"plmap\"\n",
+                                  "[sweep]\n\"peer_project.order\" = [\"as-generated\", \"spatial\"]\n");
+  RunOptions options;
+  options.repetitions_override = 1;
+  const auto rows = run_all(config, fresh_directory("peer_project_order_cache"), options);
+  ASSERT_EQ(rows.size(), 2u);
+  for (const auto& row : rows) ASSERT_TRUE(row.metrics["peer_project.ok"].get<bool>()) << row.metrics.dump();
+  EXPECT_NEAR(rows[0].metrics["peer_project.covered_error"].get<double>(),
+              rows[1].metrics["peer_project.covered_error"].get<double>(), 1e-9);
+  EXPECT_EQ(rows[0].metrics["peer_project.pieces"], rows[1].metrics["peer_project.pieces"]);
+  const std::string as_generated = rows[0].metrics["peer_project.label"], spatial = rows[1].metrics["peer_project.label"];
+  EXPECT_EQ(as_generated.find("spatial order"), std::string::npos) << as_generated;
+  EXPECT_NE(spatial.find("(spatial order)"), std::string::npos) << spatial;
+}
+
 TEST_F(PeerProject, PSurfaceAboveItsSizeLimitIsSkippedAndSaysSo) {
   const auto config = config_with("[[inputs]]\nkind = \"contact-pair\"\ncase = \"sphere\"\nsize = 1\n",
                                   "tool = \"psurface\"\npsurface_max_elements = 10\n");

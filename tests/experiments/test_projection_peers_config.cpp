@@ -42,8 +42,19 @@ TEST_F(ProjectionPeersConfig, TheShippedConfigSweepsToolsRealMeshesAndPlmapsThre
   const auto config = parse_experiment_file(configs / "projection_peers.toml");
   const auto runs = expand_runs(config);
   // sweep 1: planes 4 + spheres 3 + circles 4 + two femur pairs, three tools; sweep 2: two more
-  // real-mesh pairs, two tools; sweep 3: five pairs, plmap on two threads
-  EXPECT_EQ(runs.size(), (4u + 3u + 4u + 2u) * 3u + 2u * 2u + 5u);
+  // real-mesh pairs, two tools; sweep 3: five pairs, plmap on two threads; sweep 4: three
+  // real-mesh pairs in spatial order, two tools
+  EXPECT_EQ(runs.size(), (4u + 3u + 4u + 2u) * 3u + 2u * 2u + 5u + 3u * 2u);
+  std::set<std::string> spatial;  // input and tool of the runs in spatial order
+  for (const auto& r : runs)
+    if (r.columns["peer_project.order"] == "spatial") {
+      const std::string input = r.columns["input.name"], tool = r.columns["peer_project.tool"];
+      spatial.insert(input + " " + tool);
+      EXPECT_EQ(r.columns["peer_project.threads"], 1) << r.columns.dump();
+    }
+  EXPECT_EQ(spatial, (std::set<std::string>{"armadillo-remeshed contactmerge", "armadillo-remeshed plmap",
+                                            "bones-remeshed contactmerge", "bones-remeshed plmap",
+                                            "femur-remeshed contactmerge", "femur-remeshed plmap"}));
   std::map<std::string, std::set<std::string>> tools_of;  // input name -> tools
   std::set<std::string> single_thread_plmap, two_threads;
   for (const auto& r : runs) {

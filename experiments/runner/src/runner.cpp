@@ -240,7 +240,8 @@ class Pipeline {
     const std::string& tool = p.text("tool");
     std::vector<std::string> argv = {peer_benchmark_program(), "--tool", tool, "--seed",
                                      std::to_string(in.integer("seed")), "--threads",
-                                     std::to_string(tool == "plmap" ? p.integer("threads") : 1)};
+                                     std::to_string(tool == "plmap" ? p.integer("threads") : 1), "--order",
+                                     p.text("order")};
     detail::require_peer_benchmark("peer_project", argv[0], "benchmark", "bench_projection_peers", "PLMAP_PEER_BENCH");
     if (input.kind == "contact-circles") {
       argv.insert(argv.end(), {"--case", "circle", "--size", std::to_string(in.integer("segments"))});
@@ -262,6 +263,7 @@ class Pipeline {
     if (outcome.line.is_null()) return;
     auto real = [&](const char* key) { return detail::number_or_null(outcome.line, key); };
     m.metrics[prefix + "target_elements"] = real("s2_cells");
+    if (outcome.line.contains("label") && outcome.line["label"].is_string()) m.metrics[prefix + "label"] = outcome.line["label"];
     if (!outcome.ok) return;
     m.metrics[prefix + "pieces"] = real("pieces");
     m.metrics[prefix + "covered_error"] = real("covered_relative_error");

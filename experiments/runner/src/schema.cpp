@@ -267,7 +267,10 @@ const std::vector<ParameterSpec>& step_schema(const std::string& kind) {
       integer("threads", 1, 0, 1024, "plmap's threads (0: all hardware threads); the peers are single-threaded"),
       real("timeout_seconds", 1800, 1, 1e6, "a child still running after this long is killed; the run records why"),
       integer("psurface_max_elements", 25000, 0, 1e9,
-              "PSurface tests all pairs of elements (hours beyond ~20k): larger S1 are skipped and recorded as such")};
+              "PSurface tests all pairs of elements (hours beyond ~20k): larger S1 are skipped and recorded as such"),
+      choice("order", "as-generated", {"as-generated", "spatial"}, "input order",
+             "numbering of the pair the tool gets: as generated, or both surfaces renumbered along a Morton "
+             "curve (same geometry; shows how much a tool depends on the order of its input)")};
   static const std::vector<ParameterSpec> simplify = {
       integer("target_elements", 0, 0, 1e9, "stop at this many triangles (0: no element target)"),
       real("max_error", 0.0, 0.0, unbounded,
@@ -367,6 +370,7 @@ const std::vector<MetricSpec>& step_metrics(const std::string& kind) {
       {"ok", false, "the tool produced its overlaps (false: see error)"},
       {"error", false, "why not: the tool's exception, a time-out or a skip (empty if ok)"},
       {"target_elements", false, "elements of S2"},
+      {"label", false, "the benchmark's name of the pair (\"(spatial order)\" appended when renumbered)"},
       {"pieces", false, "regions (plmap) or overlap simplices / primitives (peers)"},
       {"covered_error", false, "(covered - exact) / exact overlap on S1"},
       {"covered_target_error", false, "(covered - exact) / exact overlap on S2"},
