@@ -21,7 +21,7 @@ namespace plmap::cli {
 namespace {
 
 struct ProjectCommand {
-  std::string s1, s2, output, directions_file, solver = "newton", normal_check = "none";
+  std::string s1, s2, output, directions_file, solver = "newton", normal_check = "none", renumber = "auto";
   double max_distance = std::numeric_limits<double>::infinity();
   bool relative_distance = false, allow_negative = false, json = false, no_rim = false;
   unsigned threads = 0;
@@ -71,6 +71,11 @@ TargetNormalCheck normal_check_from(const std::string& name) {
   throw Error(fmt::format("unknown normal check '{}' (valid: none, facing, aligned)", name));
 }
 
+SpatialRenumbering renumbering_from(const std::string& name) {
+  if (const auto r = spatial_renumbering_from_name(name)) return *r;
+  throw Error(fmt::format("unknown renumbering '{}' (valid: auto, always, target, never)", name));
+}
+
 template <int d>
 int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surface) {
   auto s1 = std::make_shared<const Surface<d>>(std::move(s1_surface));
@@ -83,6 +88,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   options.end_on_rim = !o.no_rim;
   options.normal_check = normal_check_from(o.normal_check);
   options.threads = o.threads;
+  options.renumbering = renumbering_from(o.renumber);
   if (!o.directions_file.empty()) options.directions = read_directions(o.directions_file, d, s1->vertex_count());
 
   ProgressBar bar(o.progress);
@@ -126,6 +132,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
                       {"detail", e.detail}});
   }
   j["edges_not_inserted_list"] = listed;
+  j["renumbered"] = {{"S1", r.renumbered_domain}, {"S2", r.renumbered_target}};
   j["solver"] = o.solver;
   j["solver_calls"] = r.solver_calls;
   j["solver_failures"] = r.solver_failures;
@@ -136,7 +143,8 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
                            {"ghost_nodes", r.seconds.ghost_nodes},
                            {"edge_walks", r.seconds.edge_walks},
                            {"insertion", r.seconds.insertion},
-                           {"finalize", r.seconds.finalize}};
+                           {"finalize", r.seconds.finalize},
+                           {"renumbering", r.seconds.renumbering}};
   print_result(j, o.json);
   release_at_exit(std::move(result));
   return exit_code::success;
@@ -182,6 +190,11 @@ void register_project(CLI::App& app, Action& action) {
                 "Also accept images behind S1 (penetrating contact), down to -max-distance");
   cmd->add_option("--normal-check", o->normal_check,
                   "Accept images by S2's normal: none, facing (contact pairs) or aligned")
+      ->capture_default_str();
+  cmd->add_option("--renumber", o->renumber,
+                  "Work on copies renumbered in spatial order: auto (S2, when its consecutive elements lie far "
+                  "apart, as in most meshes written by other tools), always (S1 and S2), target (S2) or never. "
+                  "The map is in the input's numbering either way")
       ->capture_default_str();
   cmd->add_option("--max-listed", o->max_listed, "Edges not inserted listed in the output")
       ->capture_default_str();

@@ -20,6 +20,7 @@
 #include "projection_insertion.hpp"
 #include "projection_sheet_selection.hpp"
 #include "projection_vertex_preimages.hpp"
+#include "spatial_renumbering.hpp"
 #include "unit_scale.hpp"
 
 #include <plmap/construct/project.hpp>
@@ -212,14 +213,31 @@ template <int d>
 ProjectionResult<d> project(std::shared_ptr<const Surface<d>> s1, std::shared_ptr<const Surface<d>> s2,
                             const ProjectionOptions& options) {
   if (!s1 || !s2) throw Error("project: both surfaces are required");
+  using projection::Clock, projection::seconds_since;
+  const auto t0 = Clock::now();
   const SolverKind kind = solver_kind_from_string(options.solver);
-  // computed on unit-size copies, so that no product of lengths overflows or underflows
-  const auto unit = projection::unit_scaled<d>(s1, s2);
-  const ProjectionOptions unit_options = projection::options_for_unit_scale(options, unit.exponent);
+  // computed on copies in spatial order when the input is in a poor one (spatial_renumbering.hpp);
+  // S1 = S2 as one object stays one object: the projection recognises the identity by it
+  const projection::RenumberingChoice renumber = projection::renumbering_choice<d>(*s2, s1 == s2, options.renumbering);
+  const auto r1 = projection::renumbered_or_kept<d>(s1, renumber.domain);
+  const auto r2 = s2 == s1 ? r1 : projection::renumbered_or_kept<d>(s2, renumber.target);
+  const ProjectionOptions renumbered_options = projection::options_for_renumbered(options, r1);
+  const double copying = seconds_since(t0);
+  // and on unit-size copies, so that no product of lengths overflows or underflows
+  const auto unit = projection::unit_scaled<d>(r1.surface, r2.surface);
+  const ProjectionOptions unit_options = projection::options_for_unit_scale(renumbered_options, unit.exponent);
   auto result = with_solver(kind, options.solver_tolerance, [&](const auto& solver) {
     return run_projection<d>(unit.s1, unit.s2, unit_options, solver);
   });
-  return projection::in_user_units<d>(std::move(result), s1, s2, unit.exponent);
+  result = projection::in_user_units<d>(std::move(result), r1.surface, r2.surface, unit.exponent);
+  if (!r1.renumbered() && !r2.renumbered()) return result;
+  const auto t1 = Clock::now();
+  result = projection::in_original_numbering<d>(std::move(result), r1, r2, s1, s2);
+  result.report.renumbered_domain = r1.renumbered();
+  result.report.renumbered_target = r2.renumbered();
+  result.report.seconds.renumbering = copying + seconds_since(t1);
+  result.report.seconds.total += result.report.seconds.renumbering;
+  return result;
 }
 
 template ProjectionResult<1> project<1>(std::shared_ptr<const Surface<1>>, std::shared_ptr<const Surface<1>>,

@@ -6,9 +6,12 @@
 //
 // Usage: bench_projection_peers --tool plmap|psurface|contactmerge --case plane|sphere|femur|femur-offset|circle
 //            --size N [--seed S] [--threads T] [--femur femur.off] [--write-inputs PREFIX]
+//            [--order as-generated|spatial] [--renumber auto|always|target|never]
 //        bench_projection_peers --list-tools
 // --size: plane: S1 triangles; sphere: icosphere level; circle: S1 segments; femur*: ignored.
 // --threads: plmap only (0 = all cores); the peers are single-threaded.
+// --order spatial: both surfaces renumbered along a Morton curve before any tool sees them.
+// --renumber: plmap only, ProjectionOptions::renumbering (plmap's own copies in spatial order).
 // --write-inputs: also write S1 and S2 to PREFIX_s1.off/.curve and PREFIX_s2.off/.curve (reproducers).
 
 #include "command_line.hpp"
@@ -30,6 +33,7 @@ namespace {
 struct Arguments {
   std::string tool = "plmap", family = "plane", femur, write_inputs;
   std::string order = "as-generated";  ///< or "spatial" (spatial_order.hpp)
+  std::string renumber = "auto";       ///< plmap's ProjectionOptions::renumbering
   long size = 2000;
   std::uint64_t seed = 1;
   unsigned threads = 1;
@@ -51,7 +55,7 @@ nlohmann::json measure(const Arguments& args, const SurfacePair<d>& input, doubl
   Measurement clock;
   ToolOutcome outcome;
   if (args.tool == "plmap") {
-    outcome = run_plmap<d>(input, args.threads, clock);
+    outcome = run_plmap<d>(input, args.threads, args.renumber, clock);
 #ifdef PLMAP_PEERS_HAVE_PSURFACE
   } else if (args.tool == "psurface") {
     outcome = run_psurface<d>(input, clock);
@@ -118,6 +122,7 @@ int run(int argc, char** argv) {
     else if (a.name() == "--femur") args.femur = a.value();
     else if (a.name() == "--write-inputs") args.write_inputs = a.value();
     else if (a.name() == "--order") args.order = a.value();
+    else if (a.name() == "--renumber") args.renumber = a.value();
     else if (a.name() == "--list-tools") {
       print_tools(built_in_tools());
       return 0;

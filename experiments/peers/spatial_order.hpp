@@ -10,55 +10,35 @@
 
 #include "inputs.hpp"
 
+#include <plmap/core/spatial_order.hpp>
+
 #include <algorithm>
 #include <array>
-#include <cstdint>
-#include <numeric>
+#include <span>
 #include <vector>
 
 namespace plmap::peers {
 
-/// Interleaves the low `bits` bits of the coordinates' cells (x first).
-template <int n>
-std::uint64_t morton_code(const std::array<std::uint32_t, n>& cell, int bits) {
-  std::uint64_t code = 0;
-  for (int b = bits - 1; b >= 0; --b)
-    for (int k = 0; k < n; ++k) code = (code << 1) | ((cell[k] >> b) & 1u);
-  return code;
-}
-
-/// The mesh with its cells in Morton order of their centroids and its points in first-use order.
+/// The mesh with its cells in Morton order of their centroids (plmap::morton_order) and its
+/// points in first-use order.
 template <int d>
 PlainMesh<d> spatially_ordered(const PlainMesh<d>& mesh) {
   constexpr int n = d + 1;
-  constexpr int bits = 63 / n;
-  std::array<double, n> low, high;
-  low.fill(0.0);
-  high.fill(0.0);
+  WorldPoint<d> low = WorldPoint<d>::Zero(), high = WorldPoint<d>::Zero();
   for (std::size_t i = 0; i < mesh.points.size(); ++i)
     for (int k = 0; k < n; ++k) {
-      low[k] = i == 0 ? mesh.points[i][k] : std::min(low[k], mesh.points[i][k]);
-      high[k] = i == 0 ? mesh.points[i][k] : std::max(high[k], mesh.points[i][k]);
+      low(k) = i == 0 ? mesh.points[i][k] : std::min(low(k), mesh.points[i][k]);
+      high(k) = i == 0 ? mesh.points[i][k] : std::max(high(k), mesh.points[i][k]);
     }
-  std::vector<std::uint64_t> code(mesh.cells.size());
-  for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
-    std::array<std::uint32_t, n> cell;
-    for (int k = 0; k < n; ++k) {
-      double centroid = 0.0;
-      for (int corner : mesh.cells[c]) centroid += mesh.points[corner][k] / n;
-      const double extent = high[k] - low[k];
-      const double unit = extent > 0.0 ? (centroid - low[k]) / extent : 0.0;
-      cell[k] = static_cast<std::uint32_t>(std::clamp(unit, 0.0, 1.0) * double((1u << bits) - 1));
-    }
-    code[c] = morton_code<n>(cell, bits);
-  }
-  std::vector<std::size_t> order(mesh.cells.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return code[a] < code[b]; });
+  std::vector<WorldPoint<d>> centroids(mesh.cells.size(), WorldPoint<d>::Zero());
+  for (std::size_t c = 0; c < mesh.cells.size(); ++c)
+    for (int corner : mesh.cells[c])
+      for (int k = 0; k < n; ++k) centroids[c](k) += mesh.points[corner][k] / n;
+  const std::vector<Index> order = morton_order<d>(std::span<const WorldPoint<d>>(centroids), low, high);
   PlainMesh<d> out;
   std::vector<int> renumbered(mesh.points.size(), -1);
   out.cells.reserve(mesh.cells.size());
-  for (std::size_t c : order) {
+  for (const Index c : order) {
     std::array<int, n> cell = mesh.cells[c];
     for (int& corner : cell) {
       if (renumbered[corner] < 0) {

@@ -6,17 +6,30 @@
 #include <plmap/construct/project.hpp>
 
 #include <exception>
+#include <stdexcept>
+#include <string>
 #include <memory>
 
 namespace plmap::peers {
 
+namespace {
+
+SpatialRenumbering renumbering_from(const std::string& name) {
+  if (const auto r = spatial_renumbering_from_name(name)) return *r;
+  throw std::invalid_argument("unknown --renumber '" + name + "' (auto, always, target or never)");
+}
+
+}  // namespace
+
 template <int d>
-ToolOutcome run_plmap(const SurfacePair<d>& input, unsigned threads, Measurement& clock) {
+ToolOutcome run_plmap(const SurfacePair<d>& input, unsigned threads, const std::string& renumbering,
+                      Measurement& clock) {
   ToolOutcome out;
   const auto s1 = to_surface(input.s1);
   const auto s2 = to_surface(input.s2);
   ProjectionOptions options;
   options.threads = threads;
+  options.renumbering = renumbering_from(renumbering);
   try {
     clock.start();
     const ProjectionResult<d> result = project<d>(s1, s2, options);
@@ -41,7 +54,9 @@ ToolOutcome run_plmap(const SurfacePair<d>& input, unsigned threads, Measurement
                      {"edge_walks", r.seconds.edge_walks},
                      {"insertion", r.seconds.insertion},
                      {"finalize", r.seconds.finalize},
-                     {"total", r.seconds.total}}}};
+                     {"renumbering", r.seconds.renumbering},
+                     {"total", r.seconds.total}}},
+                   {"renumbered", {{"S1", r.renumbered_domain}, {"S2", r.renumbered_target}}}};
     if (!r.edges_not_inserted.empty()) {
       const auto& e = r.edges_not_inserted.front();
       out.details["first_edge_not_inserted"] = {{"target_edge", e.target_edge},
@@ -56,7 +71,7 @@ ToolOutcome run_plmap(const SurfacePair<d>& input, unsigned threads, Measurement
   return out;
 }
 
-template ToolOutcome run_plmap<1>(const SurfacePair<1>&, unsigned, Measurement&);
-template ToolOutcome run_plmap<2>(const SurfacePair<2>&, unsigned, Measurement&);
+template ToolOutcome run_plmap<1>(const SurfacePair<1>&, unsigned, const std::string&, Measurement&);
+template ToolOutcome run_plmap<2>(const SurfacePair<2>&, unsigned, const std::string&, Measurement&);
 
 }  // namespace plmap::peers

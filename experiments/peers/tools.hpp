@@ -21,8 +21,10 @@ struct ToolOutcome {
   nlohmann::json details = nlohmann::json::object();
 };
 
+/// `renumbering`: ProjectionOptions::renumbering ("auto", "always", "target" or "never").
 template <int d>
-ToolOutcome run_plmap(const SurfacePair<d>& input, unsigned threads, Measurement& clock);
+ToolOutcome run_plmap(const SurfacePair<d>& input, unsigned threads, const std::string& renumbering,
+                      Measurement& clock);
 
 #ifdef PLMAP_PEERS_HAVE_PSURFACE
 template <int d>

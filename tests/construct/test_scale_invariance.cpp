@@ -12,6 +12,7 @@
 //
 // Seed and number of cases come from RC_PARAMS (set by CTest, see tests/CMakeLists.txt).
 #include "projection_fixtures.hpp"
+#include "small_planar_recipe.hpp"
 
 #include <plmap/construct/project.hpp>
 #include <plmap/core/errors.hpp>
@@ -122,14 +123,6 @@ ScaleFactor scale_factor() {
   return s;
 }
 
-gen::PlanarRecipe small_planar_recipe() {
-  gen::PlanarRecipe r;
-  r.base = *rc::gen::element(gen::PlanarBase::grid, gen::PlanarBase::delaunay);
-  r.resolution = r.base == gen::PlanarBase::grid ? *rc::gen::inRange(1, 7) : *rc::gen::inRange(0, 16);
-  r.jitter = *rc::gen::arbitrary<bool>();
-  r.seed = *rc::gen::noShrink(rc::gen::arbitrary<std::uint64_t>());
-  return r;
-}
 
 }  // namespace
 

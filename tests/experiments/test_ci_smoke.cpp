@@ -182,18 +182,36 @@ TEST(Experiment, EveryMapKindBuildsAValidMapInBothDimensions) {
   }
 }
 
-TEST(Experiment, ProjectionOfAGridOntoALiftedCopyCoversIt) {
-  if (!projection_available()) GTEST_SKIP() << "no plmap::construct in this build";
+/// A 4 x 4 grid projected onto a jittered, lifted copy, then checked; `options` are more keys of
+/// the project step.
+std::vector<RunResult> project_grid_onto_lifted_copy(const std::string& options, const std::string& cache) {
   const auto config = parse_experiment_text(
       "[experiment]\nname = \"p\"\nrepetitions = 1\n"
       "[[inputs]]\nname = \"s1\"\nkind = \"grid\"\ncells = 4\n"
       "[[inputs]]\nname = \"s2\"\nkind = \"grid\"\ncells = 4\njitter = 0.1\nseed = 3\nz_offset = 0.05\nrun = false\n"
-      "[[pipeline]]\nstep = \"project\"\ntarget = \"s2\"\n[[pipeline]]\nstep = \"check\"\n",
+      "[[pipeline]]\nstep = \"project\"\ntarget = \"s2\"\n" + options + "[[pipeline]]\nstep = \"check\"\n",
       "p.toml", std::filesystem::temp_directory_path());
-  const auto rows = run_all(config, fresh_directory("project_cache"));
+  return run_all(config, fresh_directory(cache));
+}
+
+TEST(Experiment, ProjectionOfAGridOntoALiftedCopyCoversIt) {
+  if (!projection_available()) GTEST_SKIP() << "no plmap::construct in this build";
+  const auto rows = project_grid_onto_lifted_copy("", "project_cache");
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_NEAR(rows[0].metrics["project.covered_fraction"].get<double>(), 1.0, 1e-9) << rows[0].metrics.dump();
   EXPECT_EQ(rows[0].metrics["project.edges_not_inserted"], 0);
+  EXPECT_TRUE(rows[0].metrics["check.ok"].get<bool>()) << rows[0].metrics.dump();
+  // generated grids come in rows: the default keeps them
+  EXPECT_FALSE(rows[0].metrics["project.renumbered_target"].get<bool>());
+}
+
+TEST(Experiment, ProjectionOnRenumberedCopiesCoversTheSame) {
+  if (!projection_available()) GTEST_SKIP() << "no plmap::construct in this build";
+  const auto rows = project_grid_onto_lifted_copy("renumbering = \"always\"\n", "project_renumbered_cache");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_TRUE(rows[0].metrics["project.renumbered_domain"].get<bool>()) << rows[0].metrics.dump();
+  EXPECT_TRUE(rows[0].metrics["project.renumbered_target"].get<bool>()) << rows[0].metrics.dump();
+  EXPECT_NEAR(rows[0].metrics["project.covered_fraction"].get<double>(), 1.0, 1e-9) << rows[0].metrics.dump();
   EXPECT_TRUE(rows[0].metrics["check.ok"].get<bool>()) << rows[0].metrics.dump();
 }
 

@@ -156,6 +156,8 @@ std::vector<BadCase> bad_cases() {
     cases.push_back({"project onto an unknown input", project, "pipeline[0].target", "unknown input"});
     project.pipeline = "[[pipeline]]\nstep = \"project\"\ntarget = \"grid\"\nsolver = \"magic\"\n";
     cases.push_back({"unknown solver", project, "pipeline[0].solver", "unknown projection solver"});
+    project.pipeline = "[[pipeline]]\nstep = \"project\"\ntarget = \"grid\"\nrenumbering = \"shuffled\"\n";
+    cases.push_back({"unknown renumbering", project, "pipeline[0].renumbering", "unknown renumbering"});
   }
   if (peer_benchmark_available()) {
     Parts peer;

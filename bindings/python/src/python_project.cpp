@@ -54,6 +54,12 @@ const KeywordFields<ProjectCall>& projection_fields() {
       {"snap_tolerance", option_field(&O::snap_tolerance, "a float")},
       {"orientation", option_field(&O::orientation, "an int (0, 1 or -1)")},
       {"keep_nearer_sheet", option_field(&O::keep_nearer_sheet, "a bool")},
+      {"renumbering", {"a str ('auto', 'always', 'target' or 'never')", [](ProjectCall& c, py::handle v) {
+         const std::string name = py::cast<std::string>(v);
+         const auto r = spatial_renumbering_from_name(name);
+         if (!r) throw py::value_error("project(): renumbering must be 'auto', 'always', 'target' or 'never', got '" + name + "'");
+         c.options.renumbering = *r;
+       }}},
   };
   return fields;
 }
@@ -95,7 +101,9 @@ nlohmann::json report_json(const ProjectionResult<d>& result) {
                   {"edge_walks", r.seconds.edge_walks},
                   {"insertion", r.seconds.insertion},
                   {"finalize", r.seconds.finalize},
+                  {"renumbering", r.seconds.renumbering},
                   {"total", r.seconds.total}};
+  j["renumbered"] = {{"s1", r.renumbered_domain}, {"s2", r.renumbered_target}};
   return j;
 }
 
@@ -144,7 +152,8 @@ void bind_project(py::module_& m) {
         "paths or (vertices, elements) pairs of arrays. Keyword options are the fields of plmap::ProjectionOptions: directions ((n1, d+1) "
         "array), solver, solver_tolerance, max_distance, max_distance_is_relative, "
         "allow_negative_distance, normal_check ('none', 'facing', 'aligned'), threads (default 0: "
-        "all cores), search_seeds, snap_tolerance, orientation, keep_nearer_sheet.");
+        "all cores), search_seeds, snap_tolerance, orientation, keep_nearer_sheet, renumbering "
+        "('auto', 'always', 'target', 'never': copies in spatial order; the map is in the input's numbers).");
 }
 
 }  // namespace plmap::python

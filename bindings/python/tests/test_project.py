@@ -70,6 +70,11 @@ def test_options_reach_the_projection():
     assert far.region_count == 0
     assert far.report["covered_measure"] == 0
     assert plmap.project(s1, lifted, max_distance=0.6).report["covered_measure"] == pytest.approx(1.0, rel=1e-12)
+    # grids come in rows: renumbered only when asked, with the same coverage
+    assert plmap.project(s1, lifted).report["renumbered"] == {"s1": False, "s2": False}
+    both = plmap.project(s1, lifted, renumbering="always")
+    assert both.report["renumbered"] == {"s1": True, "s2": True}
+    assert both.report["covered_measure"] == pytest.approx(1.0, rel=1e-12)
 
 
 def test_tilted_directions_shift_the_image_by_the_closed_form():
@@ -97,6 +102,8 @@ def test_unknown_and_mistyped_keywords_are_type_errors():
         plmap.project(s1, s2, threads=-1)
     with pytest.raises(ValueError, match="normal_check must be 'none', 'facing' or 'aligned'"):
         plmap.project(s1, s2, normal_check="sideways")
+    with pytest.raises(ValueError, match="renumbering must be 'auto', 'always', 'target' or 'never', got 'random'"):
+        plmap.project(s1, s2, renumbering="random")
     with pytest.raises(ValueError, match=r"directions must have shape \(64, 3\)"):
         plmap.project(s1, s2, directions=np.ones((10, 3)))
     with pytest.raises(plmap.Error, match="solver"):

@@ -153,6 +153,7 @@ class Pipeline {
                            : check == "aligned" ? TargetNormalCheck::aligned
                                                 : TargetNormalCheck::none;
     options.threads = unsigned(p.integer("threads"));
+    options.renumbering = *spatial_renumbering_from_name(p.text("renumbering"));  // the schema checked it
     const auto start = std::chrono::steady_clock::now();
     auto result = plmap::project<d>(s1_, s2, options);
     m.timings[prefix + "seconds"] = seconds_since(start);
@@ -165,6 +166,8 @@ class Pipeline {
     m.metrics[prefix + "edges_inserted"] = r.edges_inserted;
     m.metrics[prefix + "edges_partly_inserted"] = r.edges_partly_inserted;
     m.metrics[prefix + "edges_not_inserted"] = r.edges_not_inserted.size();
+    m.metrics[prefix + "renumbered_domain"] = r.renumbered_domain;
+    m.metrics[prefix + "renumbered_target"] = r.renumbered_target;
     m.metrics[prefix + "covered_fraction"] =
         result.measures.domain > 0 ? result.measures.covered_domain / result.measures.domain : 0.0;
     m.metrics[prefix + "solver_calls"] = r.solver_calls;

@@ -249,6 +249,8 @@ const std::vector<ParameterSpec>& step_schema(const std::string& kind) {
       boolean("allow_negative_distance", false, "accept images behind S1"),
       choice("normal_check", "none", {"none", "facing", "aligned"}, "normal check",
              "which target orientations are accepted"),
+      choice("renumbering", "auto", {"auto", "always", "target", "never"}, "renumbering",
+             "copies in spatial order: auto (S2 when its order is poor), always, target (S2), never"),
       integer("threads", 1, 0, 1024, "worker threads; 0: all hardware threads")};
   static const std::vector<ParameterSpec> evaluate = {
       choice("locator", "default", locator_choices(),
@@ -350,6 +352,8 @@ const std::vector<MetricSpec>& step_metrics(const std::string& kind) {
       {"edges_inserted", false, "S2 edges inserted completely"},
       {"edges_partly_inserted", false, "S2 edges inserted in pieces"},
       {"edges_not_inserted", false, "S2 edges reported as not inserted"},
+      {"renumbered_domain", false, "whether S1 was renumbered in spatial order"},
+      {"renumbered_target", false, "whether S2 was renumbered in spatial order"},
       {"covered_fraction", false, "measure of D / measure of S1"},
       {"solver_calls", false, "solver calls (eq. 3 and 4)"},
       {"solver_failures", false, "solver calls that did not converge"},

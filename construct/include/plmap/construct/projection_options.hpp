@@ -5,7 +5,9 @@
 #include <plmap/core/progress.hpp>
 
 #include <limits>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace plmap {
@@ -19,6 +21,41 @@ enum class TargetNormalCheck {
   facing,   ///< <nu, n2> < 0: the paper's check, for contact pairs whose normals face each other
   aligned,  ///< <nu, n2> > 0: both surfaces oriented the same way (offset or remeshed copies)
 };
+
+/// Whether normal projection works on copies of S1 and S2 renumbered along a space-filling curve
+/// (docs/projection.md, "The order of the input"). The map and the report are always in the
+/// caller's numbering; only the time, and ties decided by the order in which candidates are met,
+/// depend on it.
+enum class SpatialRenumbering {
+  /// Renumber S2 when its consecutive elements lie far apart (centroids more than about four
+  /// element sizes apart, as in CGAL's meshes), and keep surfaces generated in rows or by
+  /// subdivision. S1 is kept: its order is the order of the map's per-element arrays, and
+  /// gathering them back into the caller's order costs about what S1's order saves.
+  automatic,
+  always,  ///< renumber both surfaces
+  target,  ///< renumber S2 only, whatever its order
+  never,   ///< work on the surfaces as given
+};
+
+/// The names the command line, the bindings and experiment configs use: "auto", "always",
+/// "target", "never".
+constexpr std::string_view to_string(SpatialRenumbering r) {
+  switch (r) {
+    case SpatialRenumbering::automatic: return "auto";
+    case SpatialRenumbering::always: return "always";
+    case SpatialRenumbering::target: return "target";
+    case SpatialRenumbering::never: return "never";
+  }
+  return "auto";
+}
+
+/// The rule of that name, or nothing.
+inline std::optional<SpatialRenumbering> spatial_renumbering_from_name(std::string_view name) {
+  for (SpatialRenumbering r : {SpatialRenumbering::automatic, SpatialRenumbering::always, SpatialRenumbering::target,
+                               SpatialRenumbering::never})
+    if (to_string(r) == name) return r;
+  return std::nullopt;
+}
 
 /// The limits and slacks of the projection's searches (docs/algorithms/normal-projection.md,
 /// "Search limits"). The defaults suit every input tried; they are options so that a search
@@ -112,6 +149,8 @@ struct ProjectionOptions {
   /// at its start and end, and every 4096 edges in "S2 edges"; called from the calling thread
   /// only. Optional; a callback that throws cancels the projection.
   ProgressCallback progress = {};
+  /// Copies in spatial order for inputs in a poor one; see SpatialRenumbering.
+  SpatialRenumbering renumbering = SpatialRenumbering::automatic;
   /// Limits and slacks of the searches; see ProjectionSearchLimits.
   ProjectionSearchLimits search_limits = {};
 };

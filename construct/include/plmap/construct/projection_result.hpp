@@ -61,6 +61,9 @@ struct ProjectionTimings {
   double edge_walks = 0.0;  ///< boundary entries and walks (eq. 4)
   double insertion = 0.0;   ///< entering nodes and edges into the builder
   double finalize = 0.0;
+  /// the copies in spatial order and the translation of the map back to the caller's numbers
+  /// (ProjectionOptions::renumbering); 0 when neither surface was renumbered
+  double renumbering = 0.0;
   double total = 0.0;
 };
 
@@ -109,6 +112,10 @@ struct ProjectionReport {
   Index rim_nodes = 0;
   Index rim_edges = 0;
   std::vector<EdgeNotInserted<d>> edges_not_inserted;
+  /// Whether the projection worked on a copy of S1 (S2) renumbered in spatial order
+  /// (ProjectionOptions::renumbering). Every number in the map and this report is the caller's.
+  bool renumbered_domain = false;
+  bool renumbered_target = false;
   /// Solver calls and how many did not converge (eq. 3 and eq. 4 together).
   long long solver_calls = 0;
   long long solver_failures = 0;
