@@ -3,6 +3,7 @@
 
 #include "spatial_renumbering.hpp"
 
+#include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/node_type.hpp>
 #include <plmap/core/spatial_order.hpp>
 
@@ -55,24 +56,35 @@ Ranges regrouped_ranges(std::vector<Index> old, const std::vector<Index>& intern
 }
 
 /// `in` regrouped by `ranges` (caller's element t takes the items of internal[t]), each item
-/// passed through adjust(item, shift of the node numbers, shift of the region numbers) — the
-/// numbers an item holds refer to its own element's nodes or regions.
+/// passed through adjust(item, caller's element, copy's element) — the numbers an item holds
+/// refer to its own element's nodes or regions. Written front to back into room marked for huge
+/// pages, without zeroing it first: the gather is a pass over the whole map, and fresh pages and
+/// a second write were most of its cost.
 template <class T, class Adjust>
 std::vector<T> regrouped(const std::vector<T>& in, const Ranges& ranges, const std::vector<Index>& internal,
                          Adjust&& adjust) {
-  std::vector<T> out(in.size());
+  std::vector<T> out;
+  reserve_on_huge_pages(out, in.size());
   for (std::size_t t = 0; t < internal.size(); ++t) {
     const Index i = internal[t];
-    const Index from = ranges.old[static_cast<std::size_t>(i)], to = ranges.old[static_cast<std::size_t>(i) + 1];
-    Index at = ranges.moved[t];
-    for (Index k = from; k < to; ++k) out[static_cast<std::size_t>(at++)] = adjust(in[static_cast<std::size_t>(k)], static_cast<Index>(t), i);
+    const auto from = static_cast<std::size_t>(ranges.old[static_cast<std::size_t>(i)]);
+    const auto to = static_cast<std::size_t>(ranges.old[static_cast<std::size_t>(i) + 1]);
+    for (std::size_t k = from; k < to; ++k) out.push_back(adjust(in[k], static_cast<Index>(t), i));
   }
   return out;
 }
 
+/// The same without adjusting: each element's stretch copied in one piece.
 template <class T>
 std::vector<T> regrouped(const std::vector<T>& in, const Ranges& ranges, const std::vector<Index>& internal) {
-  return regrouped(in, ranges, internal, [](const T& x, Index, Index) { return x; });
+  std::vector<T> out;
+  reserve_on_huge_pages(out, in.size());
+  for (const Index i : internal) {
+    const auto from = static_cast<std::ptrdiff_t>(ranges.old[static_cast<std::size_t>(i)]);
+    const auto to = static_cast<std::ptrdiff_t>(ranges.old[static_cast<std::size_t>(i) + 1]);
+    out.insert(out.end(), in.begin() + from, in.begin() + to);
+  }
+  return out;
 }
 
 Index shifted(Index n, Index shift) { return n == invalid_index ? n : n + shift; }
@@ -81,15 +93,12 @@ Index shifted(Index n, Index shift) { return n == invalid_index ? n : n + shift;
 /// lists keep their lengths, in the new order of their owners.
 std::vector<Index> regrouped_begins(const std::vector<Index>& begin, const Ranges& owners,
                                     const std::vector<Index>& internal) {
-  std::vector<Index> out(begin.size());
-  out[0] = 0;
-  for (std::size_t t = 0; t < internal.size(); ++t) {
-    const auto i = static_cast<std::size_t>(internal[t]);
-    Index at = owners.moved[t];
-    for (Index k = owners.old[i]; k < owners.old[i + 1]; ++k, ++at)
-      out[static_cast<std::size_t>(at) + 1] =
-          out[static_cast<std::size_t>(at)] + (begin[static_cast<std::size_t>(k) + 1] - begin[static_cast<std::size_t>(k)]);
-  }
+  std::vector<Index> out;
+  reserve_on_huge_pages(out, begin.size());
+  out.push_back(0);
+  for (const Index i : internal)
+    for (Index k = owners.old[static_cast<std::size_t>(i)]; k < owners.old[static_cast<std::size_t>(i) + 1]; ++k)
+      out.push_back(out.back() + (begin[static_cast<std::size_t>(k) + 1] - begin[static_cast<std::size_t>(k)]));
   return out;
 }
 
