@@ -237,8 +237,9 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   if (report) *report = FinalizeReport{};
   // An element whose graph has crossing edges (or an edge through another node) cannot be
   // closed. Unless asked to drop the S2 edges involved, that is an error; otherwise their
-  // stretches on that element are dropped and the elements are closed again (each round removes
-  // at least one segment). The rest of each preimage stays: it ends at the element's boundary.
+  // stretches on that element are dropped and the elements where something changed are closed
+  // again (each round removes at least one segment; see the loop below). The rest of each
+  // preimage stays: it ends at the element's boundary.
   const bool drop = in.options.drop_conflicting_edges;
   // Minimal embedding (DESIGN §4.3): the preimage of an S2 edge meets an S1 element in at most
   // one connected piece; with drop_conflicting_edges an edge that does not loses its stretch on
