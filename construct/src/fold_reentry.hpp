@@ -19,7 +19,6 @@
 #include <plmap/core/types.hpp>
 
 #include <algorithm>
-#include <iterator>
 #include <optional>
 #include <span>
 #include <vector>
@@ -52,20 +51,6 @@ std::optional<FoldExitCandidate> nearest_fold_exit(double after, double before, 
   for (const FoldExitCandidate& c : found)
     if (accept(c)) return c;
   return std::nullopt;
-}
-
-/// Ring searches around a stop: `fresh` := the values of `candidates` (sorted and deduplicated
-/// here) not in `seen`, which takes them in; `seen` stays sorted, `merged` is scratch. A linear
-/// search per value cost more than these sorted set operations on the femur pair.
-inline void take_unseen_into(std::vector<Index>& candidates, std::vector<Index>& seen, std::vector<Index>& fresh,
-                             std::vector<Index>& merged) {
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  fresh.clear();
-  std::set_difference(candidates.begin(), candidates.end(), seen.begin(), seen.end(), std::back_inserter(fresh));
-  merged.clear();
-  std::merge(seen.begin(), seen.end(), fresh.begin(), fresh.end(), std::back_inserter(merged));
-  std::swap(seen, merged);
 }
 
 }  // namespace plmap::projection

@@ -236,7 +236,12 @@ std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageM
   // The images on the crowded elements, compared pairwise per element: gathered into one list
   // sorted by element (then as below), not into one list per S2 element, whose million empty
   // lists on a large S2 cost a serial first touch of their memory for the few elements crowded.
+  // Counted first: grown by doubling, the list (120 bytes an image) was copied on the way, and
+  // the copy and its original were the projection's memory peak on the femur pair.
+  std::size_t crowded_regions = 0;
+  for (const Index target : m.region_target) crowded_regions += static_cast<std::size_t>(crowded[static_cast<std::size_t>(target)]);
   std::vector<std::pair<Index, Image<d>>> gathered;
+  gathered.reserve(crowded_regions);
   for (Index t = 0; t < nt; ++t)
     for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
       if (crowded[static_cast<std::size_t>(m.region_target[r])]) gathered.emplace_back(m.region_target[r], image_of(map, t, r));

@@ -5,6 +5,7 @@
 #include "fold_reentry.hpp"
 #include "rim_geometry.hpp"
 #include "rim_reentry.hpp"
+#include "seen_indices.hpp"
 #include "projection_edge_crossings.hpp"
 #include "walk_acceptance.hpp"
 
@@ -417,7 +418,8 @@ class EdgeWalker {
     auto tv = ctx_.target_edge_vertices(e);
     if (direction == WalkDirection::from_second_vertex) std::swap(tv[0], tv[1]);
     const WorldPoint<d> qa = ctx_.s2.vertex(tv[0]), qb = ctx_.s2.vertex(tv[1]);
-    std::vector<Index> ring, next_ring, seen_elements, seen_edges, ring_edges, at_exit;
+    std::vector<Index> ring, next_ring, ring_edges, at_exit;
+    SeenIndices seen_elements, seen_edges;
     std::vector<FoldExitCandidate> exits;
     auto solve = [&](Index edge) -> std::optional<FoldExitCandidate> {
       // the closed-form root of eq. (4)'s quadratic, without the solver: dozens of S1 edges
@@ -445,26 +447,23 @@ class EdgeWalker {
     // crossing in a nearer ring is, but for a preimage that doubles back, also the nearer one
     // along the S2 edge, and most stops have their exit in the first two rings: far fewer
     // edges are solved than by a search of every element within the reach.
-    std::vector<Index> merged;
-    const auto take_unseen = [&merged](std::vector<Index>& candidates, std::vector<Index>& seen,
-                                       std::vector<Index>& fresh) { take_unseen_into(candidates, seen, fresh, merged); };
     std::vector<Index> candidates;
     ctx_.elements_of(stopped.stop, candidates);
-    take_unseen(candidates, seen_elements, ring);
+    take_unseen_into(candidates, seen_elements, ring);
     const int rings = static_cast<int>(std::ceil(limits.fold_exit_reach));
     std::optional<FoldExitCandidate> exit;
     for (int r = 0; r <= rings && !ring.empty(); ++r) {
       candidates.clear();
       for (Index t : ring)
         for (int k = 0; k < 3; ++k) candidates.push_back(ctx_.s1.element_edge(t, k));
-      take_unseen(candidates, seen_edges, ring_edges);
+      take_unseen_into(candidates, seen_edges, ring_edges);
       exit = nearest_fold_exit(stopped.eta, before, limits.edge_parameter_slack, ring_edges, exits, solve, accept);
       if (exit || r == rings) break;
       candidates.clear();
       for (Index t : ring)
         for (Index v : ctx_.s1.element(t))
           for (Index n : ctx_.s1.vertex_elements(v)) candidates.push_back(n);
-      take_unseen(candidates, seen_elements, next_ring);
+      take_unseen_into(candidates, seen_elements, next_ring);
       std::swap(ring, next_ring);
     }
     if (!exit) return std::nullopt;

@@ -14,7 +14,9 @@
 #include "fold_reentry.hpp"
 #include "projection_edge_walks.hpp"
 #include "rim_geometry.hpp"
+#include "seen_indices.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -31,18 +33,22 @@ inline std::optional<RimPoint<2>> rim_reentry(const ProjectionContext<2>& ctx, c
   const double after = rim.eta;
   const WorldPoint<2> from = qa + after * (qb - qa);
   // the rings of elements around the rim point's element
-  std::vector<Index> seen{rim.element}, ring{rim.element}, next;
+  SeenIndices seen;
+  seen.insert(rim.element);
+  std::vector<Index> all{rim.element}, ring{rim.element}, next;
   const int rings = static_cast<int>(std::ceil(limits.fold_exit_reach));
-  std::vector<Index> merged;
   for (int r = 0; r < rings; ++r) {
     next.clear();
     for (Index t : ring)
       for (Index v : ctx.s1.element(t))
         for (Index n : ctx.s1.vertex_elements(v)) next.push_back(n);
-    take_unseen_into(next, seen, ring, merged);
+    take_unseen_into(next, seen, ring);
+    all.insert(all.end(), ring.begin(), ring.end());
   }
+  // in element order: of two pierces at the same parameter, the element first in it wins
+  std::sort(all.begin(), all.end());
   std::optional<RimPoint<2>> best;
-  for (Index t : seen) {
+  for (Index t : all) {
     // the rim point's element holds the edge's rim node already (one per element and S2 edge)
     if (t == rim.element) continue;
     const std::array<WorldPoint<2>, 3> tri{ctx.s1.corner(t, 0), ctx.s1.corner(t, 1), ctx.s1.corner(t, 2)};

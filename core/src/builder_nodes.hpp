@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <span>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace plmap::detail {
@@ -133,6 +134,7 @@ class DroppedEdges {
   bool drop(Index e, Index t) {
     if (contains(e)) return false;
     dropped_[static_cast<std::size_t>(e)] = 1;
+    changes_.whole_edges = true;
     edge_inserted_[static_cast<std::size_t>(e)] = edge_not_inserted;
     report(e, t);
     return true;
@@ -140,12 +142,7 @@ class DroppedEdges {
   /// Drops the given segments (the stretch of S2 edge e on S1 element t) and reports e once;
   /// false if none of them was still in the map.
   bool drop_stretch(Index e, Index t, std::span<const Index> segments) {
-    bool any = false;
-    for (Index s : segments) {
-      char& flag = segment_dropped_[static_cast<std::size_t>(s)];
-      any = any || flag == 0;
-      flag = 1;
-    }
+    const bool any = drop_segments(segments);
     if (any) report(e, t);
     return any;
   }
@@ -160,6 +157,7 @@ class DroppedEdges {
     bool any = false;
     for (Index s : segments) {
       char& flag = segment_dropped_[static_cast<std::size_t>(s)];
+      if (flag == 0) changes_.segments.push_back(s);
       any = any || flag == 0;
       flag = 1;
     }
@@ -171,8 +169,18 @@ class DroppedEdges {
   void drop_rim_node(Index n, std::size_t node_count) {
     if (node_dropped_.empty()) node_dropped_.assign(node_count, 0);
     node_dropped_[static_cast<std::size_t>(n)] = 1;
+    changes_.nodes.push_back(n);
   }
   bool drops_node(Index n) const { return !node_dropped_.empty() && node_dropped_[static_cast<std::size_t>(n)] != 0; }
+
+  /// What was dropped since the last take_changes(): finalize closes again only the elements
+  /// whose graph that changed (finalize_rechecks.hpp).
+  struct Changes {
+    std::vector<Index> segments;  // segments left out
+    std::vector<Index> nodes;     // rim nodes left out
+    bool whole_edges = false;     // whole S2 edges dropped (their intersection nodes go too)
+  };
+  Changes take_changes() { return std::exchange(changes_, Changes{}); }
 
  private:
   void report(Index e, Index t) {
@@ -187,6 +195,7 @@ class DroppedEdges {
   std::vector<char> segment_dropped_;
   std::vector<char> node_dropped_;  // per builder node once a rim node is dropped, else empty
   bool rim_segments_dropped_ = false;
+  Changes changes_;
   std::vector<char>& edge_inserted_;
   FinalizeReport* report_;
 };

@@ -427,19 +427,26 @@ int centroid_triangle(const ElementTriangulation& et, const ElementClosure& clos
 
 }  // namespace
 
-void close_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
-                   ClosureWorkspace& w) {
+bool close_graph(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
+                 ClosureWorkspace& w) {
   const std::array<int, 3> corner_slot = place_slots(in, where, t, w);
-  const int ns = static_cast<int>(w.et.slots.size());
-  if (ns == 0) {  // nothing of the map on this element
+  if (w.et.slots.empty()) {  // nothing of the map on this element
     w.closure.clear();
-    return;
+    return false;
   }
   const std::array<int, 3> corner_vertex = add_virtual_corners(w.et, corner_slot);
   const int vertex_count = static_cast<int>(w.et.positions.size());
   const std::array<int, 2> boundary_start = collect_constraints(in, where, t, corner_vertex, w);
   if (!close_by_faces(w.et.positions, w.segments, boundary_start, w.closure, w.scratch))
     close_by_cdt(t, w, vertex_count);
+  return true;
+}
+
+void close_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
+                   ClosureWorkspace& w) {
+  if (!close_graph(in, where, t, w)) return;
+  const int ns = static_cast<int>(w.et.slots.size());
+  const int vertex_count = static_cast<int>(w.et.positions.size());
   classify_faces(in, w, ns, vertex_count);
   w.et.centroid_triangle = centroid_triangle(w.et, w.closure);
   // where each node's ring of neighbours starts (they are circulated at assembly)

@@ -92,6 +92,14 @@ struct ClosureWorkspace {
 void close_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
                    ClosureWorkspace& w);
 
+/// The first half of close_element: the graph of S1 element t closed into triangles in w, its
+/// faces neither given their S2 elements nor judged. It throws exactly where close_element does
+/// (nothing after it throws), at half the cost of closing and assembling: enough where finalize
+/// only asks which elements cannot be closed.
+/// Returns false if nothing of the map lies on t.
+bool close_graph(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
+                 ClosureWorkspace& w);
+
 /// Local position of the point at parameter s along local edge k (from corner k). Points lie
 /// exactly on their edge line, or exact predicates would see them a rounding step off it.
 LocalPoint<2> on_local_edge(int k, double s);

@@ -8,6 +8,7 @@
 #include "finalize_conflicts.hpp"
 #include "finalize_joining.hpp"
 #include "finalize_phases.hpp"
+#include "finalize_rechecks.hpp"
 #include "finalize_region_maps.hpp"
 #include "finalize_reuse.hpp"
 
@@ -18,6 +19,7 @@
 #endif
 
 #include <exception>
+#include <span>
 #include <vector>
 #include <utility>
 
@@ -67,9 +69,13 @@ class ClosingPass {
             if (failures[k].empty()) reuse_->copy_element(in_, where_, t, parts_[k], cursor);
             continue;
           }
-          close_element(in_, where_, t, workspaces_[k]);
-          // after a failure the part is discarded: only the failures are still collected
-          if (failures[k].empty()) assemble_element(in_, workspaces_[k], orientation, parts_[k], cursor);
+          if (failures[k].empty()) {
+            close_element(in_, where_, t, workspaces_[k]);
+            assemble_element(in_, workspaces_[k], orientation, parts_[k], cursor);
+          } else {
+            // after a failure the part is discarded: only the failures are still collected
+            close_graph(in_, where_, t, workspaces_[k]);
+          }
         } catch (...) {
           failures[k].emplace_back(t, std::current_exception());
           if (!drop) return;  // finalize throws: the part and its count are not used
@@ -79,6 +85,24 @@ class ClosingPass {
       trim_part(cursor, parts_[k]);
       for (Index& t : cursor.graph_elements) t += begin;  // numbered in the block
       graph_elements_[k] = std::move(cursor.graph_elements);
+    });
+    ElementFailures failed;
+    for (auto& list : failures) failed.insert(failed.end(), list.begin(), list.end());
+    return failed;
+  }
+
+  /// The given elements (sorted) that cannot be closed, in element order; nothing is assembled.
+  ElementFailures failures_among(std::span<const Index> elements) {
+    if (workspaces_.size() < blocks_) workspaces_.resize(blocks_);
+    std::vector<ElementFailures> failures(blocks_);
+    parallel_for_pieces(elements.size(), blocks_, threads_, [&](std::size_t k, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        try {
+          close_graph(in_, where_, elements[i], workspaces_[k]);
+        } catch (...) {
+          failures[k].emplace_back(elements[i], std::current_exception());
+        }
+      }
     });
     ElementFailures failed;
     for (auto& list : failures) failed.insert(failed.end(), list.begin(), list.end());
@@ -213,8 +237,9 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   if (report) *report = FinalizeReport{};
   // An element whose graph has crossing edges (or an edge through another node) cannot be
   // closed. Unless asked to drop the S2 edges involved, that is an error; otherwise their
-  // stretches on that element are dropped and the elements are closed again (each round removes
-  // at least one segment). The rest of each preimage stays: it ends at the element's boundary.
+  // stretches on that element are dropped and the elements where something changed are closed
+  // again (each round removes at least one segment; see the loop below). The rest of each
+  // preimage stays: it ends at the element's boundary.
   const bool drop = in.options.drop_conflicting_edges;
   // Minimal embedding (DESIGN §4.3): the preimage of an S2 edge meets an S1 element in at most
   // one connected piece; with drop_conflicting_edges an edge that does not loses its stretch on
@@ -226,13 +251,14 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   const int guess = in.options.orientation != 0 ? in.options.orientation : sampled_orientation(in, where);
   give_freed_heap_back();
   ClosingPass pass(in, where, in.options.threads, reuse);
-  for (int round = 0;; ++round) {
-    const ElementFailures failed = pass.run(guess);
-    if (failed.empty()) break;
+  ElementFailures failed = pass.run(guess);
+  for (int round = 0; !failed.empty(); ++round) {
     // failed.front() is the smallest element that failed
     if (!drop || round == 16) std::rethrow_exception(failed.front().second);
     bool any = false;
+    std::vector<Index> failed_elements;
     for (const auto& [t, error] : failed) {
+      failed_elements.push_back(t);
       // rim edges on a failed element go (a conflict with a rim edge costs the rim there, not an
       // S2 edge's stretch), and so do the stretches of S2 edges in conflict among themselves or
       // with a node: both in the same round, which closes every element again
@@ -243,6 +269,11 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
     // rim nodes whose rim went with it go too (their images would spoil the faces around them)
     drop_rim_nodes_left_without_rim(in, dropped);
     where.build(in, dropped);
+    // Only the elements the drops touched, and those that failed, can fail now
+    // (finalize_rechecks.hpp): their graphs alone are closed until none fails, and then every
+    // element is closed and assembled once more.
+    failed = pass.failures_among(elements_to_close_again(in, dropped.take_changes(), failed_elements));
+    if (failed.empty()) failed = pass.run(guess);
   }
   AssembledMap assembled;
   MapData<2>& m = assembled.map;

@@ -1,0 +1,21 @@
+#pragma once
+// finalize(): which S1 elements to close again after conflicting stretches were dropped
+// (BuilderOptions::drop_conflicting_edges). An element's closure depends only on the live nodes
+// and segments inside it and along its edges, so only the elements where something was dropped,
+// and those that failed before, can fail or stop failing in the next round: closing them alone
+// finds the same failures as closing every element. Private to the builder.
+
+#include "builder_nodes.hpp"
+
+#include <span>
+#include <vector>
+
+namespace plmap::detail {
+
+/// The elements whose graph `changes` touched (a dropped segment's element, or the elements
+/// around the S1 edge it lies along; the same for a dropped node's place), together with
+/// `failed`, sorted, each once. Every element when whole S2 edges were dropped.
+std::vector<Index> elements_to_close_again(const BuilderContents<2>& in, const DroppedEdges::Changes& changes,
+                                           std::span<const Index> failed);
+
+}  // namespace plmap::detail
