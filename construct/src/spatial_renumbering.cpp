@@ -102,26 +102,79 @@ std::vector<Index> regrouped_begins(const std::vector<Index>& begin, const Range
   return out;
 }
 
-/// The entries of lists whose owners are grouped per element (`begin` per owner), in the
-/// element order of `internal`; each entry holds a number of its element's nodes (or regions),
-/// shifted by `shift_of(t, i)`.
-template <class ShiftOf>
-std::vector<Index> regrouped_entries(const std::vector<Index>& entries, const std::vector<Index>& begin,
-                                     const Ranges& owners, const std::vector<Index>& internal, ShiftOf&& shift_of) {
+/// Where the entries of lists whose owners (nodes, element sides) are grouped per element go:
+/// each element's entries stay together, in the element order of `internal`.
+Ranges entry_ranges(const std::vector<Index>& begin, const Ranges& owners, const std::vector<Index>& internal) {
   std::vector<Index> per_element(owners.old.size());
   for (std::size_t i = 0; i < owners.old.size(); ++i)
     per_element[i] = begin[static_cast<std::size_t>(owners.old[i])];
-  const Ranges r = regrouped_ranges(std::move(per_element), internal);
-  return regrouped(entries, r, internal, [&](Index n, Index t, Index i) { return shifted(n, shift_of(t, i)); });
+  return regrouped_ranges(std::move(per_element), internal);
 }
 
-template <class T>
-std::vector<T> regrouped_plain_entries(const std::vector<T>& entries, const std::vector<Index>& begin,
-                                       const Ranges& owners, const std::vector<Index>& internal) {
-  std::vector<Index> per_element(owners.old.size());
-  for (std::size_t i = 0; i < owners.old.size(); ++i)
-    per_element[i] = begin[static_cast<std::size_t>(owners.old[i])];
-  return regrouped(entries, regrouped_ranges(std::move(per_element), internal), internal);
+/// The stored graph of a triangle map (StoredGraph: its elements' arrays one element after the
+/// other, in increasing element order) with its elements renumbered into the caller's order and
+/// their node and region numbers shifted as `nodes` and `regions` moved them: each element's
+/// stretch of every array is found, then the stretches are written out in the caller's order.
+void regroup_stored_graph(StoredGraph& graph, const Ranges& nodes, const Ranges& regions,
+                          const std::vector<Index>& internal) {
+  const auto node_shift = [&](Index t, Index i) { return nodes.shift(t, i); };
+  const auto region_shift = [&](Index t, Index i) { return regions.shift(t, i); };
+  struct Stretch {
+    Index element, caller, node, neighbor, side, edge_node, region;
+  };
+  std::vector<Stretch> stretches;
+  stretches.reserve(graph.element.size());
+  Index node = 0, neighbor = 0, edge_node = 0, region = 0;
+  for (std::size_t j = 0; j < graph.element.size(); ++j) {
+    const Index i = graph.element[j];
+    const auto ii = static_cast<std::size_t>(i);
+    stretches.push_back({i, invalid_index, node, neighbor, static_cast<Index>(3 * j), edge_node, region});
+    for (Index n = nodes.old[ii]; n < nodes.old[ii + 1]; ++n, ++node) neighbor += graph.neighbor_count[static_cast<std::size_t>(node)];
+    for (int k = 0; k < 3; ++k) edge_node += graph.edge_node_count[3 * j + static_cast<std::size_t>(k)];
+    region += regions.old[ii + 1] - regions.old[ii];
+  }
+  const std::vector<Index> caller = inverse_of(internal);
+  for (Stretch& s : stretches) s.caller = caller[static_cast<std::size_t>(s.element)];
+  std::sort(stretches.begin(), stretches.end(), [](const Stretch& a, const Stretch& b) { return a.caller < b.caller; });
+
+  StoredGraph out;
+  out.element.reserve(graph.element.size());
+  out.neighbor_count.reserve(graph.neighbor_count.size());
+  out.neighbor.reserve(graph.neighbor.size());
+  out.neighbor_edge_kind.reserve(graph.neighbor_edge_kind.size());
+  out.edge_node_count.reserve(graph.edge_node_count.size());
+  out.edge_node.reserve(graph.edge_node.size());
+  out.region_neighbors.reserve(graph.region_neighbors.size());
+  for (const Stretch& s : stretches) {
+    const auto ii = static_cast<std::size_t>(s.element);
+    const Index node_count = nodes.old[ii + 1] - nodes.old[ii], region_count = regions.old[ii + 1] - regions.old[ii];
+    const Index shift_nodes = node_shift(s.caller, s.element), shift_regions = region_shift(s.caller, s.element);
+    out.element.push_back(s.caller);
+    Index neighbors = 0;
+    for (Index n = 0; n < node_count; ++n) {
+      const Index c = graph.neighbor_count[static_cast<std::size_t>(s.node + n)];
+      out.neighbor_count.push_back(c);
+      neighbors += c;
+    }
+    for (Index k = 0; k < neighbors; ++k) {
+      out.neighbor.push_back(shifted(graph.neighbor[static_cast<std::size_t>(s.neighbor + k)], shift_nodes));
+      out.neighbor_edge_kind.push_back(graph.neighbor_edge_kind[static_cast<std::size_t>(s.neighbor + k)]);
+    }
+    Index on_edges = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Index c = graph.edge_node_count[static_cast<std::size_t>(s.side + k)];
+      out.edge_node_count.push_back(c);
+      on_edges += c;
+    }
+    for (Index k = 0; k < on_edges; ++k)
+      out.edge_node.push_back(shifted(graph.edge_node[static_cast<std::size_t>(s.edge_node + k)], shift_nodes));
+    for (Index r = 0; r < region_count; ++r) {
+      std::array<Index, 3> across = graph.region_neighbors[static_cast<std::size_t>(s.region + r)];
+      for (Index& q : across) q = shifted(q, shift_regions);
+      out.region_neighbors.push_back(across);
+    }
+  }
+  graph = std::move(out);
 }
 
 /// The map's arrays with S1's elements back in the caller's order (`internal`: caller's element
@@ -133,9 +186,11 @@ void regroup_domain_elements(MapData<d>& m, StoredGraph* graph, const std::vecto
   const auto node_shift = [&](Index t, Index i) { return nodes.shift(t, i); };
   const auto region_shift = [&](Index t, Index i) { return regions.shift(t, i); };
 
+  const auto shift_nodes = [&](Index n, Index t, Index i) { return shifted(n, node_shift(t, i)); };
   if (!m.neighbor_begin.empty()) {
-    m.neighbor = regrouped_entries(m.neighbor, m.neighbor_begin, nodes, internal, node_shift);
-    m.neighbor_edge_kind = regrouped_plain_entries(m.neighbor_edge_kind, m.neighbor_begin, nodes, internal);
+    const Ranges entries = entry_ranges(m.neighbor_begin, nodes, internal);
+    m.neighbor = regrouped(m.neighbor, entries, internal, shift_nodes);
+    m.neighbor_edge_kind = regrouped(m.neighbor_edge_kind, entries, internal);
     m.neighbor_begin = regrouped_begins(m.neighbor_begin, nodes, internal);
   }
   if constexpr (d == 2) {
@@ -144,7 +199,7 @@ void regroup_domain_elements(MapData<d>& m, StoredGraph* graph, const std::vecto
       sides.old.resize(internal.size() + 1);
       for (std::size_t i = 0; i < sides.old.size(); ++i) sides.old[i] = static_cast<Index>(3 * i);
       sides.moved = sides.old;
-      m.edge_node = regrouped_entries(m.edge_node, m.edge_node_begin, sides, internal, node_shift);
+      m.edge_node = regrouped(m.edge_node, entry_ranges(m.edge_node_begin, sides, internal), internal, shift_nodes);
       m.edge_node_begin = regrouped_begins(m.edge_node_begin, sides, internal);
     }
   }
@@ -174,67 +229,7 @@ void regroup_domain_elements(MapData<d>& m, StoredGraph* graph, const std::vecto
   m.start_region = std::move(start);
   m.node_begin = nodes.moved;
   m.region_begin = regions.moved;
-
-  if (graph == nullptr || graph->element.empty()) return;
-  // The stored graph holds its elements' arrays one element after the other, in increasing
-  // element order: find each element's stretch of every array, then write them out in the
-  // caller's order.
-  struct Stretch {
-    Index element, caller, node, neighbor, side, edge_node, region;
-  };
-  std::vector<Stretch> stretches;
-  stretches.reserve(graph->element.size());
-  Index node = 0, neighbor = 0, edge_node = 0, region = 0;
-  for (std::size_t j = 0; j < graph->element.size(); ++j) {
-    const Index i = graph->element[j];
-    const auto ii = static_cast<std::size_t>(i);
-    stretches.push_back({i, invalid_index, node, neighbor, static_cast<Index>(3 * j), edge_node, region});
-    for (Index n = nodes.old[ii]; n < nodes.old[ii + 1]; ++n, ++node) neighbor += graph->neighbor_count[static_cast<std::size_t>(node)];
-    for (int k = 0; k < 3; ++k) edge_node += graph->edge_node_count[3 * j + static_cast<std::size_t>(k)];
-    region += regions.old[ii + 1] - regions.old[ii];
-  }
-  const std::vector<Index> caller = inverse_of(internal);
-  for (Stretch& s : stretches) s.caller = caller[static_cast<std::size_t>(s.element)];
-  std::sort(stretches.begin(), stretches.end(), [](const Stretch& a, const Stretch& b) { return a.caller < b.caller; });
-
-  StoredGraph out;
-  out.element.reserve(graph->element.size());
-  out.neighbor_count.reserve(graph->neighbor_count.size());
-  out.neighbor.reserve(graph->neighbor.size());
-  out.neighbor_edge_kind.reserve(graph->neighbor_edge_kind.size());
-  out.edge_node_count.reserve(graph->edge_node_count.size());
-  out.edge_node.reserve(graph->edge_node.size());
-  out.region_neighbors.reserve(graph->region_neighbors.size());
-  for (const Stretch& s : stretches) {
-    const auto ii = static_cast<std::size_t>(s.element);
-    const Index node_count = nodes.old[ii + 1] - nodes.old[ii], region_count = regions.old[ii + 1] - regions.old[ii];
-    const Index shift_nodes = node_shift(s.caller, s.element), shift_regions = region_shift(s.caller, s.element);
-    out.element.push_back(s.caller);
-    Index neighbors = 0;
-    for (Index n = 0; n < node_count; ++n) {
-      const Index c = graph->neighbor_count[static_cast<std::size_t>(s.node + n)];
-      out.neighbor_count.push_back(c);
-      neighbors += c;
-    }
-    for (Index k = 0; k < neighbors; ++k) {
-      out.neighbor.push_back(shifted(graph->neighbor[static_cast<std::size_t>(s.neighbor + k)], shift_nodes));
-      out.neighbor_edge_kind.push_back(graph->neighbor_edge_kind[static_cast<std::size_t>(s.neighbor + k)]);
-    }
-    Index on_edges = 0;
-    for (int k = 0; k < 3; ++k) {
-      const Index c = graph->edge_node_count[static_cast<std::size_t>(s.side + k)];
-      out.edge_node_count.push_back(c);
-      on_edges += c;
-    }
-    for (Index k = 0; k < on_edges; ++k)
-      out.edge_node.push_back(shifted(graph->edge_node[static_cast<std::size_t>(s.edge_node + k)], shift_nodes));
-    for (Index r = 0; r < region_count; ++r) {
-      std::array<Index, 3> across = graph->region_neighbors[static_cast<std::size_t>(s.region + r)];
-      for (Index& q : across) q = shifted(q, shift_regions);
-      out.region_neighbors.push_back(across);
-    }
-  }
-  *graph = std::move(out);
+  if (graph != nullptr && !graph->element.empty()) regroup_stored_graph(*graph, nodes, regions, internal);
 }
 
 // ---- S2: elements, vertices and edges renamed ------------------------------------------------
