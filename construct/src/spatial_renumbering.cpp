@@ -237,15 +237,14 @@ void regroup_domain_elements(MapData<d>& m, StoredGraph* graph, const std::vecto
 /// For each edge of the copy, the caller's edge and whether it runs the other way (edges run
 /// from their smaller-numbered vertex, and the renumbering may swap which one that is). For
 /// d = 1 the edges are the elements, with their corners in the caller's order.
-template <int d>
 struct EdgeRenaming {
   std::vector<Index> original;
   std::vector<bool> reversed;
 };
 
 template <int d>
-EdgeRenaming<d> edge_renaming(const RenumberedSurface<d>& s2, const Surface<d>& original) {
-  EdgeRenaming<d> r;
+EdgeRenaming edge_renaming(const RenumberedSurface<d>& s2, const Surface<d>& original) {
+  EdgeRenaming r;
   if constexpr (d == 1) {
     r.original = s2.original_element;
     r.reversed.assign(r.original.size(), false);
@@ -274,7 +273,7 @@ Index renamed(Index x, const std::vector<Index>& original) {
 }
 
 template <int d>
-void rename_target_numbers(MapData<d>& m, const RenumberedSurface<d>& s2, const EdgeRenaming<d>& edges) {
+void rename_target_numbers(MapData<d>& m, const RenumberedSurface<d>& s2, const EdgeRenaming& edges) {
   for (Index& t : m.node_image_element) t = renamed(t, s2.original_element);
   for (std::size_t n = 0; n < m.node_target.size(); ++n) {
     const NodeType type = m.node_type[n];
@@ -288,7 +287,7 @@ void rename_target_numbers(MapData<d>& m, const RenumberedSurface<d>& s2, const 
 }
 
 template <int d>
-void translate_report(ProjectionReport<d>& report, const RenumberedSurface<d>& s1, const EdgeRenaming<d>* edges) {
+void translate_report(ProjectionReport<d>& report, const RenumberedSurface<d>& s1, const EdgeRenaming* edges) {
   for (EdgeNotInserted<d>& f : report.edges_not_inserted) {
     if (s1.renumbered()) f.domain_element = renamed(f.domain_element, s1.original_element);
     if (edges != nullptr && f.target_edge >= 0) {
@@ -393,7 +392,7 @@ ProjectionResult<d> in_original_numbering(ProjectionResult<d> result, const Renu
                                           const std::shared_ptr<const Surface<d>>& original1,
                                           const std::shared_ptr<const Surface<d>>& original2) {
   if (!s1.renumbered() && !s2.renumbered()) return result;
-  std::optional<EdgeRenaming<d>> edges;
+  std::optional<EdgeRenaming> edges;
   if (s2.renumbered()) edges = edge_renaming(s2, *original2);
   const auto translate = [&](MapData<d>& m, StoredGraph* graph) {
     if (s1.renumbered()) regroup_domain_elements(m, graph, inverse_of(s1.original_element));
