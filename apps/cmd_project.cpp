@@ -10,6 +10,7 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/map_file.hpp>
 #include <plmap/core/regions.hpp>
+#include <plmap/solvers/solver_kind.hpp>
 
 #include <fmt/format.h>
 
@@ -151,6 +152,11 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
 }
 
 int run_project(const ProjectCommand& o) {
+  // the names are checked before the inputs are read: a misspelt option should not cost a minute
+  // of reading two large surfaces first
+  solver_kind_from_string(o.solver);
+  normal_check_from(o.normal_check);
+  renumbering_from(o.renumber);
   check_output_file(o.output, OutputKind::map,
                     {{"S1", o.s1}, {"S2", o.s2}, {"--directions", o.directions_file}});
   auto [a, b] = read_surface_pair(o.s1, o.s2, o.dimension, o.threads);

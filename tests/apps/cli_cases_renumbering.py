@@ -53,4 +53,8 @@ def project_renumbers_a_shuffled_target():
     expect(rows["renumbered"] == {"S1": False, "S2": False}, rows["renumbered"])
 
     expect_clean_error(["project", flat, hill, "-o", "rn_bad.plmap", "--renumber", "bogus"], mention="bogus")
+    # the names are checked before anything is read: a missing input is not what is reported
+    for option, value in (("--renumber", "bogus"), ("--normal-check", "sideways"), ("--solver", "gauss")):
+        expect_clean_error(["project", "rn_missing_s1.off", "rn_missing_s2.off", "-o", "rn_bad.plmap", option, value],
+                           mention=value)
     expect(not os.path.exists(os.path.join(WORK, "rn_bad.plmap")), "a rejected run wrote its map")
