@@ -100,13 +100,14 @@ static_assert(sizeof(Segment) == 16, "segments are kept compact");
 /// faults away. Curves (d = 1) too, since their finalize no longer keeps per-element copies of
 /// the nodes (1M circles: insertion 1.2 -> 0.85 s, peak +2.3 MiB of 2 MiB granularity, far
 /// below half of ContactMerge's now).
-/// Only from 16 MiB on, though: the arrays are reserved for what a map usually holds
-/// (MapBuilder::Impl::reserve_expected_sizes), often three times what a small map uses, so each
-/// ends in a partly written huge page that is resident in full (femur pair, 46k nodes, 58k
-/// segments: 6 MiB resident for 4.2 MiB used, 1.9 MiB of the projection's peak). Arrays that
-/// small are within the reach of the TLB's 4 KiB entries (1.5-2k second-level entries on current
-/// x86 cores) anyway.
-inline constexpr std::size_t builder_huge_page_min_bytes = std::size_t{16} << 20;
+/// Only from 12 MiB (six huge pages) on, though: the arrays are reserved for what a map usually
+/// holds (MapBuilder::Impl::reserve_expected_sizes), often three times what a small map uses, so
+/// each ends in a partly written huge page that is resident in full (femur pair, 46k nodes, 58k
+/// segments in 9.4 and 2.6 MiB reserved: 6 MiB resident for 4.2 MiB used, 1.9 MiB of the
+/// projection's peak). Arrays that small are mostly within the reach of the TLB's 4 KiB entries
+/// (1.5-2k second-level entries on current x86 cores). 16 MiB took the armadillo pair's segments
+/// (14 MiB reserved) off huge pages too: 1.8k more page faults, and no less peak.
+inline constexpr std::size_t builder_huge_page_min_bytes = std::size_t{12} << 20;
 template <class T>
 using BuilderArray = std::vector<T, HugePageAllocator<T, builder_huge_page_min_bytes>>;
 template <int d>
