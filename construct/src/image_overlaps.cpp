@@ -233,35 +233,49 @@ std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageM
   }
   mark_disconnected_preimages(map, crowded, threads);
   if (std::find(crowded.begin(), crowded.end(), 1) == crowded.end()) return {};
-  // The images on the crowded elements, compared pairwise per element: gathered into one list
-  // sorted by element (then as below), not into one list per S2 element, whose million empty
-  // lists on a large S2 cost a serial first touch of their memory for the few elements crowded.
-  // Counted first: grown by doubling, the list (120 bytes an image) was copied on the way, and
-  // the copy and its original were the projection's memory peak on the femur pair.
+  // The images on the crowded elements, compared pairwise per element. The crowded regions are
+  // listed with their S2 element first (12 bytes each), grouped by it, and each group's images
+  // are made when it is compared: all images gathered at once (120 bytes each) were the largest
+  // array the sheet selection held, 0.9 MiB for 7.7k crowded regions on the femur pair, where
+  // the sheet selection set the projection's memory peak. (One list sorted by element, not one
+  // list per S2 element, whose million empty lists on a large S2 cost a serial first touch of
+  // their memory for the few elements crowded; counted first, so that it is not copied while it
+  // grows.)
+  struct CrowdedRegion {
+    Index target, region, element;
+  };
   std::size_t crowded_regions = 0;
   for (const Index target : m.region_target) crowded_regions += static_cast<std::size_t>(crowded[static_cast<std::size_t>(target)]);
-  std::vector<std::pair<Index, Image<d>>> gathered;
-  gathered.reserve(crowded_regions);
+  std::vector<CrowdedRegion> listed;
+  listed.reserve(crowded_regions);
   for (Index t = 0; t < nt; ++t)
     for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
-      if (crowded[static_cast<std::size_t>(m.region_target[r])]) gathered.emplace_back(m.region_target[r], image_of(map, t, r));
-  // Pairs by a sweep along the first coordinate: an element may carry thousands of regions
-  // where S1 is much finer than S2. (The region number orders ties, so that the pairs are
-  // compared in an order that does not depend on the sort.)
-  std::sort(gathered.begin(), gathered.end(), [](const auto& a, const auto& b) {
-    return std::tie(a.first, a.second.low(0), a.second.region) < std::tie(b.first, b.second.low(0), b.second.region);
+      if (crowded[static_cast<std::size_t>(m.region_target[r])]) listed.push_back({m.region_target[r], r, t});
+  std::sort(listed.begin(), listed.end(), [](const CrowdedRegion& a, const CrowdedRegion& b) {
+    return std::tie(a.target, a.region) < std::tie(b.target, b.region);
   });
   std::vector<Index> farther;
-  for (std::size_t i = 0; i < gathered.size(); ++i)
-    for (std::size_t j = i + 1;
-         j < gathered.size() && gathered[j].first == gathered[i].first && gathered[j].second.low(0) <= gathered[i].second.high(0); ++j) {
-      const Image<d>& a = gathered[i].second;
-      const Image<d>& b = gathered[j].second;
-      const double explained = tolerances.position_tolerance * std::min(a.boundary, b.boundary);
-      if (!(overlap(a, b) > std::max(tolerances.measure_tolerance * std::min(a.measure, b.measure), explained))) continue;
-      const bool a_farther = a.distance > b.distance || (a.distance == b.distance && a.region > b.region);
-      farther.push_back(a_farther ? a.region : b.region);
-    }
+  std::vector<Image<d>> group;
+  for (std::size_t first = 0, end = 0; first < listed.size(); first = end) {
+    group.clear();
+    for (end = first; end < listed.size() && listed[end].target == listed[first].target; ++end)
+      group.push_back(image_of(map, listed[end].element, listed[end].region));
+    // Pairs by a sweep along the first coordinate: an element may carry thousands of regions
+    // where S1 is much finer than S2. (The region number orders ties, so that the pairs are
+    // compared in an order that does not depend on the sort.)
+    std::sort(group.begin(), group.end(), [](const Image<d>& a, const Image<d>& b) {
+      return std::tie(a.low(0), a.region) < std::tie(b.low(0), b.region);
+    });
+    for (std::size_t i = 0; i < group.size(); ++i)
+      for (std::size_t j = i + 1; j < group.size() && group[j].low(0) <= group[i].high(0); ++j) {
+        const Image<d>& a = group[i];
+        const Image<d>& b = group[j];
+        const double explained = tolerances.position_tolerance * std::min(a.boundary, b.boundary);
+        if (!(overlap(a, b) > std::max(tolerances.measure_tolerance * std::min(a.measure, b.measure), explained))) continue;
+        const bool a_farther = a.distance > b.distance || (a.distance == b.distance && a.region > b.region);
+        farther.push_back(a_farther ? a.region : b.region);
+      }
+  }
   std::sort(farther.begin(), farther.end());
   farther.erase(std::unique(farther.begin(), farther.end()), farther.end());
   return farther;

@@ -40,13 +40,25 @@ struct Place {
   LocalPoint<d> local() const { return coords; }  // kind == element
 };
 
-/// Image of a node on S2 as the S2 vertices carrying its barycentric weight.
+/// Image of a node on S2 as the S2 vertices carrying its barycentric weight. `element` contains
+/// the image, so every support vertex is one of its corners: a vertex is kept as its corner
+/// number there (two bits), not as an S2 vertex number. The builder holds one support per node
+/// until finalize() has closed every element; three vertex numbers were 12 of a node's 72 bytes
+/// (64 now: the femur pair's 46k nodes, 0.35 MiB of the projection's peak).
 template <int d>
 struct Support {
   std::array<double, d + 1> weight{};
-  std::array<Index, d + 1> vertex{};
   Index element = invalid_index;  // an S2 element containing the image (for the stored form)
   std::uint8_t count = 0;
+  std::uint8_t corners = 0;  // support vertex i is corner corner(i) of element
+
+  int corner(int i) const { return (corners >> (2 * i)) & 3; }
+  Index vertex(const Surface<d>& s2, int i) const { return s2.element(element)[corner(i)]; }
+  /// Appends corner c of `element` (0 .. d, not yet in the support) with weight w.
+  void add(int c, double w) {
+    corners = static_cast<std::uint8_t>(corners | (c << (2 * count)));
+    weight[count++] = w;
+  }
 };
 
 /// rim: a node on the rim of D inside S1 (on an S1 edge or inside an element), where the map stops.
@@ -55,8 +67,8 @@ enum class BuilderNodeKind : std::uint8_t { vertex_preimage, ghost, intersection
 /// The builder holds one per node until finalize() has closed every element, so its nodes are
 /// part of projection's peak memory. The one-byte kinds of the place, the support and the node
 /// would each take a padding slot of its own: `image` and `place` may lend their tail padding
-/// ([[no_unique_address]]), and `kind` sits in the support's, so a node takes 72 bytes, not 80
-/// (d = 2: −6.8 MiB of the 200k plane pair's peak).
+/// ([[no_unique_address]]), and `kind` sits in the support's, so a node takes 64 bytes, not 72
+/// (d = 2: −6.8 MiB of the 200k plane pair's peak at 80 -> 72).
 template <int d>
 struct BuilderNode {
   [[no_unique_address]] Support<d> image;
@@ -67,7 +79,7 @@ struct BuilderNode {
   BuilderNode(const Place<d>& place_, BuilderNodeKind kind_, Index target_, const Support<d>& image_)
       : image(image_), kind(kind_), target(target_), place(place_) {}
 };
-static_assert(sizeof(BuilderNode<2>) <= 72 && sizeof(BuilderNode<1>) <= 56, "builder nodes are kept compact");
+static_assert(sizeof(BuilderNode<2>) <= 64 && sizeof(BuilderNode<1>) <= 48, "builder nodes are kept compact");
 
 /// A straight piece of an S2 edge's preimage between two nodes: inside element `where`, or (d = 2)
 /// along S1 edge `where`. A piece of the rim of D (MapBuilder::add_rim_edge) has target_edge
@@ -88,8 +100,16 @@ static_assert(sizeof(Segment) == 16, "segments are kept compact");
 /// faults away. Curves (d = 1) too, since their finalize no longer keeps per-element copies of
 /// the nodes (1M circles: insertion 1.2 -> 0.85 s, peak +2.3 MiB of 2 MiB granularity, far
 /// below half of ContactMerge's now).
+/// Only from 12 MiB (six huge pages) on, though: the arrays are reserved for what a map usually
+/// holds (MapBuilder::Impl::reserve_expected_sizes), often three times what a small map uses, so
+/// each ends in a partly written huge page that is resident in full (femur pair, 46k nodes, 58k
+/// segments in 9.4 and 2.6 MiB reserved: 6 MiB resident for 4.2 MiB used, 1.9 MiB of the
+/// projection's peak). Arrays that small are mostly within the reach of the TLB's 4 KiB entries
+/// (1.5-2k second-level entries on current x86 cores). 16 MiB took the armadillo pair's segments
+/// (14 MiB reserved) off huge pages too: 1.8k more page faults, and no less peak.
+inline constexpr std::size_t builder_huge_page_min_bytes = std::size_t{12} << 20;
 template <class T>
-using BuilderArray = std::vector<T, HugePageAllocator<T>>;
+using BuilderArray = std::vector<T, HugePageAllocator<T, builder_huge_page_min_bytes>>;
 template <int d>
 using BuilderNodes = BuilderArray<BuilderNode<d>>;
 template <int d>  // segments are the same for both dimensions; d keeps the builder's names uniform
@@ -203,8 +223,9 @@ class DroppedEdges {
 /// Whether S2 element t contains the image of a support (all its vertices are corners of t).
 template <int d>
 bool support_in_element(const Surface<d>& s2, const Support<d>& s, Index t) {
+  if (t == s.element) return true;
   for (int i = 0; i < s.count; ++i)
-    if (s2.local_corner(t, s.vertex[i]) < 0) return false;
+    if (s2.local_corner(t, s.vertex(s2, i)) < 0) return false;
   return true;
 }
 
@@ -214,10 +235,15 @@ bool support_in_element(const Surface<d>& s2, const Support<d>& s, Index t) {
 /// weights of the element's corners 1 .. d, copied. Called for every node and region corner.
 template <int d>
 LocalPoint<d> support_local(const Surface<d>& s2, const Support<d>& s, Index t) {
-  const auto& corners = s2.element(t);
   LocalPoint<d> y = LocalPoint<d>::Zero();
+  if (t == s.element) {  // the corners are known
+    for (int i = 0; i < s.count; ++i)
+      if (const int k = s.corner(i); k > 0) y(k - 1) = s.weight[i];
+    return y;
+  }
+  const auto& corners = s2.element(t);
   for (int i = 0; i < s.count; ++i) {
-    const Index v = s.vertex[i];
+    const Index v = s.vertex(s2, i);
     if (v == corners[0]) continue;
     int k = 1;
     while (k <= d && corners[k] != v) ++k;

@@ -295,7 +295,7 @@ int gather_face_supports(const BuilderContents<2>& in, ClosureWorkspace& w, int 
       comp_nodes.push_back(v);
       const Support<2>& support = in.nodes[w.et.slots[v]].image;
       for (int j = 0; j < support.count; ++j) {
-        const Index x = support.vertex[j];
+        const Index x = support.vertex(in.s2, j);
         int u = 0;
         while (u < union_size && u < 3 && support_union[u] != x) ++u;
         if (u == union_size) {
@@ -358,7 +358,7 @@ double choose_face_target(const BuilderContents<2>& in, ClosureWorkspace& w, int
       if (count > best_count || (count == best_count && i < best)) best = i;
     }
     const Support<2>& best_support = in.nodes[et.slots[best]].image;
-    for (Index cand : s2.vertex_elements(best_support.vertex[0])) {
+    for (Index cand : s2.vertex_elements(best_support.vertex(s2, 0))) {
       bool all = true;
       for (int i : comp_nodes) all = all && support_in_element<2>(s2, in.nodes[et.slots[i]].image, cand);
       if (all) try_candidate(cand);

@@ -33,10 +33,9 @@ LocalPoint<2> image_on(const Surface<2>& s2, const MapData<2>& m, const std::vec
 
 }  // namespace
 
-double omitted_image_weight(const Surface<2>& s2, const Support<2>& s) {
-  const Index corner0 = s2.element(s.element)[0];
+double omitted_image_weight(const Surface<2>&, const Support<2>& s) {
   for (int i = 0; i < s.count; ++i)
-    if (s.vertex[i] == corner0) return s.weight[i];
+    if (s.corner(i) == 0) return s.weight[i];
   return 0.0;
 }
 

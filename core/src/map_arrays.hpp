@@ -22,16 +22,29 @@ void size_node_arrays(MapData<d>& m, std::size_t nodes) {
 /// Gives back the slack of arrays that were reserved by an upper bound, so the map holds about
 /// what it needs; slack under 1/16 of an array is kept, as copying the array to save it would
 /// cost more time (and first-touched memory) than the slack is worth.
+template <class... Arrays>
+void shrink_arrays(Arrays&... v) {
+  ((v.capacity() - v.size() > v.size() / 16 ? v.shrink_to_fit() : void()), ...);
+}
+
+/// shrink_arrays for every array of a map.
 template <int d>
 void shrink_to_fit(MapData<d>& m) {
-  auto shrink = [](auto&... v) {
-    ((v.capacity() - v.size() > v.size() / 16 ? v.shrink_to_fit() : void()), ...);
-  };
-  shrink(m.node_begin, m.node_position, m.node_type, m.node_location, m.node_image_element,
-         m.node_image_local, m.node_target, m.neighbor_begin, m.neighbor, m.neighbor_edge_kind,
-         m.edge_node_begin, m.edge_node,
-         m.region_begin, m.region_corners, m.region_neighbors, m.region_target, m.region_map,
-         m.start_region);
+  shrink_arrays(m.node_begin, m.node_position, m.node_type, m.node_location, m.node_image_element,
+                m.node_image_local, m.node_target, m.neighbor_begin, m.neighbor, m.neighbor_edge_kind,
+                m.edge_node_begin, m.edge_node,
+                m.region_begin, m.region_corners, m.region_neighbors, m.region_target, m.region_map,
+                m.start_region);
+}
+
+/// shrink_to_fit for the arrays a triangle map keeps in its stored form, all but the graph
+/// arrays (hand_over_stored_form moves what is kept of those into a StoredGraph). Called as soon
+/// as they are final, while little else is resident: each copy is resident together with its
+/// original, and the original stays resident in malloc's heap after it is freed.
+inline void shrink_stored_form(MapData<2>& m) {
+  shrink_arrays(m.node_begin, m.node_position, m.node_type, m.node_location, m.node_image_element,
+                m.node_image_local, m.node_target, m.region_begin, m.region_corners, m.region_target,
+                m.region_map, m.start_region);
 }
 
 }  // namespace plmap::detail

@@ -191,25 +191,19 @@ struct MapBuilder<d>::Impl {
     Support<d> s;
     s.element = p.element;
     for (int k = 0; k <= d; ++k)
-      if (b(k) > 0.0) {
-        s.vertex[s.count] = s2->element(p.element)[k];
-        s.weight[s.count] = b(k);
-        ++s.count;
-      }
+      if (b(k) > 0.0) s.add(k, b(k));
     return s;
   }
 
   Support<d> vertex_support(Index v) const {
     Support<d> s;
-    s.count = 1;
-    s.vertex[0] = v;
-    s.weight[0] = 1.0;
     const auto star = s2->vertex_elements(v);
     if (star.empty())
       throw BuilderError(fmt::format("S2 vertex {} is isolated (no S2 element uses it): it is not part of S2, "
                                      "so it has no preimage",
                                      v));
     s.element = star.front();
+    s.add(s2->local_corner(s.element, v), 1.0);
     return s;
   }
 
@@ -229,11 +223,8 @@ struct MapBuilder<d>::Impl {
     }
     Support<d> s;
     s.element = element;
-    s.count = 2;
-    s.vertex[0] = u;
-    s.weight[0] = 1.0 - tau;
-    s.vertex[1] = v;
-    s.weight[1] = tau;
+    s.add(s2->local_corner(element, u), 1.0 - tau);
+    s.add(s2->local_corner(element, v), tau);
     return s;
   }
 
@@ -263,7 +254,7 @@ struct MapBuilder<d>::Impl {
     check_s1_vertex_with_elements(domain_vertex);
     if (image.count == 1) {
       // The image is an S2 vertex: this is a corner node, not a ghost.
-      const Index tv = image.vertex[0];
+      const Index tv = image.vertex(*s2, 0);
       const Index existing = preimage_of_target_vertex[tv];
       if (existing != invalid_index) {
         const auto& n = nodes[existing];
@@ -289,7 +280,7 @@ struct MapBuilder<d>::Impl {
   /// S2 edge an image support lies on (two support vertices), or invalid_index (inside an element).
   Index target_edge_of(const Support<d>& image) const {
     if constexpr (d == 2) {
-      if (image.count == 2) return s2->find_edge(image.vertex[0], image.vertex[1]);
+      if (image.count == 2) return s2->find_edge(image.vertex(*s2, 0), image.vertex(*s2, 1));
     }
     return invalid_index;
   }
@@ -297,7 +288,7 @@ struct MapBuilder<d>::Impl {
   Index add_rim_node(const Place<d>& place, const Support<d>& image) {
     if (image.count < 2)
       throw BuilderError(fmt::format("a rim node maps onto S2 vertex {}: enter it as that vertex's preimage",
-                                     image.vertex[0]));
+                                     image.count > 0 ? image.vertex(*s2, 0) : invalid_index));
     if (place.kind == PlaceKind::vertex) {
       const Index existing = node_at_domain_vertex[place.index];
       if (existing == invalid_index) return new_node(place, BuilderNodeKind::ghost, invalid_index, image);
@@ -322,7 +313,8 @@ struct MapBuilder<d>::Impl {
     if (node.kind != BuilderNodeKind::rim && node.kind != BuilderNodeKind::ghost)
       throw BuilderError(fmt::format("a piece of S2 edge {} ends at node {}, which is no rim node", target_edge, n));
     const Support<d>& s = node.image;
-    const bool on_edge = s.count == 2 && ((s.vertex[0] == u && s.vertex[1] == v) || (s.vertex[0] == v && s.vertex[1] == u));
+    const bool on_edge = s.count == 2 && ((s.vertex(*s2, 0) == u && s.vertex(*s2, 1) == v) ||
+                                          (s.vertex(*s2, 0) == v && s.vertex(*s2, 1) == u));
     if (!on_edge)
       throw BuilderError(fmt::format("a piece of S2 edge {} ends at rim node {}, whose image does not lie on that edge",
                                      target_edge, n));

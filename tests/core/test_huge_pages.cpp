@@ -11,7 +11,9 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <numeric>
+#include <type_traits>
 #include <vector>
 
 #if defined(__linux__)
@@ -30,6 +32,24 @@ TEST(HugePages, LargeArraysAreAlignedAndKeepTheirValues) {
   EXPECT_EQ(big.back(), 1u);
   std::vector<int, HugePageAllocator<int>> small(10, 3);  // below a huge page: an ordinary block
   EXPECT_EQ(std::accumulate(small.begin(), small.end(), 0), 30);
+}
+
+TEST(HugePages, ALargerThresholdTakesHugePagesOnlyFromThereOn) {
+  constexpr std::size_t threshold = std::size_t{8} << 20;
+  using Allocator = HugePageAllocator<std::uint64_t, threshold>;
+  // rebinding keeps the threshold (std::vector and the node containers rebind)
+  static_assert(std::is_same_v<std::allocator_traits<Allocator>::rebind_alloc<char>, HugePageAllocator<char, threshold>>);
+  std::vector<std::uint64_t, Allocator> middle(500'000);  // 4 MiB: below the threshold, an ordinary block
+  std::iota(middle.begin(), middle.end(), std::uint64_t{3});
+  std::vector<std::uint64_t, Allocator> large(2'000'000);  // 16 MiB: on huge pages, aligned to them
+  std::iota(large.begin(), large.end(), std::uint64_t{5});
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(large.data()) % Allocator::huge_page_bytes, 0u);
+  middle.resize(1'500'000, 1);  // grows across the threshold: the values move with it
+  large.resize(10);             // and back: the block stays until the vector goes
+  large.shrink_to_fit();        // below the threshold again
+  for (std::size_t i = 0; i < 500'000; i += 49'999) ASSERT_EQ(middle[i], 3u + i);
+  EXPECT_EQ(middle.back(), 1u);
+  EXPECT_EQ(large, (std::vector<std::uint64_t, Allocator>{5, 6, 7, 8, 9, 10, 11, 12, 13, 14}));
 }
 
 TEST(HugePages, ReservingKeepsWhatIsWrittenAndMarkingAnyRangeIsHarmless) {

@@ -54,19 +54,28 @@ void assign_on_huge_pages(Vector& v, std::size_t n, const typename Vector::value
   v.assign(n, value);
 }
 
-template <class T>
+/// Blocks of min_bytes and more come on huge pages (at least one huge page: below, there is no
+/// aligned huge page inside the block). A larger min_bytes suits arrays reserved for more than
+/// they usually hold: a huge page is resident as soon as one byte of it is written, so the
+/// partly written last one (up to 2 MiB) is resident in full, which a small array pays dearly.
+template <class T, std::size_t min_bytes = std::size_t{2} << 20>
 struct HugePageAllocator {
   using value_type = T;
   static constexpr std::size_t huge_page_bytes = std::size_t{2} << 20;
+  static_assert(min_bytes >= huge_page_bytes, "a block below one huge page has no huge page to mark");
+  template <class U>
+  struct rebind {
+    using other = HugePageAllocator<U, min_bytes>;
+  };
 
   HugePageAllocator() = default;
   template <class U>
-  HugePageAllocator(const HugePageAllocator<U>&) noexcept {}
+  HugePageAllocator(const HugePageAllocator<U, min_bytes>&) noexcept {}
 
   T* allocate(std::size_t n) {
     if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
     const std::size_t bytes = n * sizeof(T);
-    if (bytes < huge_page_bytes || alignof(T) > huge_page_bytes) return std::allocator<T>().allocate(n);
+    if (bytes < min_bytes || alignof(T) > huge_page_bytes) return std::allocator<T>().allocate(n);
     const std::size_t rounded = (bytes + huge_page_bytes - 1) / huge_page_bytes * huge_page_bytes;
     void* p = std::aligned_alloc(huge_page_bytes, rounded);
     if (p == nullptr) throw std::bad_alloc();
@@ -77,7 +86,7 @@ struct HugePageAllocator {
   }
 
   void deallocate(T* p, std::size_t n) noexcept {
-    if (n * sizeof(T) < huge_page_bytes || alignof(T) > huge_page_bytes) {
+    if (n * sizeof(T) < min_bytes || alignof(T) > huge_page_bytes) {
       std::allocator<T>().deallocate(p, n);
       return;
     }
@@ -85,7 +94,7 @@ struct HugePageAllocator {
   }
 
   template <class U>
-  bool operator==(const HugePageAllocator<U>&) const noexcept {
+  bool operator==(const HugePageAllocator<U, min_bytes>&) const noexcept {
     return true;
   }
 };
