@@ -28,6 +28,7 @@
 #include <plmap/core/face_removal.hpp>
 #include <plmap/core/map_builder.hpp>
 #include <plmap/core/ordered_pipeline.hpp>
+#include <plmap/core/parallel_ranges.hpp>
 #include <plmap/core/regions.hpp>
 #include <plmap/solvers/solver_kind.hpp>
 
@@ -219,8 +220,9 @@ ProjectionResult<d> project(std::shared_ptr<const Surface<d>> s1, std::shared_pt
   // computed on copies in spatial order when the input is in a poor one (spatial_renumbering.hpp);
   // S1 = S2 as one object stays one object: the projection recognises the identity by it
   const projection::RenumberingChoice renumber = projection::renumbering_choice<d>(*s2, s1 == s2, options.renumbering);
-  const auto r1 = projection::renumbered_or_kept<d>(s1, renumber.domain);
-  const auto r2 = s2 == s1 ? r1 : projection::renumbered_or_kept<d>(s2, renumber.target);
+  const unsigned threads = resolve_thread_count(options.threads);
+  const auto r1 = projection::renumbered_or_kept<d>(s1, renumber.domain, threads);
+  const auto r2 = s2 == s1 ? r1 : projection::renumbered_or_kept<d>(s2, renumber.target, threads);
   const ProjectionOptions renumbered_options = projection::options_for_renumbered(options, r1);
   const double copying = seconds_since(t0);
   // and on unit-size copies, so that no product of lengths overflows or underflows
@@ -232,7 +234,7 @@ ProjectionResult<d> project(std::shared_ptr<const Surface<d>> s1, std::shared_pt
   result = projection::in_user_units<d>(std::move(result), r1.surface, r2.surface, unit.exponent);
   if (!r1.renumbered() && !r2.renumbered()) return result;
   const auto t1 = Clock::now();
-  result = projection::in_original_numbering<d>(std::move(result), r1, r2, s1, s2);
+  result = projection::in_original_numbering<d>(std::move(result), r1, r2, s1, s2, threads);
   result.report.renumbered_domain = r1.renumbered();
   result.report.renumbered_target = r2.renumbered();
   result.report.seconds.renumbering = copying + seconds_since(t1);

@@ -48,9 +48,10 @@ inline constexpr double poor_order_spacing = 4.0;
 
 /// The surface with its elements in the Morton order of their centroids (within its bounding
 /// box) and its vertices in the order those elements first use them (vertices no element uses
-/// last, in their order). Every element keeps its corners in their order.
+/// last, in their order). Every element keeps its corners in their order. On up to `threads`
+/// threads (0: all the process may run on); the copy does not depend on them.
 template <int d>
-RenumberedSurface<d> spatially_renumbered(const Surface<d>& s);
+RenumberedSurface<d> spatially_renumbered(const Surface<d>& s, unsigned threads = 1);
 
 /// Which surfaces the projection works on renumbered copies of.
 struct RenumberingChoice {
@@ -66,9 +67,9 @@ struct RenumberingChoice {
 template <int d>
 RenumberingChoice renumbering_choice(const Surface<d>& s2, bool s1_is_s2, SpatialRenumbering rule);
 
-/// `s` as given, or its copy in spatial order.
+/// `s` as given, or its copy in spatial order (made on up to `threads` threads).
 template <int d>
-RenumberedSurface<d> renumbered_or_kept(const std::shared_ptr<const Surface<d>>& s, bool renumber);
+RenumberedSurface<d> renumbered_or_kept(const std::shared_ptr<const Surface<d>>& s, bool renumber, unsigned threads = 1);
 
 /// The options for surfaces numbered as `s1`: the per-vertex directions follow S1's vertices.
 template <int d>
@@ -79,10 +80,11 @@ ProjectionOptions options_for_renumbered(ProjectionOptions options, const Renumb
 /// the node and region numbers they hold shifted), S2 elements, vertices and edges renamed, and
 /// the report's element and edge numbers (and edge parameters, which run from an edge's
 /// smaller-numbered vertex) translated. A surface that was not renumbered keeps its numbers.
+/// S2's numbers are renamed on up to `threads` threads; the result does not depend on them.
 template <int d>
 ProjectionResult<d> in_original_numbering(ProjectionResult<d> result, const RenumberedSurface<d>& s1,
                                           const RenumberedSurface<d>& s2,
                                           const std::shared_ptr<const Surface<d>>& original1,
-                                          const std::shared_ptr<const Surface<d>>& original2);
+                                          const std::shared_ptr<const Surface<d>>& original2, unsigned threads = 1);
 
 }  // namespace plmap::projection

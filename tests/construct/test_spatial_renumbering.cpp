@@ -214,6 +214,24 @@ TEST(SpatialRenumbering, TheCopyKeepsEveryElementWithItsCornersInOrder) {
   EXPECT_DOUBLE_EQ(c.measure(), s->measure());
 }
 
+TEST(SpatialRenumbering, TheCopyIsTheSameOnEveryThreadCountAndTheConstructors) {
+  // large enough that every thread computes codes, sorts and renames a share
+  const auto s = shuffled<2>(*grid(90, 90, 0.0, 1.0, 0.0, 1.0, 0.0), 13);
+  const RenumberedSurface<2> one = projection::spatially_renumbered(*s, 1);
+  for (const unsigned threads : {2u, 3u}) {
+    const RenumberedSurface<2> r = projection::spatially_renumbered(*s, threads);
+    EXPECT_EQ(r.original_element, one.original_element) << threads;
+    EXPECT_EQ(r.original_vertex, one.original_vertex) << threads;
+    EXPECT_EQ(r.surface->vertices(), one.surface->vertices()) << threads;
+    EXPECT_EQ(r.surface->elements(), one.surface->elements()) << threads;
+  }
+  // the copy's measure is the constructor's, summed in the copy's order, to the last bit
+  // (tests/core/test_surface_renumbering.cpp compares every other array)
+  const Surface<2> constructed(one.surface->vertices(), one.surface->elements());
+  EXPECT_EQ(one.surface->measure(), constructed.measure());
+  EXPECT_EQ(one.surface->edge_count(), constructed.edge_count());
+}
+
 TEST(SpatialRenumbering, VerticesNoElementUsesComeLastInTheirOrder) {
   // two isolated vertices (numbers 0 and 5) around a row of segments
   std::vector<WorldPoint<1>> v{{9, 9}, {0, 0}, {1, 0}, {2, 0}, {3, 0}, {8, 8}};

@@ -11,6 +11,8 @@
 
 namespace plmap {
 
+struct SurfaceRenumbering;
+
 /// Where an edge sits in one of its triangles (d = 2 only).
 struct EdgeIncidence {
   Index element;
@@ -132,6 +134,9 @@ class Surface {
   bool is_boundary_vertex(Index v) const;
 
  private:
+  // renumbered_surface (surface_renumbering.hpp) fills the arrays of a renumbered copy directly
+  friend struct SurfaceRenumbering;
+
   void validate() const;
   void build_adjacency();
 
