@@ -56,7 +56,7 @@ class ElementBoxIndex {
   /// the axes, so the walks it lets the search skip cost about as much to prove skippable.
   explicit ElementBoxIndex(const Surface<d>& s) {
     const Index n = s.element_count();
-    reserve_on_huge_pages(boxes_, static_cast<std::size_t>(n));  // read at random by the searches
+    reserve_for_writing(boxes_, static_cast<std::size_t>(n));  // read at random by the searches
     boxes_.resize(static_cast<std::size_t>(n));
     double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
     for (Index t = 0; t < n; ++t) {
@@ -135,9 +135,11 @@ class ElementBoxIndex {
   /// depth is about log2(n / leaf_size), far below the search stack's 64 for any Index count.
   void build_tree(const Surface<d>& s) {
     const auto n = static_cast<std::uint32_t>(boxes_.size());
-    std::vector<WorldPoint<d>> centroid(n);
+    std::vector<WorldPoint<d>> centroid;
+    reserve_for_writing(centroid, n);
+    centroid.resize(n);
     for (std::uint32_t t = 0; t < n; ++t) centroid[t] = element_centroid(s, static_cast<Index>(t));
-    reserve_on_huge_pages(ordered_element_, n);
+    reserve_for_writing(ordered_element_, n);
     ordered_element_.resize(n);
     std::iota(ordered_element_.begin(), ordered_element_.end(), 0);
     reserve_on_huge_pages(nodes_, 2 * (n / leaf_size + 1));
@@ -178,7 +180,7 @@ class ElementBoxIndex {
       todo.push_back({children, range.begin, middle});
       todo.push_back({children + 1, middle, range.end});
     }
-    reserve_on_huge_pages(ordered_boxes_, n);
+    reserve_for_writing(ordered_boxes_, n);
     ordered_boxes_.resize(n);
     for (std::uint32_t i = 0; i < n; ++i) ordered_boxes_[i] = boxes_[ordered_element_[i]];
   }

@@ -47,7 +47,7 @@ struct ElementIndex {
   explicit ElementIndex(const Surface<d>& s) {
     // the kd-tree's queries read the centroids at random, and on curves (two trees of a million
     // centroids each) the 4 KiB faults of writing them showed: on huge pages (huge_page_allocator.hpp)
-    reserve_on_huge_pages(cloud.points, static_cast<std::size_t>(s.element_count()));
+    reserve_for_writing(cloud.points, static_cast<std::size_t>(s.element_count()));
     cloud.points.resize(s.element_count());
     for (Index t = 0; t < s.element_count(); ++t) {
       WorldPoint<d> c = WorldPoint<d>::Zero();

@@ -138,20 +138,20 @@ ElementsPerTarget elements_per_target(const PlMap<d>& map, unsigned threads) {
   // each piece's arrays made (first touched) by the thread that counts it
   std::vector<std::vector<Index>> at(pieces), last_seen(pieces);
   parallel_for_pieces_of_size(static_cast<std::size_t>(nt), size, threads, [&](std::size_t k, std::size_t begin, std::size_t end) {
-    at[k].assign(static_cast<std::size_t>(n2), 0);
-    last_seen[k].resize(static_cast<std::size_t>(n2));
+    assign_on_huge_pages(at[k], static_cast<std::size_t>(n2), 0);  // pages backed in one call
+    assign_on_huge_pages(last_seen[k], static_cast<std::size_t>(n2), invalid_index);
     for_each_element_and_target(map, static_cast<Index>(begin), static_cast<Index>(end), last_seen[k],
                                 [&](Index, Index t2) { ++at[k][t2]; });
   });
   ElementsPerTarget lists;
-  lists.first.assign(static_cast<std::size_t>(n2) + 1, 0);
+  assign_on_huge_pages(lists.first, static_cast<std::size_t>(n2) + 1, 0);
   for (Index t2 = 0; t2 < n2; ++t2) {  // counts become where each piece writes
     Index next = lists.first[t2];
     for (auto& piece : at)
       if (!piece.empty()) next += std::exchange(piece[t2], next);  // (a piece with no elements has no counts)
     lists.first[t2 + 1] = next;
   }
-  lists.elements.resize(static_cast<std::size_t>(lists.first[n2]));
+  assign_on_huge_pages(lists.elements, static_cast<std::size_t>(lists.first[n2]), invalid_index);
   parallel_for_pieces_of_size(static_cast<std::size_t>(nt), size, threads, [&](std::size_t k, std::size_t begin, std::size_t end) {
     for_each_element_and_target(map, static_cast<Index>(begin), static_cast<Index>(end), last_seen[k],
                                 [&](Index t, Index t2) { lists.elements[at[k][t2]++] = t; });
@@ -175,7 +175,9 @@ void mark_disconnected_preimages(const PlMap<d>& map, std::vector<char>& crowded
   parallel_for_pieces(static_cast<std::size_t>(n2), pieces, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
     // one search through the S1 elements of each S2 element; member and reached are stamped
     // with the S2 element, so they need no clearing
-    std::vector<Index> member(static_cast<std::size_t>(nt), invalid_index), reached(static_cast<std::size_t>(nt), invalid_index);
+    std::vector<Index> member, reached;
+    assign_on_huge_pages(member, static_cast<std::size_t>(nt), invalid_index);  // pages backed in one call
+    assign_on_huge_pages(reached, static_cast<std::size_t>(nt), invalid_index);
     std::vector<Index> stack;
     for (auto t2 = static_cast<Index>(begin); t2 < static_cast<Index>(end); ++t2) {
       const Index list_begin = lists.first[t2], list_end = lists.first[t2 + 1];

@@ -199,6 +199,7 @@ void ProjectionInsertion<d>::mark_used_points(std::span<const Crossing<d>> cross
 template <int d>
 void ProjectionInsertion<d>::add_used_parameter(Index edge, double t, Index owner) {
   const Index entry = static_cast<Index>(used_parameters_.size());
+  used_parameters_backing_.before_append(used_parameters_);
   used_parameters_.push_back({t, owner, invalid_index});
   Index* link = &used_first_[edge];
   while (*link != invalid_index) link = &used_parameters_[*link].next;

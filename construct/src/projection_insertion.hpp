@@ -9,6 +9,7 @@
 #include "projection_edge_walks.hpp"
 
 #include <plmap/construct/projection_result.hpp>
+#include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/map_builder.hpp>
 
 #include <cstdint>
@@ -111,6 +112,7 @@ class ProjectionInsertion {
   };
   std::vector<Index> used_first_;
   std::vector<UsedParameter> used_parameters_;
+  PagesBackedAhead used_parameters_backing_;  // its room backed ahead of the appends
   std::vector<Index> crossed_vertex_;
   /// Per S2 edge: bit 31 (inserted_whole) set if inserted whole, the lower bits count the pieces
   /// inserted.

@@ -32,7 +32,7 @@ std::vector<bool> coincident_preimage_losers(const ProjectionContext<d>& ctx,
   assign_on_huge_pages(members, static_cast<std::size_t>(group_begin.back()));
   {
     std::vector<Index> cursor;
-    reserve_on_huge_pages(cursor, group_begin.size() - 1);
+    reserve_for_writing(cursor, group_begin.size() - 1);
     cursor.assign(group_begin.begin(), group_begin.end() - 1);
     for (Index q = 0; q < n2v; ++q)
       if (grouped(q)) members[cursor[key(*target_place[q])]++] = q;

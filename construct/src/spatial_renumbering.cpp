@@ -66,7 +66,7 @@ template <class T, class Adjust>
 std::vector<T> regrouped(const std::vector<T>& in, const Ranges& ranges, const std::vector<Index>& internal,
                          Adjust&& adjust) {
   std::vector<T> out;
-  reserve_on_huge_pages(out, in.size());
+  reserve_for_writing(out, in.size());
   for (std::size_t t = 0; t < internal.size(); ++t) {
     const Index i = internal[t];
     const auto from = static_cast<std::size_t>(ranges.old[static_cast<std::size_t>(i)]);
@@ -80,7 +80,7 @@ std::vector<T> regrouped(const std::vector<T>& in, const Ranges& ranges, const s
 template <class T>
 std::vector<T> regrouped(const std::vector<T>& in, const Ranges& ranges, const std::vector<Index>& internal) {
   std::vector<T> out;
-  reserve_on_huge_pages(out, in.size());
+  reserve_for_writing(out, in.size());
   for (const Index i : internal) {
     const auto from = static_cast<std::ptrdiff_t>(ranges.old[static_cast<std::size_t>(i)]);
     const auto to = static_cast<std::ptrdiff_t>(ranges.old[static_cast<std::size_t>(i) + 1]);
@@ -96,7 +96,7 @@ Index shifted(Index n, Index shift) { return n == invalid_index ? n : n + shift;
 std::vector<Index> regrouped_begins(const std::vector<Index>& begin, const Ranges& owners,
                                     const std::vector<Index>& internal) {
   std::vector<Index> out;
-  reserve_on_huge_pages(out, begin.size());
+  reserve_for_writing(out, begin.size());
   out.push_back(0);
   for (const Index i : internal)
     for (Index k = owners.old[static_cast<std::size_t>(i)]; k < owners.old[static_cast<std::size_t>(i) + 1]; ++k)

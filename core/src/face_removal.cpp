@@ -2,6 +2,7 @@
 
 #include <plmap/core/errors.hpp>
 #include <plmap/core/face_removal.hpp>
+#include <plmap/core/huge_page_allocator.hpp>
 
 #include "face_removal_rules.hpp"
 #include "face_removal_stored_form.hpp"
@@ -94,7 +95,7 @@ Index compact_regions(MapData<d>& m, Index element_count, const std::vector<char
                       std::vector<Index>& renumbered) {
   const auto nr = static_cast<Index>(m.region_corners.size());
   const bool with_neighbors = !m.region_neighbors.empty();
-  renumbered.assign(static_cast<std::size_t>(nr), invalid_index);
+  assign_on_huge_pages(renumbered, static_cast<std::size_t>(nr), invalid_index);  // pages backed in one call
   Index kept = 0, old_begin = 0;
   for (Index t = 0; t < element_count; ++t) {
     const Index old_end = m.region_begin[t + 1];

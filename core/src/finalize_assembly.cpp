@@ -54,6 +54,7 @@ void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part, 
   };
   auto sized = [&](auto& array, std::size_t size, std::size_t capacity) {
     reserved(array, std::max(size, capacity));
+    back_pages(array.data(), size * sizeof(array[0]));  // written in full next: backed in one call
     array.resize(size);
   };
   sized(part.node_begin, own.elements + 1, room.elements + 1);
@@ -91,7 +92,11 @@ namespace {
 /// that is ever short grows the array instead.)
 template <class Array>
 void make_room(Array& array, std::size_t needed) {
-  if (array.size() < needed) array.resize(std::max(needed, std::min(array.capacity(), array.size() + std::size_t{4096})));
+  if (array.size() >= needed) return;
+  const std::size_t size = std::max(needed, std::min(array.capacity(), array.size() + std::size_t{4096}));
+  // the new stretch's pages backed in one call, not faulted in one by one (back_pages)
+  if (size <= array.capacity()) back_pages(array.data() + array.size(), (size - array.size()) * sizeof(array[0]));
+  array.resize(size);
 }
 
 NodeType node_type_of(const BuilderNode<2>& bn) {

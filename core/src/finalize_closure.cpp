@@ -3,6 +3,7 @@
 #include "finalize_closure.hpp"
 
 #include <plmap/core/affine_through.hpp>
+#include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/element_transfer.hpp>
 #include <plmap/core/errors.hpp>
 #include <plmap/core/predicates.hpp>
@@ -77,7 +78,7 @@ namespace {
 std::array<int, 3> place_slots(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
                                ClosureWorkspace& w) {
   auto& et = w.et;
-  if (w.slot_of_node.size() != in.nodes.size()) w.slot_of_node.assign(in.nodes.size(), -1);
+  if (w.slot_of_node.size() != in.nodes.size()) assign_on_huge_pages(w.slot_of_node, in.nodes.size(), -1);
   for (Index n : et.slots) w.slot_of_node[n] = -1;  // the previous element's
   et.clear();
   std::array<int, 3> corner_slot{-1, -1, -1};

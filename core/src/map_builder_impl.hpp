@@ -50,6 +50,8 @@ struct MapBuilder<d>::Impl {
   detail::BuilderSegments<d> segments;
   // per S2 edge (d = 2) or S2 element (d = 1): not inserted, inserted whole, or in pieces
   std::vector<char> edge_inserted;
+  // the nodes' and segments' room (reserve_expected_sizes) backed ahead of the appends
+  PagesBackedAhead nodes_backing, segments_backing;
   static constexpr char edge_complete = 1, edge_partial = 2, edge_outside_domain = 3;
 
   Impl(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
@@ -231,6 +233,7 @@ struct MapBuilder<d>::Impl {
   // ---- node entry -----------------------------------------------------------------------------
   Index new_node(const Place<d>& place, BuilderNodeKind kind, Index target, const Support<d>& image) {
     const auto id = static_cast<Index>(nodes.size());
+    nodes_backing.before_append(nodes);
     nodes.emplace_back(place, kind, target, image);
     if (place.kind == PlaceKind::vertex) node_at_domain_vertex[place.index] = id;
     if (kind == BuilderNodeKind::vertex_preimage) preimage_of_target_vertex[target] = id;
@@ -325,6 +328,7 @@ struct MapBuilder<d>::Impl {
     check_node_handle(b, "rim edge");
     if (a == b) throw BuilderError(fmt::format("a rim edge needs two distinct nodes (node {} twice)", a));
     try {
+      segments_backing.before_append(segments);
       segments.push_back(locate_segment(a, b, invalid_index));
     } catch (const BuilderError&) {
       throw BuilderError(fmt::format("the rim edge between nodes {} and {} does not lie in one S1 element", a, b));
@@ -524,6 +528,7 @@ struct MapBuilder<d>::Impl {
     }
     if (to_v) chain.push_back(b);
     if (end_rim != invalid_index) chain.push_back(end_rim);
+    segments_backing.before_append(segments, chain.size() - 1);
     for (std::size_t i = 0; i + 1 < chain.size(); ++i)
       segments.push_back(locate_segment(chain[i], chain[i + 1], target_edge));
     edge_inserted[target_edge] = piece ? edge_partial : edge_complete;

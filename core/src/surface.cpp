@@ -73,15 +73,15 @@ void Surface<d>::build_adjacency() {
     using Array = std::remove_reference_t<decltype(array)>;
     if (array.size() * sizeof(typename Array::value_type) < HugePageAllocator<char>::huge_page_bytes) return;
     Array moved;
-    reserve_on_huge_pages(moved, array.size());
+    reserve_for_writing(moved, array.size());
     moved.assign(array.begin(), array.end());
     array.swap(moved);
   };
   if constexpr (d == 2) {  // curves' arrays are smaller and read in order (see builder_nodes.hpp)
     on_huge_pages(vertices_);
     on_huge_pages(elements_);
-    reserve_on_huge_pages(vertex_element_begin_, static_cast<std::size_t>(nv) + 1);
-    reserve_on_huge_pages(vertex_element_, static_cast<std::size_t>(d + 1) * static_cast<std::size_t>(nt));
+    reserve_for_writing(vertex_element_begin_, static_cast<std::size_t>(nv) + 1);
+    reserve_for_writing(vertex_element_, static_cast<std::size_t>(d + 1) * static_cast<std::size_t>(nt));
   }
 
   if (nv > 0) {
@@ -172,13 +172,13 @@ void Surface<d>::build_adjacency() {
     };
     std::vector<Record> around;
     edges_.clear();
-    reserve_on_huge_pages(edges_, 3 * static_cast<std::size_t>(nt) / 2 + 1);
-    reserve_on_huge_pages(element_edges_, static_cast<std::size_t>(nt));
+    reserve_for_writing(edges_, 3 * static_cast<std::size_t>(nt) / 2 + 1);
+    reserve_for_writing(element_edges_, static_cast<std::size_t>(nt));
     element_edges_.assign(nt, {invalid_index, invalid_index, invalid_index});
     edge_incidence_begin_.clear();
-    reserve_on_huge_pages(edge_incidence_begin_, 3 * static_cast<std::size_t>(nt) / 2 + 2);
+    reserve_for_writing(edge_incidence_begin_, 3 * static_cast<std::size_t>(nt) / 2 + 2);
     edge_incidence_.clear();
-    reserve_on_huge_pages(edge_incidence_, 3 * static_cast<std::size_t>(nt));
+    reserve_for_writing(edge_incidence_, 3 * static_cast<std::size_t>(nt));
     for (Index a = 0; a < nv; ++a) {
       around.clear();
       for (const Index t : vertex_elements(a))

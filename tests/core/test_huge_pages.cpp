@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <new>
 #include <numeric>
 #include <type_traits>
 #include <vector>
@@ -142,6 +143,94 @@ TEST(HugePages, BackingMemoryOnSeveralThreadsMakesItResident) {
     munmap(region, mapped);
   }
 }
+/// An allocator that maps every block freshly (never memory the process touched before), in
+/// 4 KiB pages, so that what is resident in it is what the code under test made resident.
+template <class T>
+struct FreshMappingAllocator {
+  using value_type = T;
+  FreshMappingAllocator() = default;
+  template <class U>
+  FreshMappingAllocator(const FreshMappingAllocator<U>&) noexcept {}
+  T* allocate(std::size_t n) {
+    void* p = mmap(nullptr, n * sizeof(T), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) throw std::bad_alloc();
+    madvise(p, n * sizeof(T), MADV_NOHUGEPAGE);  // 4 KiB pages whatever the system's default
+    return static_cast<T*>(p);
+  }
+  void deallocate(T* p, std::size_t n) noexcept { munmap(p, n * sizeof(T)); }
+  template <class U>
+  bool operator==(const FreshMappingAllocator<U>&) const noexcept {
+    return true;
+  }
+};
+
+TEST(HugePages, BackedPagesAreResidentAndKeepWhatTheyHold) {
+  {
+    void* probe = mmap(nullptr, 1 << 16, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    ASSERT_NE(probe, MAP_FAILED);
+    const bool known = madvise(probe, 1 << 16, MADV_POPULATE_WRITE) == 0;
+    munmap(probe, 1 << 16);
+    if (!known) GTEST_SKIP() << "this kernel has no MADV_POPULATE_WRITE";
+  }
+  // reserve_for_writing backs the room up to n beyond what the vector holds, and no further
+  std::vector<std::uint32_t, FreshMappingAllocator<std::uint32_t>> v = {5, 6, 7};
+  reserve_for_writing(v, 1'000'000);  // 4 MB
+  ASSERT_GE(v.capacity(), 1'000'000u);
+  EXPECT_EQ(v, (std::vector<std::uint32_t, FreshMappingAllocator<std::uint32_t>>{5, 6, 7}));
+  std::size_t pages = 0;
+  EXPECT_EQ(resident_pages(v.data(), 1'000'000 * sizeof(std::uint32_t), pages), pages);
+  // back_pages on part of a fresh mapping: whole pages inside the range only
+  const std::size_t mapped = std::size_t{4} << 20;
+  auto* region = static_cast<char*>(mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0));
+  ASSERT_NE(region, MAP_FAILED);
+  madvise(region, mapped, MADV_NOHUGEPAGE);
+  const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+  back_pages(region + page + 1, 10 * page);  // pages 2 to 10 whole, page 1 and 11 in part
+  std::size_t one = 0;
+  EXPECT_EQ(resident_pages(region + page, page, one), 0u);
+  EXPECT_EQ(resident_pages(region + 2 * page, 9 * page, pages), 9u);
+  EXPECT_EQ(resident_pages(region + 11 * page, page, one), 0u);
+  back_pages(nullptr, 0);
+  back_pages(region, 1);  // less than a page: nothing
+  EXPECT_EQ(resident_pages(region, page, one), 0u);
+  EXPECT_EQ(region[5 * page], 0);  // fresh memory reads as zeros, backed or not
+  munmap(region, mapped);
+}
+
+TEST(HugePages, PagesBackedAheadStayAStretchAheadOfTheAppends) {
+  {
+    void* probe = mmap(nullptr, 1 << 16, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    ASSERT_NE(probe, MAP_FAILED);
+    const bool known = madvise(probe, 1 << 16, MADV_POPULATE_WRITE) == 0;
+    munmap(probe, 1 << 16);
+    if (!known) GTEST_SKIP() << "this kernel has no MADV_POPULATE_WRITE";
+  }
+  using Vector = std::vector<std::uint64_t, FreshMappingAllocator<std::uint64_t>>;
+  constexpr std::size_t room = 2'000'000;  // 16 MB reserved, far more than is appended
+  Vector v;
+  v.reserve(room);
+  PagesBackedAhead ahead;
+  std::size_t pages = 0;
+  const auto bytes = [](std::size_t items) { return items * sizeof(std::uint64_t); };
+  for (std::size_t i = 0; i < 100'000; ++i) {  // 800 kB appended
+    ahead.before_append(v);
+    v.push_back(3 * i);
+  }
+  // everything appended is resident, and no more than a stretch (256 KiB) and a page beyond it
+  EXPECT_EQ(resident_pages(v.data(), bytes(v.size()) - 4096, pages), pages);
+  EXPECT_GT(resident_pages(v.data() + v.size(), 128 << 10, pages), 0u) << "backed ahead of the appends";
+  const std::size_t beyond = bytes(v.size()) + (256 << 10) + 8192;
+  EXPECT_EQ(resident_pages(reinterpret_cast<const char*>(v.data()) + beyond, bytes(room) - beyond, pages), 0u);
+  // appends of several items at once, and a vector that outgrows its room: the values stay
+  for (std::size_t i = 100'000; i < room + 50'000; i += 5) {
+    ahead.before_append(v, 5);
+    for (std::size_t k = 0; k < 5; ++k) v.push_back(3 * (i + k));
+  }
+  ASSERT_EQ(v.size(), room + 50'000);
+  for (std::size_t i = 0; i < v.size(); i += 9'973) ASSERT_EQ(v[i], 3 * i);
+  EXPECT_EQ(v.back(), 3 * (room + 49'999));
+}
+
 #endif
 
 TEST(HugePages, ASurfaceMovedOntoHugePagesKeepsItsVerticesAndElements) {

@@ -2,6 +2,8 @@
 // readers share one error discipline (file + line, bounded counts) that a wrapper could not give.
 #include "surface_parse_support.hpp"
 
+#include <plmap/core/huge_page_allocator.hpp>
+
 namespace plmap::surface_io_detail {
 
 namespace {
@@ -47,6 +49,9 @@ RawMesh<2> parse_off(Cursor& cursor, const SurfaceReadOptions& options) {
   const std::size_t nv = checked_count(cursor, cursor.offset_of(first), nv_read, 2, "vertex");
   const std::size_t nf = checked_count(cursor, cursor.offset_of(nf_token), nf_read, 2, "face");
 
+  // the room is backed ahead of the appends (a header's counts are checked against the file's
+  // size only, so not all at once)
+  PagesBackedAhead vertices_backing, elements_backing, offsets_backing;
   mesh.vertices.reserve(nv);
   for (std::size_t i = 0; i < nv; ++i) {
     if (!cursor.read_content_line(line))
@@ -58,10 +63,12 @@ RawMesh<2> parse_off(Cursor& cursor, const SurfaceReadOptions& options) {
     // so extra numbers there mean the counts or the dimension are wrong.
     if (!has_extras && !t.empty())
       cursor.fail_at(line, fmt::format("vertex {} has more than 3 coordinates", i));
+    vertices_backing.before_append(mesh.vertices);
     mesh.vertices.push_back(p);
   }
 
   mesh.elements.reserve(nf);
+  mesh.element_offset.reserve(nf);
   std::vector<Index> corners;
   for (std::size_t f = 0; f < nf; ++f) {
     if (!cursor.read_content_line(line))
@@ -89,6 +96,9 @@ RawMesh<2> parse_off(Cursor& cursor, const SurfaceReadOptions& options) {
                                        f, extras, n));
     for (std::string_view colour = t.next(); !colour.empty(); colour = t.next())
       read_coordinate(cursor, colour, "a face colour component");
+    const std::size_t triangles = corners.size() >= 3 ? corners.size() - 2 : 0;
+    elements_backing.before_append(mesh.elements, triangles);
+    offsets_backing.before_append(mesh.element_offset, triangles);
     add_polygon(cursor, cursor.offset_of(line), corners, options, mesh);
   }
   // Data after the announced faces would otherwise be ignored: the counts are wrong.
@@ -101,3 +111,4 @@ RawMesh<2> parse_off(Cursor& cursor, const SurfaceReadOptions& options) {
 }
 
 }  // namespace plmap::surface_io_detail
+

@@ -1,5 +1,7 @@
 #include "whole_file.hpp"
 
+#include <plmap/core/huge_page_allocator.hpp>
+
 #include <plmap/core/errors.hpp>
 
 #include <fmt/format.h>
@@ -52,6 +54,7 @@ FileBytes read_whole_file(const std::filesystem::path& path) {
   FileBytes bytes;
   bytes.size = static_cast<std::size_t>(size);
   bytes.data = std::make_unique_for_overwrite<char[]>(std::max<std::size_t>(bytes.size, 1));
+  back_pages(bytes.data.get(), bytes.size);  // filled next: backed in one call, not page by page
   in.read(bytes.data.get(), size);
   if (in.gcount() != size) throw ParseError(path.string(), "", "read error (the file changed while being read?)");
   return bytes;

@@ -42,13 +42,13 @@ inline void populate_in_parallel([[maybe_unused]] void* p, [[maybe_unused]] std:
   const std::uintptr_t aligned_first = first & ~(std::uintptr_t{piece} - 1);
   const std::size_t pieces = (last - aligned_first + piece - 1) / piece;
   if (pieces <= 1 || resolve_thread_count(threads) <= 1) {
-    ::madvise(reinterpret_cast<void*>(first), length, MADV_POPULATE_WRITE);  // EINVAL on older kernels: ignored
+    back_pages(reinterpret_cast<void*>(first), length);
     return;
   }
   parallel_for_pieces_of_size(pieces, 1, threads, [&](std::size_t k, std::size_t, std::size_t) {
     const std::uintptr_t from = std::max(first, aligned_first + k * piece);
     const std::uintptr_t to = std::min(last, aligned_first + (k + 1) * piece);
-    if (to > from) ::madvise(reinterpret_cast<void*>(from), to - from, MADV_POPULATE_WRITE);
+    if (to > from) back_pages(reinterpret_cast<void*>(from), to - from);
   });
 #endif
 }

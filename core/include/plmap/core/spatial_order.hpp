@@ -4,6 +4,7 @@
 /// each other in the order. Normal projection renumbers surfaces in a poor order this way
 /// (ProjectionOptions::renumbering), and the peers benchmark its inputs (--order spatial).
 
+#include <plmap/core/parallel_first_touch.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 #include <plmap/core/parallel_sort.hpp>
 #include <plmap/core/types.hpp>
@@ -90,6 +91,7 @@ std::vector<Index> morton_order_of(std::size_t count, const PointOf& point, cons
     bool operator<(const Key& o) const { return code != o.code ? code < o.code : index < o.index; }
   };
   const auto keyed = std::make_unique_for_overwrite<Key[]>(count);
+  populate_in_parallel(keyed.get(), count * sizeof(Key), threads);  // backed in one call per thread
   parallel_ranges(count, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const WorldPoint<d> p = point(i);
@@ -103,7 +105,8 @@ std::vector<Index> morton_order_of(std::size_t count, const PointOf& point, cons
     }
   });
   parallel_sort(keyed.get(), keyed.get() + count, threads);
-  std::vector<Index> order(count);
+  std::vector<Index> order;
+  assign_on_huge_pages(order, count, Index{0}, threads);
   parallel_ranges(count, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) order[i] = keyed[i].index;
   });
