@@ -1,6 +1,7 @@
 #pragma once
 // Sizing the flat arrays of a map (MapData) while finalize() writes them. Private to the builder.
 
+#include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/pl_map.hpp>
 
 #include <cstddef>
@@ -19,12 +20,22 @@ void size_node_arrays(MapData<d>& m, std::size_t nodes) {
   m.neighbor_begin.resize(nodes + 1);
 }
 
+/// v.shrink_to_fit(), with the copy's pages backed in one call (reserve_for_writing) instead of
+/// faulting in one by one as it is written.
+template <class Vector>
+void shrink_array(Vector& v) {
+  Vector copy;
+  reserve_for_writing(copy, v.size());
+  copy.assign(v.begin(), v.end());
+  v.swap(copy);
+}
+
 /// Gives back the slack of arrays that were reserved by an upper bound, so the map holds about
 /// what it needs; slack under 1/16 of an array is kept, as copying the array to save it would
 /// cost more time (and first-touched memory) than the slack is worth.
 template <class... Arrays>
 void shrink_arrays(Arrays&... v) {
-  ((v.capacity() - v.size() > v.size() / 16 ? v.shrink_to_fit() : void()), ...);
+  ((v.capacity() - v.size() > v.size() / 16 ? shrink_array(v) : void()), ...);
 }
 
 /// shrink_arrays for every array of a map.
