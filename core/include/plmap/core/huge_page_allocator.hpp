@@ -4,8 +4,10 @@
 /// index, the builder's nodes and segments) or first written in bulk (the map's arrays, a
 /// surface's adjacency, the projection's per-vertex results): an allocator whose blocks of 2 MiB
 /// and more are aligned to 2 MiB and, on Linux, marked for transparent huge pages (madvise
-/// MADV_HUGEPAGE; the system default "madvise" gives them only to memory so marked), and helpers
-/// that mark a std::vector's reserved room.
+/// MADV_HUGEPAGE; the system default "madvise" gives them only to memory so marked), helpers
+/// that mark a std::vector's reserved room, and helpers that back memory about to be written in
+/// one system call instead of one page fault per page (back_pages, reserve_for_writing,
+/// PagesBackedAhead).
 /// A random read into a 100 MB array with 4 KiB pages misses the TLB almost every time, and on a
 /// virtual machine a page walk costs several memory accesses; with 2 MiB pages the walk is rare.
 /// Elsewhere, or for small blocks, it allocates as std::allocator does. The contents are the same
