@@ -1,6 +1,7 @@
 // farther_overlapping_regions (image_overlaps.hpp).
 
 #include "image_overlaps.hpp"
+#include "element_set_connectivity.hpp"
 
 #include <plmap/core/element_transfer.hpp>
 #include <plmap/core/huge_page_allocator.hpp>
@@ -9,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <span>
 #include <tuple>
 #include <utility>
 
@@ -92,20 +95,6 @@ double overlap(const Image<d>& a, const Image<d>& b) {
   }
 }
 
-/// The S1 elements adjacent to element t (across its edges; d = 1 across its vertices).
-template <int d>
-void for_each_neighbour(const Surface<d>& s, Index t, auto&& f) {
-  if constexpr (d == 2) {
-    for (int k = 0; k < 3; ++k)
-      for (const auto& incidence : s.edge_elements(s.element_edge(t, k)))
-        if (incidence.element != t) f(incidence.element);
-  } else {
-    for (Index v : s.element(t))
-      for (Index u : s.vertex_elements(v))
-        if (u != t) f(u);
-  }
-}
-
 /// Per S2 element, the S1 elements with a region on it, each once and in increasing order, as a
 /// compressed list: elements[first[t2], first[t2 + 1]).
 struct ElementsPerTarget {
@@ -164,40 +153,20 @@ ElementsPerTarget elements_per_target(const PlMap<d>& map, unsigned threads) {
 /// where two sheets map onto the element (and, harmlessly, where S1's boundary or a vertex it
 /// passes cuts it: those elements are then checked pairwise for nothing). The S2 elements are
 /// searched independently, in pieces on all threads (two per thread, for balance), each piece
-/// with its own stamp arrays.
+/// with its own search (element_set_connectivity.hpp).
 template <int d>
 void mark_disconnected_preimages(const PlMap<d>& map, std::vector<char>& crowded, unsigned threads) {
-  const Surface<d>& s1 = map.domain();
-  const Index n2 = map.target().element_count(), nt = s1.element_count();
+  const Index n2 = map.target().element_count();
   const ElementsPerTarget lists = elements_per_target(map, threads);
   const unsigned used = resolve_thread_count(threads);
   const std::size_t pieces = used == 1 ? 1 : 2 * std::size_t{used};
   parallel_for_pieces(static_cast<std::size_t>(n2), pieces, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
-    // one search through the S1 elements of each S2 element; member and reached are stamped
-    // with the S2 element, so they need no clearing
-    std::vector<Index> member, reached;
-    assign_on_huge_pages(member, static_cast<std::size_t>(nt), invalid_index);  // pages backed in one call
-    assign_on_huge_pages(reached, static_cast<std::size_t>(nt), invalid_index);
-    std::vector<Index> stack;
+    ElementSetConnectivity<d> search(map.domain());
     for (auto t2 = static_cast<Index>(begin); t2 < static_cast<Index>(end); ++t2) {
       const Index list_begin = lists.first[t2], list_end = lists.first[t2 + 1];
       if (crowded[t2] || list_end - list_begin < 2) continue;
-      for (Index i = list_begin; i < list_end; ++i) member[lists.elements[i]] = t2;
-      Index count = 0;
-      stack.assign(1, lists.elements[list_begin]);
-      reached[lists.elements[list_begin]] = t2;
-      while (!stack.empty()) {
-        const Index t = stack.back();
-        stack.pop_back();
-        ++count;
-        for_each_neighbour(s1, t, [&](Index u) {
-          if (member[u] == t2 && reached[u] != t2) {
-            reached[u] = t2;
-            stack.push_back(u);
-          }
-        });
-      }
-      if (count < list_end - list_begin) crowded[t2] = 1;
+      const std::span<const Index> list(lists.elements.data() + list_begin, static_cast<std::size_t>(list_end - list_begin));
+      if (!search.connected(list)) crowded[t2] = 1;
     }
   });
 }
