@@ -50,9 +50,9 @@ struct MapBuilder<d>::Impl {
   detail::BuilderSegments<d> segments;
   // per S2 edge (d = 2) or S2 element (d = 1): not inserted, inserted whole, or in pieces
   std::vector<char> edge_inserted;
+  static constexpr char edge_complete = 1, edge_partial = 2, edge_outside_domain = 3;
   // the nodes' and segments' room (reserve_expected_sizes) backed ahead of the appends
   PagesBackedAhead nodes_backing, segments_backing;
-  static constexpr char edge_complete = 1, edge_partial = 2, edge_outside_domain = 3;
 
   Impl(std::shared_ptr<const Surface<d>> domain, std::shared_ptr<const Surface<d>> target,
        BuilderOptions opt)
@@ -528,7 +528,7 @@ struct MapBuilder<d>::Impl {
     }
     if (to_v) chain.push_back(b);
     if (end_rim != invalid_index) chain.push_back(end_rim);
-    segments_backing.before_append(segments, chain.size() - 1);
+    if (chain.size() > 1) segments_backing.before_append(segments, chain.size() - 1);
     for (std::size_t i = 0; i + 1 < chain.size(); ++i)
       segments.push_back(locate_segment(chain[i], chain[i + 1], target_edge));
     edge_inserted[target_edge] = piece ? edge_partial : edge_complete;

@@ -49,6 +49,16 @@ void reserve_on_huge_pages(Vector& v, std::size_t n) {
   advise_huge_pages(v.data(), v.capacity() * sizeof(typename Vector::value_type));
 }
 
+/// The system's page size (4 KiB on x86-64, 16 or 64 KiB on some ARM systems).
+inline std::uintptr_t system_page_bytes() noexcept {
+#if defined(__linux__)
+  static const auto page = static_cast<std::uintptr_t>(std::max(4096L, sysconf(_SC_PAGESIZE)));
+  return page;
+#else
+  return 4096;
+#endif
+}
+
 /// Backs the whole pages inside [p, p + bytes) with memory now, in one system call (Linux 5.14
 /// and later: MADV_POPULATE_WRITE; a no-op elsewhere, where the pages fault in at their first
 /// write as usual), in huge pages where the range is marked for them. For memory that is about to
@@ -58,8 +68,7 @@ void reserve_on_huge_pages(Vector& v, std::size_t n) {
 /// The bytes are left as they are (fresh memory reads as zeros).
 inline void back_pages([[maybe_unused]] void* p, [[maybe_unused]] std::size_t bytes) noexcept {
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-  // madvise takes whole pages of the system's size: 4 KiB on x86-64, 16 or 64 KiB on some ARM systems
-  static const auto page = static_cast<std::uintptr_t>(std::max(4096L, sysconf(_SC_PAGESIZE)));
+  const std::uintptr_t page = system_page_bytes();  // madvise takes whole pages
   const auto begin = reinterpret_cast<std::uintptr_t>(p);
   const std::uintptr_t first = (begin + page - 1) & ~(page - 1), last = (begin + bytes) & ~(page - 1);
   if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);  // EINVAL on older kernels: ignored
@@ -87,7 +96,7 @@ class PagesBackedAhead {
     // up to a page boundary, so that the next stretch starts on one (back_pages takes whole pages)
     const auto page_end = [&](std::size_t offset) {
       const auto address = reinterpret_cast<std::uintptr_t>(base) + offset;
-      return static_cast<std::size_t>((address & ~std::uintptr_t{4095}) - reinterpret_cast<std::uintptr_t>(base));
+      return static_cast<std::size_t>((address & ~(system_page_bytes() - 1)) - reinterpret_cast<std::uintptr_t>(base));
     };
     const std::size_t to = std::max(page_end(std::min(room, std::max(end, backed_) + stretch_bytes)), backed_);
     back_pages(base + backed_, to - backed_);

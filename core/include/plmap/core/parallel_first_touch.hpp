@@ -30,8 +30,7 @@ namespace plmap {
 inline void populate_in_parallel([[maybe_unused]] void* p, [[maybe_unused]] std::size_t bytes,
                                  [[maybe_unused]] unsigned threads) {
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-  // madvise takes whole pages of the system's size: 4 KiB on x86-64, 16 or 64 KiB on some ARM systems
-  static const auto page = static_cast<std::uintptr_t>(std::max(4096L, sysconf(_SC_PAGESIZE)));
+  const std::uintptr_t page = system_page_bytes();  // madvise takes whole pages
   constexpr std::size_t piece = std::size_t{2} << 20;
   const auto begin = reinterpret_cast<std::uintptr_t>(p);
   const std::uintptr_t first = (begin + page - 1) & ~(page - 1), last = (begin + bytes) & ~(page - 1);
