@@ -115,14 +115,18 @@ static std::size_t resident_pages(const void* p, std::size_t bytes, std::size_t&
   return static_cast<std::size_t>(std::count_if(in_core.begin(), in_core.end(), [](unsigned char c) { return c & 1; }));
 }
 
+/// Whether this kernel knows MADV_POPULATE_WRITE, which backing pages needs.
+static bool kernel_backs_pages() {
+  void* probe = mmap(nullptr, 1 << 16, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (probe == MAP_FAILED) return false;
+  const bool known = madvise(probe, 1 << 16, MADV_POPULATE_WRITE) == 0;
+  munmap(probe, 1 << 16);
+  return known;
+}
+
 TEST(HugePages, BackingMemoryOnSeveralThreadsMakesItResident) {
-  {  // the kernel must know MADV_POPULATE_WRITE (Linux 5.14); elsewhere the call is a no-op
-    void* probe = mmap(nullptr, 1 << 16, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    ASSERT_NE(probe, MAP_FAILED);
-    const bool known = madvise(probe, 1 << 16, MADV_POPULATE_WRITE) == 0;
-    munmap(probe, 1 << 16);
-    if (!known) GTEST_SKIP() << "this kernel has no MADV_POPULATE_WRITE";
-  }
+  // the kernel must know MADV_POPULATE_WRITE (Linux 5.14); elsewhere backing is a no-op
+  if (!kernel_backs_pages()) GTEST_SKIP() << "this kernel has no MADV_POPULATE_WRITE";
   for (unsigned threads : {1u, 2u, 3u}) {
     // a fresh mapping of 24 MB, never written: none of it resident yet (a mapping of its own, so
     // that no allocator hands back memory touched before)
@@ -165,13 +169,8 @@ struct FreshMappingAllocator {
 };
 
 TEST(HugePages, BackedPagesAreResidentAndKeepWhatTheyHold) {
-  {
-    void* probe = mmap(nullptr, 1 << 16, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    ASSERT_NE(probe, MAP_FAILED);
-    const bool known = madvise(probe, 1 << 16, MADV_POPULATE_WRITE) == 0;
-    munmap(probe, 1 << 16);
-    if (!known) GTEST_SKIP() << "this kernel has no MADV_POPULATE_WRITE";
-  }
+  // the kernel must know MADV_POPULATE_WRITE (Linux 5.14); elsewhere backing is a no-op
+  if (!kernel_backs_pages()) GTEST_SKIP() << "this kernel has no MADV_POPULATE_WRITE";
   // reserve_for_writing backs the room up to n beyond what the vector holds, and no further
   std::vector<std::uint32_t, FreshMappingAllocator<std::uint32_t>> v = {5, 6, 7};
   reserve_for_writing(v, 1'000'000);  // 4 MB
@@ -198,13 +197,8 @@ TEST(HugePages, BackedPagesAreResidentAndKeepWhatTheyHold) {
 }
 
 TEST(HugePages, PagesBackedAheadStayAStretchAheadOfTheAppends) {
-  {
-    void* probe = mmap(nullptr, 1 << 16, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    ASSERT_NE(probe, MAP_FAILED);
-    const bool known = madvise(probe, 1 << 16, MADV_POPULATE_WRITE) == 0;
-    munmap(probe, 1 << 16);
-    if (!known) GTEST_SKIP() << "this kernel has no MADV_POPULATE_WRITE";
-  }
+  // the kernel must know MADV_POPULATE_WRITE (Linux 5.14); elsewhere backing is a no-op
+  if (!kernel_backs_pages()) GTEST_SKIP() << "this kernel has no MADV_POPULATE_WRITE";
   using Vector = std::vector<std::uint64_t, FreshMappingAllocator<std::uint64_t>>;
   constexpr std::size_t room = 2'000'000;  // 16 MB reserved, far more than is appended
   Vector v;
