@@ -147,7 +147,7 @@ void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, bool t
     part.node_image_element[n] = bn.image.element;
     part.node_image_local[n] = support_local<2>(in.s2, bn.image, bn.image.element);
     part.node_target[n] = bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target;
-    if (at.omitted_weights != nullptr) (*at.omitted_weights)[n] = omitted_image_weight(in.s2, bn.image);
+    if (at.omitted_weights != nullptr) (*at.omitted_weights)[n] = omitted_image_weight(bn.image);
     if (!tiled) visit_ring(w.closure, i, w.ring_start[i], [&](const RingEntry& entry) {
       if (entry.vertex >= ns || (!entry.graph && !is_region(entry.before) && !is_region(entry.after))) return;
       part.neighbor[at.entries] = base + entry.vertex;

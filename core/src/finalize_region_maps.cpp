@@ -33,7 +33,7 @@ LocalPoint<2> image_on(const Surface<2>& s2, const MapData<2>& m, const std::vec
 
 }  // namespace
 
-double omitted_image_weight(const Surface<2>&, const Support<2>& s) {
+double omitted_image_weight(const Support<2>& s) {
   for (int i = 0; i < s.count; ++i)
     if (s.corner(i) == 0) return s.weight[i];
   return 0.0;

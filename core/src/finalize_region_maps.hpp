@@ -23,7 +23,7 @@ namespace plmap::detail {
 
 /// The weight support s gives to corner 0 of its element s.element (+0.0 if that corner is not
 /// one of its vertices): what support_local leaves out.
-double omitted_image_weight(const Surface<2>& s2, const Support<2>& s);
+double omitted_image_weight(const Support<2>& s);
 
 /// Writes m.region_map (empty before) from the regions' corners, targets and the nodes' images,
 /// with `omitted` holding omitted_image_weight per node of m; on up to `threads` threads.
