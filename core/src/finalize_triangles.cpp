@@ -19,6 +19,7 @@
 #include <malloc.h>
 #endif
 
+#include <atomic>
 #include <exception>
 #include <span>
 #include <vector>
@@ -59,6 +60,12 @@ class ClosingPass {
     PartBounds whole;
     for (const PartBounds& b : bounds) whole += b;
     omitted_weights_.assign(deferred_region_maps() ? blocks_ : 0, {});
+    // After a failure in any block every part is discarded (finalize drops what failed and runs
+    // the pass again, or throws): from then on every block only collects the failures, with
+    // close_graph, which throws exactly where close_element does. (A block that went on
+    // assembling after another block's failure took as long as a whole pass: on the femur pair
+    // with two threads, the first block failed early and waited for the second.)
+    std::atomic<bool> failed_somewhere{false};
     parallel_for_pieces(blocks_, blocks_, threads_, [&](std::size_t k, std::size_t, std::size_t) {
       const Index begin = first[k], end = first[k + 1];
       AssemblyCursor cursor;
@@ -66,19 +73,20 @@ class ClosingPass {
       size_part(bounds[k], k == 0 ? whole : bounds[k], parts_[k], cursor);
       for (Index t = begin; t < end; ++t) {
         try {
+          const bool assembling = !failed_somewhere.load(std::memory_order_relaxed);
           if (reuse_ != nullptr && reuse_->reuses(t)) {  // copied, not closed (finalize_reuse.hpp)
-            if (failures[k].empty()) reuse_->copy_element(in_, where_, t, parts_[k], cursor);
+            if (assembling) reuse_->copy_element(in_, where_, t, parts_[k], cursor);
             continue;
           }
-          if (failures[k].empty()) {
+          if (assembling) {
             close_element(in_, where_, t, workspaces_[k]);
             assemble_element(in_, workspaces_[k], orientation, parts_[k], cursor);
           } else {
-            // after a failure the part is discarded: only the failures are still collected
             close_graph(in_, where_, t, workspaces_[k]);
           }
         } catch (...) {
           failures[k].emplace_back(t, std::current_exception());
+          failed_somewhere.store(true, std::memory_order_relaxed);
           if (!drop) return;  // finalize throws: the part and its count are not used
         }
       }
@@ -303,7 +311,7 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   // The arrays sized by bounds are final now: their slack goes before the region maps are written
   // (shrink_stored_form), not after, and so do the originals the copies leave in the heap (on the
   // femur pair 1.3 MiB, 86k regions of a 92k bound, was on top of the region maps).
-  shrink_stored_form(m);
+  shrink_stored_form(m, pass.threads());
   give_freed_heap_back();
   assembled.graph_elements = pass.graph_elements();
   if (pass.deferred_region_maps()) write_region_maps(in.s2, pass.joined_omitted_weights(), m, pass.threads());

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 using namespace plmap;
@@ -370,6 +371,59 @@ TEST(MapBuilder, ResultDoesNotDependOnTheThreadCount) {
   EXPECT_EQ(a.start_region, c.start_region);
   for (std::size_t r = 0; r < a.region_map.size(); ++r) ASSERT_EQ(a.region_map[r], c.region_map[r]) << r;
   EXPECT_NEAR(covered_measure(three).domain, 1.0, 1e-12);
+}
+
+// Conflicts in several blocks of the closing pass: once an element fails anywhere, every block
+// only collects failures (the parts are discarded); the drops, the report and the map must still
+// be the same for every thread count. S1 is 240 separate triangles, S2 puts two vertices inside
+// each, swapped (so that edges cross) on three triangles far apart: in the first, middle and last
+// block.
+TEST(MapBuilder, DroppedConflictsDoNotDependOnTheThreadCount) {
+  const Index copies = 240;
+  const std::array<Index, 3> swapped = {5, 121, 233};
+  std::vector<WorldPoint<2>> v1, v2;
+  std::vector<ElementCorners<2>> e1, e2;
+  for (Index c = 0; c < copies; ++c) {
+    const double x = 2.0 * c;
+    v1.insert(v1.end(), {P(x, 0), P(x + 1, 0), P(x, 1)});
+    e1.push_back({3 * c, 3 * c + 1, 3 * c + 2});
+    const Index o = 5 * c;
+    v2.insert(v2.end(), {P(x, 0), P(x + 1, 0), P(x, 1), P(x + 0.2, 0.2), P(x + 0.4, 0.4)});
+    for (const auto& t : std::vector<ElementCorners<2>>{{0, 1, 3}, {1, 4, 3}, {1, 2, 4}, {2, 3, 4}, {2, 0, 3}})
+      e2.push_back({o + t[0], o + t[1], o + t[2]});
+  }
+  auto s1 = make_surface(v1, e1);
+  auto s2 = make_surface(v2, e2);
+  auto build = [&](unsigned threads, FinalizeReport& report) {
+    BuilderOptions options;
+    options.threads = threads;
+    options.drop_conflicting_edges = true;
+    MapBuilder<2> b(s1, s2, options);
+    for (Index c = 0; c < copies; ++c) {
+      for (Index k = 0; k < 3; ++k) b.add_vertex_preimage_at_vertex(5 * c + k, 3 * c + k);
+      const bool swap = std::find(swapped.begin(), swapped.end(), c) != swapped.end();
+      b.add_vertex_preimage(5 * c + 3, {c, swap ? LocalPoint<2>(0.4, 0.4) : LocalPoint<2>(0.2, 0.2)});
+      b.add_vertex_preimage(5 * c + 4, {c, swap ? LocalPoint<2>(0.2, 0.2) : LocalPoint<2>(0.4, 0.4)});
+    }
+    for (Index t = 0; t < s2->element_count(); ++t) b.add_target_element(t);
+    return std::move(b).finalize(&report);
+  };
+  FinalizeReport report1;
+  const PlMap<2> one = build(1, report1);
+  // the conflicts are dropped where they are, and only there
+  ASSERT_FALSE(report1.dropped_edges.empty());
+  std::vector<Index> elements = report1.dropped_edge_element;
+  std::sort(elements.begin(), elements.end());
+  elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
+  EXPECT_EQ(elements, std::vector<Index>(swapped.begin(), swapped.end()));
+  EXPECT_EQ(one.regions_end(0) - one.regions_begin(0), 5);  // an element without conflict keeps all five
+  for (unsigned threads : {2u, 3u}) {
+    FinalizeReport report;
+    const PlMap<2> other = build(threads, report);
+    EXPECT_EQ(report.dropped_edges, report1.dropped_edges) << threads << " threads";
+    EXPECT_EQ(report.dropped_edge_element, report1.dropped_edge_element) << threads << " threads";
+    EXPECT_TRUE(one.data() == other.data()) << threads << " threads";
+  }
 }
 
 // Inconsistent input, as a folding projection produces it: two S2 vertex preimages are swapped,
