@@ -6,6 +6,7 @@
 #include <plmap/core/element_transfer.hpp>
 #include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/parallel_ranges.hpp>
+#include <plmap/core/parallel_sort.hpp>
 #include <plmap/core/triangle_overlap.hpp>
 
 #include <algorithm>
@@ -215,38 +216,64 @@ std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageM
   struct CrowdedRegion {
     Index target, region, element;
   };
-  std::size_t crowded_regions = 0;
-  for (const Index target : m.region_target) crowded_regions += static_cast<std::size_t>(crowded[static_cast<std::size_t>(target)]);
-  std::vector<CrowdedRegion> listed;
-  listed.reserve(crowded_regions);
-  for (Index t = 0; t < nt; ++t)
-    for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
-      if (crowded[static_cast<std::size_t>(m.region_target[r])]) listed.push_back({m.region_target[r], r, t});
-  std::sort(listed.begin(), listed.end(), [](const CrowdedRegion& a, const CrowdedRegion& b) {
+  // Listed and compared on all threads. Listed in contiguous pieces of S1 elements: each piece
+  // counts its crowded regions, then writes them after the pieces before it into one list (no
+  // second copy of it); then the groups are compared in pieces, each with its own list of the
+  // farther regions. The result (sorted, each region once) is the same for every thread count.
+  const unsigned used = resolve_thread_count(threads);
+  const std::size_t pieces = used == 1 ? 1 : 4 * std::size_t{used};
+  const std::size_t piece_size = (static_cast<std::size_t>(nt) + pieces - 1) / pieces;
+  std::vector<std::size_t> piece_start(pieces + 1, 0);
+  parallel_for_pieces_of_size(static_cast<std::size_t>(nt), piece_size, threads, [&](std::size_t k, std::size_t begin, std::size_t end) {
+    std::size_t count = 0;
+    for (Index r = map.regions_begin(static_cast<Index>(begin)); r < map.regions_begin(static_cast<Index>(end)); ++r)
+      count += static_cast<std::size_t>(crowded[static_cast<std::size_t>(m.region_target[r])]);
+    piece_start[k + 1] = count;
+  });
+  for (std::size_t k = 0; k < pieces; ++k) piece_start[k + 1] += piece_start[k];
+  std::vector<CrowdedRegion> listed(piece_start[pieces]);
+  parallel_for_pieces_of_size(static_cast<std::size_t>(nt), piece_size, threads, [&](std::size_t k, std::size_t begin, std::size_t end) {
+    std::size_t at = piece_start[k];
+    for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t)
+      for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
+        if (crowded[static_cast<std::size_t>(m.region_target[r])]) listed[at++] = {m.region_target[r], r, t};
+  });
+  // (target, region) is unique: the sorted list is the same whichever sort made it
+  parallel_sort(listed.begin(), listed.end(), threads, [](const CrowdedRegion& a, const CrowdedRegion& b) {
     return std::tie(a.target, a.region) < std::tie(b.target, b.region);
   });
+  std::vector<std::size_t> group_first;  // where each S2 element's group starts in `listed`
+  for (std::size_t i = 0; i < listed.size(); ++i)
+    if (i == 0 || listed[i].target != listed[i - 1].target) group_first.push_back(i);
+  group_first.push_back(listed.size());
+  const std::size_t groups = group_first.size() - 1;
+  std::vector<std::vector<Index>> farther_in_piece(pieces);
+  parallel_for_pieces(groups, pieces, threads, [&](std::size_t k, std::size_t begin, std::size_t end) {
+    std::vector<Image<d>> group;
+    auto& farther = farther_in_piece[k];
+    for (std::size_t g = begin; g < end; ++g) {
+      group.clear();
+      for (std::size_t i = group_first[g]; i < group_first[g + 1]; ++i)
+        group.push_back(image_of(map, listed[i].element, listed[i].region));
+      // Pairs by a sweep along the first coordinate: an element may carry thousands of regions
+      // where S1 is much finer than S2. (The region number orders ties, so that the pairs are
+      // compared in an order that does not depend on the sort.)
+      std::sort(group.begin(), group.end(), [](const Image<d>& a, const Image<d>& b) {
+        return std::tie(a.low(0), a.region) < std::tie(b.low(0), b.region);
+      });
+      for (std::size_t i = 0; i < group.size(); ++i)
+        for (std::size_t j = i + 1; j < group.size() && group[j].low(0) <= group[i].high(0); ++j) {
+          const Image<d>& a = group[i];
+          const Image<d>& b = group[j];
+          const double explained = tolerances.position_tolerance * std::min(a.boundary, b.boundary);
+          if (!(overlap(a, b) > std::max(tolerances.measure_tolerance * std::min(a.measure, b.measure), explained))) continue;
+          const bool a_farther = a.distance > b.distance || (a.distance == b.distance && a.region > b.region);
+          farther.push_back(a_farther ? a.region : b.region);
+        }
+    }
+  });
   std::vector<Index> farther;
-  std::vector<Image<d>> group;
-  for (std::size_t first = 0, end = 0; first < listed.size(); first = end) {
-    group.clear();
-    for (end = first; end < listed.size() && listed[end].target == listed[first].target; ++end)
-      group.push_back(image_of(map, listed[end].element, listed[end].region));
-    // Pairs by a sweep along the first coordinate: an element may carry thousands of regions
-    // where S1 is much finer than S2. (The region number orders ties, so that the pairs are
-    // compared in an order that does not depend on the sort.)
-    std::sort(group.begin(), group.end(), [](const Image<d>& a, const Image<d>& b) {
-      return std::tie(a.low(0), a.region) < std::tie(b.low(0), b.region);
-    });
-    for (std::size_t i = 0; i < group.size(); ++i)
-      for (std::size_t j = i + 1; j < group.size() && group[j].low(0) <= group[i].high(0); ++j) {
-        const Image<d>& a = group[i];
-        const Image<d>& b = group[j];
-        const double explained = tolerances.position_tolerance * std::min(a.boundary, b.boundary);
-        if (!(overlap(a, b) > std::max(tolerances.measure_tolerance * std::min(a.measure, b.measure), explained))) continue;
-        const bool a_farther = a.distance > b.distance || (a.distance == b.distance && a.region > b.region);
-        farther.push_back(a_farther ? a.region : b.region);
-      }
-  }
+  for (const auto& list : farther_in_piece) farther.insert(farther.end(), list.begin(), list.end());
   std::sort(farther.begin(), farther.end());
   farther.erase(std::unique(farther.begin(), farther.end()), farther.end());
   return farther;
