@@ -364,9 +364,9 @@ class RayChecker {
       if (best && rank(mu) >= rank(best->mu)) return;
       best = Hit{tau, mu, p};
     };
-    const auto cast_segment = [&](const Eigen::Vector3d& to) {
+    const auto cast_segment = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
       using Query = Kernel::Segment_3;
-      const Query segment(cgal_point(origin), cgal_point(to));
+      const Query segment(cgal_point(from), cgal_point(to));
       std::vector<Tree::Intersection_and_primitive_id<Query>::Type> hits;
       tree_.all_intersections(segment, std::back_inserter(hits));
       for (const auto& [where, id] : hits) {
@@ -379,8 +379,14 @@ class RayChecker {
         }
       }
     };
-    cast_segment(origin + reach_ * unit);
-    if (o_.allow_negative_distance) cast_segment(origin - reach_ * unit);
+    // Where S1 and S2 meet (a surface projected onto a copy of itself, or touching bodies), the
+    // hit is x itself; but x is S1's rounding of that point and may lie a rounding step behind
+    // S2's plane, where a segment from x misses it (the ray then found only the far side of a
+    // closed surface, and the check reported up to half of S1 as "extra"). So the segment
+    // starts a little behind x; `admissible` judges the hits found there by their distance.
+    const Eigen::Vector3d start = origin - 1e-9 * mean_edge_length(s1_, t) * unit;
+    cast_segment(start, origin + reach_ * unit);
+    if (o_.allow_negative_distance) cast_segment(origin, origin - reach_ * unit);
     return best;
   }
 
