@@ -42,6 +42,11 @@ void refuse_pipe_or_device(const std::filesystem::path& path) {
 
 bool looks_like_map_file(const std::filesystem::path& path) {
   refuse_pipe_or_device(path);
+  // named as a map: read as one, so that a damaged map file gets the map reader's error (was
+  // "unknown surface format" from `plmap info` on an empty or truncated .plmapb)
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension == ".plmap" || extension == ".plmapb") return true;
   std::ifstream in(path, std::ios::binary);
   std::string head(64, '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));

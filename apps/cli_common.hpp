@@ -98,6 +98,16 @@ inline const CLI::Validator positive_number(
     },
     "POSITIVE");
 
+/// Validator for options that must not be negative (a tolerance), with a message that says so.
+inline const CLI::Validator non_negative_number(
+    [](std::string& text) -> std::string {
+      double value = 0.0;
+      if (!CLI::detail::lexical_cast(text, value) || !(value >= 0.0))
+        return "must be a number >= 0, not '" + text + "'";
+      return {};
+    },
+    "NON-NEGATIVE");
+
 /// Validator of integer options: rejects negative values, which CLI11 would otherwise wrap around
 /// to 2^64 - k for unsigned options. Every integer option of plmap is a count, an index, a level
 /// or a seed, so main() adds it to all of them (see reject_bad_numbers).

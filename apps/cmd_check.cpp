@@ -161,13 +161,14 @@ void register_check(CLI::App& app, Action& action) {
                   "Also cast N rays from points sampled uniformly on S1 along its averaged vertex normals "
                   "(the projection's default field) against S2 and report the area missed (the ray hits "
                   "S2, the point is outside D), the extra area (in D, no hit) and the image error")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number);
   cmd->add_option("--ray-seed", o->ray_seed, "Seed of the ray sample")->capture_default_str();
   cmd->add_option("--ray-tolerance", o->ray_tolerance,
                   "The ray check fails if the missed area that has no stated reason to be outside D (farther "
                   "sheet, next to a fold, not covered) or "
                   "the extra area (not counting the interpolation at S2's boundary) exceeds this fraction of S1")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_negative_number);
   cmd->add_option("--max-distance", o->max_distance, "Ray check: largest projection distance |mu|, as given to project")
       ->check(positive_number);
   cmd->add_flag("--relative-distance", o->relative_distance,

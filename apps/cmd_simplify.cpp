@@ -172,9 +172,9 @@ void register_simplify(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", o->output, "Map file to write (S1 -> S2): .plmapb binary (large maps) or .plmap text; replaced atomically")->required();
   cmd->add_option("--coarse", o->coarse, "Also write the coarse surface S1 to this file (any surface format)");
   cmd->add_option("--target-elements", o->target_elements, "Stop at this many triangles (segments for a curve)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number);
   cmd->add_option("--target-vertices", o->target_vertices, "Stop at this many vertices")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number);
   cmd->add_option("--max-error", o->max_error,
                   "Refuse steps whose modified Hausdorff distance exceeds this (surface units)")
       ->check(positive_number);

@@ -113,7 +113,7 @@ void register_smooth(CLI::App& app, Action& action) {
   cmd->add_option("MAP", o->map, "The map file to smooth (.plmap, d = 2)")->required();
   cmd->add_option("-o,--output", o->output, "Map file to write: .plmapb binary (large maps) or .plmap text; replaced atomically")->required();
   cmd->add_option("--sweeps", o->sweeps, "Passes over all elements and edges (the paper: fewer than ten suffice)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number)
       ->capture_default_str();
   cmd->add_option("--weights", o->weights, "Smoothing weights: floater, mean-value or uniform")->capture_default_str();
   cmd->add_flag("--no-quadrilaterals", o->no_quadrilaterals,

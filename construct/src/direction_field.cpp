@@ -55,10 +55,13 @@ std::vector<WorldPoint<d>> directions_from_values(const Surface<d>& surface, std
   std::vector<WorldPoint<d>> out(n);
   for (std::size_t v = 0; v < n; ++v) {
     for (int k = 0; k <= d; ++k) out[v](k) = values[(d + 1) * v + k];
-    const double norm = out[v].norm();
-    if (!std::isfinite(norm) || norm == 0.0)
+    // scaled by its largest coordinate first: the norm of (1e200, 0, 0) overflows, that of
+    // (1e-200, 0, 0) underflows to 0, yet both give a direction
+    const double largest = out[v].allFinite() ? out[v].cwiseAbs().maxCoeff() : 0.0;
+    if (largest == 0.0)
       throw Error(fmt::format("projection direction at S1 vertex {} is zero or not finite", v));
-    out[v] /= norm;
+    out[v] /= largest;
+    out[v] /= out[v].norm();
   }
   return out;
 }

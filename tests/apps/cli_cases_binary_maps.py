@@ -53,3 +53,10 @@ def damaged_binary_maps_are_refused_in_one_line():
     with open(os.path.join(WORK, "future.plmapb"), "wb") as f:
         f.write(bytes(future))
     expect_clean_error(["eval", "future.plmapb", "-n", 10], mention="version 9")
+    # a map file cut to nothing or to its first bytes is a damaged map for `info` too (it said
+    # "unknown surface format"): its name says it is a map
+    for name, content in (("empty.plmapb", b""), ("stub.plmapb", data[:7]), ("stub.plmap", b"plmap 1\n")):
+        with open(os.path.join(WORK, name), "wb") as f:
+            f.write(content)
+        line = expect_clean_error(["info", name], mention=name)
+        expect("surface format" not in line, line)

@@ -35,3 +35,6 @@ def check_against_rays():
     expect_clean_error(["check", "rays.plmap", "--against-rays", 10, "--normal-check", "bogus"],
                        mention="bogus")
     expect_clean_error(["check", "rays.plmap", "--against-rays", 0], code=64)
+    # a negative tolerance would fail every map
+    expect_clean_error(["check", "rays.plmap", "--against-rays", 10, "--ray-tolerance", -1], code=64,
+                       mention=">= 0")

@@ -94,3 +94,15 @@ def project_with_random_direction_fields_writes_only_valid_maps():
         run("project", flat, "rd_hill.off", "-o", "rd.plmap", "--directions", "rd_directions.txt", "--allow-negative")
         out, _, code = run("check", "rd.plmap", expect_code=None)
         expect(code == 0, f"direction field seed {seed}: invalid map\n{out}")
+    # Directions are directions whatever their length: rows scaled by about 1e200 or 1e-200 (whose
+    # squared norms overflow or underflow; powers of two, so that the scaled rows are exact) give
+    # the map of the unscaled rows.
+    rows = [f"{0.1 * (i % 3)!r} {-0.05 * (i % 2)!r} 1.0" for i in range(vertices)]
+    maps = []
+    for scale in (1.0, 2.0 ** 664, 2.0 ** -664):
+        write("rd_scaled.txt", "\n".join(" ".join(repr(float(x) * scale) for x in r.split()) for r in rows) + "\n")
+        run("project", flat, "rd_hill.off", "-o", f"rd_scaled_{len(maps)}.plmapb", "--directions", "rd_scaled.txt",
+            "--allow-negative")
+        with open(os.path.join(WORK, f"rd_scaled_{len(maps)}.plmapb"), "rb") as f:
+            maps.append(f.read())
+    expect(maps[0] == maps[1] == maps[2], "scaled direction rows give other maps")

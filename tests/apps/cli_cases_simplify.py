@@ -60,6 +60,11 @@ def simplify_bad_input_leaves_no_output():
     expect_clean_error(["simplify", fine, "-o", outputs[0], "--target-elements", 10, "--flattening",
                         "magic"], mention="magic")
     expect_clean_error(["simplify", fine, "-o", outputs[0]], code=64, mention="--target-elements")
+    # zero is no count of elements, and the message says so in words (CLI11's own spelled out
+    # the largest double)
+    line = expect_clean_error(["simplify", fine, "-o", outputs[0], "--target-elements", 0], code=64,
+                              mention="positive")
+    expect("1797" not in line, line)
     write("flat.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n3 0 1 2\n3 0 1 3\n")
     expect_clean_error(["simplify", "flat.off", "-o", outputs[0], "--target-elements", 1])
     # a mesh that has nothing to remove: the target cannot be met, but the map is still valid
