@@ -36,47 +36,65 @@ struct EvalOptions {
   EvalPointsOptions at_points;  // used when --points is given
 };
 
-/// N points uniformly distributed over S1 by measure: the element by its length/area (inverse
-/// CDF on the running sum), the point uniformly on it.
+/// Points uniformly distributed over a surface by measure: the element by its length/area
+/// (inverse CDF on the running sum), the point uniformly on it. Drawn batch by batch from one
+/// random stream, so the points do not depend on the batch size.
 template <int d>
-std::vector<SurfacePoint<d>> random_points(const Surface<d>& s, std::size_t n,
-                                           std::uint64_t seed) {
-  generators::Rng rng(seed);
-  std::vector<double> cumulative(static_cast<std::size_t>(s.element_count()));
-  double total = 0.0;
-  for (Index t = 0; t < s.element_count(); ++t)
-    cumulative[static_cast<std::size_t>(t)] = total += s.element_measure(t);
-  std::vector<SurfacePoint<d>> points(n);
-  for (auto& p : points) {
-    const double u = generators::uniform_unit(rng) * total;
-    const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), u);
-    p.element = static_cast<Index>(std::min<std::ptrdiff_t>(it - cumulative.begin(),
-                                                             s.element_count() - 1));
-    if constexpr (d == 1) {
-      p.local(0) = generators::uniform_unit(rng);
-    } else {
-      double a = generators::uniform_unit(rng), b = generators::uniform_unit(rng);
-      if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;  // fold the square onto the triangle
-      p.local = LocalPoint<2>(a, b);
+class RandomPoints {
+ public:
+  RandomPoints(const Surface<d>& s, std::uint64_t seed) : s_(s), rng_(seed), cumulative_(static_cast<std::size_t>(s.element_count())) {
+    for (Index t = 0; t < s.element_count(); ++t) cumulative_[static_cast<std::size_t>(t)] = total_ += s.element_measure(t);
+  }
+
+  /// The next n points into `points` (resized to n).
+  void next(std::size_t n, std::vector<SurfacePoint<d>>& points) {
+    points.resize(n);
+    for (auto& p : points) {
+      const double u = generators::uniform_unit(rng_) * total_;
+      const auto it = std::upper_bound(cumulative_.begin(), cumulative_.end(), u);
+      p.element = static_cast<Index>(std::min<std::ptrdiff_t>(it - cumulative_.begin(), s_.element_count() - 1));
+      if constexpr (d == 1) {
+        p.local(0) = generators::uniform_unit(rng_);
+      } else {
+        double a = generators::uniform_unit(rng_), b = generators::uniform_unit(rng_);
+        if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;  // fold the square onto the triangle
+        p.local = LocalPoint<2>(a, b);
+      }
     }
   }
-  return points;
-}
+
+ private:
+  const Surface<d>& s_;
+  generators::Rng rng_;
+  std::vector<double> cumulative_;
+  double total_ = 0.0;
+};
+
+/// Points are drawn and evaluated in batches of this many: a point and its result take about 110
+/// bytes, so `-n 1e9` held all of them at once needed ~110 GB and ended in "out of memory".
+constexpr std::size_t eval_batch_points = std::size_t{1} << 20;
 
 template <int d>
 Json evaluate_random(const PlMap<d>& map, const EvalOptions& o) {
   const std::string locator_name =
       o.locator.empty() ? std::string(default_point_locator_name<d>()) : o.locator;
-  const std::vector<SurfacePoint<d>> points =
-      random_points(o.inverse ? map.target() : map.domain(), o.points, o.seed);
+  RandomPoints<d> sample(o.inverse ? map.target() : map.domain(), o.seed);
+  std::vector<SurfacePoint<d>> points;
   std::size_t found = 0;
-  double best_seconds = std::numeric_limits<double>::infinity();
-  auto timed = [&](auto&& batch) {
-    for (int r = 0; r < o.repeat; ++r) {
-      const auto start = std::chrono::steady_clock::now();
-      batch();
-      const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
-      best_seconds = std::min(best_seconds, elapsed.count());
+  double seconds = 0.0;  // the fastest repetition of each batch, added up
+  // Every batch: its points drawn (not timed), evaluated o.repeat times (timed), its hits counted.
+  auto in_batches = [&](auto&& evaluate, auto&& count) {
+    for (std::size_t done = 0; done < o.points; done += points.size()) {
+      sample.next(std::min(eval_batch_points, o.points - done), points);
+      double best = std::numeric_limits<double>::infinity();
+      for (int r = 0; r < o.repeat; ++r) {
+        const auto start = std::chrono::steady_clock::now();
+        evaluate();
+        const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+        best = std::min(best, elapsed.count());
+      }
+      seconds += best;
+      found += count();
     }
   };
   double index_seconds = 0.0;
@@ -85,21 +103,29 @@ Json evaluate_random(const PlMap<d>& map, const EvalOptions& o) {
     const auto start = std::chrono::steady_clock::now();
     const InverseIndex<d> index(map);
     index_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::vector<InverseEvaluation<d>> out(points.size());
-    timed([&] { inverse_evaluate_batch<d>(index, points, out, o.threads); });
-    for (const auto& e : out) found += e.in_image;
+    std::vector<InverseEvaluation<d>> out;
+    in_batches(
+        [&] {
+          out.resize(points.size());
+          inverse_evaluate_batch<d>(index, points, out, o.threads);
+        },
+        [&] { return static_cast<std::size_t>(std::count_if(out.begin(), out.end(), [](const auto& e) { return e.in_image; })); });
   } else {
-    std::vector<Evaluation<d>> out(points.size());
+    std::vector<Evaluation<d>> out;
     PointLocatorOptions locator_options;
     locator_options.seed = o.seed;
     with_point_locator<d>(
         locator_name,
         [&](auto& locator) {
           prepare_point_locator<d>(locator, map);  // tables are set-up, not evaluation time
-          timed([&] { evaluate_batch<d>(map, points, out, locator, o.threads); });
+          in_batches(
+              [&] {
+                out.resize(points.size());
+                evaluate_batch<d>(map, points, out, locator, o.threads);
+              },
+              [&] { return static_cast<std::size_t>(std::count_if(out.begin(), out.end(), [](const auto& e) { return e.in_domain; })); });
         },
         locator_options);
-    for (const auto& e : out) found += e.in_domain;
   }
   Json j;
   j["file"] = o.file;
@@ -111,13 +137,12 @@ Json evaluate_random(const PlMap<d>& map, const EvalOptions& o) {
     j["locator"] = locator_name;
   j["threads"] = resolved_threads(o.threads);
   j["seed"] = o.seed;
-  j["points"] = points.size();
+  j["points"] = o.points;
   j["found"] = found;
-  j["fraction_found"] = points.empty() ? 0.0 : static_cast<double>(found) / points.size();
+  j["fraction_found"] = o.points == 0 ? 0.0 : static_cast<double>(found) / static_cast<double>(o.points);
   j["repeat"] = o.repeat;
-  j["seconds"] = best_seconds;  // the fastest repetition
-  j["evaluations_per_second"] =
-      best_seconds > 0 ? static_cast<double>(points.size()) / best_seconds : 0.0;
+  j["seconds"] = seconds;
+  j["evaluations_per_second"] = seconds > 0 ? static_cast<double>(o.points) / seconds : 0.0;
   return j;
 }
 
@@ -189,7 +214,8 @@ void register_eval(CLI::App& app, Action& action) {
                   "Point-location strategy: " + names(point_locator_names<2>()) +
                       " for triangle surfaces; " + names(point_locator_names<1>()) + " for curves");
   add_threads_option(*cmd, o->threads, "Threads");
-  cmd->add_option("--repeat", o->repeat, "Time this many runs and report the fastest")
+  cmd->add_option("--repeat", o->repeat,
+                  "Time this many runs of each batch of 2^20 points and report the fastest of each, added up")
       ->check(positive_number)
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON instead of text");

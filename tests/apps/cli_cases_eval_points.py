@@ -151,3 +151,18 @@ def eval_points_bad_input():
     expect_clean_error(["eval", "m.plmap", "--points", "range.csv", "--random", 5], code=64)
     expect_clean_error(["eval", "m.plmap", "-o", "out.csv"], code=64)
     expect(not os.path.exists(os.path.join(WORK, "out.xyz")), "an output was written for a bad command line")
+
+
+@case
+def eval_of_many_random_points_runs_in_batches():
+    # Random points are drawn and evaluated 2^20 at a time: -n 1e9 held them all at once and
+    # ended in "out of memory". Every point of a batch past the first still counts.
+    flat = grid("batches.off", cells=3)
+    run("build", "identity", flat, "-o", "batches.plmapb")
+    n = (1 << 20) + 7
+    j = run_json("eval", "batches.plmapb", "-n", n, "--json")
+    expect(j["points"] == n and j["found"] == n and j["fraction_found"] == 1.0, j)
+    expect(j["seconds"] > 0 and j["evaluations_per_second"] > 0, j)
+    # the inverse evaluation too
+    j = run_json("eval", "batches.plmapb", "-n", n, "--inverse", "--json")
+    expect(j["points"] == n and j["found"] == n, j)
