@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 namespace plmap::cli {
@@ -98,6 +99,11 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   save_map(o.output, result.map, bar.callback());
   bar.finish();
   hint_if_large_text_map(o.output);
+  // An empty map is a valid answer, but most often the rays went the wrong way: S2 lies behind
+  // S1 (or inside it, for closed surfaces whose normals point out).
+  if (!o.allow_negative && result.measures.domain > 0.0 && result.measures.covered_domain == 0.0)
+    std::cerr << "hint: no part of S1 was mapped: no ray along S1's directions (its averaged normals unless "
+                 "--directions is given) meets S2 in front of S1; if S2 lies behind S1, try --allow-negative\n";
 
   const auto& r = result.report;
   Json j;

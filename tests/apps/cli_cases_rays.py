@@ -6,6 +6,18 @@
 def check_against_rays():
     flat = grid("rays_flat.off", cells=6, jitter=0.1, seed=5)
     run("generate", "delaunay", "--points", 40, "--lift", "--seed", 9, "-o", "rays_hill.off")
+    # a plane below an upward-facing one lies behind its normals: without --allow-negative
+    # nothing is mapped, and plmap says what to try (a hint on stderr; exit 0, since an empty
+    # map is a valid answer)
+    scaled_grid_off("rays_up.off", 1.0, cells=5)
+    scaled_grid_off("rays_below.off", 1.0, cells=7, height=-0.5, down=True)
+    out, err, _ = run("project", "rays_up.off", "rays_below.off", "-o", "rays_empty.plmap", "--json")
+    expect(json.loads(out)["covered_measure"] == 0.0, out)
+    expect("no part of S1 was mapped" in err and "--allow-negative" in err, err)
+    out, err, _ = run("project", "rays_up.off", "rays_below.off", "-o", "rays_below.plmap", "--allow-negative",
+                      "--json")
+    expect(json.loads(out)["covered_measure"] > 0.99, out)
+    expect("no part of S1 was mapped" not in err, err)
     run("project", flat, "rays_hill.off", "-o", "rays.plmap", "--allow-negative")
     j = run_json("check", "rays.plmap", "--against-rays", 3000, "--allow-negative", "--json")
     expect_keys(j, ["ok", "against_rays"], "check --against-rays --json")
