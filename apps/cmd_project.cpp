@@ -4,6 +4,7 @@
 #include "cli_common.hpp"
 #include "progress_bar.hpp"
 #include "release_at_exit.hpp"
+#include "summaries.hpp"
 #include "surface_pair.hpp"
 
 #include <plmap/construct/project.hpp>
@@ -82,6 +83,15 @@ template <int d>
 int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surface) {
   auto s1 = std::make_shared<const Surface<d>>(std::move(s1_surface));
   auto s2 = std::make_shared<const Surface<d>>(std::move(s2_surface));
+  // Unstitched seams: the rays of a seam's two sides meet S2 at one point, and a projection of a
+  // surface onto itself lost half of two triangles that share a diagonal's position but not its
+  // vertices (and all of CGAL's quads_to_stitch). Said before the work, not refused: the rest of
+  // the map is still right.
+  for (const auto& [name, surface] : {std::pair{"S1", s1.get()}, std::pair{"S2", s2.get()}})
+    if (const Index n = coincident_vertex_count(*surface); n > 0)
+      std::cerr << "warning: " << name << " has " << n << " vertices at the position of another vertex (seams whose "
+                << "sides are not stitched together); the map may leave out elements along them: merge such "
+                << "vertices first\n";
   ProjectionOptions options;
   options.solver = o.solver;
   options.max_distance = o.max_distance;

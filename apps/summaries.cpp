@@ -6,6 +6,7 @@
 #include <plmap/verify/quality.hpp>
 #include <plmap/verify/report_json.hpp>
 
+#include <algorithm>
 #include <numeric>
 #include <vector>
 
@@ -42,6 +43,18 @@ int fan_count(const Surface<2>& s, Index v) {
 }  // namespace
 
 template <int d>
+Index coincident_vertex_count(const Surface<d>& s) {
+  std::vector<WorldPoint<d>> points(static_cast<std::size_t>(s.vertex_count()));
+  for (Index v = 0; v < s.vertex_count(); ++v) points[static_cast<std::size_t>(v)] = s.vertex(v);
+  std::sort(points.begin(), points.end(), [](const WorldPoint<d>& a, const WorldPoint<d>& b) {
+    return std::lexicographical_compare(a.data(), a.data() + a.size(), b.data(), b.data() + b.size());
+  });
+  Index coincident = 0;
+  for (std::size_t i = 1; i < points.size(); ++i) coincident += points[i] == points[i - 1];
+  return coincident;
+}
+
+template <int d>
 Json surface_summary(const Surface<d>& s) {
   Json j;
   j["dimension"] = d;
@@ -69,6 +82,7 @@ Json surface_summary(const Surface<d>& s) {
   j["isolated_vertices"] = isolated;
   j["boundary_vertices"] = boundary_vertices;
   j["non_manifold_vertices"] = non_manifold_vertices;
+  j["coincident_vertices"] = coincident_vertex_count(s);
   if constexpr (d == 2) {
     Index boundary_edges = 0, non_manifold_edges = 0;
     for (Index e = 0; e < s.edge_count(); ++e) {
@@ -107,6 +121,8 @@ Json map_summary(const PlMap<d>& map, bool with_quality) {
   return j;
 }
 
+template Index coincident_vertex_count<1>(const Surface<1>&);
+template Index coincident_vertex_count<2>(const Surface<2>&);
 template Json surface_summary<1>(const Surface<1>&);
 template Json surface_summary<2>(const Surface<2>&);
 template Json map_summary<1>(const PlMap<1>&, bool);

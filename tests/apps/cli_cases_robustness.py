@@ -310,3 +310,18 @@ def a_pipe_as_input_is_refused_at_once():
         expect_clean_error(args, code=2, mention="pipe")
     stray = [f for f in ("p.plmap", "c.obj") if os.path.exists(os.path.join(WORK, f))]
     expect(not stray, f"refused commands wrote {stray}")
+
+
+@case
+def unstitched_seams_are_counted_and_warned_about():
+    # Two triangles of a unit square that share the diagonal's position but not its vertices:
+    # `info` counts the coincident vertices, and `project` warns that the map may leave out
+    # elements along such a seam (projected onto itself it covered half of the square).
+    write("seam.off", "OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 3 4 5\n")
+    expect(run_json("info", "seam.off", "--json")["coincident_vertices"] == 2, "coincident vertices")
+    _, err, _ = run("project", "seam.off", "seam.off", "-o", "seam.plmap")
+    expect(err.count("vertices at the position of another vertex") == 2, err)
+    grid("no_seam.off", cells=3)
+    expect(run_json("info", "no_seam.off", "--json")["coincident_vertices"] == 0, "no seam")
+    _, err, _ = run("project", "no_seam.off", "no_seam.off", "-o", "no_seam.plmap")
+    expect("position of another vertex" not in err, err)
