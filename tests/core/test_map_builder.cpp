@@ -593,3 +593,25 @@ TEST(MapBuilder, AnUnmappedFaceOnTheElementBoundaryLeavesTheOtherRegions) {
   EXPECT_EQ(m.region_count(), 5);
   EXPECT_EQ(violations_of(m), "");
 }
+
+// A preimage through an S1 vertex whose ghost node (a ray hit) maps off the S2 edge would make
+// graph edges labelled with that edge whose ends lie on no common S2 edge (verify's
+// unlabelled_target_edge). Normal projection of boeing.off onto itself wrote such maps: its
+// patches are not stitched, and a vertex's ray hit lies on a coincident copy of the edge. The
+// builder refuses the preimage, before it has made any of its nodes.
+TEST(MapBuilder, APreimageThroughAGhostNodeThatMapsOffTheEdgeIsRefused) {
+  auto s1 = square_diag02();  // triangles (0, 1, 2) and (0, 2, 3)
+  // S2 element 0 = (0, 1, 2) holds the edge; element 1, apart, the ghost's image
+  auto s2 = make_surface({P(0, 0), P(1, 0), P(0, 1), P(3, 0), P(4, 0), P(3, 1)}, {{0, 1, 2}, {3, 4, 5}});
+  MapBuilder<2> b(s1, s2);
+  b.add_vertex_preimage(0, {1, LocalPoint<2>(0.2, 0.5)});  // inside S1 triangle (0, 2, 3)
+  b.add_vertex_preimage(1, {0, LocalPoint<2>(0.5, 0.2)});  // inside S1 triangle (0, 1, 2)
+  b.add_ghost_node(0, {1, LocalPoint<2>(0.2, 0.2)});
+  // S2 edge 0-1 passes S1 vertex 0, the start of S1 edge 0-2
+  const EdgeCrossing through_vertex{s1->find_edge(0, 2), 0.0};
+  EXPECT_THROW(b.add_edge(s2->find_edge(0, 1), std::span(&through_vertex, 1)), BuilderError);
+  const PlMap<2> m = std::move(b).finalize();
+  EXPECT_EQ(count_type(m, NodeType::ghost), 2);  // one copy per S1 triangle at vertex 0
+  EXPECT_EQ(count_type(m, NodeType::intersection), 0);
+  EXPECT_EQ(violations_of(m), "");
+}
