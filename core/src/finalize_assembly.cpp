@@ -10,6 +10,7 @@
 #include <plmap/core/huge_page_allocator.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <type_traits>
 
 namespace plmap::detail {
@@ -107,9 +108,53 @@ NodeType node_type_of(const BuilderNode<2>& bn) {
   return NodeType::interior;
 }
 
+/// Whether the side of closure triangle f opposite its corner i maps onto a boundary edge of S2
+/// (f a region's triangle: its corner images are on its face's target). Within the tolerance
+/// verify judges this with (VerifyOptions::local_tolerance).
+bool side_on_target_boundary(const Surface<2>& s2, const ClosureWorkspace& w, int f, int i) {
+  constexpr double tolerance = 1e-9;
+  const Index t2 = w.et.components[w.closure.face[f]].target;
+  const auto& image = w.et.corner_images[f];
+  const LocalPoint<2>& ya = image[(i + 1) % 3];
+  const LocalPoint<2>& yb = image[(i + 2) % 3];
+  // local edge k of the S2 element joins corners k and k + 1: the weight of corner k + 2 vanishes
+  auto weight_opposite = [](int k, const LocalPoint<2>& y) {
+    return k == 0 ? y.y() : (k == 1 ? 1.0 - y.x() - y.y() : y.x());
+  };
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(weight_opposite(k, ya)) <= tolerance && std::abs(weight_opposite(k, yb)) <= tolerance)
+      return s2.edge_elements(s2.element_edge(t2, k)).size() == 1;
+  return false;
+}
+
+/// Whether the faces left out of D lie strictly inside an element whose boundary the regions
+/// cover in full (every closure triangle on the element boundary is a region): verify expects
+/// such an element to be covered entirely (the region_tiling invariant, face_removal.hpp), unless
+/// a hole of S2 explains the gap (a region side with no region across that maps onto a boundary
+/// edge of S2). A reversed or unmapped face surrounded by regions (a missing S2 edge preimage
+/// between S2 vertices inside the element) would break it.
+bool encloses_a_hole(const Surface<2>& s2, const ClosureWorkspace& w, const AssemblyCursor& at) {
+  const auto& closure = w.closure;
+  const int nf = static_cast<int>(closure.triangles.size());
+  for (int f = 0; f < nf; ++f)
+    if (at.triangle_region[f] == invalid_index)
+      for (int i = 0; i < 3; ++i)
+        if (closure.neighbors[f][i] < 0) return false;  // the gap reaches the element boundary
+  for (int f = 0; f < nf; ++f) {
+    if (at.triangle_region[f] == invalid_index) continue;
+    for (int i = 0; i < 3; ++i) {
+      const int g = closure.neighbors[f][i];
+      if (g >= 0 && at.triangle_region[g] == invalid_index && side_on_target_boundary(s2, w, f, i)) return false;
+    }
+  }
+  return true;
+}
+
 /// Numbers the element's regions: triangles of faces inside D with a target element and the
-/// map's orientation. Returns how many there are.
-Index number_regions(const ClosureWorkspace& w, int orientation, AssemblyCursor& at) {
+/// map's orientation. Returns how many there are: none if the faces left out would be a hole
+/// strictly inside the element (encloses_a_hole); then the element leaves D whole, as
+/// remove_faces takes an element whose removed face lies strictly inside it.
+Index number_regions(const Surface<2>& s2, const ClosureWorkspace& w, int orientation, AssemblyCursor& at) {
   const ElementTriangulation& et = w.et;
   const auto rbase = static_cast<Index>(at.regions);
   const int nf = static_cast<int>(w.closure.triangles.size());
@@ -123,6 +168,10 @@ Index number_regions(const ClosureWorkspace& w, int orientation, AssemblyCursor&
     const auto& comp = et.components[w.closure.face[f]];
     if (comp.outside || comp.target == invalid_index || comp.sign != orientation) continue;
     at.triangle_region[f] = rbase + nr++;
+  }
+  if (nr > 0 && nr < nf && encloses_a_hole(s2, w, at)) {
+    at.triangle_region.assign(nf, invalid_index);
+    return 0;
   }
   return nr;
 }
@@ -255,7 +304,7 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
   make_room(part.region_neighbors, at.graph_regions + nf);
   make_room(part.region_target, at.regions + nf);
   if (at.omitted_weights == nullptr) make_room(part.region_map, at.regions + nf);
-  const Index region_count = number_regions(w, orientation, at);
+  const Index region_count = number_regions(in.s2, w, orientation, at);
   const auto base = static_cast<Index>(at.nodes);
   // Tiled: every face of the closure is a region, so the graph follows from the regions. At a
   // ghost node the derived kind of a side with no region across rests on an exactly zero weight

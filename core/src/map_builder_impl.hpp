@@ -493,6 +493,29 @@ struct MapBuilder<d>::Impl {
         throw BuilderError(fmt::format("the preimage of S2 {} {} has zero length", noun, target_edge));
     }
 
+    // An S1 vertex the preimage passes must not be a corner node, and a ghost node already there
+    // (a ray hit) must map onto this edge: the chain's sides become graph edges labelled with it,
+    // and a ghost whose image lies elsewhere (on a coincident copy of the edge in an unstitched
+    // S2, or beside it) gives a side with no S2 edge through both ends. Checked before any node
+    // is made, so that a refused preimage leaves nothing behind.
+    for (const auto& c : cs) {
+      if (c.place.kind != PlaceKind::vertex) continue;
+      const Index node = node_at_domain_vertex[c.place.index];
+      if (node == invalid_index) continue;
+      if (nodes[node].kind != BuilderNodeKind::ghost)
+        throw BuilderError(fmt::format(
+            "the preimage of S2 {} {} passes through S1 vertex {}, which is the preimage of S2 "
+            "vertex {}",
+            noun, target_edge, c.place.index, nodes[node].target));
+      const Support<d>& image = nodes[node].image;
+      for (int i = 0; i < image.count; ++i)
+        if (const Index x = image.vertex(*s2, i); x != u && x != v)
+          throw BuilderError(fmt::format(
+              "the preimage of S2 {} {} passes through S1 vertex {}, whose ghost node maps off that {}: "
+              "its image has weight on S2 vertex {}",
+              noun, target_edge, c.place.index, noun, x));
+    }
+
     auto& chain = chain_scratch;
     chain.clear();
     if (from_u) chain.push_back(a);
@@ -513,14 +536,8 @@ struct MapBuilder<d>::Impl {
       Index node;
       if (p.kind == PlaceKind::vertex) {
         node = node_at_domain_vertex[p.index];
-        if (node == invalid_index) {
+        if (node == invalid_index)  // (an existing node was checked above)
           node = new_node(p, BuilderNodeKind::ghost, invalid_index, edge_support(target_edge, tau));
-        } else if (nodes[node].kind != BuilderNodeKind::ghost) {
-          throw BuilderError(fmt::format(
-              "the preimage of S2 {} {} passes through S1 vertex {}, which is the preimage of S2 "
-              "vertex {}",
-              noun, target_edge, p.index, nodes[node].target));
-        }
       } else {
         node = new_node(p, BuilderNodeKind::intersection, target_edge, edge_support(target_edge, tau));
       }

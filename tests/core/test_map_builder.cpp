@@ -3,12 +3,15 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/map_builder.hpp>
 #include <plmap/core/regions.hpp>
+#include <plmap/verify/check.hpp>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
+#include <vector>
 
 using namespace plmap;
 
@@ -574,4 +577,94 @@ TEST(MapBuilder, AFaceMappedAgainstTheMapsOrientationIsNotARegionAndIsCounted) {
   EXPECT_EQ(m.data().region_target[0], 0);
   EXPECT_EQ(m.data().region_target[1], 2);
   EXPECT_NEAR(covered_measure(m).target, 1.0, 1e-15);  // two of the three S2 triangles
+}
+
+namespace {
+
+// S2 over the single S1 triangle (0,0), (1,0), (0,1): its corners 0, 1, 2 and an inner triangle
+// 3, 4, 5 joined to them by six triangles (the inner one only `with_inner`, else S2 has a hole
+// there). Every vertex maps to its own position; `missing` S2 edges are not inserted.
+PlMap<2> annulus_over_one_triangle(bool with_inner, const std::vector<std::array<Index, 2>>& missing,
+                                   FinalizeReport& report) {
+  auto s1 = make_surface({P(0, 0), P(1, 0), P(0, 1)}, {{0, 1, 2}});
+  const std::vector<WorldPoint<2>> v = {P(0, 0), P(1, 0), P(0, 1), P(0.2, 0.2), P(0.5, 0.2), P(0.2, 0.5)};
+  std::vector<ElementCorners<2>> e = {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+  if (with_inner) e.push_back({3, 4, 5});
+  auto s2 = make_surface(v, std::move(e));
+  MapBuilder<2> b(s1, s2);
+  for (Index q = 0; q < 3; ++q) b.add_vertex_preimage_at_vertex(q, q);
+  for (Index q = 3; q < 6; ++q) b.add_vertex_preimage(q, {0, LocalPoint<2>(v[q].x(), v[q].y())});
+  for (Index k = 0; k < s2->edge_count(); ++k)
+    if (std::none_of(missing.begin(), missing.end(),
+                     [&](const std::array<Index, 2>& ends) { return s2->find_edge(ends[0], ends[1]) == k; }))
+      b.add_edge(k);
+  return std::move(b).finalize(&report);
+}
+
+std::string violations_of(const PlMap<2>& map) {
+  std::string text;
+  for (const auto& check : verify(map).checks)
+    for (const auto& v : check.violations) text += check.name + "/" + v.rule + ": " + v.message + "\n";
+  return text;
+}
+
+}  // namespace
+
+// A face left out of D that lies strictly inside its element, whose boundary the regions cover
+// (an S2 edge between S2 vertices inside the element is missing: the quadrilateral 0-4-5-3
+// touches the element boundary only at a corner), would leave a hole that verify rejects
+// (region_tiling: a fully covered element must be covered entirely). The element leaves D whole,
+// as remove_faces clears an element whose removed face lies strictly inside it. Normal projection
+// of a coarse copy onto the fine bones mesh wrote such maps.
+TEST(MapBuilder, AnUnmappedFaceStrictlyInsideAFullyCoveredElementTakesTheElement) {
+  FinalizeReport report;
+  const PlMap<2> m = annulus_over_one_triangle(true, {{3, 4}}, report);
+  EXPECT_EQ(report.unmapped_faces, 1);
+  EXPECT_EQ(m.region_count(), 0);
+  EXPECT_EQ(covered_measure(m).domain, 0.0);
+  EXPECT_EQ(count_type(m, NodeType::interior), 3);  // the graph stays
+  EXPECT_EQ(violations_of(m), "");
+}
+
+// The same gap where S2 has a hole (no inner triangle) is D's hole, not a missing region: the
+// element keeps the six regions around it.
+TEST(MapBuilder, AHoleOfS2StrictlyInsideAnElementKeepsTheRegionsAroundIt) {
+  FinalizeReport report;
+  const PlMap<2> m = annulus_over_one_triangle(false, {}, report);
+  EXPECT_EQ(report.unmapped_faces, 1);
+  EXPECT_EQ(m.region_count(), 6);
+  EXPECT_NEAR(covered_measure(m).domain, 0.5 - 0.045, 1e-15);
+  EXPECT_EQ(violations_of(m), "");
+}
+
+// A gap that reaches the element boundary (without the S2 edge 0-4, the face 0-1-4-3 has the
+// side 0-1 on it) leaves the other regions.
+TEST(MapBuilder, AnUnmappedFaceOnTheElementBoundaryLeavesTheOtherRegions) {
+  FinalizeReport report;
+  const PlMap<2> m = annulus_over_one_triangle(true, {{0, 4}}, report);
+  EXPECT_EQ(report.unmapped_faces, 1);
+  EXPECT_EQ(m.region_count(), 5);
+  EXPECT_EQ(violations_of(m), "");
+}
+
+// A preimage through an S1 vertex whose ghost node (a ray hit) maps off the S2 edge would make
+// graph edges labelled with that edge whose ends lie on no common S2 edge (verify's
+// unlabelled_target_edge). Normal projection of boeing.off onto itself wrote such maps: its
+// patches are not stitched, and a vertex's ray hit lies on a coincident copy of the edge. The
+// builder refuses the preimage, before it has made any of its nodes.
+TEST(MapBuilder, APreimageThroughAGhostNodeThatMapsOffTheEdgeIsRefused) {
+  auto s1 = square_diag02();  // triangles (0, 1, 2) and (0, 2, 3)
+  // S2 element 0 = (0, 1, 2) holds the edge; element 1, apart, the ghost's image
+  auto s2 = make_surface({P(0, 0), P(1, 0), P(0, 1), P(3, 0), P(4, 0), P(3, 1)}, {{0, 1, 2}, {3, 4, 5}});
+  MapBuilder<2> b(s1, s2);
+  b.add_vertex_preimage(0, {1, LocalPoint<2>(0.2, 0.5)});  // inside S1 triangle (0, 2, 3)
+  b.add_vertex_preimage(1, {0, LocalPoint<2>(0.5, 0.2)});  // inside S1 triangle (0, 1, 2)
+  b.add_ghost_node(0, {1, LocalPoint<2>(0.2, 0.2)});
+  // S2 edge 0-1 passes S1 vertex 0, the start of S1 edge 0-2
+  const EdgeCrossing through_vertex{s1->find_edge(0, 2), 0.0};
+  EXPECT_THROW(b.add_edge(s2->find_edge(0, 1), std::span(&through_vertex, 1)), BuilderError);
+  const PlMap<2> m = std::move(b).finalize();
+  EXPECT_EQ(count_type(m, NodeType::ghost), 2);  // one copy per S1 triangle at vertex 0
+  EXPECT_EQ(count_type(m, NodeType::intersection), 0);
+  EXPECT_EQ(violations_of(m), "");
 }

@@ -68,7 +68,9 @@ struct FinalizeReport {
   /// Faces of the graph (d = 2) with every corner of theirs inside D's reach, whose nodes map
   /// into no one S2 element: the preimage of an S2 edge that would split them is missing (a walk
   /// stopped or left it out), so they are not regions and D has a hole there. 0 in a map whose
-  /// graph is complete.
+  /// graph is complete. Where reversed or unmapped faces would leave a hole strictly inside an
+  /// element whose boundary the regions cover (not a hole of S2), the whole element leaves D:
+  /// such an element must be covered entirely (verify's region_tiling, face_removal.hpp).
   Index unmapped_faces = 0;
 };
 
