@@ -7,6 +7,7 @@
 #include "simplify_ranking_estimate.hpp"
 
 #include <plmap/core/errors.hpp>
+#include <plmap/core/predicates.hpp>
 #include <plmap/strategies/simplification/simplification_registry.hpp>
 
 #include <fmt/format.h>
@@ -51,6 +52,7 @@ struct Attempt {
   VertexRemovalPlan plan;
   OracleVerdict verdict;
   std::string refusal;  // empty if admissible
+  bool perturbed = false;  ///< planned on a perturbed flattening (Simplifier::perturb)
 };
 
 class Simplifier {
@@ -107,6 +109,7 @@ class Simplifier {
     last_refusal_.assign(s.vertex_count(), {});
     prepared_.resize(static_cast<std::size_t>(s.vertex_count()));
     new_edges_.assign(s.vertex_count(), 0);
+    perturbed_preimage_.assign(s.vertex_count(), 0);
   }
 
   Index feature_edge_count() const { return feature_edge_count_; }
@@ -138,6 +141,7 @@ class Simplifier {
       hole.has_full_plan = false;
       if (map_.refresh_plan(hole.full_plan)) {
         a.plan = std::move(hole.full_plan);
+        a.perturbed = hole.perturbed;
         return judge(std::move(a));
       }
       give_back(std::move(hole.full_plan));
@@ -159,6 +163,7 @@ class Simplifier {
       }
       a.plan = map_.plan_vertex_removal(v, std::span(&hole.sheet, 1), std::span(&hole.flat, 1),
                                         std::span(&hole.triangles, 1), extent, std::move(a.plan));
+      a.perturbed = hole.perturbed;
       return judge(std::move(a));
     }
     hole.sheet.ring.clear();
@@ -178,26 +183,18 @@ class Simplifier {
       return a;
     }
     // Diagonals through a node of the star (common in regular meshes, whose stars are
-    // symmetric) are avoided by triangulating again without them.
+    // symmetric) are avoided by triangulating again without them; where every triangulation
+    // has one (a flat regular grid, coarsened far: its nodes lie on every straight line between
+    // grid points, and v itself on the line between opposite ring vertices), the flattening is
+    // perturbed once and the hole planned again.
     std::vector<StarSheet> sheet{StarSheet{std::move(ring), true}};
     std::vector<std::vector<Eigen::Vector2d>> flats{std::move(*flat)};
-    std::vector<std::array<int, 2>> avoided;
-    const DiagonalAllowed allowed = [&](int i, int j) {
-      const std::array<int, 2> key{std::min(i, j), std::max(i, j)};
-      const std::vector<Index>& r = sheet[0].ring;
-      return std::find(avoided.begin(), avoided.end(), key) == avoided.end() && !map_.has_edge(r[i], r[j]);
-    };
     std::vector<HoleTriangles> triangles(1);
-    for (std::size_t tries = 0; tries < sheet[0].ring.size(); ++tries) {
-      auto t = triangulate_(flats[0], allowed);
-      if (!t) {
-        a.refusal = to_string(RemovalRefusal::no_triangulation);
-        return a;
-      }
-      triangles[0] = std::move(*t);
-      a.plan = map_.plan_vertex_removal(v, sheet, flats, triangles, extent, std::move(a.plan));
-      if (a.plan.refusal != RemovalRefusal::node_on_new_edge || a.plan.blocking_diagonal[0] < 0) break;
-      avoided.push_back(a.plan.blocking_diagonal);
+    HolePlanning planning = plan_avoiding_nodes(v, sheet, flats, triangles, extent, a);
+    if (blocked_by_a_node(a, planning)) planning = plan_on_perturbed_flattening(v, sheet, flats, triangles, extent, a, planning);
+    if (planning != HolePlanning::planned) {
+      a.refusal = to_string(RemovalRefusal::no_triangulation);
+      return a;
     }
     a = judge(std::move(a));
     if (a.refusal.empty()) {
@@ -206,6 +203,7 @@ class Simplifier {
       hole.triangles = std::move(triangles[0]);
       hole.stamp = stamp_[v];
       hole.new_edge_count = new_edges_at(hole.sheet.ring);
+      hole.perturbed = a.perturbed;
     }
     return a;
   }
@@ -222,6 +220,7 @@ class Simplifier {
     StarSheet sheet;                   ///< empty ring: nothing kept
     std::vector<Eigen::Vector2d> flat;
     HoleTriangles triangles;
+    bool perturbed = false;            ///< flat is a perturbed flattening
     bool has_full_plan = false;        ///< full_plan holds the full plan made when v was queued again
     VertexRemovalPlan full_plan;
   };
@@ -257,9 +256,26 @@ class Simplifier {
       }
       flat.push_back(std::move(*f));
     }
-    // Diagonals through a node of a sheet are avoided by triangulating that sheet again.
+    // Diagonals through a node of a sheet are avoided by triangulating that sheet again, and a
+    // flattening perturbed once where that is not enough (as for a closed star).
+    std::vector<HoleTriangles> triangles(sheets.size());
+    HolePlanning planning = plan_avoiding_nodes(v, sheets, flat, triangles, extent, a);
+    if (blocked_by_a_node(a, planning)) planning = plan_on_perturbed_flattening(v, sheets, flat, triangles, extent, a, planning);
+    if (planning != HolePlanning::planned) {
+      a.refusal = to_string(RemovalRefusal::no_triangulation);
+      return a;
+    }
+    return judge(std::move(a));
+  }
+
+  /// Triangulates every sheet's hole and plans the removal of v into a.plan. A diagonal that
+  /// the plan finds through a vertex preimage (node_on_new_edge) or along an S2 edge's preimage
+  /// (edge_along_new_edge) is avoided and its sheet triangulated again, at most once per ring
+  /// vertex.
+  enum class HolePlanning { planned, no_triangulation, no_triangulation_left };
+  HolePlanning plan_avoiding_nodes(Index v, const std::vector<StarSheet>& sheets, const std::vector<std::vector<Eigen::Vector2d>>& flats,
+                           std::vector<HoleTriangles>& triangles, PlanExtent extent, Attempt& a) const {
     std::vector<std::array<int, 3>> avoided;  // sheet, i, j
-    std::vector<std::vector<std::array<int, 3>>> triangles(sheets.size());
     std::size_t budget = 0;
     for (const StarSheet& sheet : sheets) budget += sheet.ring.size();
     for (std::size_t tries = 0; tries < budget; ++tries) {
@@ -270,18 +286,79 @@ class Simplifier {
           const std::array<int, 3> key{sheet, std::min(i, j), std::max(i, j)};
           return std::find(avoided.begin(), avoided.end(), key) == avoided.end() && !map_.has_edge(ring[i], ring[j]);
         };
-        auto t = triangulate_(flat[g], allowed);
-        if (!t) {
-          a.refusal = to_string(RemovalRefusal::no_triangulation);
-          return a;
-        }
+        auto t = triangulate_(flats[g], allowed);
+        if (!t) return avoided.empty() ? HolePlanning::no_triangulation : HolePlanning::no_triangulation_left;
         triangles[g] = std::move(*t);
       }
-      a.plan = map_.plan_vertex_removal(v, sheets, flat, triangles, extent);
-      if (a.plan.refusal != RemovalRefusal::node_on_new_edge || a.plan.blocking_diagonal[0] < 0) break;
+      a.plan = map_.plan_vertex_removal(v, sheets, flats, triangles, extent, std::move(a.plan));
+      const bool blocked = a.plan.refusal == RemovalRefusal::node_on_new_edge ||
+                           a.plan.refusal == RemovalRefusal::edge_along_new_edge;
+      if (!blocked || a.plan.blocking_diagonal[0] < 0) break;
       avoided.push_back({a.plan.blocking_sheet, a.plan.blocking_diagonal[0], a.plan.blocking_diagonal[1]});
     }
-    return judge(std::move(a));
+    return HolePlanning::planned;
+  }
+
+  /// Whether planning stopped at a vertex preimage on a new edge: refused for it, or left without
+  /// a triangulation after avoiding diagonals through preimages.
+  static bool blocked_by_a_node(const Attempt& a, HolePlanning planning) {
+    return planning == HolePlanning::planned ? a.plan.refusal == RemovalRefusal::node_on_new_edge
+                                             : planning == HolePlanning::no_triangulation_left;
+  }
+
+  /// Plans v's removal again (as plan_avoiding_nodes) on the sheets' flattenings perturbed
+  /// (perturb), which then replace `flats`; judge() checks such a plan further.
+  /// `before` is returned, and a.plan left as it is, if a flattening cannot be perturbed.
+  HolePlanning plan_on_perturbed_flattening(Index v, const std::vector<StarSheet>& sheets,
+                                            std::vector<std::vector<Eigen::Vector2d>>& flats,
+                                            std::vector<HoleTriangles>& triangles, PlanExtent extent, Attempt& a,
+                                            HolePlanning before) const {
+    std::vector<std::vector<Eigen::Vector2d>> perturbed = flats;
+    for (std::size_t g = 0; g < sheets.size(); ++g)
+      if (!perturb(perturbed[g], sheets[g].ring, !sheets[g].closed)) return before;
+    const HolePlanning planning = plan_avoiding_nodes(v, sheets, perturbed, triangles, extent, a);
+    a.perturbed = true;
+    flats = std::move(perturbed);
+    return planning;
+  }
+
+  /// Whether the plan reshapes the preimage of an S2 triangle with a corner that a perturbed
+  /// plan placed (it relocates a corner of such a triangle).
+  bool moves_perturbed_preimage(const VertexRemovalPlan& plan) const {
+    if (!any_perturbed_) return false;
+    const Surface<2>& t2 = map_.target();
+    for (const auto& r : plan.relocations)
+      for (Index e : t2.vertex_elements(r.target_vertex))
+        for (Index w : t2.element(e))
+          if (perturbed_preimage_[static_cast<std::size_t>(w)]) return true;
+    return false;
+  }
+  static constexpr double min_perturbed_shape_ratio = 1e-3;
+
+  /// Moves each ring vertex of a flattened star (v at the origin) by a relative step of at most
+  /// 1e-5, along its ray from the origin and across it, fixed per S2 vertex (golden-ratio
+  /// sequences of its index), except, with keep_ends, the first and last (the ends of a feature
+  /// line, which every sheet must place alike). Straight lines between ring vertices then no
+  /// longer pass through v or through the nodes that a regular grid puts exactly on them. Left
+  /// as it was (false) if a fan triangle would lose its orientation: then it is no flattening.
+  static bool perturb(std::vector<Eigen::Vector2d>& flat, const std::vector<Index>& ring, bool keep_ends) {
+    constexpr double golden = 0.6180339887498949, silver = 0.4142135623730951, spread = 1e-5;
+    std::vector<Eigen::Vector2d> moved = flat;
+    for (std::size_t i = 0; i < moved.size(); ++i) {
+      if (keep_ends && (i == 0 || i + 1 == moved.size())) continue;
+      const double u = static_cast<double>(ring[i]) * golden, w = static_cast<double>(ring[i]) * silver;
+      const double radial = spread * (u - std::floor(u) - 0.5), turn = spread * (w - std::floor(w) - 0.5);
+      const Eigen::Vector2d p = moved[i];
+      moved[i] = (1.0 + radial) * (p + turn * Eigen::Vector2d(-p.y(), p.x()));
+    }
+    const std::size_t fans = keep_ends ? moved.size() - 1 : moved.size();
+    for (std::size_t i = 0; i < fans; ++i) {
+      const Eigen::Vector2d& a = moved[i];
+      const Eigen::Vector2d& b = moved[(i + 1) % moved.size()];
+      if (orient2d(Eigen::Vector2d::Zero(), a, b) <= 0) return false;
+    }
+    flat = std::move(moved);
+    return true;
   }
 
   /// Refusal by the planner, the error bound, or the oracles.
@@ -292,6 +369,15 @@ class Simplifier {
     }
     if (a.plan.max_node_distance > options_.max_error) {
       a.refusal = "max_error";
+      return a;
+    }
+    // A perturbed flattening, and every later step that moves a preimage placed by one, may
+    // make positive what is exactly degenerate without the perturbation (three preimages of an
+    // S2 triangle on one line, which the exact tests refuse): such steps must not flatten an S2
+    // triangle's preimage far below its own shape, or the map is ill-conditioned there.
+    if ((a.perturbed || moves_perturbed_preimage(a.plan)) &&
+        map_.smallest_preimage_shape_ratio(a.plan) < min_perturbed_shape_ratio) {
+      a.refusal = "flattened_preimage";
       return a;
     }
     a.verdict = options_.oracles.evaluate({map_, a.plan, length_scale_});
@@ -387,6 +473,10 @@ class Simplifier {
         continue;
       }
       map_.apply(a.plan);
+      if (a.perturbed) {
+        any_perturbed_ = true;
+        for (const auto& r : a.plan.relocations) perturbed_preimage_[static_cast<std::size_t>(r.target_vertex)] = 1;
+      }
       options_.oracles.on_applied(map_, a.plan);
       if (estimated_) estimate_.on_applied(a.plan);
       join_line_neighbours(top.vertex);
@@ -484,6 +574,9 @@ class Simplifier {
   std::vector<std::uint32_t> stamp_;
   std::vector<std::string> last_refusal_;
   std::vector<PreparedHole> prepared_;  ///< per vertex, from its latest ranking
+  /// Per S2 vertex: its preimage was placed by a plan on a perturbed flattening (judge()).
+  std::vector<char> perturbed_preimage_;
+  bool any_perturbed_ = false;
   std::vector<std::uint32_t> new_edges_;  ///< per vertex, how many removals gave it new S1 edges (or might have)
   /// Plans no longer needed, whose buffers the next plans reuse (a plan kept for a queued vertex
   /// comes back here when the vertex is ranked again).

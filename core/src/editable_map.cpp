@@ -87,6 +87,43 @@ const std::array<Index, 3>& EditableMap::triangle(Index t) const { return impl_-
 bool EditableMap::has_edge(Index a, Index b) const { return impl_->has_edge(a, b); }
 const Eigen::Vector3d& EditableMap::position(Index v) const { return impl_->target->vertex(v); }
 
+double EditableMap::smallest_preimage_shape_ratio(const VertexRemovalPlan& plan) const {
+  const Impl& s = *impl_;
+  const Surface<2>& t2 = *s.target;
+  // Where the preimage of S2 vertex w lies in space: as the plan moves it, or as it is now.
+  auto preimage = [&](Index w) -> Eigen::Vector3d {
+    for (const auto& r : plan.relocations) {
+      if (r.target_vertex != w) continue;
+      if (r.new_triangle < 0)
+        return (1.0 - r.edge_parameter) * t2.vertex(plan.line_edge[0]) + r.edge_parameter * t2.vertex(plan.line_edge[1]);
+      const auto& c = plan.new_triangles[static_cast<std::size_t>(r.new_triangle)];
+      return r.barycentric(0) * t2.vertex(c[0]) + r.barycentric(1) * t2.vertex(c[1]) + r.barycentric(2) * t2.vertex(c[2]);
+    }
+    if (s.vertex_live[w]) return t2.vertex(w);
+    if (s.on_edge(w)) {
+      const auto e = s.preimage_edge[w];
+      const double u = s.preimage_edge_parameter[w];
+      return (1.0 - u) * t2.vertex(e[0]) + u * t2.vertex(e[1]);
+    }
+    const auto& c = s.triangles[s.preimage_triangle[w]];
+    const Eigen::Vector3d& b = s.preimage_barycentric[w];
+    return b(0) * t2.vertex(c[0]) + b(1) * t2.vertex(c[1]) + b(2) * t2.vertex(c[2]);
+  };
+  auto shape = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    const double sides = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
+    return sides > 0.0 ? 2.0 * std::sqrt(3.0) * (b - a).cross(c - a).norm() / sides : 0.0;
+  };
+  double smallest = 1.0;
+  for (const auto& r : plan.relocations)
+    for (Index e : t2.vertex_elements(r.target_vertex)) {
+      const auto& c = t2.element(e);
+      const double own = shape(t2.vertex(c[0]), t2.vertex(c[1]), t2.vertex(c[2]));
+      if (own <= 0.0) continue;
+      smallest = std::min(smallest, shape(preimage(c[0]), preimage(c[1]), preimage(c[2])) / own);
+    }
+  return smallest;
+}
+
 std::vector<Index> EditableMap::closed_ring(Index v) const {
   const Impl& s = *impl_;
   const auto& star = s.vertex_triangles[v];

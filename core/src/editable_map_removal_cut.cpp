@@ -166,7 +166,10 @@ RemovalRefusal EditableMap::RemovalPlanning::cut_run(Index e, const EdgePolyline
   // The straight piece from `previous` to `to`, in the new triangle that holds its middle;
   // false if it would run along a new edge or its middle is on one.
   auto emit_piece_to = [&](const PlanarPoint& to) -> bool {
-    if (shares_an_edge(previous, to)) return false;
+    if (shares_an_edge(previous, to)) {
+      if (previous.corner != invalid_index && to.corner != invalid_index) name_diagonal(g, previous.corner, to.corner);
+      return false;
+    }
     Vec2 mid = 0.5 * (previous.position + to.position);
     const auto [n, min_coordinate] = locate(g, mid, nullptr);
     if (n < 0 || !(min_coordinate > 0.0)) return false;
@@ -181,7 +184,10 @@ RemovalRefusal EditableMap::RemovalPlanning::cut_run(Index e, const EdgePolyline
     for (const Cut& cut : scratch.cuts) {
       const int di = sh.diagonals[cut.diagonal][0], dj = sh.diagonals[cut.diagonal][1];
       const std::array<Index, 2> key = sorted_pair(ring[di], ring[dj]);
-      if (key == previous_diagonal) return RemovalRefusal::edge_along_new_edge;
+      if (key == previous_diagonal) {
+        name_diagonal(g, key[0], key[1]);
+        return RemovalRefusal::edge_along_new_edge;
+      }
       const double t_on_edge = ring[di] < ring[dj] ? cut.parameter : 1.0 - cut.parameter;
       PlanarPoint crossing;
       crossing.position = (1.0 - cut.parameter) * sh.flat[di] + cut.parameter * sh.flat[dj];
@@ -251,7 +257,7 @@ RemovalRefusal EditableMap::RemovalPlanning::find_cuts(int g, const PlanarPoint&
     const int o1 = orient2d(from, to, d0), o2 = orient2d(from, to, d1);
     const int o3 = orient2d(d0, d1, from), o4 = orient2d(d0, d1, to);
     if (o1 == 0 || o2 == 0 || o3 == 0 || o4 == 0) {
-      if (segments_cross_properly(from, to, d0, d1)) return RemovalRefusal::edge_along_new_edge;
+      if (segments_cross_properly(from, to, d0, d1)) return along_diagonal(g, d);
       continue;
     }
     if (o1 == o2 || o3 == o4) continue;
@@ -260,7 +266,7 @@ RemovalRefusal EditableMap::RemovalPlanning::find_cuts(int g, const PlanarPoint&
     const Vec2 w = d0 - from;
     const double along = (w.x() * q.y() - w.y() * q.x()) / denom;
     const double parameter = (w.x() * r.y() - w.y() * r.x()) / denom;
-    if (!(parameter > clearance && parameter < 1.0 - clearance)) return RemovalRefusal::edge_along_new_edge;
+    if (!(parameter > clearance && parameter < 1.0 - clearance)) return along_diagonal(g, d);
     cuts.push_back({std::clamp(along, 0.0, 1.0), d, parameter});
   }
   std::sort(cuts.begin(), cuts.end(), [](const Cut& x, const Cut& y) { return x.along < y.along; });
@@ -314,6 +320,22 @@ std::array<Index, 2> EditableMap::RemovalPlanning::common_edge(Index w1, Index w
   if (e1 && c2) return s.preimage_edge[w1][0] == w2 || s.preimage_edge[w1][1] == w2 ? s.preimage_edge[w1] : none;
   if (e1 && e2) return s.preimage_edge[w1] == s.preimage_edge[w2] ? s.preimage_edge[w1] : none;
   return none;
+}
+
+/// Names the S1 edge a-b as the plan's blocking diagonal if it is a diagonal of sheet g (not an
+/// edge of its polygon): the caller may triangulate the sheet again without it.
+void EditableMap::RemovalPlanning::name_diagonal(int g, Index a, Index b) {
+  const int i = sheets[g].ring_index(a), j = sheets[g].ring_index(b);
+  if (i < 0 || j < 0 || sheets[g].adjacent(i, j)) return;
+  plan.blocking_diagonal = {std::min(i, j), std::max(i, j)};
+  plan.blocking_sheet = g;
+}
+
+/// Refuses a segment that would pass through an end of diagonal d of sheet g, naming d.
+RemovalRefusal EditableMap::RemovalPlanning::along_diagonal(int g, int d) {
+  plan.blocking_diagonal = sheets[g].diagonals[d];
+  plan.blocking_sheet = g;
+  return RemovalRefusal::edge_along_new_edge;
 }
 
 /// The new triangle of sheet g with corners a and b, or -1.

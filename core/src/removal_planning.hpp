@@ -189,6 +189,8 @@ struct EditableMap::RemovalPlanning {
   bool vertex_point(int g, Index w, removal::PlanarPoint& q) const;
   std::array<Index, 2> common_edge(Index w1, Index w2) const;
   int new_triangle_with(int g, Index a, Index b) const;
+  void name_diagonal(int g, Index a, Index b);
+  RemovalRefusal along_diagonal(int g, int d);
   // editable_map_removal_check.cpp: straightened pieces in one new triangle do not meet
   RemovalRefusal check_pieces();
 

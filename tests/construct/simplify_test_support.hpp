@@ -3,6 +3,7 @@
 // one preimage, the region images tile S2 by measure, and the features of S2 are kept.
 
 #include <plmap/construct/simplify.hpp>
+#include <plmap/verify/check.hpp>
 
 #include <Eigen/Geometry>
 
@@ -109,6 +110,32 @@ inline std::string lost_features(const PlMap<2>& map, double feature_angle) {
     }
     if (corner && !at_corner[w]) out += " corner" + std::to_string(w);
   }
+  return out;
+}
+
+/// The refusals that left the run's remaining vertices, as " reason:count" pairs (for messages).
+inline std::string skipped_reasons(const SimplifyReport& r) {
+  std::string out;
+  for (const auto& [why, count] : r.skipped_by_reason) out += " " + why + ":" + std::to_string(count);
+  return out;
+}
+
+/// What keeps a simplification's map from being a parametrization that keeps S2's features, as
+/// text, empty if nothing does: verify() as a parametrization, S2 vertices without exactly one
+/// preimage, region images that do not tile S2's measure (within area_tolerance of it,
+/// relative), and features of S2 that S1 lost.
+inline std::string parametrization_problems(const SimplifyResult& result, double feature_angle,
+                                            double area_tolerance = 1e-9) {
+  std::string out;
+  VerifyOptions v;
+  v.expect_parametrization = true;
+  const VerificationReport report = verify(result.map, v);
+  if (!report.ok()) out += " verify: " + summary(report);
+  if (const std::string w = vertices_without_one_preimage(result.map); !w.empty()) out += " preimages:" + w;
+  const double area = result.map.target().measure(), covered = image_area(result.map);
+  if (std::abs(covered - area) > area_tolerance * area)
+    out += " image area " + std::to_string(covered) + " of " + std::to_string(area);
+  if (const std::string f = lost_features(result.map, feature_angle); !f.empty()) out += " lost features:" + f;
   return out;
 }
 

@@ -165,7 +165,8 @@ struct VertexRemovalPlan {
   std::uint64_t bound_generation = 0;
 
   /// For node_on_new_edge: the diagonal (ring indices of sheet blocking_sheet) the node would
-  /// lie on, if it is one; a caller may re-triangulate that sheet without it.
+  /// lie on, if it is one; for edge_along_new_edge: the diagonal an S2 edge's preimage would run
+  /// along, if it is one. A caller may re-triangulate that sheet without it.
   std::array<int, 2> blocking_diagonal{-1, -1};
   int blocking_sheet = -1;
 
@@ -247,6 +248,14 @@ class EditableMap {
   /// A simplifier that queues a vertex again after planning it fully keeps the plan for the
   /// next time the vertex comes up (a third of the full plans on CGAL's femur).
   bool refresh_plan(VertexRemovalPlan& plan) const;
+
+  /// How much an accepted plan flattens the preimages of the S2 triangles at the vertex
+  /// preimages it relocates: the smallest ratio, over those triangles, of the preimage's shape to
+  /// the triangle's own (shape: 4 sqrt(3) area over the sum of squared sides, 1 for equilateral,
+  /// 0 for degenerate), with the preimages where the plan puts them. 1 if it relocates nothing.
+  /// A simplifier that perturbs a flattening to get past an exactly degenerate configuration
+  /// checks with it that the plan did not just make that degeneracy slightly positive.
+  double smallest_preimage_shape_ratio(const VertexRemovalPlan& plan) const;
 
   /// The S1 surface of the current state (live vertices renumbered in increasing order, live
   /// triangles) and, for each of its vertices, the S2 vertex it is.
