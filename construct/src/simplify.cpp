@@ -374,8 +374,10 @@ class Simplifier {
     // A perturbed flattening, and every later step that moves a preimage placed by one, may
     // make positive what is exactly degenerate without the perturbation (three preimages of an
     // S2 triangle on one line, which the exact tests refuse): such steps must not flatten an S2
-    // triangle's preimage far below its own shape, or the map is ill-conditioned there.
-    if ((a.perturbed || moves_perturbed_preimage(a.plan)) &&
+    // triangle's preimage far below its own shape, or the map is ill-conditioned there. Checked
+    // for the full plan only (a ranking bound relocates the same preimages, but late stars hold
+    // thousands of them and are ranked again after every removal next to them).
+    if (a.plan.extent == PlanExtent::full && (a.perturbed || moves_perturbed_preimage(a.plan)) &&
         map_.smallest_preimage_shape_ratio(a.plan) < min_perturbed_shape_ratio) {
       a.refusal = "flattened_preimage";
       return a;

@@ -90,10 +90,16 @@ const Eigen::Vector3d& EditableMap::position(Index v) const { return impl_->targ
 double EditableMap::smallest_preimage_shape_ratio(const VertexRemovalPlan& plan) const {
   const Impl& s = *impl_;
   const Surface<2>& t2 = *s.target;
+  // The plan's relocations by S2 vertex, for the lookups below (a late star relocates thousands).
+  std::vector<std::pair<Index, std::size_t>> moved;
+  moved.reserve(plan.relocations.size());
+  for (std::size_t i = 0; i < plan.relocations.size(); ++i) moved.emplace_back(plan.relocations[i].target_vertex, i);
+  std::sort(moved.begin(), moved.end());
   // Where the preimage of S2 vertex w lies in space: as the plan moves it, or as it is now.
   auto preimage = [&](Index w) -> Eigen::Vector3d {
-    for (const auto& r : plan.relocations) {
-      if (r.target_vertex != w) continue;
+    const auto at = std::lower_bound(moved.begin(), moved.end(), std::pair<Index, std::size_t>{w, 0});
+    if (at != moved.end() && at->first == w) {
+      const auto& r = plan.relocations[at->second];
       if (r.new_triangle < 0)
         return (1.0 - r.edge_parameter) * t2.vertex(plan.line_edge[0]) + r.edge_parameter * t2.vertex(plan.line_edge[1]);
       const auto& c = plan.new_triangles[static_cast<std::size_t>(r.new_triangle)];
