@@ -115,9 +115,9 @@ using BuilderNodes = BuilderArray<BuilderNode<d>>;
 template <int d>  // segments are the same for both dimensions; d keeps the builder's names uniform
 using BuilderSegments = BuilderArray<Segment>;
 
-/// MapBuilder's record of an S2 edge (d = 2) or S2 element (d = 1) whose preimage is not in the
-/// map (the other values say how it was inserted).
-inline constexpr char edge_not_inserted = 0;
+/// MapBuilder's record per S2 edge (d = 2) or S2 element (d = 1) of how its preimage is in the
+/// map: not at all, whole, in pieces (a walk stopped somewhere along it), or outside the domain.
+inline constexpr char edge_not_inserted = 0, edge_complete = 1, edge_partial = 2, edge_outside_domain = 3;
 
 /// What finalize() reads of the builder (and the little it changes: the nodes and segments are
 /// released once every element is closed, and dropped S2 edges are marked as not inserted).

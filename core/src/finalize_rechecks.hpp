@@ -6,6 +6,7 @@
 // finds the same failures as closing every element. Private to the builder.
 
 #include "builder_nodes.hpp"
+#include "finalize_phases.hpp"
 
 #include <span>
 #include <vector>
@@ -17,5 +18,14 @@ namespace plmap::detail {
 /// `failed`, sorted, each once. Every element when whole S2 edges were dropped.
 std::vector<Index> elements_to_close_again(const BuilderContents<2>& in, const DroppedEdges::Changes& changes,
                                            std::span<const Index> failed);
+
+/// The elements that hold, inside or along an edge, a segment of a rim edge or of a partly
+/// inserted S2 edge one of whose pieces ends inside S1 (not at a vertex preimage or on S1's
+/// boundary), sorted, each once, except those `reuse` copies (may be null). Preimages conflict
+/// (an element whose graph cannot be closed) where the projection folds or overlaps, which is
+/// where walks stop: on the femur and bones pairs every element that failed was one of these.
+/// finalize closes their graphs before the first full pass, so that the pass meets no failure;
+/// an element outside them that fails is still found by the pass.
+std::vector<Index> elements_next_to_partial_preimages(const BuilderContents<2>& in, const ElementReuse* reuse);
 
 }  // namespace plmap::detail

@@ -264,7 +264,12 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   const int guess = in.options.orientation != 0 ? in.options.orientation : sampled_orientation(in, where);
   give_freed_heap_back();
   ClosingPass pass(in, where, in.options.threads, reuse);
-  ElementFailures failed = pass.run(guess);
+  // A failure in the full pass makes every later element's graph be closed once more for
+  // nothing (a quarter of the femur pair's projection); the elements where failures arise are
+  // closed first, and the full pass usually meets none (finalize_rechecks.hpp).
+  ElementFailures failed;
+  if (drop) failed = pass.failures_among(elements_next_to_partial_preimages(in, reuse));
+  if (failed.empty()) failed = pass.run(guess);
   for (int round = 0; !failed.empty(); ++round) {
     // failed.front() is the smallest element that failed
     if (!drop || round == 16) std::rethrow_exception(failed.front().second);

@@ -50,7 +50,8 @@ struct MapBuilder<d>::Impl {
   detail::BuilderSegments<d> segments;
   // per S2 edge (d = 2) or S2 element (d = 1): not inserted, inserted whole, or in pieces
   std::vector<char> edge_inserted;
-  static constexpr char edge_complete = 1, edge_partial = 2, edge_outside_domain = 3;
+  static constexpr char edge_complete = detail::edge_complete, edge_partial = detail::edge_partial,
+                        edge_outside_domain = detail::edge_outside_domain;
   // the nodes' and segments' room (reserve_expected_sizes) backed ahead of the appends
   PagesBackedAhead nodes_backing, segments_backing;
 
