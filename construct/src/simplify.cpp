@@ -268,11 +268,14 @@ class Simplifier {
     return judge(std::move(a));
   }
 
+  /// How planning a hole ended: with a plan in a.plan (accepted or refused), without any
+  /// triangulation, or without one left after diagonals were avoided.
+  enum class HolePlanning { planned, no_triangulation, no_triangulation_left };
+
   /// Triangulates every sheet's hole and plans the removal of v into a.plan. A diagonal that
   /// the plan finds through a vertex preimage (node_on_new_edge) or along an S2 edge's preimage
   /// (edge_along_new_edge) is avoided and its sheet triangulated again, at most once per ring
   /// vertex.
-  enum class HolePlanning { planned, no_triangulation, no_triangulation_left };
   HolePlanning plan_avoiding_nodes(Index v, const std::vector<StarSheet>& sheets, const std::vector<std::vector<Eigen::Vector2d>>& flats,
                            std::vector<HoleTriangles>& triangles, PlanExtent extent, Attempt& a) const {
     std::vector<std::array<int, 3>> avoided;  // sheet, i, j
@@ -299,8 +302,9 @@ class Simplifier {
     return HolePlanning::planned;
   }
 
-  /// Whether planning stopped at a vertex preimage on a new edge: refused for it, or left without
-  /// a triangulation after avoiding diagonals through preimages.
+  /// Whether planning stopped at a degeneracy a perturbed flattening may lift: refused for a
+  /// vertex preimage on a new edge, or left without a triangulation after avoiding diagonals
+  /// (through preimages or along S2 edges).
   static bool blocked_by_a_node(const Attempt& a, HolePlanning planning) {
     return planning == HolePlanning::planned ? a.plan.refusal == RemovalRefusal::node_on_new_edge
                                              : planning == HolePlanning::no_triangulation_left;

@@ -1,9 +1,10 @@
 #pragma once
-// finalize(): which S1 elements to close again after conflicting stretches were dropped
-// (BuilderOptions::drop_conflicting_edges). An element's closure depends only on the live nodes
-// and segments inside it and along its edges, so only the elements where something was dropped,
-// and those that failed before, can fail or stop failing in the next round: closing them alone
-// finds the same failures as closing every element. Private to the builder.
+// finalize(): which S1 elements to close first, and which to close again after conflicting
+// stretches were dropped (BuilderOptions::drop_conflicting_edges). An element's closure depends
+// only on the live nodes and segments inside it and along its edges, so only the elements where
+// something was dropped, and those that failed before, can fail or stop failing in the next
+// round: closing them alone finds the same failures as closing every element. Private to the
+// builder.
 
 #include "builder_nodes.hpp"
 #include "finalize_phases.hpp"
