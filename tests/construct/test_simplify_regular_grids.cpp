@@ -100,6 +100,7 @@ RC_GTEST_PROP(SimplifyRegularGrids, EveryStepOnARegularGridKeepsAValidParametriz
   options.feature_angle_degrees = *rc::gen::element(60.0, 180.0);
   options.hole_triangulation = *rc::gen::element(std::string("constrained-delaunay"), std::string("min-max-aspect"));
   options.ranking = *rc::gen::element(std::string("exact"), std::string("estimate"));
+  options.cut = *rc::gen::element(std::string("per-step"), std::string("deferred"));
   const SimplifyResult result = simplify(s2, options);
 
   RC_ASSERT(parametrization_problems(result, options.feature_angle_degrees, 1e-8).empty());
