@@ -93,23 +93,20 @@ TEST(RayCheck, ConcentricCirclesMissNothing) {
 // that point and may lie a rounding step behind S2; a ray cast only from it missed the hit there,
 // and the check counted up to half of a closed surface as "extra" (found by trying the CLI on
 // CGAL's meshes: sphere, elephant, knot1 and others, 0.3-0.5 of S1).
-TEST(RayCheck, ASurfaceProjectedOntoACopyOfItselfIsHitWhereEachRayStarts) {
-  auto s1 = sphere(3, 1.0);
-  auto s2 = std::make_shared<const Surface<2>>(*s1);
-  const auto r = project<2>(s1, s2, {});
-  const auto report = check_against_rays(r.map, rays_along<2>(*s1, {}, 20000));
+template <int d>
+RayCheckReport<d> rays_from_a_copy_of_itself(std::shared_ptr<const Surface<d>> s1) {
+  auto s2 = std::make_shared<const Surface<d>>(*s1);
+  const auto r = project<d>(s1, s2, {});
+  const auto report = check_against_rays(r.map, rays_along<d>(*s1, {}, 20000));
   EXPECT_EQ(report.missed, 0u);
   EXPECT_EQ(report.extra, 0u);
   EXPECT_EQ(report.in_domain_with_hit, report.samples);
-  EXPECT_LT(report.error_max, 1e-9);
+  return report;
+}
 
-  auto c1 = circle(200, 1.0, 0.3);
-  auto c2 = std::make_shared<const Surface<1>>(*c1);
-  const auto rc = project<1>(c1, c2, {});
-  const auto curves = check_against_rays(rc.map, rays_along<1>(*c1, {}, 20000));
-  EXPECT_EQ(curves.missed, 0u);
-  EXPECT_EQ(curves.extra, 0u);
-  EXPECT_EQ(curves.in_domain_with_hit, curves.samples);
+TEST(RayCheck, ASurfaceProjectedOntoACopyOfItselfIsHitWhereEachRayStarts) {
+  EXPECT_LT(rays_from_a_copy_of_itself<2>(sphere(3, 1.0)).error_max, 1e-9);
+  rays_from_a_copy_of_itself<1>(circle(200, 1.0, 0.3));
 }
 
 TEST(RayCheck, AreaLeftOutByADistanceLimitIsMissed) {
