@@ -17,6 +17,7 @@
 #include <numbers>
 #include <optional>
 #include <queue>
+#include <unordered_set>
 
 namespace plmap {
 
@@ -86,6 +87,7 @@ class Simplifier {
       if (feature[e]) {
         ++feature_edge_count_;
         const auto ab = s.edge_vertices(e);
+        feature_s1_edges_.insert(edge_key(ab[0], ab[1]));
         for (int m = 0; m < 2; ++m) {
           const Index v = ab[m];
           feature_vertex_[v] = 1;
@@ -236,6 +238,15 @@ class Simplifier {
     Attempt a;
     a.plan.vertex = v;
     const auto [left, right] = line_neighbours_[v];
+    // v's line neighbours joined by a feature edge as well: the line closes a loop of three
+    // feature edges here (the rim of a hole down to three vertices, or a triangle between
+    // corners), which removing v would collapse onto one edge. Such a loop keeps its vertices,
+    // as a closed curve keeps three. (The plan would refuse it as existing_edge, or earlier as
+    // single_triangle_side; this names why.)
+    if (feature_s1_edges_.contains(edge_key(left, right))) {
+      a.refusal = "feature_loop_of_three";
+      return a;
+    }
     std::vector<StarSheet> sheets = map_.line_star_sheets(v, left, right);
     if (sheets.empty()) {
       a.refusal = to_string(RemovalRefusal::not_a_disk_star);
@@ -391,10 +402,19 @@ class Simplifier {
     return a;
   }
 
-  /// After v was removed along its line, its line neighbours are each other's.
+  static std::uint64_t edge_key(Index a, Index b) {
+    const auto [x, y] = std::minmax(a, b);
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) << 32) | static_cast<std::uint32_t>(y);
+  }
+
+  /// After v was removed along its line, its line neighbours are each other's, joined by a
+  /// feature edge.
   void join_line_neighbours(Index v) {
     const auto [left, right] = line_neighbours_[v];
     if (left == invalid_index || is_corner(v)) return;
+    feature_s1_edges_.erase(edge_key(v, left));
+    feature_s1_edges_.erase(edge_key(v, right));
+    feature_s1_edges_.insert(edge_key(left, right));
     for (auto [end, other] : {std::pair{left, right}, std::pair{right, left}})
       for (Index& n : line_neighbours_[end])
         if (n == v) n = other;
@@ -583,6 +603,9 @@ class Simplifier {
   /// Per S2 vertex: its preimage was placed by a plan on a perturbed flattening (judge()).
   std::vector<char> perturbed_preimage_;
   bool any_perturbed_ = false;
+  /// The S1 edges on feature lines, by edge_key: S2's feature edges, then also the edges that
+  /// removals along the lines made (join_line_neighbours).
+  std::unordered_set<std::uint64_t> feature_s1_edges_;
   std::vector<std::uint32_t> new_edges_;  ///< per vertex, how many removals gave it new S1 edges (or might have)
   /// Plans no longer needed, whose buffers the next plans reuse (a plan kept for a queued vertex
   /// comes back here when the vertex is ranked again).

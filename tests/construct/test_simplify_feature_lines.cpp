@@ -86,6 +86,48 @@ TEST(SimplifyFeatureLines, NonManifoldSpineIsSimplifiedAlongItself) {
   expect_valid_parametrization_with_features(result, options.feature_angle_degrees);
 }
 
+/// A flat annulus: `rings` + 1 circles of `n` vertices each, radii 1 to 3, the circles joined by
+/// triangle strips. Both boundary circles turn by 360 / n degrees per vertex: with n >= 7 that is
+/// below the default feature angle, so each is a closed feature line without corners.
+std::shared_ptr<const Surface<2>> annulus(int n, int rings) {
+  std::vector<WorldPoint<2>> v;
+  std::vector<ElementCorners<2>> t;
+  for (int r = 0; r <= rings; ++r)
+    for (int i = 0; i < n; ++i) {
+      const double angle = 2.0 * std::numbers::pi * (i + 0.5 * r) / n, radius = 1.0 + 2.0 * r / rings;
+      v.emplace_back(radius * std::cos(angle), radius * std::sin(angle), 0.0);
+    }
+  auto id = [n](int i, int r) { return static_cast<Index>(r * n + (i % n)); };
+  for (int r = 0; r < rings; ++r)
+    for (int i = 0; i < n; ++i) {
+      t.push_back({id(i, r), id(i + 1, r), id(i, r + 1)});
+      t.push_back({id(i + 1, r), id(i + 1, r + 1), id(i, r + 1)});
+    }
+  return std::make_shared<const Surface<2>>(v, t);
+}
+
+TEST(SimplifyFeatureLines, ClosedLinesKeepThreeVerticesAndSaySo) {
+  // The inner rim comes down to three vertices; then each of them has its line neighbours
+  // joined by the rim's third edge, and removing it would collapse the rim onto one edge. The
+  // report names that reason for those three (the planner alone would say existing_edge or
+  // single_triangle_side). The outer rim stops at four: any of its diagonals passes the inner
+  // rim (fold_over).
+  const auto ring = annulus(16, 3);
+  SimplifyOptions options;
+  options.target_elements = 2;
+  const SimplifyResult result = simplify(ring, options);
+  EXPECT_EQ(result.report.feature_corners, 0);
+  EXPECT_FALSE(result.report.target_reached);
+  const Surface<2>& s1 = result.map.domain();
+  Index inner_rim = 0;
+  for (Index w = 0; w < s1.vertex_count(); ++w) inner_rim += std::abs(s1.vertex(w).norm() - 1.0) < 1e-12;
+  EXPECT_EQ(inner_rim, 3);
+  const auto& why = result.report.skipped_by_reason;
+  EXPECT_EQ(why.count("feature_loop_of_three") ? why.at("feature_loop_of_three") : 0, 3) << skipped_reasons(result.report);
+  EXPECT_EQ(why.count("existing_edge") + why.count("single_triangle_side"), 0u) << skipped_reasons(result.report);
+  expect_valid_parametrization_with_features(result, options.feature_angle_degrees);
+}
+
 TEST(SimplifyFeatureLines, ASideOfOneTriangleBlocksTheRemoval) {
   // Vertex 1 on the line 0-1-2: above it two triangles, below it the one triangle (0, 2, 1),
   // which would collapse onto the new edge 0-2.

@@ -99,7 +99,8 @@ struct SimplifyReport {
   double hausdorff_error = 0.0;
   double hausdorff_error_relative = 0.0;
   /// Live vertices other than feature corners that could not be removed when the run stopped, by the reason
-  /// of the last attempt (a RemovalRefusal name, "oracle_veto" or "max_error").
+  /// of the last attempt (a RemovalRefusal name, "oracle_veto", "max_error", "flattened_preimage",
+  /// or "feature_loop_of_three": a closed feature line down to three vertices keeps them).
   std::map<std::string, Index> skipped_by_reason;
   Index skipped_vertices = 0;
   /// True if the element or vertex target was reached.
