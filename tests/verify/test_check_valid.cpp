@@ -2,6 +2,7 @@
 
 #include "test_check_support.hpp"
 
+#include <plmap/core/affine_through.hpp>
 #include <plmap/core/map_builder.hpp>
 #include <plmap/verify/check.hpp>
 #include <plmap/verify/report_json.hpp>
@@ -39,6 +40,44 @@ TEST(VerifyValid, ScaleInvariant) {
     expect_valid(centre_fan(scale), parametrization());
     expect_valid(identity_square(scale), parametrization());
   }
+}
+
+TEST(VerifyValid, SliverRegionsMayRoundOutsideTheirTriangleByTheirMapsRounding) {
+  // A region whose preimage is a sliver has a map with huge entries, and evaluating it in doubles
+  // at its own corners can land outside its S2 triangle by more than the plain tolerance (1e-9):
+  // seen on CGAL's dino simplified with the aspect-ratio and long-edge oracles only (stretch
+  // 1.25e6, a corner 2^-29 outside). The check allows for a few units in the last place of the
+  // map's largest terms. Here: centre_fan with the preimage of S2's centre vertex moved along
+  // S1's diagonal to within 1e-8 of S1's corner (1, 1), so that the regions there are slivers
+  // whose maps stretch ~5e7 and have offsets near 5e7, whose last place is 7.45e-9; such a
+  // region's offset moved along one coordinate by 7.5e-9, which rounds to two units in that
+  // place: its corners then map 1.49e-8 outside, which the plain tolerance would reject.
+  const PlMap<2> base = centre_fan();
+  const double f = 1e-8, shift = 7.5e-9;
+  const PlMap<2> sliver = modified<2>(base, [&](MapData<2>& m) {
+    for (Index t = 0; t < 2; ++t) {
+      const Index n = node_with_target(base, t, 4, NodeType::touching);
+      m.node_position[n] = t == 0 ? lp<2>(0.0, 1.0 - f) : lp<2>(1.0 - f, 0.0);
+    }
+    std::size_t most_stretched = 0;
+    for (std::size_t r = 0; r < m.region_corners.size(); ++r) {
+      std::array<LocalPoint<2>, 3> from, to;
+      for (int i = 0; i < 3; ++i) {
+        const Index n = m.region_corners[r][i];
+        from[i] = m.node_position[n];
+        const WorldPoint<2> image = base.target().world_position(m.node_image_element[n], m.node_image_local[n]);
+        to[i] = local_of(base.target(), m.region_target[r], image);
+      }
+      m.region_map[r] = affine_through<2>(from, to);
+      if (m.region_map[r].leftCols<2>().norm() > m.region_map[most_stretched].leftCols<2>().norm()) most_stretched = r;
+    }
+    ASSERT_GT(m.region_map[most_stretched].leftCols<2>().norm(), 1e7);
+    m.region_map[most_stretched].col(2) -= LocalPoint<2>(shift, 0.0);
+  });
+  expect_valid(sliver, parametrization());
+  // The same shift on a region that is not stretched is far above its rounding: caught.
+  const PlMap<2> shifted = modified<2>(base, [&](MapData<2>& m) { m.region_map[0].col(2) -= LocalPoint<2>(shift, 0.0); });
+  EXPECT_GT(verify(shifted, parametrization()).violation_count("map", "region_corner_image"), 0u);
 }
 
 TEST(VerifyValid, PartialDomainIsNotAParametrization) {

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -262,5 +263,31 @@ template <int d>
 void run_continuity(const MapContext<d>& ctx, ViolationSink& sink);
 template <int d>
 void run_coverage(const MapContext<d>& ctx, ViolationSink& sink);
+
+/// What evaluating the stored affine map `a` at a local point (coordinates in [0, 1]) can be
+/// off by in each image coordinate through rounding alone: a few units in the last place of the
+/// largest term of the sum. A region whose preimage is a sliver has a map with huge entries (seen
+/// on CGAL's dino simplified with the aspect-ratio and long-edge oracles only: stretch 1.25e6),
+/// and evaluated at its own corners it lands 2^-29 ~ 1.9e-9 outside its S2 triangle: not a
+/// defect of the map, but of reading it in doubles. The checks that evaluate region maps (map,
+/// continuity) add this to their tolerances; for any map that is not stretched by millions it is
+/// ~1e-15.
+template <int d>
+double region_map_rounding(const AffineMap<d>& a) {
+  double largest = 0.0;
+  for (int i = 0; i < d; ++i) {
+    double row = std::abs(a(i, d));
+    for (int j = 0; j < d; ++j) row += std::abs(a(i, j));
+    largest = std::max(largest, row);
+  }
+  return 8.0 * std::numeric_limits<double>::epsilon() * largest;
+}
+
+/// A rounding of local coordinates on S2 in space: at most the longest S2 edge per unit, per
+/// coordinate.
+template <int d>
+double rounding_in_space(double local_rounding, const Surface<d>& s2) {
+  return 2.0 * local_rounding * s2.max_edge_length();
+}
 
 }  // namespace plmap::detail

@@ -44,6 +44,7 @@ void run_continuity(const MapContext<d>& ctx, ViolationSink& sink) {
   struct Sample {
     std::optional<WorldPoint<d>> reference;
     Index reference_element = invalid_index;
+    double reference_rounding = 0.0;  ///< of the region map that gave `reference`, in space
   };
   std::vector<Sample> samples;
   std::vector<Index> candidates;
@@ -51,18 +52,22 @@ void run_continuity(const MapContext<d>& ctx, ViolationSink& sink) {
   auto compare = [&](Sample& sample, const std::optional<WorldPoint<d>>& value, Index t, Index r,
                      const char* what, Index which, double s) {
     if (!value) return;
+    // Each side's region map rounds as its stretch says (region_map_rounding).
+    const double rounding = r == invalid_index ? 0.0 : rounding_in_space(region_map_rounding<d>(m.region_map[r]), ctx.s2);
     if (!sample.reference) {
       sample.reference = value;
       sample.reference_element = t;
+      sample.reference_rounding = rounding;
       return;
     }
     const double dist = (*value - *sample.reference).norm();
-    if (!(dist <= world_tol))
+    const double tolerance = world_tol + sample.reference_rounding + rounding;
+    if (!(dist <= tolerance))
       sink.add("shared_boundary_mismatch", {t, invalid_index, r}, [&] {
         return fmt::format("Xi on S1 {} {} at parameter {:.6g}: element {} gives {}, element {} "
                            "gives {} ({:.3g} apart, tolerance {:.3g})",
                            what, which, s, sample.reference_element, fmt_point<d + 1>(*sample.reference), t,
-                           fmt_point<d + 1>(*value), dist, world_tol);
+                           fmt_point<d + 1>(*value), dist, tolerance);
       });
   };
 

@@ -115,23 +115,26 @@ void run_map(const MapContext<d>& ctx, ViolationSink& sink) {
     for (Index r = ctx.regions_begin(t); r < ctx.regions_end(t); ++r) {
       const auto& c = m.region_corners[r];
       const Index target = m.region_target[r];
+      const double rounding = region_map_rounding<d>(m.region_map[r]);
+      const double region_tol = local_tol + rounding;
+      const double region_world_tol = world_tol + rounding_in_space(rounding, s2);
       std::array<LocalPoint<d>, d + 1> image;
       for (int i = 0; i <= d; ++i) {
         const Index n = c[i];
         image[i] = apply<d>(m.region_map[r], m.node_position[n]);
         const double inside = min_barycentric<d>(image[i]);
-        if (!(inside >= -local_tol))
+        if (!(inside >= -region_tol))
           sink.add("region_corner_image", {t, n, r, target}, [&] {
             return fmt::format("region {} maps its corner {} to {} on S2 element {}, outside it "
                                "(barycentric {:.3g})",
                                r, n, fmt_point<d>(image[i]), target, inside);
           });
         const double dist = (s2.world_position(target, image[i]) - map.node_target_world(n)).norm();
-        if (!(dist <= world_tol))
+        if (!(dist <= region_world_tol))
           sink.add("region_corner_image", {t, n, r, target}, [&] {
             return fmt::format("region {} maps its corner {} {:.3g} away from the node's image "
                                "(tolerance {:.3g})",
-                               r, n, dist, world_tol);
+                               r, n, dist, region_world_tol);
           });
       }
       int domain_sign, image_sign;
