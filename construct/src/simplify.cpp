@@ -633,6 +633,7 @@ SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions 
   if (!fine) throw Error("simplify: no surface given");
   const Surface<2>& s = *fine;
   detail::check_simplify_options(options, s.element_count(), s.vertex_count(), "surface", "triangles");
+  detail::check_no_isolated_vertices(s, "surface", "triangles");
   if (options.ranking != "exact" && options.ranking != "estimate")
     throw Error(fmt::format("simplify: unknown ranking '{}' (exact or estimate)", options.ranking));
   if (options.cut != "per-step" && options.cut != "deferred")

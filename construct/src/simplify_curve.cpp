@@ -242,6 +242,7 @@ CurveSimplifyResult simplify_curve(std::shared_ptr<const Surface<1>> fine, Simpl
   if (!fine) throw Error("simplify: no curve given");
   const Surface<1>& s = *fine;
   detail::check_simplify_options(options, s.element_count(), s.vertex_count(), "curve", "segments");
+  detail::check_no_isolated_vertices(s, "curve", "segments");
   if (options.oracles.empty()) options.oracles.add("hausdorff", 1.0).add("long-edge", 0.05);
   const CurveCosts costs = curve_costs(options.oracles);
 

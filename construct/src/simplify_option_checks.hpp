@@ -3,6 +3,7 @@
 
 #include <plmap/construct/simplify.hpp>
 #include <plmap/core/errors.hpp>
+#include <plmap/core/surface.hpp>
 
 #include <fmt/format.h>
 
@@ -31,6 +32,18 @@ inline void check_simplify_options(const SimplifyOptions& options, Index element
   if (!(options.feature_angle_degrees >= 0.0 && options.feature_angle_degrees <= 180.0))
     throw Error(fmt::format("simplify: the feature angle must be between 0 and 180 degrees, not {}",
                             options.feature_angle_degrees));
+}
+
+/// Throws Error naming the first vertex of the fine input that is a corner of none of its
+/// elements: a parametrization gives every vertex a preimage, and such a vertex can have none
+/// (the builder would find it only after the whole run, and call it an S1 vertex).
+template <int d>
+void check_no_isolated_vertices(const Surface<d>& s, std::string_view input_noun, std::string_view element_noun) {
+  for (Index v = 0; v < s.vertex_count(); ++v)
+    if (s.vertex_elements(v).empty())
+      throw Error(fmt::format("simplify: vertex {} of the {} is isolated (a corner of none of its {}); a "
+                              "parametrization gives every vertex a preimage: remove isolated vertices first",
+                              v, input_noun, element_noun));
 }
 
 }  // namespace plmap::detail

@@ -60,6 +60,21 @@ TEST(SimplifyBadInput, TargetNotBelowTheMeshSizeIsAClearError) {
   EXPECT_THROW((void)simplify(small_sphere(), options), Error);
 }
 
+TEST(SimplifyBadInput, AnIsolatedVertexIsNamedBeforeTheRun) {
+  // CGAL's cube-ouvert.off has one: the builder used to find it only after the whole run, as an
+  // "isolated S1 vertex". A vertex that no triangle uses cannot have a preimage.
+  std::vector<WorldPoint<2>> v{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 0}, {3, 3, 3}};
+  std::vector<ElementCorners<2>> t{{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  SimplifyOptions options;
+  options.target_elements = 2;
+  try {
+    (void)simplify(std::make_shared<const Surface<2>>(v, t), options);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 5 of the surface is isolated"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SimplifyBadInput, NoTargetAndNoErrorBoundIsAnError) {
   EXPECT_THROW((void)simplify(small_sphere(), SimplifyOptions{}), Error);
 }
