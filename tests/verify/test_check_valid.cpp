@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 
 namespace plmap {
@@ -45,19 +46,14 @@ TEST(VerifyValid, ScaleInvariant) {
   }
 }
 
-TEST(VerifyValid, SliverRegionsMayRoundOutsideTheirTriangleByTheirMapsRounding) {
-  // A region whose preimage is a sliver has a map with huge entries, and evaluating it in doubles
-  // at its own corners can land outside its S2 triangle by more than the plain tolerance (1e-9):
-  // seen on CGAL's dino simplified with the aspect-ratio and long-edge oracles only (stretch
-  // 1.25e6, a corner 2^-29 outside). The check allows for a few units in the last place of the
-  // map's largest terms. Here: centre_fan with the preimage of S2's centre vertex moved along
-  // S1's diagonal to within 1e-8 of S1's corner (1, 1), so that the regions there are slivers
-  // whose maps stretch ~5e7 and have offsets near 5e7, whose last place is 7.45e-9; such a
-  // region's offset moved along one coordinate by 7.5e-9, which rounds to two units in that
-  // place: its corners then map 1.49e-8 outside, which the plain tolerance would reject.
+/// centre_fan with the preimage of S2's centre vertex moved along S1's diagonal to within f of
+/// S1's corner (1, 1): the regions next to it become slivers of height ~f, far from their
+/// elements' local origin, whose maps stretch ~0.5 / f. Each region's map is made again through
+/// its corners (affine_through, as the builder does); `change` then gets the data and the most
+/// stretched region.
+PlMap<2> sliver_fan(double f, const std::function<void(MapData<2>&, std::size_t)>& change) {
   const PlMap<2> base = centre_fan();
-  const double f = 1e-8, shift = 7.5e-9;
-  const PlMap<2> sliver = modified<2>(base, [&](MapData<2>& m) {
+  return modified<2>(base, [&](MapData<2>& m) {
     for (Index t = 0; t < 2; ++t) {
       const Index n = node_with_target(base, t, 4, NodeType::touching);
       m.node_position[n] = t == 0 ? lp<2>(0.0, 1.0 - f) : lp<2>(1.0 - f, 0.0);
@@ -68,18 +64,34 @@ TEST(VerifyValid, SliverRegionsMayRoundOutsideTheirTriangleByTheirMapsRounding) 
       for (int i = 0; i < 3; ++i) {
         const Index n = m.region_corners[r][i];
         from[i] = m.node_position[n];
-        const WorldPoint<2> image = base.target().world_position(m.node_image_element[n], m.node_image_local[n]);
-        to[i] = local_of(base.target(), m.region_target[r], image);
+        to[i] = local_of(base.target(), m.region_target[r],
+                         base.target().world_position(m.node_image_element[n], m.node_image_local[n]));
       }
       m.region_map[r] = affine_through<2>(from, to);
       if (m.region_map[r].leftCols<2>().norm() > m.region_map[most_stretched].leftCols<2>().norm()) most_stretched = r;
     }
+    change(m, most_stretched);
+  });
+}
+
+TEST(VerifyValid, SliverRegionsMayRoundOutsideTheirTriangleByTheirMapsRounding) {
+  // A region whose preimage is a sliver has a map with huge entries, and evaluating it in doubles
+  // at its own corners can land outside its S2 triangle by more than the plain tolerance (1e-9):
+  // seen on CGAL's dino simplified with the aspect-ratio and long-edge oracles only (stretch
+  // 1.25e6, a corner 2^-29 outside). The check allows for a few units in the last place of the
+  // map's largest terms. Here the slivers of sliver_fan(1e-8) stretch ~5e7 and have offsets near
+  // 5e7, whose last place is 7.45e-9; such a region's offset moved along one coordinate by
+  // 7.5e-9, which rounds to two units in that place: its corners then map 1.49e-8 outside, which
+  // the plain tolerance would reject.
+  const double shift = 7.5e-9;
+  const PlMap<2> sliver = sliver_fan(1e-8, [&](MapData<2>& m, std::size_t most_stretched) {
     ASSERT_GT(m.region_map[most_stretched].leftCols<2>().norm(), 1e7);
     m.region_map[most_stretched].col(2) -= LocalPoint<2>(shift, 0.0);
   });
   expect_valid(sliver, parametrization());
   // The same shift on a region that is not stretched is far above its rounding: caught.
-  const PlMap<2> shifted = modified<2>(base, [&](MapData<2>& m) { m.region_map[0].col(2) -= LocalPoint<2>(shift, 0.0); });
+  const PlMap<2> shifted =
+      modified<2>(centre_fan(), [&](MapData<2>& m) { m.region_map[0].col(2) -= LocalPoint<2>(shift, 0.0); });
   EXPECT_GT(verify(shifted, parametrization()).violation_count("map", "region_corner_image"), 0u);
 }
 
@@ -88,33 +100,9 @@ TEST(VerifyValid, SliverRegionsMayRoundTheirImagesAreaByTheirMapsRounding) {
   // map rounds those too. Seen on CGAL's mpi_triang.off simplified to 18 triangles (plane-
   // projection flattening, min-max-aspect holes, estimate ranking, feature angle 113): one
   // region of local area 8e-9 covers a whole S2 triangle, and its image's area came out
-  // 0.5 + 2^-24, above the measure tolerance (1e-8). Here: the sliver map of the test above with
-  // one linear entry moved by eight units in its last place, in the direction that enlarges
-  // the image.
-  const PlMap<2> base = centre_fan();
-  const double f = 1e-8;
-  auto sliver_with = [&](double sign) {
-    return modified<2>(base, [&](MapData<2>& m) {
-      for (Index t = 0; t < 2; ++t) {
-        const Index n = node_with_target(base, t, 4, NodeType::touching);
-        m.node_position[n] = t == 0 ? lp<2>(0.0, 1.0 - f) : lp<2>(1.0 - f, 0.0);
-      }
-      std::size_t most_stretched = 0;
-      for (std::size_t r = 0; r < m.region_corners.size(); ++r) {
-        std::array<LocalPoint<2>, 3> from, to;
-        for (int i = 0; i < 3; ++i) {
-          const Index n = m.region_corners[r][i];
-          from[i] = m.node_position[n];
-          to[i] = local_of(base.target(), m.region_target[r],
-                           base.target().world_position(m.node_image_element[n], m.node_image_local[n]));
-        }
-        m.region_map[r] = affine_through<2>(from, to);
-        if (m.region_map[r].leftCols<2>().norm() > m.region_map[most_stretched].leftCols<2>().norm()) most_stretched = r;
-      }
-      double& entry = m.region_map[most_stretched](0, 0);
-      for (int k = 0; k < 8; ++k) entry = std::nextafter(entry, sign * std::numeric_limits<double>::infinity());
-    });
-  };
+  // 0.5 + 2^-24, above the measure tolerance (1e-8). Here: the slivers of sliver_fan(1e-8) with
+  // one linear entry moved by eight units in its last place, in the direction that enlarges the
+  // image.
   auto image_area = [](const PlMap<2>& map, Index r) {
     std::array<LocalPoint<2>, 3> q;
     for (int i = 0; i < 3; ++i) q[i] = apply<2>(map.data().region_map[r], map.data().node_position[map.data().region_corners[r][i]]);
@@ -122,7 +110,10 @@ TEST(VerifyValid, SliverRegionsMayRoundTheirImagesAreaByTheirMapsRounding) {
   };
   bool shown = false;
   for (double sign : {1.0, -1.0}) {
-    const PlMap<2> sliver = sliver_with(sign);
+    const PlMap<2> sliver = sliver_fan(1e-8, [&](MapData<2>& m, std::size_t most_stretched) {
+      double& entry = m.region_map[most_stretched](0, 0);
+      for (int k = 0; k < 8; ++k) entry = std::nextafter(entry, sign * std::numeric_limits<double>::infinity());
+    });
     double largest = 0.0;
     for (Index r = 0; r < sliver.region_count(); ++r) largest = std::max(largest, image_area(sliver, r));
     if (!(largest > 0.5 * (1.0 + VerifyOptions{}.measure_tolerance))) continue;
