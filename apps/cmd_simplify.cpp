@@ -44,6 +44,18 @@ Json quality_json(const QualityReport& q) {
 template <int d>
 int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const SimplifyReport& r, ProgressBar& bar);
 
+/// Runs the simplification; what it refuses about the input (an isolated vertex, a degenerate
+/// triangle, a target the mesh cannot go below) is about the file the user named, so the message
+/// starts with that file, as the loader's messages do.
+template <class Run>
+auto naming_the_input(const std::string& input, Run&& run) {
+  try {
+    return run();
+  } catch (const Error& e) {
+    throw Error(fmt::format("{}: {}", input, e.what()));
+  }
+}
+
 int run_simplify(const SimplifyCommand& o) {
   SimplifyOptions options;
   options.target_elements = o.target_elements;
@@ -79,11 +91,12 @@ int run_simplify(const SimplifyCommand& o) {
   options.progress = bar.callback();
   if (std::holds_alternative<Surface<1>>(any)) {
     auto curve = std::make_shared<const Surface<1>>(std::move(std::get<0>(any)));
-    const CurveSimplifyResult result = simplify_curve(curve, std::move(options));
+    const CurveSimplifyResult result =
+        naming_the_input(o.fine, [&] { return simplify_curve(curve, std::move(options)); });
     return report_simplification(o, result.map, result.report, bar);
   }
   auto fine = std::make_shared<const Surface<2>>(std::move(std::get<1>(any)));
-  const SimplifyResult result = simplify(fine, std::move(options));
+  const SimplifyResult result = naming_the_input(o.fine, [&] { return simplify(fine, std::move(options)); });
   return report_simplification(o, result.map, result.report, bar);
 }
 

@@ -66,7 +66,8 @@ def simplify_bad_input_leaves_no_output():
                               mention="positive")
     expect("1797" not in line, line)
     write("flat.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n3 0 1 2\n3 0 1 3\n")
-    expect_clean_error(["simplify", "flat.off", "-o", outputs[0], "--target-elements", 1])
+    # what simplify refuses about the input names the input file, as the loader's errors do
+    expect_clean_error(["simplify", "flat.off", "-o", outputs[0], "--target-elements", 1], mention="flat.off")
     # a mesh that has nothing to remove: the target cannot be met, but the map is still valid
     write("quad.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")
     out, err, _ = run("simplify", "quad.off", "-o", "quad.plmap", "--target-elements", 1, "--json")
