@@ -24,6 +24,7 @@ struct ImagePiece {
   double xmin, xmax, ymin, ymax;
   double measure;
   double boundary;                // length of the boundary (d = 1: 2, the two end points)
+  double rounding;                // how far its corners may be off: its map's evaluation rounding
   std::array<Vec2, 3> triangle;  // d = 2 only, counter-clockwise
 };
 
@@ -107,8 +108,9 @@ void run_coverage(const MapContext<d>& ctx, ViolationSink& sink) {
         domain_local = 0.5 * std::abs(cross(m.node_position[c[1]] - m.node_position[c[0]],
                                             m.node_position[c[2]] - m.node_position[c[0]]));
       }
+      piece.rounding = region_map_rounding<d>(m.region_map[r]);
       sum += piece.measure;
-      rounding += 2.0 * piece.boundary * region_map_rounding<d>(m.region_map[r]);
+      rounding += 2.0 * piece.boundary * piece.rounding;
       image_world += piece.measure / reference_measure * s2.element_measure(t2);
       domain_world += domain_local / reference_measure * ctx.s1.element_measure(ctx.region_element(r));
       domain_local_sum[static_cast<std::size_t>(ctx.region_element(r))] += domain_local;
@@ -131,9 +133,12 @@ void run_coverage(const MapContext<d>& ctx, ViolationSink& sink) {
       else
         overlap = triangle_intersection_area(a.triangle, p.triangle);
       // An overlap counts when it is more than a relative share of the smaller piece and more
-      // than corner positions off by local_tolerance could explain (a strip that wide along the
-      // smaller boundary): image corners of thin regions carry the rounding of the projection.
-      const double explained = position_tol * std::min(a.boundary, p.boundary);
+      // than corner positions off by local_tolerance, or by the rounding of the two region maps,
+      // could explain (a strip that wide along the smaller boundary): image corners of thin
+      // regions carry the rounding of the projection, and a sliver's map, stretched 1e6-fold,
+      // rounds its own corners by more than local_tolerance.
+      const double explained =
+          (position_tol + 2.0 * (a.rounding + p.rounding)) * std::min(a.boundary, p.boundary);
       if (overlap > std::max(tol * std::min(a.measure, p.measure), explained))
         sink.add("image_overlap", {ctx.region_element(p.region), invalid_index, p.region, t2}, [&] {
           return fmt::format("the images of regions {} and {} overlap on S2 element {} by {:.3g} "
