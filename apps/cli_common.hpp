@@ -3,6 +3,7 @@
 /// What the subcommands of the `plmap` tool share: loading surfaces and maps of either
 /// dimension, printing JSON or text, and the exit codes.
 
+#include <plmap/core/errors.hpp>
 #include <plmap/core/io/map_file.hpp>
 #include <plmap/core/surface.hpp>
 
@@ -188,6 +189,18 @@ void register_draw(CLI::App& app, Action& action);        // cmd_draw.cpp
 void register_project(CLI::App& app, Action& action);     // cmd_project.cpp
 void register_simplify(CLI::App& app, Action& action);    // cmd_simplify.cpp
 void register_refine(CLI::App& app, Action& action);      // cmd_refine.cpp
+
+/// Runs an algorithm on what the user named in `input`; what it refuses about that input (an
+/// isolated vertex, a map that is no parametrization, ...) is about the file, so its message
+/// starts with the file's name, as the loaders' messages do.
+template <class Run>
+auto naming_the_input(const std::string& input, Run&& run) {
+  try {
+    return run();
+  } catch (const Error& e) {
+    throw Error(input + ": " + e.what());
+  }
+}
 
 /// The dimension option shared by the commands that read surfaces.
 /// 0 means: derive the dimension from the file.

@@ -37,7 +37,8 @@ int run_refine(const RefineCommand& o) {
   RefineOptions options;
   options.levels = o.levels;
   options.progress = bar.callback();
-  const RefineResult result = refine_through_map(std::get<PlMap<2>>(any), options);
+  const RefineResult result =
+      naming_the_input(o.map, [&] { return refine_through_map(std::get<PlMap<2>>(any), options); });
   write_surface(o.output, result.surface);
   bar.finish();
   const RefineReport& r = result.report;

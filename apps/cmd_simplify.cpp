@@ -44,18 +44,6 @@ Json quality_json(const QualityReport& q) {
 template <int d>
 int report_simplification(const SimplifyCommand& o, const PlMap<d>& map, const SimplifyReport& r, ProgressBar& bar);
 
-/// Runs the simplification; what it refuses about the input (an isolated vertex, a degenerate
-/// triangle, a target the mesh cannot go below) is about the file the user named, so the message
-/// starts with that file, as the loader's messages do.
-template <class Run>
-auto naming_the_input(const std::string& input, Run&& run) {
-  try {
-    return run();
-  } catch (const Error& e) {
-    throw Error(fmt::format("{}: {}", input, e.what()));
-  }
-}
-
 int run_simplify(const SimplifyCommand& o) {
   SimplifyOptions options;
   options.target_elements = o.target_elements;

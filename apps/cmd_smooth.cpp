@@ -58,7 +58,7 @@ int run_smooth(const SmoothCommand& o) {
   options.elements = !o.no_element_pass;
   options.summarize_kappa = summarize_kappa;
   options.progress = bar.callback();
-  const SmoothResult result = smooth(map, options);
+  const SmoothResult result = naming_the_input(o.map, [&] { return smooth(map, options); });
   save_map(o.output, result.map, bar.callback());
   bar.finish();
   hint_if_large_text_map(o.output);

@@ -108,6 +108,11 @@ def refine_through_a_simplified_map():
     run("build", "identity", polyline(), "-o", "curve.plmap")
     expect_clean_error(["refine", "curve.plmap", "-o", "never.off"], mention="curves")
     expect_clean_error(["refine", "missing.plmap", "-o", "never.off"], mention="missing.plmap")
+    # a map whose domain is part of S1 is no parametrization: refused, naming the map file
+    run("generate", "grid", "--cells", 4, "-o", "unit.off")
+    write("wide.off", "OFF\n4 2 0\n-0.5 -0.5 -0.2\n1.5 -0.5 -0.2\n1.5 1.5 -0.2\n-0.5 1.5 -0.2\n3 0 1 2\n3 0 2 3\n")
+    run("project", "wide.off", "unit.off", "-o", "partial.plmap")
+    expect_clean_error(["refine", "partial.plmap", "-o", "never.off"], mention="partial.plmap")
     expect(not os.path.exists(os.path.join(WORK, "never.off")), "never.off was written")
 
 
