@@ -195,7 +195,7 @@ class Simplifier {
     HolePlanning planning = plan_avoiding_nodes(v, sheet, flats, triangles, extent, a);
     if (blocked_by_a_node(a, planning)) planning = plan_on_perturbed_flattening(v, sheet, flats, triangles, extent, a, planning);
     if (planning != HolePlanning::planned) {
-      a.refusal = to_string(RemovalRefusal::no_triangulation);
+      a.refusal = to_string(out_of_triangulations(a, planning));
       return a;
     }
     a = judge(std::move(a));
@@ -273,7 +273,7 @@ class Simplifier {
     HolePlanning planning = plan_avoiding_nodes(v, sheets, flat, triangles, extent, a);
     if (blocked_by_a_node(a, planning)) planning = plan_on_perturbed_flattening(v, sheets, flat, triangles, extent, a, planning);
     if (planning != HolePlanning::planned) {
-      a.refusal = to_string(RemovalRefusal::no_triangulation);
+      a.refusal = to_string(out_of_triangulations(a, planning));
       return a;
     }
     return judge(std::move(a));
@@ -284,9 +284,11 @@ class Simplifier {
   enum class HolePlanning { planned, no_triangulation, no_triangulation_left };
 
   /// Triangulates every sheet's hole and plans the removal of v into a.plan. A diagonal that
-  /// the plan finds through a vertex preimage (node_on_new_edge) or along an S2 edge's preimage
-  /// (edge_along_new_edge) is avoided and its sheet triangulated again, at most once per ring
-  /// vertex.
+  /// the plan finds through a vertex preimage (node_on_new_edge), along an S2 edge's preimage
+  /// (edge_along_new_edge) or, once retry_folded_removals has switched it on, in a new triangle
+  /// that faces against the star (fold_over: on a curved star another triangulation of the
+  /// flattened polygon may not) is avoided and its sheet triangulated again, at most once per
+  /// ring vertex.
   HolePlanning plan_avoiding_nodes(Index v, const std::vector<StarSheet>& sheets, const std::vector<std::vector<Eigen::Vector2d>>& flats,
                            std::vector<HoleTriangles>& triangles, PlanExtent extent, Attempt& a) const {
     std::vector<std::array<int, 3>> avoided;  // sheet, i, j
@@ -306,11 +308,21 @@ class Simplifier {
       }
       a.plan = map_.plan_vertex_removal(v, sheets, flats, triangles, extent, std::move(a.plan));
       const bool blocked = a.plan.refusal == RemovalRefusal::node_on_new_edge ||
-                           a.plan.refusal == RemovalRefusal::edge_along_new_edge;
+                           a.plan.refusal == RemovalRefusal::edge_along_new_edge ||
+                           (avoid_folds_ && a.plan.refusal == RemovalRefusal::fold_over);
       if (!blocked || a.plan.blocking_diagonal[0] < 0) break;
       avoided.push_back({a.plan.blocking_sheet, a.plan.blocking_diagonal[0], a.plan.blocking_diagonal[1]});
     }
     return HolePlanning::planned;
+  }
+
+  /// Why planning found no triangulation: every triangulation left after avoiding diagonals
+  /// folded over is told as fold_over (the star is too curved to be replaced by flat
+  /// triangles), any other end as no_triangulation.
+  static RemovalRefusal out_of_triangulations(const Attempt& a, HolePlanning planning) {
+    return planning == HolePlanning::no_triangulation_left && a.plan.refusal == RemovalRefusal::fold_over
+               ? RemovalRefusal::fold_over
+               : RemovalRefusal::no_triangulation;
   }
 
   /// Whether planning stopped at a degeneracy a perturbed flattening may lift: refused for a
@@ -456,7 +468,9 @@ class Simplifier {
       return (options_.target_elements > 0 && map_.live_triangle_count() <= options_.target_elements) ||
              (options_.target_vertices > 0 && map_.live_vertex_count() <= options_.target_vertices);
     };
-    while (!queue_.empty() && !target_reached()) {
+    while (!target_reached()) {
+      if (queue_.empty() && !retry_folded_removals()) break;
+      if (queue_.empty()) continue;
       const Entry top = queue_.top();
       queue_.pop();
       if (top.stamp != stamp_[top.vertex] || !map_.is_live_vertex(top.vertex)) continue;
@@ -519,6 +533,22 @@ class Simplifier {
     report.target_reached = target_reached();
     report.ranking_plans = ranking_plans_;
     report.requeued += requeued_;
+  }
+
+  /// Nothing is left in the queue above the target. The vertices refused because a new
+  /// triangle of their hole's triangulation folded over are ranked again, and from now on such
+  /// a fold makes the planner try the hole without that triangle's diagonal (plan_avoiding_nodes).
+  /// Only then: it costs a triangulation and a plan per retry (+15 % instructions on the femur
+  /// to 500 when it was on from the start), and runs that reach their target without it keep
+  /// their maps. Once per run; false if it was used already.
+  bool retry_folded_removals() {
+    if (avoid_folds_ || !options_.retry_folded_removals) return false;
+    avoid_folds_ = true;
+    const std::string folded = to_string(RemovalRefusal::fold_over);
+    const Index vertex_count = map_.target().vertex_count();
+    for (Index v = 0; v < vertex_count; ++v)
+      if (map_.is_live_vertex(v) && last_refusal_[v] == folded) rank(v);
+    return true;
   }
 
   /// A vertex queued by its estimate came up: its ranking plan (whose flattening and hole the
@@ -587,6 +617,7 @@ class Simplifier {
   AnyHoleTriangulation triangulate_;
   detail::SimplifyRankingEstimate estimate_;
   bool estimated_ = false;          ///< options.ranking == "estimate"
+  bool avoid_folds_ = false;        ///< fold_over refusals retried with other triangulations (retry_folded_removals)
   double hausdorff_weight_ = 0.0;   ///< the summed weight of the Hausdorff oracles, for the estimate
   double aspect_weight_ = 0.0;      ///< the summed weight of the aspect-ratio oracles, for the estimate
   double length_scale_ = 1.0;

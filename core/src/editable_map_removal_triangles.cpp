@@ -154,7 +154,18 @@ RemovalRefusal EditableMap::RemovalPlanning::add_new_triangle(int g, const std::
   const Eigen::Vector3d normal =
       (position(corners[1]) - position(corners[0])).cross(position(corners[2]) - position(corners[0]));
   if (0.5 * normal.norm() <= s.options.min_relative_area * area_scale) return RemovalRefusal::degenerate_triangle;
-  if (normal.dot(sheet_normal) <= 0.0) return RemovalRefusal::fold_over;
+  if (normal.dot(sheet_normal) <= 0.0) {
+    // Name a diagonal of the folded triangle: the caller may triangulate the sheet without it.
+    for (int m = 0; m < 3; ++m) {
+      const int i = tri[m], j = tri[(m + 1) % 3];
+      if (!sh.adjacent(i, j)) {
+        plan.blocking_diagonal = {std::min(i, j), std::max(i, j)};
+        plan.blocking_sheet = g;
+        break;
+      }
+    }
+    return RemovalRefusal::fold_over;
+  }
   plan.new_triangles.push_back(corners);
   plan.new_triangle_sheet.push_back(g);
   return RemovalRefusal::none;

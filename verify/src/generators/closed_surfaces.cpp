@@ -1,7 +1,10 @@
 #include <plmap/verify/generators/closed_surfaces.hpp>
 
+#include <plmap/core/errors.hpp>
+
 #include <cmath>
 #include <map>
+#include <numbers>
 
 namespace plmap::generators {
 
@@ -33,6 +36,26 @@ Surface<2> icosphere(const SphereOptions& options, Rng& rng) {
   }
   if (options.radial_jitter > 0.0)
     for (auto& p : v) p *= uniform_real(rng, 1.0 - options.radial_jitter, 1.0 + options.radial_jitter);
+  return Surface<2>(std::move(v), std::move(t));
+}
+
+Surface<2> torus(const TorusOptions& o) {
+  if (o.around < 3 || o.across < 3 || !(o.minor_radius > 0.0) || !(o.minor_radius < o.major_radius))
+    throw Error("torus: needs at least 3 vertices each way and 0 < minor_radius < major_radius");
+  std::vector<WorldPoint<2>> v;
+  for (int i = 0; i < o.around; ++i)
+    for (int j = 0; j < o.across; ++j) {
+      const double u = 2.0 * std::numbers::pi * i / o.around, w = 2.0 * std::numbers::pi * j / o.across;
+      const double r = o.major_radius + o.minor_radius * std::cos(w);
+      v.push_back({r * std::cos(u), r * std::sin(u), o.minor_radius * std::sin(w)});
+    }
+  std::vector<ElementCorners<2>> t;
+  auto at = [&](int i, int j) { return static_cast<Index>((i % o.around) * o.across + j % o.across); };
+  for (int i = 0; i < o.around; ++i)
+    for (int j = 0; j < o.across; ++j) {
+      t.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      t.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
   return Surface<2>(std::move(v), std::move(t));
 }
 

@@ -72,6 +72,11 @@ struct SimplifyOptions {
   /// oracle is handed over as it is (its state must allow a second run). Surfaces only: a curve's
   /// segments have no crossings to cut.
   std::string cut = "per-step";
+  /// When nothing is left to remove above the target, the vertices refused because a new
+  /// triangle of their hole folded over (fold_over) are tried once more, each with the hole
+  /// triangulated again without the folded triangle's diagonals. Surfaces only; false: the run
+  /// stops there (as before 2026-12-05).
+  bool retry_folded_removals = true;
   /// The error oracles; empty: hausdorff:1, aspect-ratio:0.05, normal-deviation:0.5.
   WeightedOracles oracles;
   EditOptions edit;

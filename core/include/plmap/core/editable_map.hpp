@@ -166,7 +166,8 @@ struct VertexRemovalPlan {
 
   /// For node_on_new_edge: the diagonal (ring indices of sheet blocking_sheet) the node would
   /// lie on, if it is one; for edge_along_new_edge: the diagonal an S2 edge's preimage would run
-  /// along, if it is one. A caller may re-triangulate that sheet without it.
+  /// along, if it is one; for fold_over: a diagonal of the new triangle that folds, if it has
+  /// one. A caller may re-triangulate that sheet without it.
   std::array<int, 2> blocking_diagonal{-1, -1};
   int blocking_sheet = -1;
 
