@@ -18,14 +18,12 @@ out=$2
 offset=${3:-0}
 plmap=$build/apps/plmap
 bench=$build/experiments/peers/bench_projection_peers
-mkdir -p "$out/meshes"
-tar -xzf /usr/share/doc/libcgal-demo/data.tar.gz -C "$out/meshes" --strip-components=2 --wildcards 'data/meshes/*.off'
+# shellcheck source=experiments/cgal_meshes.sh
+source "$(dirname "$0")/cgal_meshes.sh"
 normal_checks=(none facing none)
 i=0
-for f in "$out"/meshes/*.off; do
+while read -r f triangles <&3; do
   m=$(basename "$f" .off)
-  triangles=$(awk 'NR > 1 && $0 !~ /^#/ && NF >= 2 { print $2; exit }' "$f")
-  [[ -z "$triangles" || "$triangles" -gt 60000 ]] && continue
   i=$((i + 1)); j=$((i + offset))
   # The remeshing to 0.8 of the mean edge length can explode on meshes of very uneven edges (a
   # few long polygons): bounded in time and memory, such a mesh gives no pair.
@@ -50,4 +48,4 @@ r = json.load(open(sys.argv[1]))["against_rays"]
 print(r["extra"]["defect_fraction"], r["missed"]["defect_fraction"])' "$out/$m.check.json" 2> /dev/null || echo "- -")
   fi
   echo "$m triangles=$triangles project=$rc check=$check extra=$extra defects=$defects ${args[*]}"
-done
+done 3< <(cgal_meshes "$out/meshes")

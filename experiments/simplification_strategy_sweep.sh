@@ -13,15 +13,13 @@ set -euo pipefail
 out=$1
 plmap=$2
 offset=${3:-0}
-mkdir -p "$out/meshes"
-tar -xzf /usr/share/doc/libcgal-demo/data.tar.gz -C "$out/meshes" --strip-components=2 --wildcards 'data/meshes/*.off'
+# shellcheck source=experiments/cgal_meshes.sh
+source "$(dirname "$0")/cgal_meshes.sh"
 oracles=("--oracle hausdorff:1" "--oracle normal-deviation:1 --oracle self-intersection"
          "--oracle aspect-ratio:1 --oracle long-edge:0.5")
 i=0
-for f in "$out"/meshes/*.off; do
+while read -r f triangles <&3; do
   m=$(basename "$f" .off)
-  triangles=$(awk 'NR > 1 && $0 !~ /^#/ && NF >= 2 { print $2; exit }' "$f")
-  [[ -z "$triangles" || "$triangles" -gt 60000 ]] && continue
   i=$((i + 1)); j=$((i + offset))
   flattening=$([[ $((j % 3)) == 0 ]] && echo plane-projection || echo polar-map)
   holes=$([[ $((j % 2)) == 0 ]] && echo min-max-aspect || echo constrained-delaunay)
@@ -35,4 +33,4 @@ for f in "$out"/meshes/*.off; do
   check=-
   if ((rc == 0)); then check=0; timeout 300 "$plmap" check "$out/$m.plmapb" > "$out/$m.check" 2>&1 || check=$?; fi
   echo "$m triangles=$triangles simplify=$rc check=$check ${args[*]}"
-done
+done 3< <(cgal_meshes "$out/meshes")
