@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Sourced by the sweeps over CGAL's meshes: `cgal_meshes DIR` unpacks every .off of libcgal-demo's
 # data.tar.gz into DIR and prints, one line each, "PATH TRIANGLES" for the meshes with at most
 # 60,000 faces (the count of an OFF header; empty or unreadable headers are skipped), in the

@@ -13,9 +13,10 @@ binaries=("$@")
 mkdir -p "$out/meshes"
 meshes=(cube-meshed fandisk anchor couplingdown joint rotor elephant femur helmet pinion mushroom knot1 handle blade
         cylinder bunny00 cow dino hand head)
+members=("${meshes[@]/#/data/meshes/}")
 # members missing from an older libcgal-demo are skipped (tar reports them; the rest unpacks)
 tar -xzf /usr/share/doc/libcgal-demo/data.tar.gz -C "$out/meshes" --strip-components=2 \
-  $(printf 'data/meshes/%s.off ' "${meshes[@]}") 2>/dev/null || true
+  "${members[@]/%/.off}" 2>/dev/null || true
 
 python3 - "$out/meshes" <<'PY'
 import math, sys
