@@ -91,7 +91,8 @@ OracleVerdict SelfIntersectionVeto::evaluate(const RemovalCandidate& candidate) 
 
 void SelfIntersectionVeto::on_applied(const EditableMap& map, const VertexRemovalPlan& plan) {
   if (!index_) return;
-  for (plmap::Index t : plan.old_triangles) index_->tree.remove(Entry{index_->boxes[static_cast<std::size_t>(t)], t});
+  for (plmap::Index t : plan.old_triangles)  // a triangle made by a step applied unannounced was never indexed
+    if (static_cast<std::size_t>(t) < index_->boxes.size()) index_->tree.remove(Entry{index_->boxes[static_cast<std::size_t>(t)], t});
   const plmap::Index first = plan.triangle_count_at_planning;
   const auto count = static_cast<plmap::Index>(plan.new_triangles.size());
   for (plmap::Index t = first; t < first + count; ++t) index_->tree.insert(index_->entry(map, t));
