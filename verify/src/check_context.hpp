@@ -269,8 +269,9 @@ void run_coverage(const MapContext<d>& ctx, ViolationSink& sink);
 /// largest term of the sum. A region whose preimage is a sliver has a map with huge entries (seen
 /// on CGAL's dino simplified with the aspect-ratio and long-edge oracles only: stretch 1.25e6),
 /// and evaluated at its own corners it lands 2^-29 ~ 1.9e-9 outside its S2 triangle: not a
-/// defect of the map, but of reading it in doubles. The checks that evaluate region maps (map,
-/// continuity) add this to their tolerances; for any map that is not stretched by millions it is
+/// defect of the map, but of reading it in doubles. The checks that evaluate region maps (map:
+/// corner images; continuity: both sides of an edge; coverage: image areas and pairwise
+/// overlaps) add this to their tolerances; for any map that is not stretched by millions it is
 /// ~1e-15.
 template <int d>
 double region_map_rounding(const AffineMap<d>& a) {
