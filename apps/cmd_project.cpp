@@ -206,8 +206,8 @@ void register_project(CLI::App& app, Action& action) {
   cmd->add_flag("--relative-distance", o->relative_distance,
                 "--max-distance is a multiple of S1's bounding-box diagonal");
   cmd->add_flag("--no-rim", o->no_rim,
-                "Where S2 passes behind S1, end D at the last S1 edge a walk crosses instead of on the curve "
-                "where the surfaces meet (the behaviour before rim nodes)");
+                "Where S2 passes behind S1 or beyond --max-distance, end D at the last S1 edge a walk crosses "
+                "instead of on the curve where the distance reaches that bound (the behaviour before rim nodes)");
   cmd->add_flag("--allow-negative", o->allow_negative,
                 "Also accept images behind S1 (penetrating contact), down to -max-distance");
   cmd->add_option("--normal-check", o->normal_check,

@@ -158,7 +158,7 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   report.seconds.edge_walks += seconds_since(t0);
   report.target_edges = n2e;
   walk_and_insert_edges(ctx, state, solver, insertion, report);
-  // the rim of D where S2 passes behind S1, traced from where pieces ended on it
+  // the rim of D where S2 leaves the band of distances, traced from where pieces ended on it
   t0 = Clock::now();
   insertion.insert_rim(report);
   report.seconds.insertion += seconds_since(t0);

@@ -110,6 +110,13 @@ Index element_across(const Surface<d>& s, Index t, int k) {
   }
 }
 
+/// A bound of the admissible band of distances mu along the rays (ProjectionContext::
+/// rim_level): D ends where the rays' distance to S2 reaches it. `lower`: the band lies above mu.
+struct RimLevel {
+  double mu = 0.0;
+  bool lower = true;
+};
+
 /// What every phase reads. Built once (the set-up phase: the direction field, the focal-free
 /// distances, the kd-trees, the limits from the options); the phases only read it, except for
 /// the solver counters, which they add to.
@@ -318,10 +325,33 @@ struct ProjectionContext {
   }
 
   /// The vertices of S2 edge e (d = 1: of S2 segment e), in the edge's direction.
-  /// Whether D ends on the rim where S2 passes behind S1 (ProjectionOptions::end_on_rim): only
-  /// with the default distance rules, where the rim is the curve mu = 0 (rim_geometry.hpp).
-  bool ends_on_rim() const {
-    return d == 2 && options.end_on_rim && !options.allow_negative_distance && std::isinf(distance_limit);
+  /// Whether D ends on a rim (ProjectionOptions::end_on_rim): on the curves where the rays'
+  /// distance to S2 reaches a bound of the admissible band, mu = 0 where S2 passes behind S1
+  /// (unless negative distances are allowed) and mu = +-distance_limit where that is finite
+  /// (rim_geometry.hpp). With negative distances and no limit the band has no bound.
+  bool ends_on_rim() const { return d == 2 && options.end_on_rim && rim_level_count() > 0; }
+
+  /// The bounds of the admissible band of mu, in a fixed order (index = RimPoint::level): the
+  /// lower one first (0, or -distance_limit with negative distances), then the upper one
+  /// (distance_limit) if finite.
+  int rim_level_count() const {
+    const bool lower = !options.allow_negative_distance || std::isfinite(distance_limit);
+    return (lower ? 1 : 0) + (std::isfinite(distance_limit) ? 1 : 0);
+  }
+  RimLevel rim_level(int index) const {
+    const bool has_lower = !options.allow_negative_distance || std::isfinite(distance_limit);
+    if (index == 0 && has_lower) return {options.allow_negative_distance ? -distance_limit : 0.0, true};
+    return {distance_limit, false};
+  }
+
+  /// The corners of S1 element t moved along their directions to distance mu: the element's
+  /// points at distance mu along their rays. The directions are interpolated linearly (not
+  /// normalised inside the element), so p(xi) + mu nu(xi) is affine in xi and this triangle is
+  /// exactly the level set mu of the element's rays, with the same local coordinates.
+  std::array<WorldPoint<d>, d + 1> corners_at_distance(Index t, double mu) const {
+    std::array<WorldPoint<d>, d + 1> c;
+    for (int k = 0; k <= d; ++k) c[k] = s1.corner(t, k) + mu * vertex_directions[s1.element(t)[k]];
+    return c;
   }
 
   std::array<Index, 2> target_edge_vertices(Index e) const {

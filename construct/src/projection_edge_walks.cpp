@@ -47,8 +47,8 @@ struct WalkResult {
   Place<d> stop;
   double eta = 0.0;
   int steps = 0;
-  /// A walk that stopped because its S2 edge passes behind S1 (end_on_rim): where the edge
-  /// pierces S1 beyond the stop, its parameter measured in the walk's direction.
+  /// A walk that stopped because its S2 edge leaves the band of distances (end_on_rim): where the edge
+  /// reaches the band's bound beyond the stop, its parameter measured in the walk's direction.
   std::optional<RimPoint<d>> rim;
 };
 
@@ -171,7 +171,18 @@ class EdgeWalker {
       w.stop = cur;
       w.eta = eta;
       if (!std::isfinite(best_eta)) {
-        if (ctx_.on_boundary(cur)) {  // the preimage leaves S1 here (possibly right at its start)
+        if (ctx_.on_boundary(cur)) {
+          // the preimage leaves S1 here (possibly right at its start), unless the edge runs on
+          // into the element at this boundary point and leaves the band of distances inside
+          // it: then the walk ends on the rim there (a walk back from where the edge leaves S1,
+          // whose other end lies beyond the band)
+          if (beyond_limit && !solver_failed && !folded && !start_folded && ctx_.ends_on_rim())
+            w.rim = rim_ahead(cand, eta, qa, qb, unfolded_here);
+          if (w.rim) {
+            w.end = WalkEnd::failed;
+            w.reason = EdgeFailureReason::distance_limit;
+            return w;
+          }
           w.end = WalkEnd::left_boundary;
           return w;
         }
@@ -219,10 +230,11 @@ class EdgeWalker {
     return w;
   }
 
-  /// Where the S2 edge qa -> qb, beyond parameter eta, pierces one of the S1 elements at the
-  /// walk's stop (the first along the edge, strictly inside the element): the stop's elements
-  /// gave crossings only behind S1, so the edge's preimage ends inside one of them where the
-  /// gap reaches zero (rim_geometry.hpp).
+  /// Where the S2 edge qa -> qb, beyond parameter eta, leaves the admissible band over one of
+  /// the S1 elements at the walk's stop: the first point along the edge, strictly inside an
+  /// element, where it pierces that element's level set of a bound of the band (rim_geometry.hpp;
+  /// the element itself for mu = 0). The stop's elements gave crossings only outside the band,
+  /// so the edge's preimage ends inside one of them where its distance reaches the bound.
   template <class Unfolded>
   std::optional<RimPoint<d>> rim_ahead(const std::vector<Index>& elements, double eta, const WorldPoint<d>& qa,
                                        const WorldPoint<d>& qb, Unfolded&& unfolded_here) const {
@@ -232,13 +244,15 @@ class EdgeWalker {
       const WorldPoint<d> from = qa + eta * (qb - qa);
       for (Index t : elements) {
         if (!unfolded_here(t)) continue;
-        const std::array<WorldPoint<2>, 3> tri{ctx_.s1.corner(t, 0), ctx_.s1.corner(t, 1), ctx_.s1.corner(t, 2)};
-        const std::optional<Pierce> p = segment_through_triangle(from, qb, tri);
-        if (!p || !strictly_inside(p->barycentric, 1e3 * ctx_.options.snap_tolerance)) continue;
-        const double at = eta + p->s * (1.0 - eta);
-        if (!(at > eta + limits.edge_parameter_slack) || !(at < 1.0 - limits.end_parameter_slack)) continue;
-        if (best && best->eta <= at) continue;
-        best = RimPoint<d>{t, LocalPoint<d>(p->barycentric[1], p->barycentric[2]), at};
+        for (int level = 0; level < ctx_.rim_level_count(); ++level) {
+          const auto tri = ctx_.corners_at_distance(t, ctx_.rim_level(level).mu);
+          const std::optional<Pierce> p = segment_through_triangle(from, qb, tri);
+          if (!p || !strictly_inside(p->barycentric, 1e3 * ctx_.options.snap_tolerance)) continue;
+          const double at = eta + p->s * (1.0 - eta);
+          if (!(at > eta + limits.edge_parameter_slack) || !(at < 1.0 - limits.end_parameter_slack)) continue;
+          if (best && best->eta <= at) continue;
+          best = RimPoint<d>{t, LocalPoint<d>(p->barycentric[1], p->barycentric[2]), at, level};
+        }
       }
     }
     return best;
@@ -272,7 +286,10 @@ class EdgeWalker {
     // a walk that stops at a fold (or another restartable place) gives the stretch from there to
     // the exit (partial insertion)
     const bool at_fold = w.end == WalkEnd::failed && restartable(w.reason);
-    if ((w.end != WalkEnd::left_boundary && !at_fold) || w.crossing_count == 0 ||
+    // a walk back that ended on the rim (the edge leaves the band of distances there) starts the
+    // piece there, even in the exit's own element (no S1 edge crossed in between)
+    const bool from_rim = at_fold && w.rim && 1.0 - w.rim->eta > covered_until + piece_slack;
+    if ((w.end != WalkEnd::left_boundary && !at_fold) || (w.crossing_count == 0 && !from_rim) ||
         !(back_to >= covered_until - piece_slack)) {
       crossings.resize(begin);  // nothing over S1 before the exit, or not a clean piece
       return false;
@@ -282,8 +299,6 @@ class EdgeWalker {
     for (std::size_t i = begin; i < crossings.size(); ++i)
       crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
     crossings.push_back(exit.crossing);
-    // a walk back that ended on the rim (the edge passes behind S1 there) starts the piece there
-    const bool from_rim = at_fold && w.rim && 1.0 - w.rim->eta > covered_until + piece_slack;
     add_piece(buffer, begin, from_rim ? PieceStart::rim_node : PieceStart::first_crossing, PieceEnd::last_crossing,
               PlanBuffer<d>::no_rim, from_rim ? keep_rim(buffer, *w.rim, true) : PlanBuffer<d>::no_rim);
     if constexpr (d == 2) {
@@ -381,7 +396,7 @@ class EdgeWalker {
       // (partial insertion): the S2 elements on both sides of e then keep their regions away
       // from the failure, and only the faces around its far end stay outside D.
       buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
-      if (w.rim)  // the edge passes behind S1: the piece ends where it pierces S1
+      if (w.rim)  // the edge leaves the band (e.g. passes behind S1): the piece ends on the rim
         add_piece(buffer, begin, PieceStart::first_vertex, PieceEnd::rim_node, keep_rim(buffer, *w.rim, false));
       else if (w.crossing_count > 0)
         add_piece(buffer, begin, PieceStart::first_vertex, PieceEnd::last_crossing);

@@ -20,14 +20,17 @@ namespace plmap::projection {
 /// thread and reused from block to block: once they have grown, planning allocates nothing per
 /// edge or per walk (the per-edge vectors of pieces and crossings this replaces were millions of small
 /// allocations).
-/// Where an S2 edge pierces S1 (d = 2) and a walk along its preimage that stopped because the
-/// edge passes behind S1 ends: a point inside S1 element `element`, and the edge parameter there
-/// (0 at the edge's smaller-index vertex). The piece ends at a rim node there (end_on_rim).
+/// Where an S2 edge leaves the admissible band of distances over S1 (d = 2: it passes behind S1,
+/// or beyond the distance limit) and a walk along its preimage that stopped there ends: a point
+/// inside S1 element `element`, whose ray meets the edge at the bound ProjectionContext::
+/// rim_level(level), and the edge parameter there (0 at the edge's smaller-index vertex). The
+/// piece ends at a rim node there (end_on_rim).
 template <int d>
 struct RimPoint {
   Index element = invalid_index;
   LocalPoint<d> local = LocalPoint<d>::Zero();
   double eta = 0.0;
+  int level = 0;
 };
 
 template <int d>

@@ -237,7 +237,7 @@ std::uint32_t ProjectionInsertion<d>::insert_planned_edge(Index e, const Planned
     auto rim_node_of = [&](std::uint32_t rim) {
       if (rim == PlanBuffer<d>::no_rim) return invalid_index;
       const RimPoint<d>& point = buffer.rim_points[rim];
-      return rim_node_inside(point.element, e, point.local, point.eta);
+      return rim_node_inside(point.element, e, point.level, point.local, point.eta);
     };
     if (starts_at == PieceStart::rim_node) rims.start = rim_node_of(piece.start_rim);
     if (ends_at == PieceEnd::rim_node) rims.end = rim_node_of(piece.end_rim);

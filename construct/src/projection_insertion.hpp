@@ -12,6 +12,7 @@
 #include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/map_builder.hpp>
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -41,9 +42,10 @@ class ProjectionInsertion {
   void insert_planned_edges(Index block, Index block_end, const std::vector<PlannedEdge>& planned,
                             std::vector<PlanBuffer<d>>& buffers, ProjectionReport<d>& report);
 
-  /// d = 2, end_on_rim: the rim of D where S2 passes behind S1, traced across S1 from the rim
-  /// nodes where pieces ended (projection_rim.cpp): per pair of an S1 element and an S2
-  /// triangle that meet along it, a rim edge between the two ends of their intersection. Runs
+  /// d = 2, end_on_rim: the rim of D where S2 leaves the admissible band of distances (passes
+  /// behind S1, or beyond the distance limit), traced across S1 from the rim nodes where pieces
+  /// ended (projection_rim.cpp): per pair of an S1 element and an S2 triangle whose level sets
+  /// of a bound meet along it, a rim edge between the two ends of their intersection. Runs
   /// after every edge is inserted, before release_used_points.
   void insert_rim(ProjectionReport<d>& report);
 
@@ -76,9 +78,10 @@ class ProjectionInsertion {
                                     ProjectionReport<d>& report);
 
   // ---- the rim of D (end_on_rim) ------------------------------------------------------------------
-  /// The rim node where S2 edge e pierces S1 element `element` at `local` (edge parameter eta),
-  /// made once per (element, edge); invalid_index if the builder refuses it.
-  Index rim_node_inside(Index element, Index e, const LocalPoint<d>& local, double eta);
+  /// The rim node where S2 edge e pierces the level set `level` (ProjectionContext::rim_level)
+  /// of S1 element `element`'s rays at `local` (edge parameter eta), made once per (element,
+  /// edge, level); invalid_index if the builder refuses it.
+  Index rim_node_inside(Index element, Index e, int level, const LocalPoint<d>& local, double eta);
   /// The rim node where S1 edge `edge` pierces S2 element `target` (parameter t along the S1
   /// edge, image `image` on the target), made once per point; invalid_index if refused or if
   /// another node holds that point of the edge.
@@ -88,13 +91,18 @@ class ProjectionInsertion {
   static std::uint64_t pair_key(Index a, Index b) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
   }
-  /// Per (S1 element, S2 edge): the rim node where the edge pierces the element.
-  std::unordered_map<std::uint64_t, Index> rim_inside_;
+  /// Per level and (S1 element, S2 edge): the rim node where the edge pierces the element's
+  /// level set.
+  std::array<std::unordered_map<std::uint64_t, Index>, 2> rim_inside_;
   /// Per S1 edge: the rim nodes on it, (parameter, node).
   std::unordered_map<Index, std::vector<std::pair<double, Index>>> rim_on_edge_;
-  /// The (S1 element, S2 edge) pairs of the pieces' rim nodes, in insertion order: where the
+  /// The (S1 element, S2 edge, level) of the pieces' rim nodes, in insertion order: where the
   /// tracing starts.
-  std::vector<std::pair<Index, Index>> rim_seeds_;
+  struct RimSeed {
+    Index element, target_edge;
+    int level;
+  };
+  std::vector<RimSeed> rim_seeds_;
   Index rim_nodes_made_ = 0;
 
   /// In the per-edge count of what was inserted: the edge was inserted whole.

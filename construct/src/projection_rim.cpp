@@ -1,17 +1,22 @@
-// Normal projection, phase 5: the rim of D where S2 passes behind S1 (ProjectionOptions::
-// end_on_rim; projection_insertion.hpp, insert_rim).
+// Normal projection, phase 5: the rim of D where S2 leaves the admissible band of distances
+// (ProjectionOptions::end_on_rim; projection_insertion.hpp, insert_rim).
 //
-// With the default distance rules a walk stops where its S2 edge passes behind S1 (mu < 0).
-// There the projection really ends on the curve mu = 0, where the two surfaces meet, and Xi is
-// the identity on it: the curve is the union of the segments in which S1 elements and S2
-// triangles intersect. The pieces that stopped there end at rim nodes where their S2 edges
-// pierce S1 (planned by the walks, made by insert_planned_edge). From those, the curve is traced
-// pair by pair: for an S1 element t and an S2 triangle A that meet, the segment t ∩ A runs
-// between two of the points where an edge of A pierces t (a rim node inside t, image on that S2
-// edge, continued in the S2 triangle across that edge) or an edge of t pierces A (a rim node on
-// that S1 edge, image inside A, continued in the S1 element across that edge), and becomes a
-// rim edge. The faces on D's side of the rim then map into one S2 triangle and become regions;
-// those beyond it reach S1 corners without a node (their rays pass behind S2) and stay out.
+// A walk stops where its S2 edge leaves the band: with the default distance rules where it passes
+// behind S1 (mu < 0), with a distance limit m also where it goes beyond m (and with negative
+// distances allowed, below -m). There the projection really ends on the curve where the rays'
+// distance to S2 equals the bound. Over S1 element t the points at distance mu along the rays
+// form a flat triangle, t's corners moved by mu along their directions (rim_geometry.hpp), and
+// a point of it has the same local coordinates as the point of t it comes from; for mu = 0 it is
+// t itself and Xi is the identity on the curve. So the curve is the union of the segments in
+// which these triangles and S2 triangles intersect. The pieces that stopped there end at rim
+// nodes where their S2 edges pierce such a triangle (planned by the walks, made by
+// insert_planned_edge). From those, the curve is traced pair by pair: for an S1 element t and an
+// S2 triangle A whose level-mu triangle t' meets A, the segment t' ∩ A runs between two of the
+// points where an edge of A pierces t' (a rim node inside t, image on that S2 edge, continued in
+// the S2 triangle across that edge) or an edge of t' pierces A (a rim node on that S1 edge, image
+// inside A, continued in the S1 element across that edge), and becomes a rim edge. The faces on
+// D's side of the rim then map into one S2 triangle and become regions; those beyond it reach S1
+// corners without a node (their rays meet S2 outside the band) and stay out.
 
 #include "projection_insertion.hpp"
 #include "rim_geometry.hpp"
@@ -19,6 +24,7 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/snapping.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_set>
 
@@ -43,15 +49,20 @@ std::array<WorldPoint<2>, 3> corners_of(const Surface<2>& s, Index t) {
   return {s.corner(t, 0), s.corner(t, 1), s.corner(t, 2)};
 }
 
-/// The ends of the segment t ∩ a (S1 element t, S2 triangle a): exactly two, each strictly
-/// inside its triangle and edge, or none (no intersection, or a degenerate one).
-int rim_segment(const Surface<2>& s1, const Surface<2>& s2, Index t, Index a, std::array<RimEnd, 2>& ends) {
+/// The ends of the segment t' ∩ a (t' the level set at distance mu of S1 element t's rays, S2
+/// triangle a): exactly two, each strictly inside its triangle and edge, or none (no
+/// intersection, or a degenerate one).
+template <class Context>
+int rim_segment(const Context& ctx, double mu, Index t, Index a, std::array<RimEnd, 2>& ends) {
+  const Surface<2>& s1 = ctx.s1;
+  const Surface<2>& s2 = ctx.s2;
   int count = 0;
   auto add = [&](const RimEnd& end) {
     if (count < 2) ends[count] = end;
     ++count;
   };
-  const auto t_corners = corners_of(s1, t), a_corners = corners_of(s2, a);
+  const auto t_corners = ctx.corners_at_distance(t, mu), a_corners = corners_of(s2, a);
+  auto moved = [&](Index v) -> WorldPoint<2> { return s1.vertex(v) + mu * ctx.vertex_directions[v]; };
   for (int k = 0; k < 3; ++k) {
     const Index e = s2.element_edge(a, k);
     const auto ev = s2.edge_vertices(e);
@@ -68,7 +79,7 @@ int rim_segment(const Surface<2>& s1, const Surface<2>& s2, Index t, Index a, st
   for (int k = 0; k < 3; ++k) {
     const Index e = s1.element_edge(t, k);
     const auto ev = s1.edge_vertices(e);
-    const auto p = segment_through_triangle(s1.vertex(ev[0]), s1.vertex(ev[1]), a_corners);
+    const auto p = segment_through_triangle(moved(ev[0]), moved(ev[1]), a_corners);
     if (!p) continue;
     if (!strictly_inside(p->barycentric, rim_margin) || !(p->s > rim_margin && p->s < 1.0 - rim_margin)) {
       if (p->barycentric[0] >= -rim_margin && p->barycentric[1] >= -rim_margin && p->barycentric[2] >= -rim_margin &&
@@ -82,9 +93,10 @@ int rim_segment(const Surface<2>& s1, const Surface<2>& s2, Index t, Index a, st
 }
 
 /// Whether no ray of S1 element t meets a focal point of t's direction field before it reaches
-/// the plane of S2 triangle a, over the part of t in front of that plane. The faces on D's side
-/// of the rim become regions, and the walks and the ray check accept no point beyond a focal
-/// point of its element (walk_acceptance.hpp); a rim next to a fold would claim such points.
+/// the plane of S2 triangle a, over the part of t whose distance to that plane lies in the
+/// admissible band (for mu = 0: in front of the plane). The faces on D's side of the rim become
+/// regions, and the walks and the ray check accept no point beyond a focal point of its element
+/// (walk_acceptance.hpp); a rim next to a fold would claim such points.
 /// Where the element's focal-free distance (a bound for all of it) covers the corners' distances
 /// to the plane that decides; else the rays are tested on a grid of 153 points (spacing 1/16 of
 /// the element): tests at the corners and half-way to the rim alone let folded points through
@@ -101,11 +113,14 @@ bool rays_unfolded_in_front(const Context& ctx, Index t, Index a) {
     if (!(std::abs(along) > 1e-12 * normal.norm() * nu.norm())) return std::nullopt;
     return normal.dot(tri[0] - ctx.s1.world_position(t, xi)) / along;
   };
+  // the band of admissible distances (the bounds of ProjectionContext::rim_level)
+  const double lower = ctx.options.allow_negative_distance ? -ctx.distance_limit : 0.0;
+  const double upper = ctx.distance_limit;
   double farthest = 0.0;
   for (int k = 0; k < 3; ++k) {
     const std::optional<double> mu = distance_along_ray(reference_corner<2>(k));
     if (!mu) return false;
-    farthest = std::max(farthest, *mu);
+    farthest = std::max(farthest, std::abs(std::clamp(*mu, lower, upper)));
   }
   if (farthest <= ctx.focal_free_reach[t]) return true;
   constexpr int steps = 16;
@@ -113,7 +128,7 @@ bool rays_unfolded_in_front(const Context& ctx, Index t, Index a) {
     for (int j = 0; i + j <= steps; ++j) {
       const LocalPoint<2> xi(double(i) / steps, double(j) / steps);
       const std::optional<double> mu = distance_along_ray(xi);
-      if (mu && *mu > 0.0 && !ctx.unfolded_in(t, xi, *mu)) return false;
+      if (mu && *mu != 0.0 && *mu >= lower && *mu <= upper && !ctx.unfolded_in(t, xi, *mu)) return false;
     }
   return true;
 }
@@ -142,15 +157,16 @@ SurfacePoint<d> ProjectionInsertion<d>::point_on_target_edge(Index e, double eta
 }
 
 template <int d>
-Index ProjectionInsertion<d>::rim_node_inside(Index element, Index e, const LocalPoint<d>& local, double eta) {
+Index ProjectionInsertion<d>::rim_node_inside(Index element, Index e, int level, const LocalPoint<d>& local,
+                                              double eta) {
   if constexpr (d == 2) {
-    const auto [at, fresh] = rim_inside_.try_emplace(pair_key(element, e), invalid_index);
+    const auto [at, fresh] = rim_inside_[level].try_emplace(pair_key(element, e), invalid_index);
     if (!fresh) return at->second;
     if (!(eta > rim_margin && eta < 1.0 - rim_margin)) return invalid_index;
     try {
       at->second = builder_.add_rim_node({element, local}, point_on_target_edge(e, eta));
       ++rim_nodes_made_;
-      rim_seeds_.emplace_back(element, e);
+      rim_seeds_.push_back({element, e, level});
     } catch (const BuilderError&) {
       // e.g. the point snaps onto an S1 vertex that holds the preimage of an S2 vertex
     }
@@ -190,30 +206,34 @@ void ProjectionInsertion<d>::insert_rim(ProjectionReport<d>& report) {
   if constexpr (d == 2) {
     const Surface<2>& s1 = ctx_.s1;
     const Surface<2>& s2 = ctx_.s2;
-    std::unordered_set<std::uint64_t> done;
-    std::vector<std::pair<Index, Index>> pending;  // (S1 element, S2 triangle), taken from the back
+    std::array<std::unordered_set<std::uint64_t>, 2> done;  // per level
+    struct Pair {
+      Index element, target;
+      int level;
+    };
+    std::vector<Pair> pending;  // (S1 element, S2 triangle, level), taken from the back
     for (auto it = rim_seeds_.rbegin(); it != rim_seeds_.rend(); ++it)
-      for (const auto& inc : s2.edge_elements(it->second)) pending.emplace_back(it->first, inc.element);
+      for (const auto& inc : s2.edge_elements(it->target_edge)) pending.push_back({it->element, inc.element, it->level});
     // the curve is traced as far as it goes, but no farther than a few times the size of S1
     const std::size_t step_cap = 4 * static_cast<std::size_t>(s1.element_count()) + 1024;
     std::array<RimEnd, 2> ends;
     for (std::size_t steps = 0; !pending.empty() && steps < step_cap;) {
-      const auto [t, a] = pending.back();
+      const auto [t, a, level] = pending.back();
       pending.pop_back();
-      if (!done.insert(pair_key(t, a)).second) continue;
+      if (!done[level].insert(pair_key(t, a)).second) continue;
       ++steps;
-      if (rim_segment(s1, s2, t, a, ends) != 2) continue;
+      if (rim_segment(ctx_, ctx_.rim_level(level).mu, t, a, ends) != 2) continue;
       std::array<Index, 2> nodes{};
       for (int i = 0; i < 2; ++i) {
         const RimEnd& end = ends[i];
         if (end.on_target_edge) {
-          nodes[i] = rim_node_inside(t, end.edge, end.local, end.parameter);
+          nodes[i] = rim_node_inside(t, end.edge, level, end.local, end.parameter);
           const Index next = other_element(s2.edge_elements(end.edge), a);
-          if (next != invalid_index) pending.emplace_back(t, next);
+          if (next != invalid_index) pending.push_back({t, next, level});
         } else {
           nodes[i] = rim_node_on_edge(end.edge, end.parameter, a, end.local);
           const Index next = other_element(s1.edge_elements(end.edge), t);
-          if (next != invalid_index) pending.emplace_back(next, a);
+          if (next != invalid_index) pending.push_back({next, a, level});
         }
       }
       if (nodes[0] == invalid_index || nodes[1] == invalid_index) continue;
@@ -233,7 +253,7 @@ void ProjectionInsertion<d>::insert_rim(ProjectionReport<d>& report) {
 // the members defined here (the rest of the class is instantiated in projection_insertion.cpp)
 #define PLMAP_RIM_MEMBERS(d)                                                                               \
   template SurfacePoint<d> ProjectionInsertion<d>::point_on_target_edge(Index, double) const;              \
-  template Index ProjectionInsertion<d>::rim_node_inside(Index, Index, const LocalPoint<d>&, double);      \
+  template Index ProjectionInsertion<d>::rim_node_inside(Index, Index, int, const LocalPoint<d>&, double); \
   template Index ProjectionInsertion<d>::rim_node_on_edge(Index, double, Index, const LocalPoint<d>&);     \
   template void ProjectionInsertion<d>::insert_rim(ProjectionReport<d>&);
 PLMAP_RIM_MEMBERS(1)

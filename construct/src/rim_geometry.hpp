@@ -1,8 +1,11 @@
 #pragma once
-// The rim of D (projection, end_on_rim): with the default distance rules the projection ends
-// where S2 passes behind S1, on the curve where the two surfaces meet (mu = 0). There Xi is the
-// identity, so the curve is the intersection of S1 and S2 triangles and its points are found by
-// straight segments piercing triangles, in world coordinates.
+// The rim of D (projection, end_on_rim): the projection ends where S2 leaves the band of
+// admissible distances, on the curve where the rays' distance to S2 reaches a bound mu0 of the
+// band (0 where S2 passes behind S1; there the two surfaces meet and Xi is the identity; or
+// +-max_distance). Over an S1 element that curve lies in the flat triangle of the points at
+// distance mu0 along its rays (ProjectionContext::corners_at_distance), so it is the
+// intersection of such triangles with S2 triangles, and its points are found by straight
+// segments piercing triangles, in world coordinates.
 
 #include <plmap/core/types.hpp>
 

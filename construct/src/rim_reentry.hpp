@@ -1,11 +1,13 @@
 #pragma once
-// Normal projection, edge walks: where an S2 edge comes out in front of S1 again after a walk
-// stopped on the rim (the edge passed behind S1 there).
+// Normal projection, edge walks: where an S2 edge comes back into the admissible band of
+// distances after a walk stopped on the rim (the edge passed behind S1 there, or beyond the
+// distance limit).
 //
 // The first point beyond the rim point, and before `before`, at which the edge pierces an S1
-// element from behind, searched in the elements within search_limits.fold_exit_reach rings
-// (sharing a vertex) around the rim point's element. Between the two pierces the edge lies
-// behind S1; beyond the second, its preimage goes on from a rim node inside that element. The
+// element from behind (or, for a bound mu = m of the band, the element moved to distance m, from
+// beyond it: rim_geometry.hpp), searched in the elements within search_limits.fold_exit_reach
+// rings (sharing a vertex) around the rim point's element. Between the two pierces the edge lies
+// outside the band; beyond the second, its preimage goes on from a rim node inside that element. The
 // S1-edge crossings that the fold-exit search (fold_reentry.hpp) looks for lie one element
 // farther on, and a walk from that crossing that reaches the second vertex leaves no walk back
 // from there to find the stretch between the pierce and the crossing: the faces next to it
@@ -26,7 +28,7 @@ namespace plmap::projection {
 
 /// The re-entry of the S2 edge qa -> qb (oriented as the walk ran; its parameters measured from
 /// qa) beyond `rim`, the rim point where the walk stopped, and before `before`; none if the edge
-/// does not come out in front of S1 within the search's reach.
+/// does not come back into the band (for mu = 0: out in front of S1) within the search's reach.
 inline std::optional<RimPoint<2>> rim_reentry(const ProjectionContext<2>& ctx, const RimPoint<2>& rim,
                                               const WorldPoint<2>& qa, const WorldPoint<2>& qb, double before) {
   const auto& limits = ctx.options.search_limits;
@@ -51,20 +53,25 @@ inline std::optional<RimPoint<2>> rim_reentry(const ProjectionContext<2>& ctx, c
   for (Index t : all) {
     // the rim point's element holds the edge's rim node already (one per element and S2 edge)
     if (t == rim.element) continue;
-    const std::array<WorldPoint<2>, 3> tri{ctx.s1.corner(t, 0), ctx.s1.corner(t, 1), ctx.s1.corner(t, 2)};
-    const std::optional<Pierce> p = segment_through_triangle(from, qb, tri);
-    if (!p || !strictly_inside(p->barycentric, 1e3 * ctx.options.snap_tolerance)) continue;
-    const double at = after + p->s * (1.0 - after);
-    if (!(at > after + limits.edge_parameter_slack) || !(at < before - limits.edge_parameter_slack) ||
-        !(at < 1.0 - limits.end_parameter_slack))
-      continue;
-    if (best && best->eta <= at) continue;
-    // from behind S1 to its front: the distance along the rays grows along the edge
-    const WorldPoint<2> normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-    WorldPoint<2> nu = WorldPoint<2>::Zero();
-    for (int k = 0; k < 3; ++k) nu += p->barycentric[k] * ctx.vertex_directions[ctx.s1.element(t)[k]];
-    if (!(normal.dot(qb - qa) * normal.dot(nu) > 0.0)) continue;
-    best = RimPoint<2>{t, LocalPoint<2>(p->barycentric[1], p->barycentric[2]), at};
+    for (int level = 0; level < ctx.rim_level_count(); ++level) {
+      const RimLevel bound = ctx.rim_level(level);
+      const auto tri = ctx.corners_at_distance(t, bound.mu);
+      const std::optional<Pierce> p = segment_through_triangle(from, qb, tri);
+      if (!p || !strictly_inside(p->barycentric, 1e3 * ctx.options.snap_tolerance)) continue;
+      const double at = after + p->s * (1.0 - after);
+      if (!(at > after + limits.edge_parameter_slack) || !(at < before - limits.edge_parameter_slack) ||
+          !(at < 1.0 - limits.end_parameter_slack))
+        continue;
+      if (best && best->eta <= at) continue;
+      // into the band: across its lower bound (from behind S1 to its front, for mu = 0) the
+      // distance along the rays grows along the edge, across its upper bound it shrinks
+      const WorldPoint<2> normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+      WorldPoint<2> nu = WorldPoint<2>::Zero();
+      for (int k = 0; k < 3; ++k) nu += p->barycentric[k] * ctx.vertex_directions[ctx.s1.element(t)[k]];
+      const double growth = normal.dot(qb - qa) * normal.dot(nu);
+      if (!(bound.lower ? growth > 0.0 : growth < 0.0)) continue;
+      best = RimPoint<2>{t, LocalPoint<2>(p->barycentric[1], p->barycentric[2]), at, level};
+    }
   }
   return best;
 }

@@ -127,13 +127,30 @@ bool side_on_target_boundary(const Surface<2>& s2, const ClosureWorkspace& w, in
   return false;
 }
 
+/// Whether the side of closure triangle f opposite its corner i joins two rim nodes. Asked of a
+/// side between a region and a triangle left out, which belong to different faces: the side is
+/// then a constraint of the closure, and between rim nodes a rim edge (MapBuilder::add_rim_edge,
+/// a constraint but no graph edge), where D ends inside the element because S2 leaves the
+/// admissible band of distances there (normal projection).
+bool side_on_rim(const BuilderContents<2>& in, const ClosureWorkspace& w, int f, int i) {
+  const auto& corners = w.closure.triangles[f];
+  const auto slots = static_cast<int>(w.et.slots.size());
+  for (const int k : {(i + 1) % 3, (i + 2) % 3}) {
+    const int v = corners[k];
+    if (v >= slots || in.nodes[w.et.slots[v]].kind != BuilderNodeKind::rim) return false;
+  }
+  return true;
+}
+
 /// Whether the faces left out of D lie strictly inside an element whose boundary the regions
 /// cover in full (every closure triangle on the element boundary is a region): verify expects
 /// such an element to be covered entirely (the region_tiling invariant, face_removal.hpp), unless
 /// a hole of S2 explains the gap (a region side with no region across that maps onto a boundary
-/// edge of S2). A reversed or unmapped face surrounded by regions (a missing S2 edge preimage
-/// between S2 vertices inside the element) would break it.
-bool encloses_a_hole(const Surface<2>& s2, const ClosureWorkspace& w, const AssemblyCursor& at) {
+/// edge of S2), or the rim of D does (a region side with no region across that is a rim edge:
+/// an island of S1 whose rays meet S2 only beyond the distance limit, or behind S1). A reversed
+/// or unmapped face surrounded by regions (a missing S2 edge preimage between S2 vertices inside
+/// the element) would break it.
+bool encloses_a_hole(const BuilderContents<2>& in, const ClosureWorkspace& w, const AssemblyCursor& at) {
   const auto& closure = w.closure;
   const int nf = static_cast<int>(closure.triangles.size());
   for (int f = 0; f < nf; ++f)
@@ -144,7 +161,9 @@ bool encloses_a_hole(const Surface<2>& s2, const ClosureWorkspace& w, const Asse
     if (at.triangle_region[f] == invalid_index) continue;
     for (int i = 0; i < 3; ++i) {
       const int g = closure.neighbors[f][i];
-      if (g >= 0 && at.triangle_region[g] == invalid_index && side_on_target_boundary(s2, w, f, i)) return false;
+      if (g >= 0 && at.triangle_region[g] == invalid_index &&
+          (side_on_target_boundary(in.s2, w, f, i) || side_on_rim(in, w, f, i)))
+        return false;
     }
   }
   return true;
@@ -154,7 +173,7 @@ bool encloses_a_hole(const Surface<2>& s2, const ClosureWorkspace& w, const Asse
 /// map's orientation. Returns how many there are: none if the faces left out would be a hole
 /// strictly inside the element (encloses_a_hole); then the element leaves D whole, as
 /// remove_faces takes an element whose removed face lies strictly inside it.
-Index number_regions(const Surface<2>& s2, const ClosureWorkspace& w, int orientation, AssemblyCursor& at) {
+Index number_regions(const BuilderContents<2>& in, const ClosureWorkspace& w, int orientation, AssemblyCursor& at) {
   const ElementTriangulation& et = w.et;
   const auto rbase = static_cast<Index>(at.regions);
   const int nf = static_cast<int>(w.closure.triangles.size());
@@ -169,7 +188,7 @@ Index number_regions(const Surface<2>& s2, const ClosureWorkspace& w, int orient
     if (comp.outside || comp.target == invalid_index || comp.sign != orientation) continue;
     at.triangle_region[f] = rbase + nr++;
   }
-  if (nr > 0 && nr < nf && encloses_a_hole(s2, w, at)) {
+  if (nr > 0 && nr < nf && encloses_a_hole(in, w, at)) {
     at.triangle_region.assign(nf, invalid_index);
     return 0;
   }
@@ -304,7 +323,7 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
   make_room(part.region_neighbors, at.graph_regions + nf);
   make_room(part.region_target, at.regions + nf);
   if (at.omitted_weights == nullptr) make_room(part.region_map, at.regions + nf);
-  const Index region_count = number_regions(in.s2, w, orientation, at);
+  const Index region_count = number_regions(in, w, orientation, at);
   const auto base = static_cast<Index>(at.nodes);
   // Tiled: every face of the closure is a region, so the graph follows from the regions. At a
   // ghost node the derived kind of a side with no region across rests on an exactly zero weight

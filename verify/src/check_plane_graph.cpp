@@ -216,7 +216,9 @@ void run_plane_graph(const MapContext<d>& ctx, ViolationSink& sink) {
         }
         // ... and no hole of S2 inside: a region side with no region beyond it, away from the
         // element boundary, is the rim of such a hole when its image lies on a boundary edge of
-        // S2 (a missing region, in contrast, leaves sides on interior S2 edges or closure edges).
+        // S2 (a missing region, in contrast, leaves sides on interior S2 edges or closure edges);
+        // nor an island where D ends on its rim (a side between two rim nodes: a normal
+        // projection whose S2 leaves the band of admissible distances inside the element).
         auto on_boundary = [&](Index a, Index b) {
           for (int k = 0; k < 3; ++k) {
             const auto list = map.edge_nodes(t, k);
@@ -225,6 +227,12 @@ void run_plane_graph(const MapContext<d>& ctx, ViolationSink& sink) {
               return true;
           }
           return false;
+        };
+        auto on_rim = [&](Index a, Index b) {
+          auto rim = [&](Index n) {
+            return m.node_type[n] == NodeType::rim_on_edge || m.node_type[n] == NodeType::rim_inside;
+          };
+          return rim(a) && rim(b);
         };
         auto image_on_target_boundary = [&](const RegionSide& side) {
           const Index r = side.region, t2 = m.region_target[r];
@@ -246,7 +254,8 @@ void run_plane_graph(const MapContext<d>& ctx, ViolationSink& sink) {
           const bool single = (i == 0 || sides[i - 1].low != sides[i].low || sides[i - 1].high != sides[i].high) &&
                               (i + 1 == sides.size() || sides[i + 1].low != sides[i].low ||
                                sides[i + 1].high != sides[i].high);
-          if (single && !on_boundary(sides[i].low, sides[i].high) && image_on_target_boundary(sides[i]))
+          if (single && !on_boundary(sides[i].low, sides[i].high) &&
+              (image_on_target_boundary(sides[i]) || on_rim(sides[i].low, sides[i].high)))
             full = false;
         }
       } else {

@@ -138,12 +138,14 @@ struct ProjectionOptions {
   /// is left out of D (ProjectionReport::occluded_faces), as a vertex preimage keeps the nearest
   /// solution. With false such maps are returned as they are, and fail verify's coverage check.
   bool keep_nearer_sheet = true;
-  /// d = 2, with the default distance rules (no max_distance, no negative distances): where S2
-  /// passes behind S1, D ends on the curve where the two surfaces meet (mu = 0), inside the S1
-  /// elements it crosses, instead of at the last S1 edge an S2 edge's preimage crosses before it.
-  /// A walk that stops there ends at a rim node where its S2 edge pierces S1, and the curve is
-  /// traced across S1 as rim edges (MapBuilder::add_rim_node, add_rim_edge). false: D ends at the
-  /// last crossing, as before.
+  /// d = 2: where S2 leaves the band of admissible distances, D ends on the curve where the
+  /// rays' distance to S2 reaches the band's bound, inside the S1 elements it crosses, instead of
+  /// at the last S1 edge an S2 edge's preimage crosses before it: mu = 0 where S2 passes behind
+  /// S1 (unless negative distances are allowed; there the two surfaces meet), mu = max_distance
+  /// (and -max_distance with negative distances) where that is finite. A walk that stops there
+  /// ends at a rim node where its S2 edge reaches the bound, and the curve is traced across S1
+  /// as rim edges (MapBuilder::add_rim_node, add_rim_edge). false: D ends at the last crossing,
+  /// as before.
   bool end_on_rim = true;
   /// Told the phase ("rays from S1 vertices", "S2 vertex preimages", "S2 edges", "finalize")
   /// at its start and end, and every 4096 edges in "S2 edges"; called from the calling thread

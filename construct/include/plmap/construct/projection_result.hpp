@@ -107,8 +107,9 @@ struct ProjectionReport {
   /// vertex (docs/projection.md step 2), and their regions (cleared elements included).
   Index folded_faces = 0;
   Index folded_regions = 0;
-  /// d = 2, end_on_rim: nodes and edges of the rim of D where S2 passes behind S1 (rim nodes
-  /// inside elements and on S1 edges; ghost nodes the rim passes are not counted).
+  /// d = 2, end_on_rim: nodes and edges of the rim of D where S2 leaves the band of admissible
+  /// distances, behind S1 or beyond max_distance (rim nodes inside elements and on S1 edges;
+  /// ghost nodes the rim passes are not counted).
   Index rim_nodes = 0;
   Index rim_edges = 0;
   std::vector<EdgeNotInserted<d>> edges_not_inserted;

@@ -10,9 +10,9 @@
 ///
 /// An element whose corners and boundary are all covered by regions is expected to be covered
 /// entirely (the region_tiling invariant of verify/): D is a union of faces each of which
-/// reaches the element boundary, or of whole elements. So a removed face that lies strictly
-/// inside its element (no side along the element boundary) takes all regions of that element
-/// with it.
+/// reaches the element boundary, or of whole elements, but for holes bounded by S2's boundary
+/// or by the rim of a projection (rim edges). So a removed face that lies strictly inside its
+/// element (no side along the element boundary) takes all regions of that element with it.
 ///
 /// Normal projection uses this to keep only the nearer of two sheets whose images overlap on S2
 /// (construct/, image overlaps).
