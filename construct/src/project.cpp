@@ -106,6 +106,11 @@ void walk_and_insert_edges(const ProjectionContext<d>& ctx, const ProjectionStat
   report.seconds.edge_walks += seconds_since(t0) - inserting;
 }
 
+/// Rounds of walks from the rim crossings that the tracing finds on S2 edges no walk reached,
+/// each followed by tracing on from where they end (a rim winding through many such edges is
+/// followed a few steps per round).
+constexpr int rim_walk_rounds = 16;
+
 template <int d, class Solver>
 ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::shared_ptr<const Surface<d>> s2,
                                    const ProjectionOptions& options, const Solver& solver) {
@@ -121,7 +126,9 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   // second search for S2 vertices that the search from nearby S1 elements does not map.
   t0 = Clock::now();
   report_progress(options.progress, "rays from S1 vertices", 0, n1v);
-  std::vector<std::optional<SurfacePoint<d>>> hit = cast_rays_from_s1_vertices(ctx);
+  std::vector<float> ray_outside_band;  // the rim's seeds (projection_rim.cpp)
+  std::vector<std::optional<SurfacePoint<d>>> hit =
+      cast_rays_from_s1_vertices(ctx, ctx.ends_on_rim() ? &ray_outside_band : nullptr);
   report.seconds.ghost_nodes = seconds_since(t0);
   report_progress(options.progress, "rays from S1 vertices", n1v, n1v);
 
@@ -137,6 +144,7 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   t0 = Clock::now();
   MapBuilder<d> builder = builder_for(ctx);
   ProjectionState<d> state(n1v, n2v, ctx.threads);
+  state.ray_outside_band = std::move(ray_outside_band);
   ProjectionInsertion<d> insertion(ctx, state, builder);
   report.target_vertices = n2v;
   report.domain_vertices = n1v;
@@ -161,6 +169,21 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   // the rim of D where S2 leaves the band of distances, traced from where pieces ended on it
   t0 = Clock::now();
   insertion.insert_rim(report);
+  // S2 edges that dip into the band with both vertices outside it are found by the tracing
+  // only: walks start at their rim crossings, and the tracing goes on from where those end
+  if (ctx.ends_on_rim()) {
+    PlanBuffer<d> buffer;
+    std::vector<Index> edges;
+    std::vector<PlannedEdge> planned;
+    for (int round = 0; round < rim_walk_rounds; ++round) {
+      const std::vector<RimStart<d>> starts = insertion.take_unwalked_rim_crossings();
+      if (starts.empty()) break;
+      plan_rim_walks(ctx, state, solver, std::span<const RimStart<d>>(starts), buffer, edges, planned);
+      insertion.insert_rim_walks(edges, planned, buffer, report);
+      insertion.insert_rim(report);
+    }
+  }
+  insertion.declare_edges_without_pieces_outside();
   report.seconds.insertion += seconds_since(t0);
   // what the projection no longer needs, freed before finalize (which has the memory peak);
   // the directions and focal-free distances are kept for the fold test of the finished regions

@@ -373,6 +373,10 @@ struct ProjectionState {
   std::vector<std::optional<SurfacePoint<d>>> vertex_image;
   /// Where S2 edges cross S1's boundary (edge walks); empty if no S2 edge does.
   BoundaryEntries<d> boundary_entries;
+  /// d = 2, end_on_rim: per S1 vertex whose ray meets S2 only outside the band of admissible
+  /// distances, the distance of that hit, else NaN (cast_rays_from_s1_vertices); empty without
+  /// a rim.
+  std::vector<float> ray_outside_band;
 
   /// `threads`: how many threads may first-touch the arrays (parallel_first_touch.hpp).
   ProjectionState(Index s1_vertices, Index s2_vertices, unsigned threads) {
@@ -387,6 +391,7 @@ struct ProjectionState {
     release(target_place);
     release(vertex_state);
     release(vertex_image);
+    release(ray_outside_band);
     boundary_entries = {};
   }
 };

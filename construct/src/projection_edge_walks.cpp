@@ -752,6 +752,76 @@ class EdgeWalker {
     }
   }
 
+  /// The walks of S2 edge e (no piece yet) from the rim crossings `starts` (by edge parameter)
+  /// into the band, appended to `buffer` as pieces; returns the plan. A crossing inside the
+  /// stretch of an earlier start's walk is that walk's other end, and is skipped.
+  PlannedEdge plan_from_rim(Index e, std::span<const RimStart<d>> starts, PlanBuffer<d>& buffer) const
+    requires(d == 2)
+  {
+    PlannedEdge plan;
+    plan.pieces_begin = static_cast<std::uint32_t>(buffer.pieces.size());
+    plan.failures_begin = static_cast<std::uint32_t>(buffer.failures.size());
+    const double piece_slack = ctx_.options.search_limits.piece_parameter_slack;
+    const auto tv = ctx_.target_edge_vertices(e);
+    const WorldPoint<2> qa = ctx_.s2.vertex(tv[0]), qb = ctx_.s2.vertex(tv[1]);
+    auto& crossings = buffer.crossings;
+    std::vector<std::pair<double, double>> walked;  // stretches of the edge parameter
+    for (const RimStart<d>& start : starts) {
+      const RimPoint<d>& rim = start.at;
+      if (std::any_of(walked.begin(), walked.end(), [&](const auto& stretch) {
+            return rim.eta >= stretch.first - piece_slack && rim.eta <= stretch.second + piece_slack;
+          }))
+        continue;
+      // into the band: across the lower bound the distance grows, across the upper one it shrinks
+      const RimLevel bound = ctx_.rim_level(rim.level);
+      const auto tri = ctx_.corners_at_distance(rim.element, bound.mu);
+      const WorldPoint<2> normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+      const Barycentric<2> b = barycentric_from_local<2>(rim.local);
+      WorldPoint<2> nu = WorldPoint<2>::Zero();
+      for (int k = 0; k < 3; ++k) nu += b(k) * ctx_.vertex_directions[ctx_.s1.element(rim.element)[k]];
+      const double growth = normal.dot(qb - qa) * normal.dot(nu);
+      if (growth == 0.0) continue;
+      const bool forwards = bound.lower ? growth > 0.0 : growth < 0.0;
+      Place<d> inside;
+      inside.kind = PlaceKind::element;
+      inside.index = rim.element;
+      inside.local = rim.local;
+      const std::size_t begin = crossings.size();
+      const WalkDirection direction = forwards ? WalkDirection::from_first_vertex : WalkDirection::from_second_vertex;
+      const std::optional<Place<d>>& far_vertex = state_.target_place[forwards ? tv[1] : tv[0]];
+      WalkResult<d> w = walk(e, inside, forwards ? rim.eta : 1.0 - rim.eta, far_vertex, direction, buffer);
+      // one rim node per S1 element, S2 edge and level: leaving the band the same way in the
+      // start's element, the piece ends at its last crossing
+      if (w.rim && w.rim->element == rim.element && w.rim->level == rim.level) w.rim.reset();
+      const bool reached = w.end == WalkEnd::reached;
+      const bool to_rim = w.end == WalkEnd::failed && w.rim.has_value();
+      if (!reached && !to_rim && w.crossing_count == 0) {
+        crossings.resize(begin);
+        continue;
+      }
+      const double far_eta = reached ? 1.0 : (to_rim ? w.rim->eta : w.eta);  // in the walk's direction
+      if (forwards) {
+        add_piece(buffer, begin, PieceStart::rim_node,
+                  reached ? PieceEnd::second_vertex : (to_rim ? PieceEnd::rim_node : PieceEnd::last_crossing),
+                  to_rim ? keep_rim(buffer, *w.rim, false) : PlanBuffer<d>::no_rim, keep_rim(buffer, rim, false));
+        walked.emplace_back(rim.eta, far_eta);
+      } else {
+        // measured from the first vertex again, in the edge's direction, ending at the start
+        std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(begin), crossings.end());
+        for (std::size_t i = begin; i < crossings.size(); ++i)
+          crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
+        const std::uint32_t start_rim = to_rim ? keep_rim(buffer, *w.rim, true) : PlanBuffer<d>::no_rim;
+        add_piece(buffer, begin,
+                  reached ? PieceStart::first_vertex : (to_rim ? PieceStart::rim_node : PieceStart::first_crossing),
+                  PieceEnd::rim_node, keep_rim(buffer, rim, false), start_rim);
+        walked.emplace_back(1.0 - far_eta, rim.eta);
+      }
+    }
+    plan.pieces_end = static_cast<std::uint32_t>(buffer.pieces.size());
+    plan.failures_end = static_cast<std::uint32_t>(buffer.failures.size());
+    return plan;
+  }
+
  private:
   const ProjectionContext<d>& ctx_;
   const ProjectionState<d>& state_;
@@ -770,9 +840,35 @@ void plan_edge_block(const ProjectionContext<d>& ctx, const ProjectionState<d>& 
   for (Index e = block; e < block_end; ++e) planned[e - block] = walker.plan_edge(e, slot, buffer);
 }
 
+template <int d, class Solver>
+void plan_rim_walks(const ProjectionContext<d>& ctx, const ProjectionState<d>& state, const Solver& solver,
+                    std::span<const RimStart<d>> starts, PlanBuffer<d>& buffer, std::vector<Index>& edges,
+                    std::vector<PlannedEdge>& planned) {
+  buffer.clear();
+  edges.clear();
+  planned.clear();
+  if constexpr (d == 2) {
+    const EdgeWalker<d, Solver> walker(ctx, state, solver);
+    for (std::size_t i = 0; i < starts.size();) {
+      std::size_t j = i;
+      while (j < starts.size() && starts[j].target_edge == starts[i].target_edge) ++j;
+      const Index e = starts[i].target_edge;
+      const PlannedEdge plan = walker.plan_from_rim(e, starts.subspan(i, j - i), buffer);
+      if (plan.pieces_end > plan.pieces_begin) {
+        edges.push_back(e);
+        planned.push_back(plan);
+      }
+      i = j;
+    }
+  }
+}
+
 #define PLMAP_EDGE_WALKS(d, Solver)                                                                          \
   template void plan_edge_block<d, Solver>(const ProjectionContext<d>&, const ProjectionState<d>&, const Solver&, \
-                                           Index, Index, unsigned, PlanBuffer<d>&, std::vector<PlannedEdge>&);
+                                           Index, Index, unsigned, PlanBuffer<d>&, std::vector<PlannedEdge>&); \
+  template void plan_rim_walks<d, Solver>(const ProjectionContext<d>&, const ProjectionState<d>&, const Solver&,  \
+                                          std::span<const RimStart<d>>, PlanBuffer<d>&, std::vector<Index>&,       \
+                                          std::vector<PlannedEdge>&);
 PLMAP_EDGE_WALKS(1, DampedNewtonSolver)
 PLMAP_EDGE_WALKS(2, DampedNewtonSolver)
 PLMAP_EDGE_WALKS(1, CeresTinySolver)

@@ -12,6 +12,7 @@
 #include <plmap/construct/projection_result.hpp>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace plmap::projection {
@@ -31,6 +32,14 @@ struct RimPoint {
   LocalPoint<d> local = LocalPoint<d>::Zero();
   double eta = 0.0;
   int level = 0;
+};
+
+/// A point where the rim crosses S2 edge `target_edge` that no walk reached (ProjectionInsertion::
+/// take_unwalked_rim_crossings): a walk starts there into the band (plan_rim_walks).
+template <int d>
+struct RimStart {
+  Index target_edge = invalid_index;
+  RimPoint<d> at;
 };
 
 template <int d>
@@ -88,5 +97,16 @@ template <int d, class Solver>
 void plan_edge_block(const ProjectionContext<d>& ctx, const ProjectionState<d>& state, const Solver& solver,
                      Index block, Index block_end, unsigned slot, PlanBuffer<d>& buffer,
                      std::vector<PlannedEdge>& planned);
+
+/// d = 2: plans the walks from unwalked rim crossings (sorted by edge, then edge parameter) into
+/// `buffer` (cleared here): per S2 edge with a piece, its index in `edges` and its plan in
+/// `planned`. From each crossing the walk runs into the band (the direction in which the
+/// distance along the rays moves away from the crossed bound) and ends at the next rim crossing,
+/// a vertex preimage, S1's boundary or a failure; a crossing that an earlier walk of the same
+/// edge reached is skipped.
+template <int d, class Solver>
+void plan_rim_walks(const ProjectionContext<d>& ctx, const ProjectionState<d>& state, const Solver& solver,
+                    std::span<const RimStart<d>> starts, PlanBuffer<d>& buffer, std::vector<Index>& edges,
+                    std::vector<PlannedEdge>& planned);
 
 }  // namespace plmap::projection

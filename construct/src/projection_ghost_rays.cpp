@@ -28,6 +28,7 @@ class GhostRays {
   std::optional<SurfacePoint<d>> cast_ray(Index v, std::optional<double>& mu, NearestElements<d>& nearest) {
     const WorldPoint<d>& direction = ctx_.vertex_directions[v];
     std::optional<SurfacePoint<d>> hit;
+    outside_band_ = std::numeric_limits<float>::quiet_NaN();
     // Seeds next to the previous vertex's hit (v moved by its ray parameter) are for S2 many
     // element sizes away, where a search from v visits O(gap / h) kd-tree leaves. They lie on
     // the sheet of S2 that the previous ray reached, and a nearer sheet that this ray meets
@@ -104,6 +105,7 @@ class GhostRays {
         if (b(worst) >= -ctx_.options.search_limits.inside_tolerance) {
           const double mu = x(d);
           WorldPoint<d> target_normal = ctx_.s2.element_normal(t);
+          if (!ctx_.distance_ok(mu, scale) && std::isnan(outside_band_)) outside_band_ = static_cast<float>(mu);
           if (ctx_.distance_ok(mu, scale) && ctx_.normal_ok(direction, target_normal) && ctx_.rank(mu) < best_rank &&
               ctx_.ghost_ray_unfolded(v, mu)) {
             best_rank = ctx_.rank(mu);
@@ -120,27 +122,39 @@ class GhostRays {
     return best;
   }
 
+  /// For the last vertex cast: the distance of the first hit found outside the band of
+  /// admissible distances, or NaN.
+  float outside_band() const { return outside_band_; }
+
  private:
   const ProjectionContext<d>& ctx_;
+  float outside_band_ = std::numeric_limits<float>::quiet_NaN();
 };
 
 }  // namespace
 
 template <int d>
-std::vector<std::optional<SurfacePoint<d>>> cast_rays_from_s1_vertices(const ProjectionContext<d>& ctx) {
+std::vector<std::optional<SurfacePoint<d>>> cast_rays_from_s1_vertices(const ProjectionContext<d>& ctx,
+                                                                      std::vector<float>* outside_band) {
   const Index n1v = ctx.s1.vertex_count();
   std::vector<std::optional<SurfacePoint<d>>> hit;
   assign_on_huge_pages(hit, static_cast<std::size_t>(n1v), {}, ctx.threads);
+  if (outside_band) outside_band->assign(static_cast<std::size_t>(n1v), std::numeric_limits<float>::quiet_NaN());
   parallel_for_chunks(n1v, search_chunk, ctx.threads, [&](Index begin, Index end) {
     GhostRays<d> rays(ctx);
     std::optional<double> mu;  // ray parameter of the previous hit
     NearestElements<d> nearest(*ctx.s2_index);
-    for (Index v = begin; v < end; ++v) hit[v] = rays.cast_ray(v, mu, nearest);
+    for (Index v = begin; v < end; ++v) {
+      hit[v] = rays.cast_ray(v, mu, nearest);
+      if (outside_band && !hit[v]) (*outside_band)[v] = rays.outside_band();
+    }
   });
   return hit;
 }
 
-template std::vector<std::optional<SurfacePoint<1>>> cast_rays_from_s1_vertices<1>(const ProjectionContext<1>&);
-template std::vector<std::optional<SurfacePoint<2>>> cast_rays_from_s1_vertices<2>(const ProjectionContext<2>&);
+template std::vector<std::optional<SurfacePoint<1>>> cast_rays_from_s1_vertices<1>(const ProjectionContext<1>&,
+                                                                                 std::vector<float>*);
+template std::vector<std::optional<SurfacePoint<2>>> cast_rays_from_s1_vertices<2>(const ProjectionContext<2>&,
+                                                                                 std::vector<float>*);
 
 }  // namespace plmap::projection

@@ -6,14 +6,21 @@
 
 #include "projection_context.hpp"
 
+#include <cstdint>
+
 #include <optional>
 #include <vector>
 
 namespace plmap::projection {
 
 /// Per S1 vertex: where its ray hits S2 first (admissible: distance and sign rules, normal check,
-/// no focal point before the hit), or nothing. Independent of ctx.threads.
+/// no focal point before the hit), or nothing. Independent of ctx.threads. If `outside_band` is
+/// given, it receives per S1 vertex without an admissible hit whose ray meets S2 only outside
+/// the band of admissible distances the distance of that hit (the first found), and NaN for
+/// every other vertex: where neighbours lie on different sides of a bound, the rim of D crosses
+/// the S1 edge between them (the rim's seeds, projection_rim.cpp).
 template <int d>
-std::vector<std::optional<SurfacePoint<d>>> cast_rays_from_s1_vertices(const ProjectionContext<d>& ctx);
+std::vector<std::optional<SurfacePoint<d>>> cast_rays_from_s1_vertices(const ProjectionContext<d>& ctx,
+                                                                      std::vector<float>* outside_band = nullptr);
 
 }  // namespace plmap::projection

@@ -110,6 +110,35 @@ void ProjectionInsertion<d>::insert_planned_edges(Index block, Index block_end, 
 }
 
 template <int d>
+void ProjectionInsertion<d>::declare_outside(Index e) {
+  // With a rim, a walk from a rim crossing the tracing finds may still give the edge a piece
+  // (insert_rim_walks): the declaration waits until the rim is done.
+  if (ctx_.ends_on_rim())
+    edges_declared_outside_.push_back(e);
+  else
+    builder_.add_edge_outside_domain(e);
+}
+
+template <int d>
+void ProjectionInsertion<d>::declare_edges_without_pieces_outside() {
+  for (const Index e : edges_declared_outside_)
+    if (inserted_[e] == 0 && !builder_.has_edge(e)) builder_.add_edge_outside_domain(e);
+  std::vector<Index>().swap(edges_declared_outside_);
+}
+
+template <int d>
+void ProjectionInsertion<d>::insert_rim_walks(std::span<const Index> edges, const std::vector<PlannedEdge>& planned,
+                                              PlanBuffer<d>& buffer, ProjectionReport<d>& report) {
+  // the edges had no piece (take_unwalked_rim_crossings hands out no other), so what is entered
+  // now is all they have
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    PlannedEdge plan = planned[i];
+    plan.outside = false;  // declared (or not) once the rim is done
+    inserted_[edges[i]] = insert_planned_edge(edges[i], plan, buffer, report);
+  }
+}
+
+template <int d>
 void ProjectionInsertion<d>::release_used_points() {
   auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
   release(used_first_);
@@ -213,7 +242,7 @@ std::uint32_t ProjectionInsertion<d>::insert_planned_edge(Index e, const Planned
                                                           ProjectionReport<d>& report) {
   if (plan.outside) {
     ++report.edges_outside;
-    builder_.add_edge_outside_domain(e);
+    declare_outside(e);
   }
   bool whole = false;
   std::uint32_t pieces = 0;
@@ -275,7 +304,7 @@ std::uint32_t ProjectionInsertion<d>::insert_planned_edge(Index e, const Planned
   // still closes its S2 triangles' regions, as one beyond S1's boundary does: the faces it
   // would split have nodes on both of its sides, so no single S2 element holds their images
   // and they stay outside D, while the triangles' other faces keep their regions.
-  if (!whole && pieces == 0 && !plan.outside && !builder_.has_edge(e)) builder_.add_edge_outside_domain(e);
+  if (!whole && pieces == 0 && !plan.outside && !builder_.has_edge(e)) declare_outside(e);
   if (whole) ++report.edges_inserted;
   if (pieces > 0) ++report.edges_partly_inserted;
   report.edge_pieces += static_cast<Index>(pieces);

@@ -18,6 +18,7 @@
 #include <span>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -49,6 +50,22 @@ class ProjectionInsertion {
   /// after every edge is inserted, before release_used_points.
   void insert_rim(ProjectionReport<d>& report);
 
+  /// d = 2, end_on_rim: the points where the rim traced so far crosses S2 edges that no walk
+  /// gave a piece (both vertices outside the band, the edge dipping into it between them), by
+  /// edge and edge parameter; taken, so that each is handed out once. Walks start there
+  /// (plan_rim_walks), and insert_rim_walks enters what they find.
+  std::vector<RimStart<d>> take_unwalked_rim_crossings();
+
+  /// Enters the pieces planned from unwalked rim crossings (planned[i] for S2 edge edges[i],
+  /// all in `buffer`), as insert_planned_edges does; then insert_rim traces on from their rim
+  /// nodes.
+  void insert_rim_walks(std::span<const Index> edges, const std::vector<PlannedEdge>& planned,
+                        PlanBuffer<d>& buffer, ProjectionReport<d>& report);
+
+  /// Declares the S2 edges that no walk gave a piece outside D (MapBuilder::
+  /// add_edge_outside_domain); with a rim this waits until the rim walks are done.
+  void declare_edges_without_pieces_outside();
+
   /// Frees what only the insertion needs, before finalize; what it inserted per edge stays.
   void release_used_points();
 
@@ -76,6 +93,10 @@ class ProjectionInsertion {
   void add_used_parameter(Index edge, double t, Index owner);
   std::uint32_t insert_planned_edge(Index e, const PlannedEdge& plan, PlanBuffer<d>& buffer,
                                     ProjectionReport<d>& report);
+  /// MapBuilder::add_edge_outside_domain, at once or, with a rim, once the rim is done.
+  void declare_outside(Index e);
+  /// Edges whose declaration waits (declare_outside).
+  std::vector<Index> edges_declared_outside_;
 
   // ---- the rim of D (end_on_rim) ------------------------------------------------------------------
   /// The rim node where S2 edge e pierces the level set `level` (ProjectionContext::rim_level)
@@ -103,6 +124,23 @@ class ProjectionInsertion {
     int level;
   };
   std::vector<RimSeed> rim_seeds_;
+  /// A pair the rim tracing looks at: S1 element, S2 triangle, level.
+  struct RimPair {
+    Index element, target;
+    int level;
+  };
+  /// Pairs where the rim crosses an S1 edge whose two vertices' rays meet S2 on different sides
+  /// of a bound of the band, or one does and the other misses S2 (ProjectionState::
+  /// ray_outside_band; the S2 triangles pierced found through the S2 kd-tree): a stretch of the
+  /// rim that no piece ends on (a band crossed by S2 edges whose vertices all lie outside it, or
+  /// an island beyond it whose S2 edges all dip in from outside) is traced from there.
+  void seed_rim_at_straddling_edges(std::vector<RimPair>& pending) const;
+  /// Seeds traced from already (insert_rim runs again after the rim walks, from the new ones),
+  /// and the (S1 element, S2 triangle) pairs per level traced so far.
+  std::size_t rim_seeds_traced_ = 0;
+  std::array<std::unordered_set<std::uint64_t>, 2> rim_pairs_done_;
+  /// Rim crossings of S2 edges without a piece, found by the tracing (take_unwalked_rim_crossings).
+  std::vector<RimStart<d>> unwalked_;
   Index rim_nodes_made_ = 0;
 
   /// In the per-edge count of what was inserted: the edge was inserted whole.

@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_set>
 
 namespace plmap::projection {
@@ -206,14 +207,16 @@ void ProjectionInsertion<d>::insert_rim(ProjectionReport<d>& report) {
   if constexpr (d == 2) {
     const Surface<2>& s1 = ctx_.s1;
     const Surface<2>& s2 = ctx_.s2;
-    std::array<std::unordered_set<std::uint64_t>, 2> done;  // per level
-    struct Pair {
-      Index element, target;
-      int level;
-    };
-    std::vector<Pair> pending;  // (S1 element, S2 triangle, level), taken from the back
-    for (auto it = rim_seeds_.rbegin(); it != rim_seeds_.rend(); ++it)
-      for (const auto& inc : s2.edge_elements(it->target_edge)) pending.push_back({it->element, inc.element, it->level});
+    auto& done = rim_pairs_done_;  // per level, kept for the next call
+    std::vector<RimPair> pending;  // (S1 element, S2 triangle, level), taken from the back
+    // on the first call, last of all: where the rim crosses S1 edges between a vertex whose ray
+    // meets S2 inside the band and one whose ray does not, for loops of the rim no piece ends on
+    if (rim_seeds_traced_ == 0 && ctx_.ends_on_rim()) seed_rim_at_straddling_edges(pending);
+    // from the seeds not traced from yet, the first of them first
+    for (std::size_t i = rim_seeds_.size(); i-- > rim_seeds_traced_;)
+      for (const auto& inc : s2.edge_elements(rim_seeds_[i].target_edge))
+        pending.push_back({rim_seeds_[i].element, inc.element, rim_seeds_[i].level});
+    rim_seeds_traced_ = rim_seeds_.size();
     // the curve is traced as far as it goes, but no farther than a few times the size of S1
     const std::size_t step_cap = 4 * static_cast<std::size_t>(s1.element_count()) + 1024;
     std::array<RimEnd, 2> ends;
@@ -227,7 +230,11 @@ void ProjectionInsertion<d>::insert_rim(ProjectionReport<d>& report) {
       for (int i = 0; i < 2; ++i) {
         const RimEnd& end = ends[i];
         if (end.on_target_edge) {
+          // the first rim node of an S2 edge that no walk gave a piece: a walk starts there
+          const bool unwalked = inserted_[end.edge] == 0 && !rim_inside_[level].contains(pair_key(t, end.edge));
           nodes[i] = rim_node_inside(t, end.edge, level, end.local, end.parameter);
+          if (unwalked && nodes[i] != invalid_index)
+            unwalked_.push_back({end.edge, RimPoint<d>{t, end.local, end.parameter, level}});
           const Index next = other_element(s2.edge_elements(end.edge), a);
           if (next != invalid_index) pending.push_back({t, next, level});
         } else {
@@ -250,12 +257,68 @@ void ProjectionInsertion<d>::insert_rim(ProjectionReport<d>& report) {
   report.rim_nodes = rim_nodes_made_;
 }
 
+template <int d>
+void ProjectionInsertion<d>::seed_rim_at_straddling_edges(std::vector<RimPair>& pending) const {
+  if constexpr (d == 2) {
+    const Surface<2>& s1 = ctx_.s1;
+    const Surface<2>& s2 = ctx_.s2;
+    // per S1 vertex: 0 its ray meets S2 inside the band, -1 / +1 only below / beyond it, 2 not at all
+    auto outside_mu = [&](Index v) -> double {
+      return state_.ray_outside_band.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                             : static_cast<double>(state_.ray_outside_band[v]);
+    };
+    // the distance along the ray to the vertex's hit, inside the band or not; NaN if none
+    auto hit_mu = [&](Index v) -> double {
+      if (const auto& image = state_.vertex_image[v])
+        return (s2.world_position(image->element, image->local) - s1.vertex(v)).dot(ctx_.vertex_directions[v]);
+      return outside_mu(v);
+    };
+    auto side = [&](Index v) -> int {
+      if (state_.vertex_image[v]) return 0;
+      const double mu = outside_mu(v);
+      return std::isnan(mu) ? 2 : (mu < 0.0 ? -1 : 1);
+    };
+    for (Index edge = 0; edge < s1.edge_count(); ++edge) {
+      const auto ev = s1.edge_vertices(edge);
+      if (side(ev[0]) == side(ev[1])) continue;
+      const double length = (s1.vertex(ev[1]) - s1.vertex(ev[0])).norm();
+      for (int level = 0; level < ctx_.rim_level_count(); ++level) {
+        const double mu = ctx_.rim_level(level).mu;
+        // A hit outside the band far from this bound lies on another sheet of S2 (the far side
+        // of a body, another body): the level set there is no boundary of D, whose points take
+        // the nearer hit. Across one S1 edge a sheet's distance moves by about its length.
+        if (std::abs(hit_mu(ev[0]) - mu) > length || std::abs(hit_mu(ev[1]) - mu) > length) continue;
+        const WorldPoint<2> p0 = s1.vertex(ev[0]) + mu * ctx_.vertex_directions[ev[0]];
+        const WorldPoint<2> p1 = s1.vertex(ev[1]) + mu * ctx_.vertex_directions[ev[1]];
+        const double reach = 0.5 * (p1 - p0).norm() + 1.01 * ctx_.s2_index->radius;
+        for (const Index a : ctx_.s2_index->within(0.5 * (p0 + p1), reach)) {
+          const std::optional<Pierce> p = segment_through_triangle(p0, p1, corners_of(s2, a));
+          if (!p || !strictly_inside(p->barycentric, rim_margin)) continue;
+          for (const auto& inc : s1.edge_elements(edge)) pending.push_back({inc.element, a, level});
+        }
+      }
+    }
+  }
+}
+
+template <int d>
+std::vector<RimStart<d>> ProjectionInsertion<d>::take_unwalked_rim_crossings() {
+  std::vector<RimStart<d>> out;
+  out.swap(unwalked_);
+  std::sort(out.begin(), out.end(), [](const RimStart<d>& a, const RimStart<d>& b) {
+    return a.target_edge != b.target_edge ? a.target_edge < b.target_edge : a.at.eta < b.at.eta;
+  });
+  return out;
+}
+
 // the members defined here (the rest of the class is instantiated in projection_insertion.cpp)
 #define PLMAP_RIM_MEMBERS(d)                                                                               \
   template SurfacePoint<d> ProjectionInsertion<d>::point_on_target_edge(Index, double) const;              \
   template Index ProjectionInsertion<d>::rim_node_inside(Index, Index, int, const LocalPoint<d>&, double); \
   template Index ProjectionInsertion<d>::rim_node_on_edge(Index, double, Index, const LocalPoint<d>&);     \
-  template void ProjectionInsertion<d>::insert_rim(ProjectionReport<d>&);
+  template void ProjectionInsertion<d>::insert_rim(ProjectionReport<d>&);                                  \
+  template std::vector<RimStart<d>> ProjectionInsertion<d>::take_unwalked_rim_crossings();               \
+  template void ProjectionInsertion<d>::seed_rim_at_straddling_edges(std::vector<RimPair>&) const;
 PLMAP_RIM_MEMBERS(1)
 PLMAP_RIM_MEMBERS(2)
 #undef PLMAP_RIM_MEMBERS

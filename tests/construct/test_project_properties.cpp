@@ -225,6 +225,60 @@ RC_GTEST_PROP(ProjectProperties, RemeshedHeightFieldOverALargerFootprintCoversAl
   assert_same_measure(r.measures.covered_domain, r.measures.domain, r.measures.domain, what);
 }
 
+RC_GTEST_PROP(ProjectProperties, RemeshedTiltedHeightFieldsWithADistanceLimitStayInsideTheBand, ()) {
+  // S1 and S2: two triangulations of a random height field, S2's over [-0.25, 1.25]^2, lifted by
+  // an offset and tilted, so that the gap between them runs through a random distance limit
+  // (and, with negative distances, through -limit, or through 0 without). Vertical directions:
+  // no focal points. D ends on the curves where the gap reaches a bound of the band (the rim),
+  // and never beyond: the ray cast under the same rules (CGAL's AABB tree, verify/ray_check.hpp)
+  // finds no point of D whose ray misses S2 within the band. How much of the band D misses is
+  // classified, not asserted: on these coarse random meshes the rim is not always traced
+  // through every element (docs/projection.md, Limitations; at seed 7, 1000 cases: none missed
+  // in 83 %, more than 1 % of S1 in 13 %).
+  const auto r1 = small_planar_recipe(true), r2 = small_planar_recipe(false);
+  const auto field_seed = *rc::gen::noShrink(rc::gen::arbitrary<std::uint64_t>());
+  gen::Rng rng(field_seed);
+  const gen::HeightField field = gen::random_height_field(rng);
+  const double offset = *rc::gen::inRange(-100, 201) / 1000.0;
+  const double tilt = *rc::gen::inRange(-300, 301) / 1000.0;
+  const double limit = *rc::gen::inRange(20, 201) / 1000.0;
+  const bool negative = *rc::gen::arbitrary<bool>();
+  const std::string what = fmt::format(
+      "S1 {} / S2 {} height field (seed {}) amplitude {} k ({}, {}) offset {} tilt {} limit {}{}", gen::describe(r1),
+      gen::describe(r2), field_seed, field.amplitude, field.kx, field.ky, offset, tilt, limit,
+      negative ? " negative distances" : "");
+  auto s1 = std::make_shared<const Surface<2>>(gen::lift_to_height_field(gen::make_planar(r1), field));
+  auto s2 = transformed<2>(gen::make_planar(r2), [&](const WorldPoint<2>& p) {
+    const double x = -0.25 + 1.5 * p.x(), y = -0.25 + 1.5 * p.y();
+    return WorldPoint<2>(x, y, field(x, y) + offset + tilt * (x - 0.5));
+  });
+  ProjectionOptions o;
+  o.directions = constant_directions(*s1, WorldPoint<2>(0.0, 0.0, 1.0));
+  o.max_distance = limit;
+  o.allow_negative_distance = negative;
+  const auto r = project<2>(s1, s2, o);
+  assert_valid(r, what);
+  RayCheckOptions<2> rays;
+  rays.directions.assign(static_cast<std::size_t>(s1->vertex_count()), WorldPoint<2>(0.0, 0.0, 1.0));
+  rays.samples = 2000;
+  rays.max_distance = limit;
+  rays.allow_negative_distance = negative;
+  const auto report = check_against_rays(r.map, rays);
+  if (report.extra_defects() != 0)
+    RC_FAIL(what + fmt::format(": {} of {} ray samples in D miss S2 within the band", report.extra_defects(),
+                               report.samples));
+  RC_CLASSIFY(report.missed_defects() == 0, "missed 0");
+  RC_CLASSIFY(report.missed_defects() > 0 && report.missed_defects() <= 2, "missed 1-2");
+  RC_CLASSIFY(report.missed_defects() > 2 && report.missed_defects() <= 20, "missed 3-20");
+  RC_CLASSIFY(report.missed_defects() > 20, "missed >20");
+  RC_CLASSIFY(report.in_domain_with_hit > 0 && report.in_domain_with_hit < report.samples, "D ends inside S1");
+  RC_CLASSIFY(r.report.rim_edges > 0, "rim");
+  // the thread count does not change the map
+  ProjectionOptions threaded = o;
+  threaded.threads = 2;
+  RC_ASSERT(project<2>(s1, s2, threaded).map.data() == r.map.data());
+}
+
 namespace {
 /// One case checks four properties on the same pair: a valid map; the same map for 1 and 2
 /// threads; the same covered measures after a rigid motion of both surfaces (and of the

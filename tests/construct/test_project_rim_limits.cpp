@@ -166,3 +166,21 @@ TEST(ProjectRimIsland, AnIslandBeyondTheLimitInsideOneS1ElementCostsOnlyTheIslan
   EXPECT_NEAR(beside.world.x(), 0.45, 1e-9);
   EXPECT_NEAR(beside.world.y(), 0.03, 1e-9);
 }
+
+TEST(ProjectRimWalks, EdgesThatDipIntoTheBandBetweenVerticesBeyondTheLimitAreWalkedFromTheRim) {
+  // S1: a fine unit sphere (rays radial); S2: a coarse sphere of radius 1.3 around it, seen from
+  // inside. Its vertices lie 0.3 out, beyond the limit 0.25, but its edges, chords, come within
+  // 0.2 of S1 half-way: every S2 edge enters the band and leaves it again with neither vertex
+  // in it, so no walk from a vertex preimage or S1's boundary (S1 has none) reaches it; only the
+  // rim finds it. D is the part of S1 whose ray meets S2 within 0.25: a net around the chords.
+  const auto s1 = sphere(4, 1.0);
+  const auto rules = with_limit(0.25);
+  const auto r = project<2>(s1, sphere(1, 1.3, true, 0.3), rules);
+  EXPECT_EQ(verify_violations(r.map), "");
+  EXPECT_EQ(r.report.vertex_preimages, 0);
+  EXPECT_GT(r.report.edges_partly_inserted, 0);
+  const auto rays = rays_under(r.map, *s1, rules);
+  EXPECT_GT(rays.in_domain_with_hit, rays.samples / 4);
+  EXPECT_EQ(rays.extra, 0u);
+  EXPECT_LE(rays.missed_defects(), rays.samples / 1000) << describe_failures(r.report);
+}

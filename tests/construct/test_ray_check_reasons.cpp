@@ -36,10 +36,13 @@ std::shared_ptr<const Surface<2>> joined(const Surface<2>& a, const Surface<2>& 
 }
 
 /// The ray check, without a distance limit, of the map that projecting S2 onto S1 along
-/// `directions` (empty: S1's averaged vertex normals) with a negligible distance limit gives (a map that covers nothing).
+/// `directions` (empty: S1's averaged vertex normals) with a negligible distance limit and no
+/// rim gives (a map that covers nothing; with the rim, D would be the thin strips where S2 lies
+/// within the limit of S1).
 RayCheckReport<2> check_of_empty_map(const std::shared_ptr<const Surface<2>>& s1,
                                      const std::shared_ptr<const Surface<2>>& s2, std::vector<double> directions) {
   ProjectionOptions po{.max_distance = 1e-9};
+  po.end_on_rim = false;
   po.directions = std::move(directions);
   const auto r = project<2>(s1, s2, po);
   EXPECT_EQ(r.map.region_count(), 0);
