@@ -3,6 +3,7 @@
 // (verify/ray_check.hpp).
 
 #include "cli_common.hpp"
+#include "directions_file.hpp"
 #include "progress_bar.hpp"
 
 #include <plmap/construct/direction_field.hpp>
@@ -17,6 +18,7 @@
 #include <iostream>
 #include <limits>
 #include <optional>
+#include <span>
 #include <utility>
 
 namespace plmap::cli {
@@ -38,6 +40,7 @@ struct CheckOptions {
   double max_distance = std::numeric_limits<double>::infinity();
   bool relative_distance = false, allow_negative = false;
   std::string normal_check = "none";
+  std::string directions_file;  // empty: S1's averaged vertex normals
 };
 
 RayNormalCheck ray_normal_check_from(const std::string& name) {
@@ -47,14 +50,17 @@ RayNormalCheck ray_normal_check_from(const std::string& name) {
   throw Error(fmt::format("unknown normal check '{}' (valid: none, facing, aligned)", name));
 }
 
-/// The ray check with the rules of the command line and S1's averaged vertex normals (the
-/// projection's default direction field). Passes if the missed area that is not outside D on
+/// The ray check with the rules of the command line and the directions given (default: S1's
+/// averaged vertex normals, the projection's default field). Passes if the missed area that is not outside D on
 /// purpose and the extra area that the interpolation at S2's boundary does not explain are each
 /// at most ray_tolerance of S1's measure.
 template <int d>
 std::pair<Json, bool> ray_check(const PlMap<d>& map, const CheckOptions& o) {
   RayCheckOptions<d> options;
-  options.directions = averaged_vertex_normals(map.domain());
+  options.directions = o.directions_file.empty()
+                           ? averaged_vertex_normals(map.domain())
+                           : directions_from_values(map.domain(), std::span<const double>(read_directions(
+                                                                      o.directions_file, d, map.domain().vertex_count())));
   options.samples = o.ray_samples;
   options.seed = o.ray_seed;
   options.max_distance = o.max_distance;
@@ -157,11 +163,16 @@ void register_check(CLI::App& app, Action& action) {
   cmd->add_option("--max-reported", o->max_reported,
                   "Violations listed per rule (further ones are only counted)")
       ->capture_default_str();
-  cmd->add_option("--against-rays", o->ray_samples,
-                  "Also cast N rays from points sampled uniformly on S1 along its averaged vertex normals "
-                  "(the projection's default field) against S2 and report the area missed (the ray hits "
-                  "S2, the point is outside D), the extra area (in D, no hit) and the image error")
-      ->check(positive_number);
+  CLI::Option* against_rays =
+      cmd->add_option("--against-rays", o->ray_samples,
+                      "Also cast N rays from points sampled uniformly on S1 along its averaged vertex normals "
+                      "(the projection's default field; see --directions) against S2 and report the area missed "
+                      "(the ray hits S2, the point is outside D), the extra area (in D, no hit) and the image error")
+          ->check(positive_number);
+  cmd->add_option("--directions", o->directions_file,
+                  "Ray check: text file with one projection direction per S1 vertex (d+1 numbers a line), as "
+                  "given to project")
+      ->needs(against_rays);
   cmd->add_option("--ray-seed", o->ray_seed, "Seed of the ray sample")->capture_default_str();
   cmd->add_option("--ray-tolerance", o->ray_tolerance,
                   "The ray check fails if the missed area that has no stated reason to be outside D (farther "

@@ -50,3 +50,28 @@ def check_against_rays():
     # a negative tolerance would fail every map
     expect_clean_error(["check", "rays.plmap", "--against-rays", 10, "--ray-tolerance", -1], code=64,
                        mention=">= 0")
+
+
+@case
+def check_against_rays_along_given_directions():
+    # A map projected along a direction file is checked along the same field with --directions;
+    # along the default field (S1's averaged normals, vertical here) the images lie a tenth of an
+    # S2 edge and more from the rays' hits.
+    flat = grid("rays_dir_flat.off", cells=6, jitter=0.1, seed=5)
+    run("generate", "delaunay", "--points", 40, "--lift", "--seed", 9, "-o", "rays_dir_hill.off")
+    write("rays_dir.txt", "".join("0.25 -0.1 1  # tilted\n" for _ in range(49)))
+    run("project", flat, "rays_dir_hill.off", "-o", "rays_dir.plmap", "--allow-negative",
+        "--directions", "rays_dir.txt")
+    j = run_json("check", "rays_dir.plmap", "--against-rays", 2000, "--allow-negative",
+                 "--directions", "rays_dir.txt", "--json")
+    rays = j["against_rays"]
+    expect(j["ok"] is True and rays["extra"]["samples"] == 0, rays)
+    expect(rays["missed"]["defect_fraction"] == 0.0, rays)
+    expect(rays["image_error_relative_to_edge"]["max"] < 1e-6, rays)
+    j = run_json("check", "rays_dir.plmap", "--against-rays", 2000, "--allow-negative", "--json")
+    expect(j["against_rays"]["image_error_relative_to_edge"]["max"] > 0.1, j["against_rays"])
+    write("rays_dir_short.txt", "0 0 1\n0 0 1\n")
+    expect_clean_error(["check", "rays_dir.plmap", "--against-rays", 10, "--directions", "rays_dir_short.txt"],
+                       mention="rays_dir_short.txt")
+    expect_clean_error(["check", "rays_dir.plmap", "--directions", "rays_dir.txt"], code=64,
+                       mention="--against-rays")
