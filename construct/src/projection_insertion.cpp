@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <new>
 #include <utility>
@@ -124,6 +125,7 @@ void ProjectionInsertion<d>::declare_edges_without_pieces_outside() {
   for (const Index e : edges_declared_outside_)
     if (inserted_[e] == 0 && !builder_.has_edge(e)) builder_.add_edge_outside_domain(e);
   std::vector<Index>().swap(edges_declared_outside_);
+  std::vector<Index>().swap(edges_counted_outside_);
 }
 
 template <int d>
@@ -135,6 +137,10 @@ void ProjectionInsertion<d>::insert_rim_walks(std::span<const Index> edges, cons
     PlannedEdge plan = planned[i];
     plan.outside = false;  // declared (or not) once the rim is done
     inserted_[edges[i]] = insert_planned_edge(edges[i], plan, buffer, report);
+    // an edge whose walks found nothing at all was counted outside D; now it has a piece
+    if (inserted_[edges[i]] != 0 &&
+        std::binary_search(edges_counted_outside_.begin(), edges_counted_outside_.end(), edges[i]))
+      --report.edges_outside;
   }
 }
 
@@ -243,6 +249,7 @@ std::uint32_t ProjectionInsertion<d>::insert_planned_edge(Index e, const Planned
   if (plan.outside) {
     ++report.edges_outside;
     declare_outside(e);
+    if (ctx_.ends_on_rim()) edges_counted_outside_.push_back(e);  // in index order: sorted
   }
   bool whole = false;
   std::uint32_t pieces = 0;

@@ -95,8 +95,9 @@ class ProjectionInsertion {
                                     ProjectionReport<d>& report);
   /// MapBuilder::add_edge_outside_domain, at once or, with a rim, once the rim is done.
   void declare_outside(Index e);
-  /// Edges whose declaration waits (declare_outside).
-  std::vector<Index> edges_declared_outside_;
+  /// Edges whose declaration waits (declare_outside), and of them those counted in
+  /// ProjectionReport::edges_outside (no walk found anything, nothing failed), sorted.
+  std::vector<Index> edges_declared_outside_, edges_counted_outside_;
 
   // ---- the rim of D (end_on_rim) ------------------------------------------------------------------
   /// The rim node where S2 edge e pierces the level set `level` (ProjectionContext::rim_level)

@@ -179,6 +179,8 @@ TEST(ProjectRimWalks, EdgesThatDipIntoTheBandBetweenVerticesBeyondTheLimitAreWal
   EXPECT_EQ(verify_violations(r.map), "");
   EXPECT_EQ(r.report.vertex_preimages, 0);
   EXPECT_GT(r.report.edges_partly_inserted, 0);
+  // every edge walked from the rim is counted once: no longer outside D
+  EXPECT_LE(r.report.edges_inserted + r.report.edges_partly_inserted + r.report.edges_outside, r.report.target_edges);
   const auto rays = rays_under(r.map, *s1, rules);
   EXPECT_GT(rays.in_domain_with_hit, rays.samples / 4);
   EXPECT_EQ(rays.extra, 0u);
