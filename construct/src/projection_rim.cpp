@@ -226,27 +226,31 @@ void ProjectionInsertion<d>::insert_rim(ProjectionReport<d>& report) {
       if (!done[level].insert(pair_key(t, a)).second) continue;
       ++steps;
       if (rim_segment(ctx_, ctx_.rim_level(level).mu, t, a, ends) != 2) continue;
-      std::array<Index, 2> nodes{};
+      // Where the rays fold before the plane of a, the segment becomes no rim edge, and its ends
+      // no rim nodes: a node no rim edge and no piece reaches would keep the faces around it
+      // from mapping into one S2 triangle. The tracing goes on beyond: the curve may leave the
+      // fold.
+      const bool unfolded = rays_unfolded_in_front(ctx_, t, a);
+      std::array<Index, 2> nodes{invalid_index, invalid_index};
       for (int i = 0; i < 2; ++i) {
         const RimEnd& end = ends[i];
         if (end.on_target_edge) {
-          // the first rim node of an S2 edge that no walk gave a piece: a walk starts there
-          const bool unwalked = inserted_[end.edge] == 0 && !rim_inside_[level].contains(pair_key(t, end.edge));
-          nodes[i] = rim_node_inside(t, end.edge, level, end.local, end.parameter);
-          if (unwalked && nodes[i] != invalid_index)
-            unwalked_.push_back({end.edge, RimPoint<d>{t, end.local, end.parameter, level}});
+          if (unfolded) {
+            // the first rim node of an S2 edge that no walk gave a piece: a walk starts there
+            const bool unwalked = inserted_[end.edge] == 0 && !rim_inside_[level].contains(pair_key(t, end.edge));
+            nodes[i] = rim_node_inside(t, end.edge, level, end.local, end.parameter);
+            if (unwalked && nodes[i] != invalid_index)
+              unwalked_.push_back({end.edge, RimPoint<d>{t, end.local, end.parameter, level}});
+          }
           const Index next = other_element(s2.edge_elements(end.edge), a);
           if (next != invalid_index) pending.push_back({t, next, level});
         } else {
-          nodes[i] = rim_node_on_edge(end.edge, end.parameter, a, end.local);
+          if (unfolded) nodes[i] = rim_node_on_edge(end.edge, end.parameter, a, end.local);
           const Index next = other_element(s1.edge_elements(end.edge), t);
           if (next != invalid_index) pending.push_back({next, a, level});
         }
       }
       if (nodes[0] == invalid_index || nodes[1] == invalid_index) continue;
-      if (!rays_unfolded_in_front(ctx_, t, a)) {
-        continue;  // the tracing goes on beyond: the curve may leave the fold
-      }
       try {
         builder_.add_rim_edge(nodes[0], nodes[1]);
         ++report.rim_edges;
