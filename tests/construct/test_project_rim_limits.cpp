@@ -3,7 +3,7 @@
 // (ProjectionOptions::end_on_rim; construct/src/projection_rim.cpp). The planes here make D a
 // strip of the unit square whose bounds are known in closed form; a curved S2 is judged by the
 // ray check under the same rules.
-#include "projection_fixtures.hpp"
+#include "rim_fixtures.hpp"
 
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/construct/project.hpp>
@@ -19,17 +19,6 @@ using namespace plmap;
 using namespace plmap::test;
 
 namespace {
-
-/// S1: the unit square at z = 0, 10 x 10 cells, normals +z, so its rays are vertical and mu is
-/// the height of S2 above S1.
-std::shared_ptr<const Surface<2>> flat_square() { return grid(10, 10, 0.0, 1.0, 0.0, 1.0, 0.0); }
-
-/// S2: a jittered 7 x 7 grid over [-0.1, 1.1]^2 facing S1 at height mu(x) = 0.25 (x - x0).
-std::shared_ptr<const Surface<2>> tilted_plane(double x0) {
-  return transformed<2>(*grid(7, 7, -0.1, 1.1, -0.1, 1.1, 0.0, true, 0.2), [x0](const WorldPoint<2>& p) {
-    return WorldPoint<2>(p.x(), p.y(), 0.25 * (p.x() - x0));
-  });
-}
 
 /// S2: a finer jittered grid facing S1 at height 0.1 + 0.06 sin(5x + 1) cos(4y): the curves
 /// where the height reaches a limit are closed loops and arcs that cross S1 and S2 elements
@@ -64,6 +53,16 @@ RayCheckReport<2> rays_under(const PlMap<2>& map, const Surface<2>& s1, const Pr
   return check_against_rays(map, o);
 }
 
+/// D covers exactly `area` of S1 (a closed form), within rounding, and the ray cast under the
+/// same rules finds nothing missed and nothing extra.
+void expect_exactly(const ProjectionResult<2>& r, const Surface<2>& s1, const ProjectionOptions& rules, double area) {
+  EXPECT_EQ(verify_violations(r.map), "");
+  EXPECT_NEAR(r.measures.covered_domain, area, 1e-9) << describe_failures(r.report);
+  const auto rays = rays_under(r.map, s1, rules);
+  EXPECT_EQ(rays.extra, 0u);
+  EXPECT_EQ(rays.missed_defects(), 0u);
+}
+
 }  // namespace
 
 class ProjectRimAtTheLimit : public ::testing::TestWithParam<double> {};
@@ -74,12 +73,8 @@ TEST_P(ProjectRimAtTheLimit, DEndsWhereS2GoesBeyondTheLimit) {
   const auto s1 = flat_square();
   const auto rules = with_limit(0.25 * (x1 + 0.2));
   const auto r = project<2>(s1, tilted_plane(-0.2), rules);
-  EXPECT_EQ(verify_violations(r.map), "");
   EXPECT_GT(r.report.rim_edges, 0);
-  EXPECT_NEAR(r.measures.covered_domain, x1, 1e-9) << describe_failures(r.report);
-  const auto rays = rays_under(r.map, *s1, rules);
-  EXPECT_EQ(rays.extra, 0u);
-  EXPECT_EQ(rays.missed_defects(), 0u);
+  expect_exactly(r, *s1, rules, x1);
 }
 
 TEST_P(ProjectRimAtTheLimit, WithoutTheRimDEndsAtTheLastS1Edges) {
@@ -102,24 +97,14 @@ TEST(ProjectRimAtBothBounds, DIsTheStripBetweenMuZeroAndTheLimit) {
   // x = 0.73; D is the strip between, bounded by the two rims.
   const auto s1 = flat_square();
   const auto rules = with_limit(0.1);
-  const auto r = project<2>(s1, tilted_plane(0.33), rules);
-  EXPECT_EQ(verify_violations(r.map), "");
-  EXPECT_NEAR(r.measures.covered_domain, 0.4, 1e-9) << describe_failures(r.report);
-  const auto rays = rays_under(r.map, *s1, rules);
-  EXPECT_EQ(rays.extra, 0u);
-  EXPECT_EQ(rays.missed_defects(), 0u);
+  expect_exactly(project<2>(s1, tilted_plane(0.33), rules), *s1, rules, 0.4);
 }
 
 TEST(ProjectRimAtBothBounds, WithNegativeDistancesDIsTheStripWithinTheLimitOnBothSides) {
   // height 0.25 (x - 0.51), negative distances allowed down to -0.05: D is |x - 0.51| <= 0.2.
   const auto s1 = flat_square();
   const auto rules = with_limit(0.05, true);
-  const auto r = project<2>(s1, tilted_plane(0.51), rules);
-  EXPECT_EQ(verify_violations(r.map), "");
-  EXPECT_NEAR(r.measures.covered_domain, 0.4, 1e-9) << describe_failures(r.report);
-  const auto rays = rays_under(r.map, *s1, rules);
-  EXPECT_EQ(rays.extra, 0u);
-  EXPECT_EQ(rays.missed_defects(), 0u);
+  expect_exactly(project<2>(s1, tilted_plane(0.51), rules), *s1, rules, 0.4);
 }
 
 class ProjectRimOnAWavySheet : public ::testing::TestWithParam<double> {};

@@ -1,0 +1,22 @@
+#pragma once
+// The pairs the rim tests share (test_project_rim.cpp, test_project_rim_limits.cpp): a flat S1
+// with vertical rays and a tilted S2 plane, so that the rays' distance mu is known in closed form.
+
+#include "projection_fixtures.hpp"
+
+namespace plmap::test {
+
+/// S1: the unit square at z = 0, 10 x 10 cells, normals +z, so its rays are vertical and mu is
+/// the height of S2 above S1.
+inline std::shared_ptr<const Surface<2>> flat_square() { return grid(10, 10, 0.0, 1.0, 0.0, 1.0, 0.0); }
+
+/// S2: a jittered 7 x 7 grid over [-0.1, 1.1]^2 facing S1, on the plane z = 0.25 (x - x0): in
+/// front of S1 for x > x0, behind it for x < x0, its height mu(x) = 0.25 (x - x0). Its rims (the
+/// lines where mu reaches a bound) cross S1 elements and S2 triangles alike.
+inline std::shared_ptr<const Surface<2>> tilted_plane(double x0) {
+  return transformed<2>(*grid(7, 7, -0.1, 1.1, -0.1, 1.1, 0.0, true, 0.2), [x0](const WorldPoint<2>& p) {
+    return WorldPoint<2>(p.x(), p.y(), 0.25 * (p.x() - x0));
+  });
+}
+
+}  // namespace plmap::test
