@@ -344,6 +344,25 @@ struct ProjectionContext {
     return {distance_limit, false};
   }
 
+  /// Which way the S2 segment qa -> qb runs into the band where it meets the level set of bound
+  /// `level` over S1 element t, at local coordinates xi there: +1 forwards (towards qb), -1
+  /// backwards, 0 along the level set. Across the lower bound the distance along the rays grows
+  /// into the band, across the upper one it shrinks.
+  int direction_into_band(Index t, int level, const LocalPoint<d>& xi, const WorldPoint<d>& qa,
+                          const WorldPoint<d>& qb) const
+    requires(d == 2)
+  {
+    const RimLevel bound = rim_level(level);
+    const auto tri = corners_at_distance(t, bound.mu);
+    const WorldPoint<2> normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+    const Barycentric<2> b = barycentric_from_local<2>(xi);
+    WorldPoint<2> nu = WorldPoint<2>::Zero();
+    for (int k = 0; k < 3; ++k) nu += b(k) * vertex_directions[s1.element(t)[k]];
+    const double growth = normal.dot(qb - qa) * normal.dot(nu);
+    if (growth == 0.0 || !std::isfinite(growth)) return 0;
+    return (growth > 0.0) == bound.lower ? 1 : -1;
+  }
+
   /// The corners of S1 element t moved along their directions to distance mu: the element's
   /// points at distance mu along their rays. The directions are interpolated linearly (not
   /// normalised inside the element), so p(xi) + mu nu(xi) is affine in xi and this triangle is

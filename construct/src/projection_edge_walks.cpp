@@ -772,16 +772,9 @@ class EdgeWalker {
             return rim.eta >= stretch.first - piece_slack && rim.eta <= stretch.second + piece_slack;
           }))
         continue;
-      // into the band: across the lower bound the distance grows, across the upper one it shrinks
-      const RimLevel bound = ctx_.rim_level(rim.level);
-      const auto tri = ctx_.corners_at_distance(rim.element, bound.mu);
-      const WorldPoint<2> normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-      const Barycentric<2> b = barycentric_from_local<2>(rim.local);
-      WorldPoint<2> nu = WorldPoint<2>::Zero();
-      for (int k = 0; k < 3; ++k) nu += b(k) * ctx_.vertex_directions[ctx_.s1.element(rim.element)[k]];
-      const double growth = normal.dot(qb - qa) * normal.dot(nu);
-      if (growth == 0.0) continue;
-      const bool forwards = bound.lower ? growth > 0.0 : growth < 0.0;
+      const int into_band = ctx_.direction_into_band(rim.element, rim.level, rim.local, qa, qb);
+      if (into_band == 0) continue;
+      const bool forwards = into_band > 0;
       Place<d> inside;
       inside.kind = PlaceKind::element;
       inside.index = rim.element;

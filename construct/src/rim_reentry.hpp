@@ -54,8 +54,7 @@ inline std::optional<RimPoint<2>> rim_reentry(const ProjectionContext<2>& ctx, c
     // the rim point's element holds the edge's rim node already (one per element and S2 edge)
     if (t == rim.element) continue;
     for (int level = 0; level < ctx.rim_level_count(); ++level) {
-      const RimLevel bound = ctx.rim_level(level);
-      const auto tri = ctx.corners_at_distance(t, bound.mu);
+      const auto tri = ctx.corners_at_distance(t, ctx.rim_level(level).mu);
       const std::optional<Pierce> p = segment_through_triangle(from, qb, tri);
       if (!p || !strictly_inside(p->barycentric, 1e3 * ctx.options.snap_tolerance)) continue;
       const double at = after + p->s * (1.0 - after);
@@ -63,14 +62,10 @@ inline std::optional<RimPoint<2>> rim_reentry(const ProjectionContext<2>& ctx, c
           !(at < 1.0 - limits.end_parameter_slack))
         continue;
       if (best && best->eta <= at) continue;
-      // into the band: across its lower bound (from behind S1 to its front, for mu = 0) the
-      // distance along the rays grows along the edge, across its upper bound it shrinks
-      const WorldPoint<2> normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-      WorldPoint<2> nu = WorldPoint<2>::Zero();
-      for (int k = 0; k < 3; ++k) nu += p->barycentric[k] * ctx.vertex_directions[ctx.s1.element(t)[k]];
-      const double growth = normal.dot(qb - qa) * normal.dot(nu);
-      if (!(bound.lower ? growth > 0.0 : growth < 0.0)) continue;
-      best = RimPoint<2>{t, LocalPoint<2>(p->barycentric[1], p->barycentric[2]), at, level};
+      // into the band (for mu = 0: from behind S1 to its front)
+      const LocalPoint<2> xi(p->barycentric[1], p->barycentric[2]);
+      if (ctx.direction_into_band(t, level, xi, qa, qb) != 1) continue;
+      best = RimPoint<2>{t, xi, at, level};
     }
   }
   return best;
