@@ -106,11 +106,6 @@ void walk_and_insert_edges(const ProjectionContext<d>& ctx, const ProjectionStat
   report.seconds.edge_walks += seconds_since(t0) - inserting;
 }
 
-/// Rounds of walks from the rim crossings that the tracing finds on S2 edges no walk reached,
-/// each followed by tracing on from where they end (a rim winding through many such edges is
-/// followed a few steps per round).
-constexpr int rim_walk_rounds = 16;
-
 template <int d, class Solver>
 ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::shared_ptr<const Surface<d>> s2,
                                    const ProjectionOptions& options, const Solver& solver) {
@@ -175,7 +170,7 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
     PlanBuffer<d> buffer;
     std::vector<Index> edges;
     std::vector<PlannedEdge> planned;
-    for (int round = 0; round < rim_walk_rounds; ++round) {
+    for (int round = 0; round < options.search_limits.rim_walk_rounds; ++round) {
       const std::vector<RimStart<d>> starts = insertion.take_unwalked_rim_crossings();
       if (starts.empty()) break;
       plan_rim_walks(ctx, state, solver, std::span<const RimStart<d>>(starts), buffer, edges, planned);

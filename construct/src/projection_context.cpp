@@ -46,15 +46,15 @@ ProjectionContext<d>::ProjectionContext(std::shared_ptr<const Surface<d>> s1_sur
       !(limits.second_search_hits <= 32) || !(limits.second_search_reach >= 0.0) ||
       !(limits.farther_hit_retry >= 0.0) || !(limits.retry_seeds > 0) || !(limits.retry_seeds <= max_search_seeds) ||
       !(limits.piece_parameter_slack >= 0.0) || !(limits.piece_parameter_slack < 0.5) ||
-      !(limits.end_parameter_slack >= 0.0) || !(limits.end_parameter_slack < 0.5))
+      !(limits.end_parameter_slack >= 0.0) || !(limits.end_parameter_slack < 0.5) || !(limits.rim_walk_rounds >= 0))
     throw Error(fmt::format(
         "projection search limits out of range (seed_walk_steps {} > 0, edge_walk_steps {} >= 0, "
         "inside_tolerance {}, edge_parameter_slack {}, piece_parameter_slack {} and end_parameter_slack {} "
         "in [0, 0.5), second_search_hits {} and retry_seeds {} in 1..32, second_search_reach {} and "
-        "farther_hit_retry {} >= 0)",
+        "farther_hit_retry {} >= 0, rim_walk_rounds {} >= 0)",
         limits.seed_walk_steps, limits.edge_walk_steps, limits.inside_tolerance, limits.edge_parameter_slack,
         limits.piece_parameter_slack, limits.end_parameter_slack, limits.second_search_hits, limits.retry_seeds,
-        limits.second_search_reach, limits.farther_hit_retry));
+        limits.second_search_reach, limits.farther_hit_retry, limits.rim_walk_rounds));
   retry_seed_count = limits.retry_seeds;
   edge_walk_steps = limits.edge_walk_steps > 0 ? limits.edge_walk_steps : 2 * static_cast<int>(s1.element_count()) + 16;
   assign_on_huge_pages(focal_free_reach, static_cast<std::size_t>(s1.element_count()));

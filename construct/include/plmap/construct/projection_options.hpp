@@ -104,6 +104,10 @@ struct ProjectionSearchLimits {
   /// such restarts per walk (0: none).
   int fold_exits = 4;
   double fold_exit_reach = 3.0;
+  /// d = 2, end_on_rim: rounds of walks from where the rim's tracing crosses S2 edges that no
+  /// walk gave a piece (edges that dip into the band of distances with both vertices outside
+  /// it), each followed by tracing on from where those walks end (0: none).
+  int rim_walk_rounds = 16;
 };
 
 struct ProjectionOptions {
