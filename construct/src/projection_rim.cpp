@@ -20,6 +20,7 @@
 
 #include "projection_insertion.hpp"
 #include "rim_geometry.hpp"
+#include "rim_occlusion.hpp"
 
 #include <plmap/core/errors.hpp>
 #include <plmap/core/snapping.hpp>
@@ -134,6 +135,17 @@ bool rays_unfolded_in_front(const Context& ctx, Index t, Index a) {
   return true;
 }
 
+/// The local coordinates on S1 element t of one end of a rim segment.
+template <class Context>
+LocalPoint<2> end_on_element(const Context& ctx, Index t, const RimEnd& end) {
+  if (end.on_target_edge) return end.local;
+  const auto ev = ctx.s1.edge_vertices(end.edge);
+  Barycentric<2> b = Barycentric<2>::Zero();
+  b(ctx.s1.local_corner(t, ev[0])) = 1.0 - end.parameter;
+  b(ctx.s1.local_corner(t, ev[1])) = end.parameter;
+  return local_from_barycentric<2>(b);
+}
+
 /// The other element at an edge with two, or invalid_index.
 template <class Incidences>
 Index other_element(const Incidences& incidences, Index t) {
@@ -225,17 +237,25 @@ void ProjectionInsertion<d>::insert_rim(ProjectionReport<d>& report) {
       pending.pop_back();
       if (!done[level].insert(pair_key(t, a)).second) continue;
       ++steps;
-      if (rim_segment(ctx_, ctx_.rim_level(level).mu, t, a, ends) != 2) continue;
+      const double mu = ctx_.rim_level(level).mu;
+      if (rim_segment(ctx_, mu, t, a, ends) != 2) continue;
       // Where the rays fold before the plane of a, the segment becomes no rim edge, and its ends
       // no rim nodes: a node no rim edge and no piece reaches would keep the faces around it
       // from mapping into one S2 triangle. The tracing goes on beyond: the curve may leave the
       // fold.
-      const bool unfolded = rays_unfolded_in_front(ctx_, t, a);
+      // Likewise where a nearer sheet of S2 hides the segment, tested at its midpoint (at a bound
+      // of the band only: nothing is nearer than mu = 0). A rim segment is shorter than its
+      // element, and a sheet that hides part of it ends on its own rim or boundary there.
+      const bool bounds_domain =
+          rays_unfolded_in_front(ctx_, t, a) &&
+          (mu == 0.0 || !hidden_by_nearer_sheet(ctx_, t,
+                                                0.5 * (end_on_element(ctx_, t, ends[0]) + end_on_element(ctx_, t, ends[1])),
+                                                mu, a));
       std::array<Index, 2> nodes{invalid_index, invalid_index};
       for (int i = 0; i < 2; ++i) {
         const RimEnd& end = ends[i];
         if (end.on_target_edge) {
-          if (unfolded) {
+          if (bounds_domain) {
             // the first rim node of an S2 edge that no walk gave a piece: a walk starts there
             const bool unwalked = inserted_[end.edge] == 0 && !rim_inside_[level].contains(pair_key(t, end.edge));
             nodes[i] = rim_node_inside(t, end.edge, level, end.local, end.parameter);
@@ -245,7 +265,7 @@ void ProjectionInsertion<d>::insert_rim(ProjectionReport<d>& report) {
           const Index next = other_element(s2.edge_elements(end.edge), a);
           if (next != invalid_index) pending.push_back({t, next, level});
         } else {
-          if (unfolded) nodes[i] = rim_node_on_edge(end.edge, end.parameter, a, end.local);
+          if (bounds_domain) nodes[i] = rim_node_on_edge(end.edge, end.parameter, a, end.local);
           const Index next = other_element(s1.edge_elements(end.edge), t);
           if (next != invalid_index) pending.push_back({next, a, level});
         }
