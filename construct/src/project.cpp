@@ -33,6 +33,7 @@
 #include <plmap/solvers/solver_kind.hpp>
 
 #include <algorithm>
+#include <limits>
 #include <optional>
 #include <span>
 #include <utility>
@@ -51,6 +52,7 @@ std::string_view to_string(EdgeFailureReason reason) {
     case EdgeFailureReason::builder_rejected: return "builder_rejected";
     case EdgeFailureReason::overlap: return "overlap";
     case EdgeFailureReason::fold: return "fold";
+    case EdgeFailureReason::hidden: return "hidden";
   }
   return "unknown";
 }
@@ -106,6 +108,32 @@ void walk_and_insert_edges(const ProjectionContext<d>& ctx, const ProjectionStat
   report.seconds.edge_walks += seconds_since(t0) - inserting;
 }
 
+/// The rank and S2 triangle of every S1 vertex's nearest ray hit (ProjectionState::
+/// nearest_hit_rank), for the walks' test of a nearer sheet.
+void record_nearest_hits(const ProjectionContext<2>& ctx, const std::vector<std::optional<SurfacePoint<2>>>& hit,
+                         ProjectionState<2>& state) {
+  const Index n1v = ctx.s1.vertex_count();
+  state.nearest_hit_rank.resize(static_cast<std::size_t>(n1v));
+  state.nearest_hit_element.resize(static_cast<std::size_t>(n1v));
+  state.nearest_hit_vertex.resize(static_cast<std::size_t>(n1v));
+  parallel_ranges(static_cast<std::size_t>(n1v), ctx.threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      const auto& h = hit[v];
+      state.nearest_hit_element[v] = h ? h->element : invalid_index;
+      state.nearest_hit_vertex[v] = invalid_index;
+      if (h) {
+        const Barycentric<2> b = barycentric_from_local<2>(h->local);
+        for (int k = 0; k < 3; ++k)
+          if (b(k) >= 1.0 - 1e-9) state.nearest_hit_vertex[v] = ctx.s2.element(h->element)[k];
+      }
+      state.nearest_hit_rank[v] =
+          h ? ctx.rank((ctx.s2.world_position(h->element, h->local) - ctx.s1.vertex(static_cast<Index>(v)))
+                           .dot(ctx.vertex_directions[v]))
+            : std::numeric_limits<double>::infinity();
+    }
+  });
+}
+
 template <int d, class Solver>
 ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::shared_ptr<const Surface<d>> s2,
                                    const ProjectionOptions& options, const Solver& solver) {
@@ -140,6 +168,7 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   MapBuilder<d> builder = builder_for(ctx);
   ProjectionState<d> state(n1v, n2v, ctx.threads);
   state.ray_outside_band = std::move(ray_outside_band);
+  if constexpr (d == 2) record_nearest_hits(ctx, hit, state);
   ProjectionInsertion<d> insertion(ctx, state, builder);
   report.target_vertices = n2v;
   report.domain_vertices = n1v;

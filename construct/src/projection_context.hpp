@@ -396,6 +396,14 @@ struct ProjectionState {
   /// distances, the distance of that hit, else NaN (cast_rays_from_s1_vertices); empty without
   /// a rim.
   std::vector<float> ray_outside_band;
+  /// d = 2: per S1 vertex, the rank (ProjectionContext::rank) of its ray's nearest admissible hit
+  /// on S2 (+inf if none) and the S2 triangle hit (invalid_index if none), from the ghost rays:
+  /// a walk's crossing that lies farther than the hits of the S1 vertices around it may be
+  /// hidden by the sheet they hit (nearer_sheet.hpp, EdgeFailureReason::hidden).
+  std::vector<double> nearest_hit_rank;
+  std::vector<Index> nearest_hit_element;
+  /// The S2 vertex that hit is, within rounding, or invalid_index.
+  std::vector<Index> nearest_hit_vertex;
 
   /// `threads`: how many threads may first-touch the arrays (parallel_first_touch.hpp).
   ProjectionState(Index s1_vertices, Index s2_vertices, unsigned threads) {
@@ -411,6 +419,9 @@ struct ProjectionState {
     release(vertex_state);
     release(vertex_image);
     release(ray_outside_band);
+    release(nearest_hit_rank);
+    release(nearest_hit_element);
+    release(nearest_hit_vertex);
     boundary_entries = {};
   }
 };

@@ -20,7 +20,7 @@
 
 #include "projection_insertion.hpp"
 #include "rim_geometry.hpp"
-#include "rim_occlusion.hpp"
+#include "nearer_sheet.hpp"
 
 #include <plmap/core/errors.hpp>
 #include <plmap/core/snapping.hpp>

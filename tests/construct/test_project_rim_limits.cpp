@@ -11,8 +11,6 @@
 #include <plmap/verify/deepest_region_locator.hpp>
 #include <plmap/verify/ray_check.hpp>
 
-#include "projection_context.hpp"
-#include "rim_occlusion.hpp"
 
 #include <gtest/gtest.h>
 
@@ -38,22 +36,6 @@ std::shared_ptr<const Surface<2>> sheet_with_a_bump() {
     const double r2 = (p.x() - 0.35) * (p.x() - 0.35) + (p.y() - 0.15) * (p.y() - 0.15);
     return WorldPoint<2>(p.x(), p.y(), 0.1 + 0.05 * std::exp(-r2 / 0.005));
   });
-}
-
-ProjectionOptions with_limit(double max_distance, bool allow_negative = false) {
-  ProjectionOptions o;
-  o.max_distance = max_distance;
-  o.allow_negative_distance = allow_negative;
-  return o;
-}
-
-RayCheckReport<2> rays_under(const PlMap<2>& map, const Surface<2>& s1, const ProjectionOptions& rules) {
-  RayCheckOptions<2> o;
-  o.directions = averaged_vertex_normals(s1);
-  o.samples = 20000;
-  o.max_distance = rules.max_distance;
-  o.allow_negative_distance = rules.allow_negative_distance;
-  return check_against_rays(map, o);
 }
 
 /// D covers exactly `area` of S1 (a closed form), within rounding, and the ray cast under the
@@ -173,69 +155,4 @@ TEST(ProjectRimWalks, EdgesThatDipIntoTheBandBetweenVerticesBeyondTheLimitAreWal
   EXPECT_GT(rays.in_domain_with_hit, rays.samples / 4);
   EXPECT_EQ(rays.extra, 0u);
   EXPECT_LE(rays.missed_defects(), rays.samples / 1000) << describe_failures(r.report);
-}
-
-namespace {
-
-/// One surface made of two: the vertices and triangles of b after those of a.
-std::shared_ptr<const Surface<2>> both(const Surface<2>& a, const Surface<2>& b) {
-  std::vector<WorldPoint<2>> v = a.vertices();
-  std::vector<ElementCorners<2>> e = a.elements();
-  const Index shift = a.vertex_count();
-  v.insert(v.end(), b.vertices().begin(), b.vertices().end());
-  for (ElementCorners<2> t : b.elements()) {
-    for (Index& c : t) c += shift;
-    e.push_back(t);
-  }
-  return std::make_shared<const Surface<2>>(std::move(v), std::move(e));
-}
-
-/// The element of a surface over the xy plane whose projection contains (x, y), and the local
-/// coordinates of (x, y) on it.
-std::pair<Index, LocalPoint<2>> element_under(const Surface<2>& s, double x, double y) {
-  for (Index t = 0; t < s.element_count(); ++t) {
-    const WorldPoint<2> a = s.corner(t, 0), b = s.corner(t, 1), c = s.corner(t, 2);
-    Eigen::Matrix2d m;
-    m << b.x() - a.x(), c.x() - a.x(), b.y() - a.y(), c.y() - a.y();
-    const Eigen::Vector2d xi = m.inverse() * Eigen::Vector2d(x - a.x(), y - a.y());
-    if (xi.minCoeff() >= 0.0 && xi.sum() <= 1.0) return {t, LocalPoint<2>(xi(0), xi(1))};
-  }
-  return {invalid_index, LocalPoint<2>::Zero()};
-}
-
-}  // namespace
-
-TEST(ProjectRimBehindANearerSheet, ALevelSetIsHiddenExactlyWhereANearerAdmissibleSheetLiesInFront) {
-  // S1: the flat square, vertical rays. S2: the tilted plane at height 0.25 (x + 0.2), whose
-  // level set at the limit 0.175 is the line x = 0.5, and a strip of other triangles (after the
-  // plane's). Where the strip lies in front of that line at an admissible distance, the rays meet
-  // it first, and the plane's level set there bounds nothing.
-  const auto s1 = flat_square();
-  const auto plane = tilted_plane(-0.2);
-  auto strip = [](double x0, double x1, double z, bool facing) { return grid(4, 12, x0, x1, -0.1, 1.1, z, facing); };
-  auto hidden_on_the_line = [&](const Surface<2>& s2, const ProjectionOptions& rules, double y) {
-    const projection::ProjectionContext<2> ctx(s1, std::make_shared<const Surface<2>>(s2), rules);
-    const auto [t, xi] = element_under(*s1, 0.5, y);
-    EXPECT_NE(t, invalid_index);
-    // the plane triangle under (0.5, y), whose level set the point is on
-    const auto [a, on_a] = element_under(*plane, 0.5, y);
-    return projection::hidden_by_nearer_sheet(ctx, t, xi, rules.max_distance, a);
-  };
-  const auto rules = with_limit(0.175);
-  for (double y : {0.05, 0.37, 0.81}) {
-    EXPECT_TRUE(hidden_on_the_line(*both(*plane, *strip(0.3, 0.7, 0.05, true)), rules, y)) << y;
-    // the plane alone: its own triangles meet the line at the bound's distance, not nearer
-    EXPECT_FALSE(hidden_on_the_line(*plane, rules, y)) << y;
-    // a strip beside the line, or beyond the bound, hides nothing
-    EXPECT_FALSE(hidden_on_the_line(*both(*plane, *strip(0.55, 0.9, 0.05, true)), rules, y)) << y;
-    EXPECT_FALSE(hidden_on_the_line(*both(*plane, *strip(0.3, 0.7, 0.2, true)), rules, y)) << y;
-  }
-  // the normal check: a strip that turns its back on S1 hides nothing when the rules ask for facing
-  ProjectionOptions facing_rules = rules;
-  facing_rules.normal_check = TargetNormalCheck::facing;
-  EXPECT_TRUE(hidden_on_the_line(*both(*plane, *strip(0.3, 0.7, 0.05, true)), facing_rules, 0.37));
-  EXPECT_FALSE(hidden_on_the_line(*both(*plane, *strip(0.3, 0.7, 0.05, false)), facing_rules, 0.37));
-  // a strip below S1 is as near with negative distances allowed, and inadmissible without
-  EXPECT_TRUE(hidden_on_the_line(*both(*plane, *strip(0.3, 0.7, -0.05, true)), with_limit(0.175, true), 0.37));
-  EXPECT_FALSE(hidden_on_the_line(*both(*plane, *strip(0.3, 0.7, -0.05, true)), rules, 0.37));
 }

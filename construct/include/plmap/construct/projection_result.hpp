@@ -36,6 +36,10 @@ enum class EdgeFailureReason {
   /// before they reach S2, e.g. under a concave part of S1): the projection is folded there
   /// (solvers/focal_points.hpp).
   fold,
+  /// The continuation lies behind a nearer sheet of S2: the ray from the crossing meets another
+  /// part of S2 first (offset copies of neighbouring bodies that interpenetrate), so the points
+  /// there take that nearer hit and the walk ends at its last visible crossing.
+  hidden,
 };
 
 std::string_view to_string(EdgeFailureReason reason);
