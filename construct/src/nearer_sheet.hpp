@@ -60,12 +60,36 @@ bool hidden_by_nearer_sheet(const Context& ctx, Index t, const LocalPoint<2>& xi
   return false;
 }
 
-/// The smallest barycentric coordinate of the pierce of the line x + m nu through the plane of S2
-/// triangle a (positive: inside), -inf if the line runs parallel to it.
+/// Where the line x + m nu pierces the plane of S2 triangle c: the barycentric coordinates of the
+/// pierce and m, or nothing where the line runs parallel to the plane. The sides are divided by
+/// their length first, so that no product of lengths under- or overflows (any unit of length).
+struct LinePierce {
+  std::array<double, 3> barycentric{};
+  double m = 0.0;
+  double scale = 0.0;  // the longer of the sides at corner 0
+};
+inline std::optional<LinePierce> line_through_plane(const Surface<2>& s2, Index c, const WorldPoint<2>& x,
+                                                    const WorldPoint<2>& nu) {
+  const WorldPoint<2> c0 = s2.corner(c, 0);
+  const double scale = std::max((s2.corner(c, 1) - c0).norm(), (s2.corner(c, 2) - c0).norm());
+  if (!(scale > 0.0)) return std::nullopt;
+  const WorldPoint<2> e1 = (s2.corner(c, 1) - c0) / scale, e2 = (s2.corner(c, 2) - c0) / scale;
+  const WorldPoint<2> n = e1.cross(e2);
+  const double along = n.dot(nu);
+  if (!(std::abs(along) > 1e-12 * n.norm() * nu.norm())) return std::nullopt;
+  LinePierce p;
+  p.scale = scale;
+  p.m = n.dot(c0 - x) / along;
+  const WorldPoint<2> hit = (x + p.m * nu - c0) / scale;
+  const double nn = n.squaredNorm();
+  const double y1 = n.dot(hit.cross(e2)) / nn, y2 = n.dot(e1.cross(hit)) / nn;
+  p.barycentric = {1.0 - y1 - y2, y1, y2};
+  return p;
+}
+
+/// The smallest barycentric coordinate of that pierce (positive: inside), -inf if there is none.
 inline double pierce_depth(const Surface<2>& s2, Index a, const WorldPoint<2>& x, const WorldPoint<2>& nu) {
-  const std::array<WorldPoint<2>, 3> tri = {s2.corner(a, 0), s2.corner(a, 1), s2.corner(a, 2)};
-  const double reach = 2.0 * std::max((tri[1] - tri[0]).norm(), (tri[2] - tri[0]).norm()) + (tri[0] - x).norm();
-  const std::optional<Pierce> p = segment_through_triangle(x - reach * nu, x + reach * nu, tri);
+  const std::optional<LinePierce> p = line_through_plane(s2, a, x, nu);
   return p ? std::min({p->barycentric[0], p->barycentric[1], p->barycentric[2]}) : -std::numeric_limits<double>::infinity();
 }
 
@@ -132,20 +156,10 @@ bool hidden_along_sheet(const Context& ctx, Index t, const LocalPoint<2>& xi, do
   Index c = start_vertex != invalid_index ? deepest_around_vertex(ctx, start_vertex, x, nu) : start;
   Index previous = invalid_index;
   for (int step = 0; step < steps && c != invalid_index; ++step) {
-    // x + m nu = c0 + y1 (c1 - c0) + y2 (c2 - c0): linear in (y, m). The sides are divided by
-    // their length first, so that no product of lengths under- or overflows (any unit of length).
-    const WorldPoint<2> c0 = s2.corner(c, 0);
-    const double scale = std::max((s2.corner(c, 1) - c0).norm(), (s2.corner(c, 2) - c0).norm());
-    if (!(scale > 0.0)) return false;
-    const WorldPoint<2> e1 = (s2.corner(c, 1) - c0) / scale, e2 = (s2.corner(c, 2) - c0) / scale;
-    const WorldPoint<2> n = e1.cross(e2);
-    const double along = n.dot(nu);
-    if (!(std::abs(along) > 1e-12 * n.norm() * nu.norm())) return false;  // parallel to the ray
-    const double m = n.dot(c0 - x) / along;
-    const WorldPoint<2> hit = (x + m * nu - c0) / scale;
-    const double nn = n.squaredNorm();
-    const double y1 = n.dot(hit.cross(e2)) / nn, y2 = n.dot(e1.cross(hit)) / nn;
-    const std::array<double, 3> bary{1.0 - y1 - y2, y1, y2};
+    const std::optional<LinePierce> pierce = line_through_plane(s2, c, x, nu);
+    if (!pierce) return false;  // parallel to the ray
+    const std::array<double, 3>& bary = pierce->barycentric;
+    const double m = pierce->m, scale = pierce->scale;
     std::array<int, 3> order{0, 1, 2};  // the sides by the barycentric coordinate opposite them
     std::sort(order.begin(), order.end(), [&](int i, int j) { return bary[i] < bary[j]; });
     if (bary[order[0]] >= 0.0) {
