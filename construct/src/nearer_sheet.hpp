@@ -184,4 +184,50 @@ bool hidden_along_sheet(const Context& ctx, Index t, const LocalPoint<2>& xi, do
   return false;
 }
 
+/// The walks' question (EdgeWalker::walk, EdgeFailureReason::hidden): whether a nearer sheet of
+/// S2 hides the crossing at place p of S1, distance mu. Where mu's rank exceeds the nearest hit
+/// of an S1 vertex of p's edge (or element, or p itself; ProjectionState::nearest_hit_rank) by
+/// more than `hidden_slack` times that edge's length, the ray from p is followed on S2 from
+/// that vertex's hit (hidden_along_sheet). On one smooth sheet the distance moves less than
+/// that between a crossing and the vertices around it, so few crossings are followed (the walks
+/// of the armadillo pair take 0.013 s longer, 1 % of its projection).
+template <class Context, class State, int d>
+bool crossing_hidden_by_nearer_sheet(const Context& ctx, const State& state, const Place<d>& p, double mu) {
+  if constexpr (d == 2) {
+    if (state.nearest_hit_rank.empty()) return false;
+    constexpr double hidden_slack = 0.05;
+    const Surface<2>& s1 = ctx.s1;
+    std::array<Index, 3> around{invalid_index, invalid_index, invalid_index};
+    double length = 0.0;
+    Index t = invalid_index;
+    LocalPoint<2> xi;
+    if (p.kind == PlaceKind::edge) {
+      const auto ev = s1.edge_vertices(p.index);
+      around = {ev[0], ev[1], invalid_index};
+      length = (s1.vertex(ev[1]) - s1.vertex(ev[0])).norm();
+      t = s1.edge_elements(p.index).front().element;
+      xi = local_on_edge_of(s1, t, p.index, p.t);
+    } else if (p.kind == PlaceKind::vertex) {
+      around[0] = p.index;
+      t = s1.vertex_elements(p.index).front();
+      xi = local_of_corner(s1, t, p.index);
+      for (int k = 0; k < 3; ++k) length = std::max(length, (s1.corner(t, k) - s1.vertex(p.index)).norm());
+    } else {
+      t = p.index;
+      xi = p.local;
+      for (int k = 0; k < 3; ++k) {
+        around[k] = s1.element(t)[k];
+        length = std::max(length, (s1.corner(t, (k + 1) % 3) - s1.corner(t, k)).norm());
+      }
+    }
+    const double rank = ctx.rank(mu);
+    for (const Index v : around) {
+      if (v == invalid_index || state.nearest_hit_element[v] == invalid_index) continue;
+      if (!(rank > state.nearest_hit_rank[v] + hidden_slack * length)) continue;
+      if (hidden_along_sheet(ctx, t, xi, mu, state.nearest_hit_element[v], state.nearest_hit_vertex[v])) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace plmap::projection

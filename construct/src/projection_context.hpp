@@ -94,6 +94,16 @@ LocalPoint<d> local_of_corner(const Surface<d>& s, Index t, Index v) {
   return reference_corner<d>(s.local_corner(t, v));
 }
 
+/// Local coordinates on triangle t of the point at parameter s along its edge `edge` (from the
+/// edge's first vertex, Surface::edge_vertices).
+inline LocalPoint<2> local_on_edge_of(const Surface<2>& s, Index t, Index edge, double param) {
+  const auto ev = s.edge_vertices(edge);
+  Barycentric<2> b = Barycentric<2>::Zero();
+  b(s.local_corner(t, ev[0])) = 1.0 - param;
+  b(s.local_corner(t, ev[1])) = param;
+  return local_from_barycentric<2>(b);
+}
+
 /// The element across the facet opposite corner k of element t on surface s, if exactly one.
 template <int d>
 Index element_across(const Surface<d>& s, Index t, int k) {

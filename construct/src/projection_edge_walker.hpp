@@ -214,7 +214,7 @@ class EdgeWalker {
         w.eta = best_eta;
         return w;
       }
-      if (hidden_by_nearer_sheet_at(best_place, best_mu)) {
+      if (crossing_hidden_by_nearer_sheet(ctx_, state_, best_place, best_mu)) {
         // the points beyond take a nearer sheet's hit: the piece ends at the last visible crossing
         w.end = WalkEnd::failed;
         w.reason = EdgeFailureReason::hidden;
@@ -238,52 +238,6 @@ class EdgeWalker {
     w.end = WalkEnd::failed;
     w.reason = EdgeFailureReason::walk_limit;
     return w;
-  }
-
-  /// Whether a nearer sheet of S2 hides the crossing at place p, distance mu. Where mu's rank
-  /// exceeds the nearest hit of an S1 vertex of p's edge (or element, or p itself) by more than
-  /// `hidden_slack` times that edge's length, the ray from p is followed on S2 from that
-  /// vertex's hit (hidden_along_sheet). On one smooth sheet the distance moves less than that
-  /// between a crossing and the vertices around it, so few crossings are followed (the walks of
-  /// the armadillo pair take 0.013 s longer, 1 % of its projection).
-  bool hidden_by_nearer_sheet_at(const Place<d>& p, double mu) const {
-    if constexpr (d == 2) {
-      if (state_.nearest_hit_rank.empty()) return false;
-      constexpr double hidden_slack = 0.05;
-      std::array<Index, 3> around{invalid_index, invalid_index, invalid_index};
-      double length = 0.0;
-      Index t = invalid_index;
-      LocalPoint<2> xi;
-      if (p.kind == PlaceKind::edge) {
-        const auto ev = ctx_.s1.edge_vertices(p.index);
-        around = {ev[0], ev[1], invalid_index};
-        length = (ctx_.s1.vertex(ev[1]) - ctx_.s1.vertex(ev[0])).norm();
-        t = ctx_.s1.edge_elements(p.index).front().element;
-        Barycentric<2> b = Barycentric<2>::Zero();
-        b(ctx_.s1.local_corner(t, ev[0])) = 1.0 - p.t;
-        b(ctx_.s1.local_corner(t, ev[1])) = p.t;
-        xi = local_from_barycentric<2>(b);
-      } else if (p.kind == PlaceKind::vertex) {
-        around[0] = p.index;
-        t = ctx_.s1.vertex_elements(p.index).front();
-        xi = local_of_corner(ctx_.s1, t, p.index);
-        for (int k = 0; k < 3; ++k) length = std::max(length, (ctx_.s1.corner(t, k) - ctx_.s1.vertex(p.index)).norm());
-      } else {
-        t = p.index;
-        xi = p.local;
-        for (int k = 0; k < 3; ++k) {
-          around[k] = ctx_.s1.element(t)[k];
-          length = std::max(length, (ctx_.s1.corner(t, (k + 1) % 3) - ctx_.s1.corner(t, k)).norm());
-        }
-      }
-      const double rank = ctx_.rank(mu);
-      for (const Index v : around) {
-        if (v == invalid_index || state_.nearest_hit_element[v] == invalid_index) continue;
-        if (!(rank > state_.nearest_hit_rank[v] + hidden_slack * length)) continue;
-        if (hidden_along_sheet(ctx_, t, xi, mu, state_.nearest_hit_element[v], state_.nearest_hit_vertex[v])) return true;
-      }
-    }
-    return false;
   }
 
   /// Where the S2 edge qa -> qb, beyond parameter eta, leaves the admissible band over one of

@@ -19,8 +19,8 @@
 // corners without a node (their rays meet S2 outside the band) and stay out.
 
 #include "projection_insertion.hpp"
-#include "rim_geometry.hpp"
 #include "nearer_sheet.hpp"
+#include "rim_geometry.hpp"
 
 #include <plmap/core/errors.hpp>
 #include <plmap/core/snapping.hpp>
@@ -138,12 +138,7 @@ bool rays_unfolded_in_front(const Context& ctx, Index t, Index a) {
 /// The local coordinates on S1 element t of one end of a rim segment.
 template <class Context>
 LocalPoint<2> end_on_element(const Context& ctx, Index t, const RimEnd& end) {
-  if (end.on_target_edge) return end.local;
-  const auto ev = ctx.s1.edge_vertices(end.edge);
-  Barycentric<2> b = Barycentric<2>::Zero();
-  b(ctx.s1.local_corner(t, ev[0])) = 1.0 - end.parameter;
-  b(ctx.s1.local_corner(t, ev[1])) = end.parameter;
-  return local_from_barycentric<2>(b);
+  return end.on_target_edge ? end.local : local_on_edge_of(ctx.s1, t, end.edge, end.parameter);
 }
 
 /// The other element at an edge with two, or invalid_index.
