@@ -245,17 +245,30 @@ TEST(RayCheckReasons, ExtraAreaPastAFocalPointInsideARegionIsTheInterpolation) {
   // Averaged normals converge over a hill next to S2's boundary: the fold curve of the field
   // cuts slivers off regions whose nodes' rays are all unfolded. Where Xi(x) still lies on the
   // ray, only the check's own focal-point rule rejects the hit: past_focal_point, not a defect.
-  // (Farther past the fold Xi(x) leaves the ray, and those samples stay unexplained: 12 of 20000
-  // here, in one element, not analysed yet.)
+  // (12 of the 20000 samples were unexplained while the foot of Xi(x) on the ray, not the ray's
+  // own hit, decided: see ExtraAreaWhereS2CrossesTheFocalSurfaceIsTheInterpolation.)
   const auto p = offset_height_fields(recipe(gen::PlanarBase::delaunay, 12, true, false, 165955196268940560),
                                       recipe(gen::PlanarBase::delaunay, 7, false, false, 268596341725630515),
                                       67107314507471909, 0.083, -0.087, -0.249);
   const auto& r = p.rays;
   const std::size_t past = r.extra_by_reason[static_cast<std::size_t>(ExtraReason::past_focal_point)];
   EXPECT_GT(past, 0u);
-  EXPECT_EQ(r.extra_defects(),
-            r.extra - past - r.extra_by_reason[static_cast<std::size_t>(ExtraReason::beyond_target_boundary)]);
-  EXPECT_LT(r.fraction(r.extra_defects()), 1e-3);
+  EXPECT_EQ(r.extra_defects(), 0u);
+}
+
+TEST(RayCheckReasons, ExtraAreaWhereS2CrossesTheFocalSurfaceIsTheInterpolation) {
+  // S2 crosses the focal surface of one S1 element's field: along a strip next to one of its
+  // edges the rays reach S2 a hair (below 1e-3 of the distance) past their focal point. Xi(x)
+  // lies off the ray by the interpolation error and its foot on the ray falls just before the
+  // focal point, so only the ray's own hit shows the ray passes it. (Found by the property test
+  // at seed 11, case 3734 of 10,000, when the foot decided: 1 of 2000 samples unexplained.)
+  const auto p = offset_height_fields(recipe(gen::PlanarBase::delaunay, 8, false, false, 1519117415066863009),
+                                      recipe(gen::PlanarBase::grid, 1, false, false, 4058713263496963672),
+                                      4289197785344421940, 0.252, -0.059, -0.131);
+  const auto& r = p.rays;
+  EXPECT_GT(r.extra_by_reason[static_cast<std::size_t>(ExtraReason::past_focal_point)], 0u);
+  EXPECT_EQ(r.extra_by_reason[static_cast<std::size_t>(ExtraReason::unexplained)], 0u);
+  EXPECT_EQ(r.extra_defects(), 0u);
 }
 
 TEST(RayCheckReasons, ExtraAreaAtS2sSilhouetteIsTheInterpolation) {

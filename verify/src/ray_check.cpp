@@ -328,10 +328,14 @@ class RayChecker {
     return (lifted<d>(q) - lifted<d>(e.world)).norm();
   }
 
+  /// Whether `cast` rejects hits past a focal point of the direction field.
+  enum class FocalRule { apply, ignore };
+
   /// For a sample in D without an admissible hit: if Xi(x) lies on the ray (within half the
   /// mean edge length of its S2 element), the acceptance rule of the check that rejects it as a
   /// hit (negative distance, the distance limit, the normal test, or a focal point of the
-  /// direction field between x and Xi(x)); else unexplained.
+  /// direction field between x and Xi(x), or between x and the ray's own hit next to Xi(x));
+  /// else unexplained.
   ExtraReason rule_rejecting_image(Index t, const WorldPoint<d>& x, const WorldPoint<d>& nu,
                                    const Evaluation<d>& e) const {
     const double nn = nu.squaredNorm();
@@ -348,11 +352,18 @@ class RayChecker {
         return ExtraReason::against_normal_check;
     }
     if (passes_focal_point_in(t, nu, mu)) return ExtraReason::past_focal_point;
+    // Xi(x) is the interpolation of the ray's hit, a little off the ray: where S2 crosses the
+    // focal surface, Xi(x) can lie just before the focal point while the ray's own hit lies just
+    // past it. The hit, not the foot of Xi(x) on the ray, decides.
+    if (const auto past = cast(t, x, nu, FocalRule::ignore);
+        past && (past->point - lifted<d>(e.world)).norm() <= 0.5 * edge && passes_focal_point_in(t, nu, past->mu))
+      return ExtraReason::past_focal_point;
     return ExtraReason::unexplained;
   }
 
   /// The admissible hit with the smallest mu (|mu| with negative distances), if any.
-  std::optional<Hit> cast(Index t, const WorldPoint<d>& x, const WorldPoint<d>& nu) const {
+  std::optional<Hit> cast(Index t, const WorldPoint<d>& x, const WorldPoint<d>& nu,
+                          FocalRule focal = FocalRule::apply) const {
     const double nn = nu.squaredNorm();
     if (!(nn > 0.0)) return std::nullopt;
     const Eigen::Vector3d origin = lifted<d>(x), direction = lifted<d>(nu);
@@ -360,7 +371,7 @@ class RayChecker {
     std::optional<Hit> best;
     const auto consider = [&](const Eigen::Vector3d& p, Index tau) {
       const double mu = (p - origin).dot(direction) / nn;
-      if (!admissible(t, nu, mu, tau)) return;
+      if (!admissible(t, nu, mu, tau, focal)) return;
       if (best && rank(mu) >= rank(best->mu)) return;
       best = Hit{tau, mu, p};
     };
@@ -399,12 +410,12 @@ class RayChecker {
     return o_.normal_check == RayNormalCheck::facing ? c < 0.0 : c > 0.0;
   }
 
-  bool admissible(Index t, const WorldPoint<d>& nu, double mu, Index tau) const {
+  bool admissible(Index t, const WorldPoint<d>& nu, double mu, Index tau, FocalRule focal = FocalRule::apply) const {
     const double slack = 1e-9 * mean_edge_length(s2_, tau);
     if (!o_.allow_negative_distance && mu < -slack) return false;
     if (!(std::abs(mu) <= limit_ + slack)) return false;
     if (!faces_the_rays(nu, tau)) return false;
-    return !passes_focal_point_in(t, nu, mu);
+    return focal == FocalRule::ignore || !passes_focal_point_in(t, nu, mu);
   }
 
   /// The ray along nu from a point of S1 element t passes a focal point of the element's field

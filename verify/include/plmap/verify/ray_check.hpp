@@ -130,6 +130,9 @@ enum class ExtraReason {
   /// region is the linear interpolation between nodes whose own rays are unfolded, and the fold
   /// curve of the field may cut a sliver off it (the interpolation at a fold, the counterpart of
   /// MissedReason::past_focal_point). Not a defect; Xi(x) is within half an edge of the ray.
+  /// Where S2 crosses the focal surface, Xi(x) (off the ray by the interpolation error) can lie
+  /// just before the focal point while the ray's own hit lies just past it: then that hit, if it
+  /// is within half an edge of Xi(x), decides.
   past_focal_point,
 };
 constexpr std::size_t extra_reason_count = 6;
