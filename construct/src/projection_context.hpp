@@ -278,13 +278,7 @@ struct ProjectionContext {
     if (std::abs(mu) <= focal_free_reach[t]) return true;
     if (p.kind == PlaceKind::element) return reaches_without_focal_point_in(t, p.local, mu);
     if (p.kind == PlaceKind::vertex) return reaches_without_focal_point_in(t, local_of_corner(s1, t, p.index), mu);
-    if constexpr (d == 2) {
-      const auto ev = s1.edge_vertices(p.index);
-      Barycentric<2> b = Barycentric<2>::Zero();
-      b(s1.local_corner(t, ev[0])) = 1.0 - p.t;
-      b(s1.local_corner(t, ev[1])) = p.t;
-      return reaches_without_focal_point_in(t, local_from_barycentric<2>(b), mu);
-    }
+    if constexpr (d == 2) return reaches_without_focal_point_in(t, local_on_edge_of(s1, t, p.index, p.t), mu);
     return true;
   }
 
@@ -299,17 +293,13 @@ struct ProjectionContext {
           return false;
       return true;
     }
-    if constexpr (d == 2) {
-      const auto ev = s1.edge_vertices(p.index);
+    if constexpr (d == 2)
       for (const auto& incidence : s1.edge_elements(p.index)) {
         const Index t = incidence.element;
-        if (distance <= focal_free_reach[t]) continue;
-        Barycentric<2> b = Barycentric<2>::Zero();
-        b(s1.local_corner(t, ev[0])) = 1.0 - p.t;
-        b(s1.local_corner(t, ev[1])) = p.t;
-        if (!reaches_without_focal_point_in(t, local_from_barycentric<2>(b), mu)) return false;
+        if (!(distance <= focal_free_reach[t]) &&
+            !reaches_without_focal_point_in(t, local_on_edge_of(s1, t, p.index, p.t), mu))
+          return false;
       }
-    }
     return true;
   }
 

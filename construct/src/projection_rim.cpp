@@ -154,12 +154,8 @@ template <int d>
 SurfacePoint<d> ProjectionInsertion<d>::point_on_target_edge(Index e, double eta) const {
   SurfacePoint<d> p;
   if constexpr (d == 2) {
-    const auto ev = ctx_.s2.edge_vertices(e);
     p.element = ctx_.s2.edge_elements(e).front().element;
-    Barycentric<2> b = Barycentric<2>::Zero();
-    b(ctx_.s2.local_corner(p.element, ev[0])) = 1.0 - eta;
-    b(ctx_.s2.local_corner(p.element, ev[1])) = eta;
-    p.local = LocalPoint<2>(b(1), b(2));
+    p.local = local_on_edge_of(ctx_.s2, p.element, e, eta);
   }
   return p;
 }
@@ -192,14 +188,10 @@ Index ProjectionInsertion<d>::rim_node_on_edge(Index edge, double t, Index targe
     // a crossing of an S2 edge's preimage at the same point: the rim is not made there
     for (Index i = used_first_[edge]; i != invalid_index; i = used_parameters_[i].next)
       if (std::abs(used_parameters_[i].t - t) <= rim_margin) return invalid_index;
-    const EdgeIncidence inc = ctx_.s1.edge_elements(edge).front();
-    const auto ev = ctx_.s1.edge_vertices(edge);
-    Barycentric<2> b = Barycentric<2>::Zero();
-    b(ctx_.s1.local_corner(inc.element, ev[0])) = 1.0 - t;
-    b(ctx_.s1.local_corner(inc.element, ev[1])) = t;
+    const Index element = ctx_.s1.edge_elements(edge).front().element;
     Index node = invalid_index;
     try {
-      node = builder_.add_rim_node({inc.element, LocalPoint<2>(b(1), b(2))}, {target, image});
+      node = builder_.add_rim_node({element, local_on_edge_of(ctx_.s1, element, edge, t)}, {target, image});
       ++rim_nodes_made_;
     } catch (const BuilderError&) {
     }
