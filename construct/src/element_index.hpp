@@ -77,6 +77,28 @@ struct ElementIndex {
     return result;
   }
 
+  /// Whether pred(t) holds for some element t whose centroid lies within r of x. The tree calls
+  /// pred while it searches and stops at the first true, without collecting the candidates (the
+  /// rim's nearer-sheet test asks this once per rim segment).
+  template <class Pred>
+  bool any_within(const WorldPoint<d>& x, double r, Pred&& pred) const {
+    if (cloud.points.empty()) return false;
+    struct StopAtFirst {  // a nanoflann result set
+      double squared_radius;
+      Pred& pred;
+      bool found = false;
+      bool full() const { return true; }
+      double worstDist() const { return squared_radius; }
+      bool addPoint(double squared_distance, std::uint32_t t) {
+        if (squared_distance < squared_radius && pred(static_cast<Index>(t))) found = true;
+        return !found;
+      }
+    } result{r * r, pred};
+    tree->findNeighbors(result, x.data(), nanoflann::SearchParams());
+    return result.found;
+  }
+
+  /// The elements whose centroid lies within r of x, in increasing order.
   std::vector<Index> within(const WorldPoint<d>& x, double r) const {
     std::vector<std::pair<std::uint32_t, double>> hits;
     if (!cloud.points.empty()) tree->radiusSearch(x.data(), r * r, hits, nanoflann::SearchParams());

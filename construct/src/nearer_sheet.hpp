@@ -48,16 +48,15 @@ bool hidden_by_nearer_sheet(const Context& ctx, Index t, const LocalPoint<2>& xi
   const WorldPoint<2> p0 = x + from * nu, p1 = x + mu * nu;
   const double reach = 0.5 * (p1 - p0).norm() + 1.01 * ctx.s2_index->radius;
   const double rank_of_bound = ctx.rank(mu);
-  for (const Index c : ctx.s2_index->within(0.5 * (p0 + p1), reach)) {
-    if (c == skip) continue;
+  return ctx.s2_index->any_within(0.5 * (p0 + p1), reach, [&](Index c) {
+    if (c == skip) return false;
     const std::array<WorldPoint<2>, 3> tri = {ctx.s2.corner(c, 0), ctx.s2.corner(c, 1), ctx.s2.corner(c, 2)};
     const std::optional<Pierce> p = segment_through_triangle(p0, p1, tri);
-    if (!p || !strictly_inside(p->barycentric, inside_margin)) continue;
+    if (!p || !strictly_inside(p->barycentric, inside_margin)) return false;
     const double mu_c = from + p->s * (mu - from);
-    if (!(ctx.rank(mu_c) < (1.0 - nearer_margin) * rank_of_bound)) continue;
-    if (ctx.normal_ok(nu, ctx.s2.element_normal(c)) && ctx.unfolded_in(t, xi, mu_c)) return true;
-  }
-  return false;
+    if (!(ctx.rank(mu_c) < (1.0 - nearer_margin) * rank_of_bound)) return false;
+    return ctx.normal_ok(nu, ctx.s2.element_normal(c)) && ctx.unfolded_in(t, xi, mu_c);
+  });
 }
 
 /// Where the line x + m nu pierces the plane of S2 triangle c: the barycentric coordinates of the
