@@ -44,6 +44,47 @@ int turn_sign(const LocalPoint<2>& u, const LocalPoint<2>& v, const LocalPoint<2
 /// (h >= 0) or by the side of a triangle already cut off (encoded as -1 - side).
 constexpr int owned_by_side(int side) { return -1 - side; }
 
+}  // namespace
+
+bool flip_side(std::span<const LocalPoint<2>> points, ElementClosure& out, int t, int i) {
+  auto& tri = out.triangles;
+  auto& nb = out.neighbors;
+  auto& graph = out.graph_sides;
+  const int u = nb[t][i];
+  if (u < 0) return false;
+  auto side_towards = [&](int from, int to) {
+    for (int j = 0; j < 3; ++j)
+      if (nb[from][j] == to) return j;
+    return -1;
+  };
+  const int j = side_towards(u, t);
+  if (j < 0) return false;
+  // t = (p, a, b) and u = (q, b, a), counter-clockwise, sharing side a-b.
+  const int p = tri[t][i], a = tri[t][(i + 1) % 3], b = tri[t][(i + 2) % 3];
+  const int q = tri[u][j];
+  if (orient2d(points[p], points[a], points[q]) <= 0 || orient2d(points[q], points[b], points[p]) <= 0)
+    return false;  // not a convex quadrilateral
+  auto graph_bit = [&](int x, int k) -> std::uint8_t { return (graph[x] >> k) & 1u; };
+  const int t_opp_a = nb[t][(i + 1) % 3];  // across side b-p
+  const int t_opp_b = nb[t][(i + 2) % 3];  // across side p-a
+  const int u_opp_b = nb[u][(j + 1) % 3];  // across side a-q (u = (q, b, a))
+  const int u_opp_a = nb[u][(j + 2) % 3];  // across side q-b
+  // The four outer sides keep their graph flags; the new diagonal p-q is not a graph edge.
+  const std::uint8_t g_bp = graph_bit(t, (i + 1) % 3), g_pa = graph_bit(t, (i + 2) % 3);
+  const std::uint8_t g_aq = graph_bit(u, (j + 1) % 3), g_qb = graph_bit(u, (j + 2) % 3);
+  tri[t] = {p, a, q};
+  nb[t] = {u_opp_b, u, t_opp_b};
+  graph[t] = static_cast<std::uint8_t>(g_aq | (g_pa << 2));
+  tri[u] = {q, b, p};
+  nb[u] = {t_opp_a, t, u_opp_a};
+  graph[u] = static_cast<std::uint8_t>(g_bp | (g_qb << 2));
+  if (u_opp_b >= 0) nb[u_opp_b][side_towards(u_opp_b, u)] = t;
+  if (t_opp_a >= 0) nb[t_opp_a][side_towards(t_opp_a, t)] = u;
+  return true;
+}
+
+namespace {
+
 /// Lawson flips inside faces: a diagonal (a side whose two triangles belong to the same face)
 /// whose far vertex lies inside the other triangle's circumcircle is flipped, until none is left.
 /// Graph edges and the element boundary are never flipped, so the result is the constrained
@@ -53,14 +94,12 @@ void make_faces_delaunay(std::span<const LocalPoint<2>> points, ElementClosure& 
   if (stack.empty()) return;  // every face a triangle: no diagonal
   auto& tri = out.triangles;
   auto& nb = out.neighbors;
-  auto& graph = out.graph_sides;
   const int nt = static_cast<int>(tri.size());
   auto side_towards = [&](int u, int t) {
     for (int j = 0; j < 3; ++j)
       if (nb[u][j] == t) return j;
     return -1;
   };
-  auto graph_bit = [&](int t, int i) -> std::uint8_t { return (graph[t] >> i) & 1u; };
   // Each flip removes a non-Delaunay side for good; the bound only guards against a logic error.
   for (long budget = 16L * nt * nt + 64; !stack.empty() && budget > 0; --budget) {
     const int t = stack.back() / 3, i = stack.back() % 3;
@@ -73,23 +112,7 @@ void make_faces_delaunay(std::span<const LocalPoint<2>> points, ElementClosure& 
     const int p = tri[t][i], a = tri[t][(i + 1) % 3], b = tri[t][(i + 2) % 3];
     const int q = tri[u][j];
     if (incircle(points[p], points[a], points[b], points[q]) <= 0) continue;
-    if (orient2d(points[p], points[a], points[q]) <= 0 || orient2d(points[q], points[b], points[p]) <= 0)
-      continue;  // not a convex quadrilateral: cannot flip
-    const int t_opp_a = nb[t][(i + 1) % 3];  // across side b-p
-    const int t_opp_b = nb[t][(i + 2) % 3];  // across side p-a
-    const int u_opp_b = nb[u][(j + 1) % 3];  // across side a-q (u = (q, b, a))
-    const int u_opp_a = nb[u][(j + 2) % 3];  // across side q-b
-    // The four outer sides keep their graph flags; the new diagonal p-q is not a graph edge.
-    const std::uint8_t g_bp = graph_bit(t, (i + 1) % 3), g_pa = graph_bit(t, (i + 2) % 3);
-    const std::uint8_t g_aq = graph_bit(u, (j + 1) % 3), g_qb = graph_bit(u, (j + 2) % 3);
-    tri[t] = {p, a, q};
-    nb[t] = {u_opp_b, u, t_opp_b};
-    graph[t] = static_cast<std::uint8_t>(g_aq | (g_pa << 2));
-    tri[u] = {q, b, p};
-    nb[u] = {t_opp_a, t, u_opp_a};
-    graph[u] = static_cast<std::uint8_t>(g_bp | (g_qb << 2));
-    if (u_opp_b >= 0) nb[u_opp_b][side_towards(u_opp_b, u)] = t;
-    if (t_opp_a >= 0) nb[t_opp_a][side_towards(t_opp_a, t)] = u;
+    if (!flip_side(points, out, t, i)) continue;  // not a convex quadrilateral
     stack.push_back(3 * t + 0);
     stack.push_back(3 * t + 2);
     stack.push_back(3 * u + 0);

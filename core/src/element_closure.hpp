@@ -77,6 +77,12 @@ struct ClosureScratch {
 bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const ClosureSegment> segments,
                     std::array<int, 2> boundary_start, ElementClosure& out, ClosureScratch& scratch);
 
+/// Flips the side opposite corner i of triangle t (shared with the triangle across it) if the two
+/// triangles form a strictly convex quadrilateral (exact): the new diagonal joins their far
+/// corners, is no graph edge, and the outer sides keep theirs. Returns whether it flipped; t and
+/// the triangle across keep their indices and faces.
+bool flip_side(std::span<const LocalPoint<2>> points, ElementClosure& out, int t, int i);
+
 /// Whether the closed polygon `poly` (indices into `points`) turns left or goes straight at every
 /// vertex, never doubles back, and winds exactly once: then it is convex and simple. Exact.
 bool convex_and_winding_once(std::span<const LocalPoint<2>> points, std::span<const int> poly);

@@ -375,7 +375,43 @@ double choose_face_target(const BuilderContents<2>& in, ClosureWorkspace& w, int
 /// instead of giving a region that verify rejects. The corners are judged both as given and as
 /// the region's affine map reproduces them (what verify sees): a nearly flat image may become
 /// exactly flat through the map. Computes the triangles' affine maps on the way.
-int judge_face_orientation(ClosureWorkspace& w, int c, int sign) {
+/// Whether the images of closure triangle tr's corners all lie on one S2 edge (or vertex): their
+/// supports span at most two S2 vertices. Xi then collapses the triangle onto a segment, whatever
+/// the rounding of the corner images makes orient2d say (on the edge between corners 1 and 2 of
+/// the S2 element, the images' coordinates add up to 1 only up to rounding, so the sign went
+/// either way: the same face was kept with a region of kappa 1e13 in one frame and dropped as
+/// reversed in a rotated one). Virtual corners (S1 corners without a node) never collapse.
+[[gnu::noinline]] bool image_collapses(const BuilderContents<2>& in, const ElementTriangulation& et,
+                                       const std::array<int, 3>& tr) {
+  std::array<Index, 3> vertices{};
+  int count = 0;
+  for (int v : tr) {
+    if (v >= static_cast<int>(et.slots.size())) return false;
+    const Support<2>& support = in.nodes[et.slots[v]].image;
+    for (int j = 0; j < support.count; ++j) {
+      const Index x = support.vertex(in.s2, j);
+      if (std::find(vertices.begin(), vertices.begin() + count, x) != vertices.begin() + count) continue;
+      if (count == 2) return false;  // a third S2 vertex: the images span a triangle
+      vertices[count++] = x;
+    }
+  }
+  return true;
+}
+
+/// Whether the corner images a, b, c may be collinear: their cross product is within what the
+/// rounding of images on one S2 edge gives (coordinates at most 1, errors of a few ulps, so at
+/// most about 1e-16 times the longer side). A filter for image_collapses, which is exact: a
+/// triangle whose image collapses always passes it.
+bool nearly_flat(const LocalPoint<2>& a, const LocalPoint<2>& b, const LocalPoint<2>& c) {
+  const LocalPoint<2> u = b - a, v = c - a;
+  const double cross = u(0) * v(1) - u(1) * v(0);
+  return std::abs(cross) <= 1e-12 * (std::abs(u(0)) + std::abs(u(1)) + std::abs(v(0)) + std::abs(v(1)));
+}
+
+/// The sign of face c's image (the sign given, or 0 if a triangle's image or the affine map
+/// through it turns the other way, or collapses), and the affine maps of its triangles. A face
+/// with a triangle whose image collapses (image_collapses) is listed in w.collapsed_faces.
+int judge_face_orientation(const BuilderContents<2>& in, ClosureWorkspace& w, int c, int sign) {
   auto& et = w.et;
   for (int q = w.face_begin[c]; q < w.face_begin[c + 1] && sign != 0; ++q) {
     const int f = w.face_order[q];
@@ -383,11 +419,45 @@ int judge_face_orientation(ClosureWorkspace& w, int c, int sign) {
     const auto& image = et.corner_images[f];
     const std::array<LocalPoint<2>, 3> from{et.positions[tr[0]], et.positions[tr[1]], et.positions[tr[2]]};
     const AffineMap<2>& map = et.corner_maps[f] = affine_through<2>(from, image);
-    if (orient2d(image[0], image[1], image[2]) != sign ||
-        orient2d(apply<2>(map, from[0]), apply<2>(map, from[1]), apply<2>(map, from[2])) != sign)
+    if (nearly_flat(image[0], image[1], image[2]) && image_collapses(in, et, tr)) {
+      w.collapsed_faces.push_back(c);
       sign = 0;
+    } else if (orient2d(image[0], image[1], image[2]) != sign ||
+               orient2d(apply<2>(map, from[0]), apply<2>(map, from[1]), apply<2>(map, from[2])) != sign) {
+      sign = 0;
+    }
   }
   return sign;
+}
+
+/// For face c, which has a triangle whose image collapses: flips a diagonal of each such triangle
+/// (one whose triangle across lies in the same face) where the quadrilateral is convex and
+/// neither new triangle collapses. Returns whether any diagonal was flipped; the triangles keep
+/// their indices and faces.
+bool flip_collapsed_triangles(const BuilderContents<2>& in, ClosureWorkspace& w, int c) {
+  auto& closure = w.closure;
+  const auto& et = w.et;
+  bool flipped = false;
+  for (int k = w.face_begin[c]; k < w.face_begin[c + 1]; ++k) {
+    const int t = w.face_order[k];
+    if (!image_collapses(in, et, closure.triangles[t])) continue;
+    for (int i = 0; i < 3; ++i) {
+      const int u = closure.neighbors[t][i];
+      if (u < 0 || closure.face[u] != c || ((closure.graph_sides[t] >> i) & 1u)) continue;
+      // the triangles after the flip: (p, a, q) and (q, b, p), with q the far corner of u
+      const auto& tr = closure.triangles[t];
+      const int p = tr[i], a = tr[(i + 1) % 3], b = tr[(i + 2) % 3];
+      int q = -1;
+      for (int j = 0; j < 3; ++j)
+        if (closure.neighbors[u][j] == t) q = closure.triangles[u][j];
+      if (q < 0 || image_collapses(in, et, {p, a, q}) || image_collapses(in, et, {q, b, p})) continue;
+      if (flip_side(et.positions, closure, t, i)) {
+        flipped = true;
+        break;
+      }
+    }
+  }
+  return flipped;
 }
 
 /// Classifies the faces: touching a virtual corner -> outside D; else the S2 element all its
@@ -400,6 +470,7 @@ void classify_faces(const BuilderContents<2>& in, ClosureWorkspace& w, int ns, i
   et.corner_images.resize(nf);
   et.corner_maps.resize(nf);
   group_triangles_by_face(w, ns);
+  w.collapsed_faces.clear();
   w.vertex_stamp.assign(vertex_count, -1);
   w.on_candidate.resize(vertex_count);
   for (int c = 0; c < ncomp; ++c) {
@@ -407,9 +478,28 @@ void classify_faces(const BuilderContents<2>& in, ClosureWorkspace& w, int ns, i
     if (comp.outside) continue;
     const double area = choose_face_target(in, w, c);
     if (comp.target == invalid_index) continue;
-    comp.sign = judge_face_orientation(w, c, area > 0 ? 1 : -1);
+    comp.sign = judge_face_orientation(in, w, c, area > 0 ? 1 : -1);
     w.votes += comp.sign * static_cast<long long>(w.face_begin[c + 1] - w.face_begin[c]);
   }
+}
+
+/// The faces in w.collapsed_faces have a triangle whose image collapses onto one S2 edge: where
+/// flips of such diagonals give triangles that do not, the face is judged again with them (images,
+/// maps and votes anew). Rare (the maps of the femur, bones and armadillo pairs do not change),
+/// so it runs after classify_faces, out of its loop.
+[[gnu::noinline]] void rejudge_collapsed_faces(const BuilderContents<2>& in, ClosureWorkspace& w) {
+  for (const int c : w.collapsed_faces) {
+    if (!flip_collapsed_triangles(in, w, c)) continue;
+    auto& comp = w.et.components[c];
+    comp.target = invalid_index;
+    for (int q = w.face_begin[c]; q < w.face_begin[c + 1]; ++q)  // gathered again (the same vertices)
+      for (int v : w.closure.triangles[w.face_order[q]]) w.vertex_stamp[v] = -1;
+    const double area = choose_face_target(in, w, c);
+    if (comp.target == invalid_index) continue;
+    comp.sign = judge_face_orientation(in, w, c, area > 0 ? 1 : -1);
+    w.votes += comp.sign * static_cast<long long>(w.face_begin[c + 1] - w.face_begin[c]);
+  }
+  w.collapsed_faces.clear();
 }
 
 /// The closure triangle a point-location walk starts from: the first inside D at the element's
@@ -449,6 +539,7 @@ void close_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2
   const int ns = static_cast<int>(w.et.slots.size());
   const int vertex_count = static_cast<int>(w.et.positions.size());
   classify_faces(in, w, ns, vertex_count);
+  if (!w.collapsed_faces.empty()) rejudge_collapsed_faces(in, w);
   w.et.centroid_triangle = centroid_triangle(w.et, w.closure);
   // where each node's ring of neighbours starts (they are circulated at assembly)
   ring_starts(w.closure, vertex_count, w.ring_start);

@@ -85,6 +85,7 @@ struct ClosureWorkspace {
   std::array<std::vector<int>, 3> edge_inner;
   std::vector<int> face_order, face_begin, comp_nodes, vertex_stamp;
   std::vector<LocalPoint<2>> on_candidate;  // per vertex: its image on a candidate S2 element
+  std::vector<int> collapsed_faces;  // faces with a triangle whose image collapses (finalize_closure.cpp)
 };
 
 /// Closes S1 element t into w (throws BuilderError where the graph cannot be closed: crossing
