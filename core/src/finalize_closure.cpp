@@ -368,13 +368,6 @@ double choose_face_target(const BuilderContents<2>& in, ClosureWorkspace& w, int
   return best_area;
 }
 
-/// Every triangle of face c must map with the face's orientation. Where the images do not follow
-/// one affine map (a discontinuous projection direction field), three nodes of a face can map
-/// onto one S2 edge, or a triangle can fold back, although the face as a whole keeps its
-/// orientation: such a face is left out of D like a reversed one (FinalizeReport::reversed_faces),
-/// instead of giving a region that verify rejects. The corners are judged both as given and as
-/// the region's affine map reproduces them (what verify sees): a nearly flat image may become
-/// exactly flat through the map. Computes the triangles' affine maps on the way.
 /// Whether the images of closure triangle tr's corners all lie on one S2 edge (or vertex): their
 /// supports span at most two S2 vertices. Xi then collapses the triangle onto a segment, whatever
 /// the rounding of the corner images makes orient2d say (on the edge between corners 1 and 2 of
@@ -408,9 +401,16 @@ bool nearly_flat(const LocalPoint<2>& a, const LocalPoint<2>& b, const LocalPoin
   return std::abs(cross) <= 1e-12 * (std::abs(u(0)) + std::abs(u(1)) + std::abs(v(0)) + std::abs(v(1)));
 }
 
-/// The sign of face c's image (the sign given, or 0 if a triangle's image or the affine map
-/// through it turns the other way, or collapses), and the affine maps of its triangles. A face
-/// with a triangle whose image collapses (image_collapses) is listed in w.collapsed_faces.
+/// Every triangle of face c must map with the face's orientation. Where the images do not follow
+/// one affine map (a discontinuous projection direction field), three nodes of a face can map
+/// onto one S2 edge, or a triangle can fold back, although the face as a whole keeps its
+/// orientation: such a face is left out of D like a reversed one (FinalizeReport::reversed_faces),
+/// instead of giving a region that verify rejects. The corners are judged both as given and as
+/// the region's affine map reproduces them (what verify sees): a nearly flat image may become
+/// exactly flat through the map. A triangle whose three corners map onto one S2 edge is judged
+/// combinatorially (image_collapses), not by the rounding of its images, and its face is listed
+/// in w.collapsed_faces (rejudge_collapsed_faces may flip the triangle away). Returns the sign
+/// given, or 0; computes the triangles' affine maps on the way.
 int judge_face_orientation(const BuilderContents<2>& in, ClosureWorkspace& w, int c, int sign) {
   auto& et = w.et;
   for (int q = w.face_begin[c]; q < w.face_begin[c + 1] && sign != 0; ++q) {
@@ -488,7 +488,10 @@ void classify_faces(const BuilderContents<2>& in, ClosureWorkspace& w, int ns, i
 /// maps and votes anew). Rare (the maps of the femur, bones and armadillo pairs do not change),
 /// so it runs after classify_faces, out of its loop.
 [[gnu::noinline]] void rejudge_collapsed_faces(const BuilderContents<2>& in, ClosureWorkspace& w) {
-  for (const int c : w.collapsed_faces) {
+  // by index up to the faces listed now: judging a face again may list it again
+  const std::size_t listed = w.collapsed_faces.size();
+  for (std::size_t k = 0; k < listed; ++k) {
+    const int c = w.collapsed_faces[k];
     if (!flip_collapsed_triangles(in, w, c)) continue;
     auto& comp = w.et.components[c];
     comp.target = invalid_index;
