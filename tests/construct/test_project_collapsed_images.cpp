@@ -4,7 +4,7 @@
 // an S1 element had three nodes on the same S2 edge, its Delaunay diagonal joined two of them, and
 // the sign of that triangle's image decided the face: dropped as reversed in one frame, kept with a
 // region of kappa 2.6e13 in a rotated one (the covered measure differed by 1 % of S1). The closure
-// now flips such a diagonal where it can (finalize_closure.cpp, flip_collapsed_images) and
+// now flips such a diagonal where it can (finalize_closure.cpp, rejudge_collapsed_faces) and
 // otherwise counts the triangle as collapsed, so the decision no longer depends on the frame.
 #include "projection_fixtures.hpp"
 
