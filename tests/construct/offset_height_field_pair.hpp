@@ -17,6 +17,17 @@
 
 namespace plmap::test {
 
+/// The recipe of a Delaunay planar triangulation of the unit square, as the property tests print
+/// it ("delaunay resolution=R [hole] seed=S").
+inline generators::PlanarRecipe delaunay(int resolution, bool with_hole, std::uint64_t seed) {
+  generators::PlanarRecipe r;
+  r.base = generators::PlanarBase::delaunay;
+  r.resolution = resolution;
+  r.with_hole = with_hole;
+  r.seed = seed;
+  return r;
+}
+
 struct OffsetHeightFieldPair {
   std::shared_ptr<const Surface<2>> s1, s2;
   ProjectionResult<2> projected;

@@ -6,6 +6,7 @@
 // region of kappa 2.6e13 in a rotated one (the covered measure differed by 1 % of S1). The closure
 // now flips such a diagonal where it can (finalize_closure.cpp, rejudge_collapsed_faces) and
 // otherwise counts the triangle as collapsed, so the decision no longer depends on the frame.
+#include "offset_height_field_pair.hpp"
 #include "projection_fixtures.hpp"
 
 #include <plmap/construct/project.hpp>
@@ -22,15 +23,6 @@ using namespace plmap::test;
 namespace gen = plmap::generators;
 
 namespace {
-
-gen::PlanarRecipe delaunay(int resolution, bool with_hole, std::uint64_t seed) {
-  gen::PlanarRecipe r;
-  r.base = gen::PlanarBase::delaunay;
-  r.resolution = resolution;
-  r.with_hole = with_hole;
-  r.seed = seed;
-  return r;
-}
 
 struct Pair {
   std::shared_ptr<const Surface<2>> s1, s2;

@@ -21,15 +21,6 @@ namespace gen = plmap::generators;
 
 namespace {
 
-gen::PlanarRecipe delaunay(int resolution, bool with_hole, std::uint64_t seed) {
-  gen::PlanarRecipe r;
-  r.base = gen::PlanarBase::delaunay;
-  r.resolution = resolution;
-  r.with_hole = with_hole;
-  r.seed = seed;
-  return r;
-}
-
 std::size_t not_covered(const RayCheckReport<2>& r) {
   return r.missed_by_reason[static_cast<std::size_t>(MissedReason::not_covered)];
 }
