@@ -94,8 +94,8 @@ LocalPoint<d> local_of_corner(const Surface<d>& s, Index t, Index v) {
   return reference_corner<d>(s.local_corner(t, v));
 }
 
-/// Local coordinates on triangle t of the point at parameter s along its edge `edge` (from the
-/// edge's first vertex, Surface::edge_vertices).
+/// Local coordinates on triangle t of the point at parameter `param` along its edge `edge` (0 at
+/// the edge's first vertex, Surface::edge_vertices, 1 at its second).
 inline LocalPoint<2> local_on_edge_of(const Surface<2>& s, Index t, Index edge, double param) {
   const auto ev = s.edge_vertices(edge);
   Barycentric<2> b = Barycentric<2>::Zero();

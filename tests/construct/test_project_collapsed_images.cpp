@@ -56,7 +56,6 @@ TEST(ProjectCollapsedImages, TheCoveredMeasureDoesNotDependOnTheFrame) {
   EXPECT_LT(quality.kappa_max, 1e3);
   // Rotations about a few axes, each by a few angles: before, several of them changed the covered
   // measure by 1 % of S1.
-  int moved = 0;
   for (const Eigen::Vector3d& axis : {Eigen::Vector3d(0.3, -0.2, 1.0), Eigen::Vector3d(1.0, 0.4, 0.1),
                                      Eigen::Vector3d(-0.5, 1.0, 0.7)})
     for (const double angle : {0.7, 1.9, 2.8, 4.1, 5.3}) {
@@ -67,7 +66,5 @@ TEST(ProjectCollapsedImages, TheCoveredMeasureDoesNotDependOnTheFrame) {
       EXPECT_NEAR(m.measures.covered_domain, r.measures.covered_domain, 1e-9 * r.measures.domain)
           << "rotation by " << angle << " about " << axis.transpose();
       EXPECT_LT(compute_quality(m.map).kappa_max, 1e3);
-      ++moved;
     }
-  EXPECT_EQ(moved, 15);
 }
