@@ -28,6 +28,14 @@ ProjectionContext<d>::ProjectionContext(std::shared_ptr<const Surface<d>> s1_sur
   const double diagonal = (s1.bounding_box_max() - s1.bounding_box_min()).norm();
   distance_limit = options.max_distance_is_relative ? options.max_distance * diagonal : options.max_distance;
   if (!(distance_limit >= 0.0)) throw Error(fmt::format("max_distance {} is not >= 0", options.max_distance));
+  if (std::isfinite(distance_limit)) {
+    double longest_direction = 0.0;
+    for (const auto& nu : vertex_directions) longest_direction = std::max(longest_direction, nu.norm());
+    band_reach = distance_limit * longest_direction;
+  }
+  for (const Surface<d>* s : {&s1, &s2})
+    coordinate_rounding = std::max({coordinate_rounding, 1e-12 * s->bounding_box_min().cwiseAbs().maxCoeff(),
+                                    1e-12 * s->bounding_box_max().cwiseAbs().maxCoeff()});
   seed_count = std::clamp(options.search_seeds, 1, max_search_seeds);
   threads = resolve_thread_count(options.threads);
   // Independent indexes, the box index first: it takes about as long as both kd-trees, so with

@@ -28,6 +28,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -148,6 +149,12 @@ struct ProjectionContext {
   std::vector<double> focal_free_reach;
   /// Largest admissible |mu|, a length (options.max_distance, relative or not).
   double distance_limit = 0.0;
+  /// How far from its point of S1 an admissible hit can lie: distance_limit times the longest
+  /// direction (the field interpolates the vertex directions linearly, so no ray is longer per
+  /// unit of mu). Infinite without a distance limit (segment_reach.hpp).
+  double band_reach = std::numeric_limits<double>::infinity();
+  /// Rounding of a distance between points of S1 and S2: 1e-12 of their largest coordinate.
+  double coordinate_rounding = 0.0;
   /// Nearest elements that seed a search (options.search_seeds, clamped to 1..max_search_seeds).
   int seed_count = 8;
   /// Seeds of the repeated vertex preimage search (search_limits.retry_seeds).

@@ -10,6 +10,7 @@
 #include "rim_geometry.hpp"
 #include "rim_reentry.hpp"
 #include "seen_indices.hpp"
+#include "segment_reach.hpp"
 #include "projection_edge_crossings.hpp"
 #include "walk_acceptance.hpp"
 
@@ -446,12 +447,17 @@ class EdgeWalker {
     std::vector<Index> ring, next_ring, ring_edges, at_exit;
     SeenIndices seen_elements, seen_edges;
     std::vector<FoldExitCandidate> exits;
+    // the rest of the edge, where an exit may lie (nearest_fold_exit keeps none elsewhere)
+    const SegmentReach<d> rest(ctx_, qa + stopped.eta * (qb - qa), qa + before * (qb - qa));
     auto solve = [&](Index edge) -> std::optional<FoldExitCandidate> {
       // the closed-form root of eq. (4)'s quadratic, without the solver: dozens of S1 edges
       // are tried per search, and only the one chosen is solved (below)
       const auto ev = ctx_.s1.edge_vertices(edge);
+      const WorldPoint<d>& p0 = ctx_.s1.vertex(ev[0]);
+      const WorldPoint<d>& p1 = ctx_.s1.vertex(ev[1]);
+      if (rest.out_of_reach(0.5 * (p0 + p1), 0.5 * (p1 - p0).norm())) return std::nullopt;
       EdgeCrossingSystem sys;
-      sys.edge = {ctx_.s1.vertex(ev[0]), ctx_.s1.vertex(ev[1])};
+      sys.edge = {p0, p1};
       sys.directions = {ctx_.vertex_directions[ev[0]], ctx_.vertex_directions[ev[1]]};
       sys.target = {qa, qb};
       const auto root = sys.root_on_the_edges();

@@ -17,6 +17,7 @@
 #include "projection_edge_walks.hpp"
 #include "rim_geometry.hpp"
 #include "seen_indices.hpp"
+#include "segment_reach.hpp"
 
 #include <algorithm>
 #include <array>
@@ -34,6 +35,7 @@ inline std::optional<RimPoint<2>> rim_reentry(const ProjectionContext<2>& ctx, c
   const auto& limits = ctx.options.search_limits;
   const double after = rim.eta;
   const WorldPoint<2> from = qa + after * (qb - qa);
+  const SegmentReach<2> rest(ctx, from, qa + std::min(before, 1.0) * (qb - qa));  // no pierce beyond is kept
   // the rings of elements around the rim point's element
   SeenIndices seen;
   seen.insert(rim.element);
@@ -53,6 +55,13 @@ inline std::optional<RimPoint<2>> rim_reentry(const ProjectionContext<2>& ctx, c
   for (Index t : all) {
     // the rim point's element holds the edge's rim node already (one per element and S2 edge)
     if (t == rim.element) continue;
+    // no level of the band (|mu| <= distance_limit) reaches the rest of the edge from t
+    WorldPoint<2> centroid = WorldPoint<2>::Zero();
+    for (int k = 0; k < 3; ++k) centroid += ctx.s1.corner(t, k);
+    centroid /= 3.0;
+    double radius = 0.0;
+    for (int k = 0; k < 3; ++k) radius = std::max(radius, (ctx.s1.corner(t, k) - centroid).norm());
+    if (rest.out_of_reach(centroid, radius)) continue;
     for (int level = 0; level < ctx.rim_level_count(); ++level) {
       const auto tri = ctx.corners_at_distance(t, ctx.rim_level(level).mu);
       const std::optional<Pierce> p = segment_through_triangle(from, qb, tri);
