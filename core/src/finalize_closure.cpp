@@ -1,6 +1,7 @@
 // finalize(), phase 2: closure (finalize_closure.hpp).
 
 #include "finalize_closure.hpp"
+#include "orientation_through_map.hpp"
 
 #include <plmap/core/affine_through.hpp>
 #include <plmap/core/huge_page_allocator.hpp>
@@ -418,13 +419,16 @@ int judge_face_orientation(const BuilderContents<2>& in, ClosureWorkspace& w, in
     const auto& tr = w.closure.triangles[f];
     const auto& image = et.corner_images[f];
     const std::array<LocalPoint<2>, 3> from{et.positions[tr[0]], et.positions[tr[1]], et.positions[tr[2]]};
-    const AffineMap<2>& map = et.corner_maps[f] = affine_through<2>(from, image);
+    if (w.corner_maps_wanted) et.corner_maps[f] = affine_through<2>(from, image);
     if (nearly_flat(image[0], image[1], image[2]) && image_collapses(in, et, tr)) {
       w.collapsed_faces.push_back(c);
       sign = 0;
-    } else if (orient2d(image[0], image[1], image[2]) != sign ||
-               orient2d(apply<2>(map, from[0]), apply<2>(map, from[1]), apply<2>(map, from[2])) != sign) {
+    } else if (orient2d(image[0], image[1], image[2]) != sign) {
       sign = 0;
+    } else if (!orientation_survives_the_map(from, image)) {
+      if (!w.corner_maps_wanted) et.corner_maps[f] = affine_through<2>(from, image);
+      const AffineMap<2>& map = et.corner_maps[f];
+      if (orient2d(apply<2>(map, from[0]), apply<2>(map, from[1]), apply<2>(map, from[2])) != sign) sign = 0;
     }
   }
   return sign;

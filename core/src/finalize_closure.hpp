@@ -36,7 +36,8 @@ struct ElementTriangulation {
   // (computed when the target is chosen, used again for the region's affine map).
   std::vector<std::array<LocalPoint<2>, 3>> corner_images;
   // Per closure triangle of a face with a target: the affine map through those images (computed
-  // when the face's triangles are judged, used again as the region's map).
+  // when the face's triangles are judged, used again as the region's map; only where
+  // ClosureWorkspace::corner_maps_wanted, or where the judgement needed it).
   std::vector<AffineMap<2>> corner_maps;
   std::vector<int> edge_slots;                // along local edges 0, 1, 2, corners included
   std::array<int, 4> edge_slots_begin{};
@@ -86,6 +87,11 @@ struct ClosureWorkspace {
   std::vector<int> face_order, face_begin, comp_nodes, vertex_stamp;
   std::vector<LocalPoint<2>> on_candidate;  // per vertex: its image on a candidate S2 element
   std::vector<int> collapsed_faces;  // faces with a triangle whose image collapses (finalize_closure.cpp)
+  // Whether the assembly takes the closure triangles' affine maps as the regions' maps
+  // (ElementTriangulation::corner_maps). Where the region maps are written after the closing
+  // pass instead (finalize_region_maps.hpp), a triangle's map is computed only when its image
+  // is too thin for the orientation test to do without it (judge_face_orientation).
+  bool corner_maps_wanted = true;
 };
 
 /// Closes S1 element t into w (throws BuilderError where the graph cannot be closed: crossing

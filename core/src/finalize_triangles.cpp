@@ -48,6 +48,7 @@ class ClosingPass {
     const bool drop = in_.options.drop_conflicting_edges;
     workspaces_.clear();
     workspaces_.resize(blocks_);
+    for (ClosureWorkspace& w : workspaces_) w.corner_maps_wanted = !deferred_region_maps();
     parts_.assign(blocks_, MapData<2>{});
     graph_elements_.assign(blocks_, {});
     face_counts_.assign(blocks_, FaceCounts{});
@@ -228,6 +229,7 @@ namespace {
 /// The orientation guess: the vote of up to 64 elements spread over S1.
 int sampled_orientation(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where) {
   ClosureWorkspace w;
+  w.corner_maps_wanted = false;  // only the faces' signs vote
   const Index n1 = in.s1.element_count();
   const Index stride = std::max<Index>(1, n1 / 64);
   for (Index t = 0; t < n1; t += stride) {
