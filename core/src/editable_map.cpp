@@ -61,12 +61,12 @@ EditableMap::EditableMap(std::shared_ptr<const Surface<2>> target, EditOptions o
   for (Index e = 0; e < ne; ++e) {
     const auto ab = t2.edge_vertices(e);
     EdgePolyline& p = s.polylines[e];
-    p.vertex = {ab[0], ab[1]};
-    p.edge = {{invalid_index, invalid_index}, {invalid_index, invalid_index}};
-    p.edge_parameter = {0.0, 0.0};
-    p.target_parameter = {0.0, 1.0};
     const Index t = t2.edge_elements(e).front().element;
-    p.segment_triangle = {t};
+    p.points.resize(2);
+    p.points[0].vertex = ab[0];
+    p.points[0].segment_triangle = t;
+    p.points[1].vertex = ab[1];
+    p.points[1].target_parameter = 1.0;
     s.triangle_edges[t].push_back(e);
   }
 }
@@ -241,8 +241,8 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
       for (const auto& r : plan.relocations)
         if (r.new_triangle >= 0) ++vertices[static_cast<std::size_t>(r.new_triangle)];
       for (const auto& edit : plan.polyline_edits)
-        for (Index t : edit.segment_triangle)
-          if (t < 0) ++edges[static_cast<std::size_t>(-t - 1)];
+        for (std::size_t i = 0; i + 1 < edit.points.size(); ++i)
+          if (const Index t = edit.points[i].segment_triangle; t < 0) ++edges[static_cast<std::size_t>(-t - 1)];
       for (std::size_t n = 0; n < plan.new_triangles.size(); ++n) {
         s.triangle_vertices[static_cast<std::size_t>(base) + n].reserve(vertices[n]);
         s.triangle_edges[static_cast<std::size_t>(base) + n].reserve(edges[n]);
@@ -273,28 +273,16 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
   for (const auto& edit : plan.polyline_edits) {
     EdgePolyline& p = s.polylines[edit.target_edge];
     ++s.polyline_version[edit.target_edge];
-    // A polyline gains points as S1 coarsens: its arrays grow by half at least, not by the
-    // few points of one step (a copy into a too small vector allocates exactly its size).
-    if (p.vertex.capacity() < edit.point_vertex.size()) {
-      const std::size_t grown = std::max(edit.point_vertex.size(), p.vertex.capacity() * 3 / 2);
-      p.vertex.reserve(grown);
-      p.edge.reserve(grown);
-      p.edge_parameter.reserve(grown);
-      p.target_parameter.reserve(grown);
-      p.segment_triangle.reserve(grown);
-    }
-    p.vertex = edit.point_vertex;
-    p.edge = edit.point_edge;
-    p.edge_parameter = edit.point_edge_parameter;
-    p.target_parameter = edit.point_target_parameter;
-    p.segment_triangle.resize(edit.segment_triangle.size());
-    for (std::size_t i = 0; i < edit.segment_triangle.size(); ++i) {
-      const Index t = edit.segment_triangle[i];
-      if (t >= 0) {
-        p.segment_triangle[i] = t;
-      } else {
-        p.segment_triangle[i] = base + (-t - 1);
-        s.triangle_edges[p.segment_triangle[i]].push_back(edit.target_edge);
+    // A polyline gains points as S1 coarsens: its array grows by half at least, not by the few
+    // points of one step (a copy into a too small vector allocates exactly its size).
+    if (p.points.capacity() < edit.points.size())
+      p.points.reserve(std::max(edit.points.size(), p.points.capacity() * 3 / 2));
+    p.points = edit.points;
+    for (std::size_t i = 0; i + 1 < p.points.size(); ++i) {
+      Index& t = p.points[i].segment_triangle;
+      if (t < 0) {
+        t = base + (-t - 1);
+        s.triangle_edges[t].push_back(edit.target_edge);
       }
     }
   }
@@ -402,8 +390,9 @@ PlMap<2> EditableMap::to_map(BuilderOptions options) const {
     if (!traced.empty()) {
       for (const TracedCrossing& c : traced[e]) add_crossing(e, c.edge, c.edge_parameter, c.target_parameter);
     } else {
-      const EdgePolyline& p = s.polylines[e];
-      for (std::size_t i = 1; i + 1 < p.vertex.size(); ++i) add_crossing(e, p.edge[i], p.edge_parameter[i], p.target_parameter[i]);
+      const std::vector<PolylinePoint>& points = s.polylines[e].points;
+      for (std::size_t i = 1; i + 1 < points.size(); ++i)
+        add_crossing(e, points[i].edge, points[i].edge_parameter, points[i].target_parameter);
     }
     if (crossings.empty())
       builder.add_edge(e);

@@ -16,16 +16,13 @@
 namespace plmap {
 
 /// The preimage of one S2 edge: points from the preimage of its smaller-index vertex to the
-/// larger. Point i is an endpoint (vertex[i] is the S2 vertex) or a crossing of the S1 edge
-/// edge[i] (smaller vertex first) at parameter edge_parameter[i]; target_parameter[i] is where
-/// it lands on the S2 edge (0 at the smaller vertex). Segment i joins points i and i + 1 inside
-/// S1 triangle segment_triangle[i].
+/// larger. Point i is an endpoint (its vertex is the S2 vertex) or a crossing of the S1 edge
+/// `edge` (smaller vertex first) at `edge_parameter`; `target_parameter` is where it lands on
+/// the S2 edge (0 at the smaller vertex). Segment i joins points i and i + 1 inside S1 triangle
+/// points[i].segment_triangle.
 struct EdgePolyline {
-  std::vector<Index> vertex;
-  std::vector<std::array<Index, 2>> edge;
-  std::vector<double> edge_parameter;
-  std::vector<double> target_parameter;
-  std::vector<Index> segment_triangle;
+  std::vector<PolylinePoint> points;
+  int segment_count() const { return static_cast<int>(points.size()) - 1; }
 };
 
 struct EditableMap::Impl {
