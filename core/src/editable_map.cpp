@@ -270,7 +270,14 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
       s.edge_vertices[Impl::edge_key(plan.line_edge)].push_back(w);
     }
   }
-  for (const auto& edit : plan.polyline_edits) {
+  // As when the plan read them (cut_polylines), the polylines written here are asked for a few
+  // edits ahead: their entries and points have mostly left the cache since.
+  constexpr std::size_t entry_ahead = 8, points_ahead = 4;
+  const auto& edits = plan.polyline_edits;
+  for (std::size_t k = 0; k < edits.size(); ++k) {
+    if (k + entry_ahead < edits.size()) __builtin_prefetch(&s.polylines[edits[k + entry_ahead].target_edge]);
+    if (k + points_ahead < edits.size()) __builtin_prefetch(s.polylines[edits[k + points_ahead].target_edge].points.data(), 1);
+    const auto& edit = edits[k];
     EdgePolyline& p = s.polylines[edit.target_edge];
     ++s.polyline_version[edit.target_edge];
     // A polyline gains points as S1 coarsens: its array grows by half at least, not by the few

@@ -182,7 +182,7 @@ struct EditableMap::RemovalPlanning {
   RemovalRefusal cut_polylines();
   RemovalRefusal cut_polyline(Index e);
   std::pair<bool, int> triangle_along_kept_edge(const EdgePolyline& p) const;
-  RemovalRefusal cut_run(Index e, const EdgePolyline& p, int first, int last, VertexRemovalPlan::PolylineEdit& edit);
+  RemovalRefusal cut_run(const EdgePolyline& p, int first, int last, VertexRemovalPlan::PolylineEdit& edit);
   RemovalRefusal planar_points_of_run(int g, const EdgePolyline& p, int first, int last);
   RemovalRefusal find_cuts(int g, const removal::PlanarPoint& from, const removal::PlanarPoint& to);
   const Vec2* moved_position(int g, Index w) const;
