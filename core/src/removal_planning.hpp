@@ -102,6 +102,10 @@ struct PlanScratch {
   std::vector<Cut> cuts;
   std::vector<PlanarPoint> run_points;
   std::vector<Piece> pieces;
+  /// The check's order of the pieces (by new triangle, then by the left end of the x-range):
+  /// per new triangle where its pieces start in `piece_order`, and each piece's left end.
+  std::vector<int> piece_start, piece_order;
+  std::vector<double> piece_left;
   /// The straight-fold check's unfolding of one sheet: per ring index, its position and whether
   /// it is placed yet.
   std::vector<Vec2> unfolded;
