@@ -54,10 +54,19 @@ EditableMap::EditableMap(std::shared_ptr<const Surface<2>> target, EditOptions o
   s.preimage_barycentric.assign(nv, Eigen::Vector3d::Zero());
   s.preimage_edge.assign(nv, {invalid_index, invalid_index});
   s.preimage_edge_parameter.assign(nv, 0.0);
-  s.triangle_vertices.resize(nt);
-  s.triangle_edges.resize(nt);
+  s.triangle_vertices.add_slots(static_cast<std::size_t>(nt));
+  s.triangle_edges.add_slots(static_cast<std::size_t>(nt));
   s.polylines.resize(ne);
   s.polyline_version.assign(ne, 0);
+  // Each S2 edge starts in the first triangle around it: the triangles' lists of edges, sized first.
+  {
+    std::vector<std::size_t> edges_per_triangle(static_cast<std::size_t>(nt), 0);
+    for (Index e = 0; e < ne; ++e) ++edges_per_triangle[static_cast<std::size_t>(t2.edge_elements(e).front().element)];
+    s.list_sizes.clear();
+    for (Index t = 0; t < nt; ++t)
+      if (edges_per_triangle[static_cast<std::size_t>(t)] > 0) s.list_sizes.emplace_back(t, edges_per_triangle[static_cast<std::size_t>(t)]);
+    s.triangle_edges.open(s.list_sizes);
+  }
   for (Index e = 0; e < ne; ++e) {
     const auto ab = t2.edge_vertices(e);
     EdgePolyline& p = s.polylines[e];
@@ -67,7 +76,7 @@ EditableMap::EditableMap(std::shared_ptr<const Surface<2>> target, EditOptions o
     p.points[0].segment_triangle = t;
     p.points[1].vertex = ab[1];
     p.points[1].target_parameter = 1.0;
-    s.triangle_edges[t].push_back(e);
+    s.triangle_edges.append(t, e);
   }
 }
 
@@ -214,10 +223,8 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
       auto& list = s.vertex_triangles[c];
       list.erase(std::remove(list.begin(), list.end(), t), list.end());
     }
-    s.triangle_vertices[t].clear();
-    s.triangle_vertices[t].shrink_to_fit();
-    s.triangle_edges[t].clear();
-    s.triangle_edges[t].shrink_to_fit();
+    s.triangle_vertices.clear(t);
+    s.triangle_edges.clear(t);
   }
   s.vertex_live[plan.vertex] = 0;
   s.vertex_triangles[plan.vertex].clear();
@@ -228,26 +235,24 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
     const Index t = static_cast<Index>(s.triangles.size());
     s.triangles.push_back(c);
     s.triangle_live.push_back(1);
-    s.triangle_vertices.emplace_back();
-    s.triangle_edges.emplace_back();
     for (Index v : c) s.vertex_triangles[v].push_back(t);
   }
   {
-    // Each new triangle's lists of vertex preimages and S2 edges get their final sizes at once,
-    // counted from the plan, so that filling them below does not reallocate push by push (a
-    // simplification applies thousands of removals, each filling a few dozen lists).
-    std::array<std::uint32_t, 64> vertices{}, edges{};  // the holes of a simplification are small
-    if (plan.new_triangles.size() <= vertices.size()) {
-      for (const auto& r : plan.relocations)
-        if (r.new_triangle >= 0) ++vertices[static_cast<std::size_t>(r.new_triangle)];
-      for (const auto& edit : plan.polyline_edits)
-        for (std::size_t i = 0; i + 1 < edit.points.size(); ++i)
-          if (const Index t = edit.points[i].segment_triangle; t < 0) ++edges[static_cast<std::size_t>(-t - 1)];
-      for (std::size_t n = 0; n < plan.new_triangles.size(); ++n) {
-        s.triangle_vertices[static_cast<std::size_t>(base) + n].reserve(vertices[n]);
-        s.triangle_edges[static_cast<std::size_t>(base) + n].reserve(edges[n]);
-      }
-    }
+    // Each new triangle's lists of vertex preimages and S2 edges get their ranges at once,
+    // counted from the plan, and are filled below in the plan's order.
+    const std::size_t count = plan.new_triangles.size();
+    s.triangle_vertices.add_slots(count);
+    s.triangle_edges.add_slots(count);
+    s.list_sizes.assign(count, {0, 0});
+    for (std::size_t n = 0; n < count; ++n) s.list_sizes[n].first = base + static_cast<Index>(n);
+    for (const auto& r : plan.relocations)
+      if (r.new_triangle >= 0) ++s.list_sizes[static_cast<std::size_t>(r.new_triangle)].second;
+    s.triangle_vertices.open(s.list_sizes);
+    for (auto& size : s.list_sizes) size.second = 0;
+    for (const auto& edit : plan.polyline_edits)
+      for (std::size_t i = 0; i + 1 < edit.points.size(); ++i)
+        if (const Index t = edit.points[i].segment_triangle; t < 0) ++s.list_sizes[static_cast<std::size_t>(-t - 1)].second;
+    s.triangle_edges.open(s.list_sizes);
   }
   s.live_triangles += static_cast<Index>(plan.new_triangles.size()) - static_cast<Index>(plan.old_triangles.size());
 
@@ -262,7 +267,7 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
       s.preimage_triangle[w] = t;
       s.preimage_barycentric[w] = r.barycentric;
       s.preimage_edge[w] = {invalid_index, invalid_index};
-      s.triangle_vertices[t].push_back(w);
+      s.triangle_vertices.append(t, w);
     } else {
       s.preimage_triangle[w] = invalid_index;
       s.preimage_edge[w] = plan.line_edge;
@@ -289,7 +294,7 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
       Index& t = p.points[i].segment_triangle;
       if (t < 0) {
         t = base + (-t - 1);
-        s.triangle_edges[t].push_back(edit.target_edge);
+        s.triangle_edges.append(t, edit.target_edge);
       }
     }
   }

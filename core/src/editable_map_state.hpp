@@ -5,6 +5,7 @@
 // (the deferred cut's trace).
 
 #include <plmap/core/editable_map.hpp>
+#include "triangle_lists.hpp"
 
 #include <algorithm>
 #include <array>
@@ -52,9 +53,10 @@ struct EditableMap::Impl {
   std::vector<EdgePolyline> polylines;  ///< per S2 edge
   std::vector<std::uint32_t> polyline_version;  ///< per S2 edge: how often apply() rewrote its polyline
   /// Per S1 triangle: the S2 vertices whose preimage is inside, and the S2 edges with a segment
-  /// inside (an edge may be listed more than once).
-  std::vector<std::vector<Index>> triangle_vertices;
-  std::vector<std::vector<Index>> triangle_edges;
+  /// inside (an edge may be listed more than once). Written when the triangle is made.
+  TriangleLists triangle_vertices;
+  TriangleLists triangle_edges;
+  std::vector<std::pair<Index, std::size_t>> list_sizes;  ///< apply()'s sizes of the new triangles' lists
 
   static std::uint64_t edge_key(std::array<Index, 2> e) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(e[0])) << 32) | static_cast<std::uint32_t>(e[1]);
