@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <queue>
@@ -141,12 +142,12 @@ class Simplifier {
     if (extent == PlanExtent::full && hole.has_full_plan && hole.stamp == stamp_[v] && !hole.sheet.ring.empty() &&
         hole.new_edge_count == new_edges_at(hole.sheet.ring)) {
       hole.has_full_plan = false;
-      if (map_.refresh_plan(hole.full_plan)) {
-        a.plan = std::move(hole.full_plan);
+      if (map_.refresh_plan(*hole.full_plan)) {
+        a.plan = std::move(*hole.full_plan);
         a.perturbed = hole.perturbed;
         return judge(std::move(a));
       }
-      give_back(std::move(hole.full_plan));
+      give_back(std::move(*hole.full_plan));
     }
     a.plan = spare_plan();  // its buffers, for this plan
     a.plan.reset();
@@ -169,7 +170,7 @@ class Simplifier {
       return judge(std::move(a));
     }
     hole.sheet.ring.clear();
-    if (hole.has_full_plan) give_back(std::move(hole.full_plan));
+    if (hole.has_full_plan) give_back(std::move(*hole.full_plan));
     hole.has_full_plan = false;
     std::vector<Index> ring = map_.closed_ring(v);
     if (ring.size() < 3) {
@@ -224,7 +225,10 @@ class Simplifier {
     HoleTriangles triangles;
     bool perturbed = false;            ///< flat is a perturbed flattening
     bool has_full_plan = false;        ///< full_plan holds the full plan made when v was queued again
-    VertexRemovalPlan full_plan;
+    /// Out of line: one PreparedHole per S2 vertex, but few vertices ever keep a plan, and a plan
+    /// inline made every PreparedHole about 400 bytes (11 MB of the armadillo's first touches,
+    /// page faults, and zeroing in the constructor). Kept once made, for its buffers.
+    std::unique_ptr<VertexRemovalPlan> full_plan;
   };
   std::uint64_t new_edges_at(const std::vector<Index>& ring) const {
     std::uint64_t sum = 0;
@@ -444,7 +448,7 @@ class Simplifier {
       // at all is found when it comes up. A plan kept for v is stale now.
       last_refusal_[v].clear();
       PreparedHole& hole = prepared_[v];
-      if (hole.has_full_plan) give_back(std::move(hole.full_plan));
+      if (hole.has_full_plan) give_back(std::move(*hole.full_plan));
       hole.has_full_plan = false;
       hole.sheet.ring.clear();
       const auto e = estimate_.estimate(v, line_neighbours_[v]);
@@ -504,8 +508,9 @@ class Simplifier {
         PreparedHole& hole = prepared_[top.vertex];
         hole.stamp = stamp_[top.vertex];  // the map did not change: its hole stays, and so does the plan
         if (!hole.sheet.ring.empty()) {
-          if (hole.has_full_plan) give_back(std::move(hole.full_plan));
-          hole.full_plan = std::move(a.plan);
+          if (hole.has_full_plan) give_back(std::move(*hole.full_plan));
+          if (!hole.full_plan) hole.full_plan = std::make_unique<VertexRemovalPlan>();
+          *hole.full_plan = std::move(a.plan);
           hole.has_full_plan = true;
         } else {
           give_back(std::move(a.plan));

@@ -118,11 +118,19 @@ class SimplifyRankingEstimate {
       worst_aspect_squared = std::max(
           worst_aspect_squared, aspect_squared(spoke_[a], spoke_[b], lengths_[a * n + b], star_normal.squaredNorm()));
       // The new triangle on the outer edge ab has its third corner among the other neighbours.
+      // The bound is the largest of these minima over the outer edges, so an edge whose minimum
+      // comes down to the largest so far cannot raise it: its search stops there (the bound is
+      // the same, bit for bit; most edges stop after a few corners). The search starts after b,
+      // where the ring's next vertex usually is: a triangle of the ring's own edges is seldom
+      // the worst choice.
       double best = std::numeric_limits<double>::infinity();
-      for (int w = 0; w < n; ++w)
-        if (w != a && w != b)
-          best = std::min(best, aspect_squared(lengths_[a * n + w], lengths_[b * n + w], lengths_[a * n + b],
-                                               ab.cross(positions_[w] - positions_[a]).squaredNorm()));
+      for (int k = 1; k < n; ++k) {
+        const int w = (b + k) % n;
+        if (w == a) continue;
+        best = std::min(best, aspect_squared(lengths_[a * n + w], lengths_[b * n + w], lengths_[a * n + b],
+                                             ab.cross(positions_[w] - positions_[a]).squaredNorm()));
+        if (best <= best_new_aspect_squared) break;
+      }
       if (std::isfinite(best)) best_new_aspect_squared = std::max(best_new_aspect_squared, best);
     }
     double height = 0.0;

@@ -54,20 +54,29 @@ EditableMap::EditableMap(std::shared_ptr<const Surface<2>> target, EditOptions o
   s.preimage_barycentric.assign(nv, Eigen::Vector3d::Zero());
   s.preimage_edge.assign(nv, {invalid_index, invalid_index});
   s.preimage_edge_parameter.assign(nv, 0.0);
-  s.triangle_vertices.resize(nt);
-  s.triangle_edges.resize(nt);
+  s.triangle_vertices.add_slots(static_cast<std::size_t>(nt));
+  s.triangle_edges.add_slots(static_cast<std::size_t>(nt));
   s.polylines.resize(ne);
   s.polyline_version.assign(ne, 0);
+  // Each S2 edge starts in the first triangle around it: the triangles' lists of edges, sized first.
+  {
+    std::vector<std::size_t> edges_per_triangle(static_cast<std::size_t>(nt), 0);
+    for (Index e = 0; e < ne; ++e) ++edges_per_triangle[static_cast<std::size_t>(t2.edge_elements(e).front().element)];
+    s.list_sizes.clear();
+    for (Index t = 0; t < nt; ++t)
+      if (edges_per_triangle[static_cast<std::size_t>(t)] > 0) s.list_sizes.emplace_back(t, edges_per_triangle[static_cast<std::size_t>(t)]);
+    s.triangle_edges.open(s.list_sizes);
+  }
   for (Index e = 0; e < ne; ++e) {
     const auto ab = t2.edge_vertices(e);
     EdgePolyline& p = s.polylines[e];
-    p.vertex = {ab[0], ab[1]};
-    p.edge = {{invalid_index, invalid_index}, {invalid_index, invalid_index}};
-    p.edge_parameter = {0.0, 0.0};
-    p.target_parameter = {0.0, 1.0};
     const Index t = t2.edge_elements(e).front().element;
-    p.segment_triangle = {t};
-    s.triangle_edges[t].push_back(e);
+    p.points.resize(2);
+    p.points[0].vertex = ab[0];
+    p.points[0].segment_triangle = t;
+    p.points[1].vertex = ab[1];
+    p.points[1].target_parameter = 1.0;
+    s.triangle_edges.append(t, e);
   }
 }
 
@@ -214,10 +223,8 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
       auto& list = s.vertex_triangles[c];
       list.erase(std::remove(list.begin(), list.end(), t), list.end());
     }
-    s.triangle_vertices[t].clear();
-    s.triangle_vertices[t].shrink_to_fit();
-    s.triangle_edges[t].clear();
-    s.triangle_edges[t].shrink_to_fit();
+    s.triangle_vertices.clear(t);
+    s.triangle_edges.clear(t);
   }
   s.vertex_live[plan.vertex] = 0;
   s.vertex_triangles[plan.vertex].clear();
@@ -228,26 +235,24 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
     const Index t = static_cast<Index>(s.triangles.size());
     s.triangles.push_back(c);
     s.triangle_live.push_back(1);
-    s.triangle_vertices.emplace_back();
-    s.triangle_edges.emplace_back();
     for (Index v : c) s.vertex_triangles[v].push_back(t);
   }
   {
-    // Each new triangle's lists of vertex preimages and S2 edges get their final sizes at once,
-    // counted from the plan, so that filling them below does not reallocate push by push (a
-    // simplification applies thousands of removals, each filling a few dozen lists).
-    std::array<std::uint32_t, 64> vertices{}, edges{};  // the holes of a simplification are small
-    if (plan.new_triangles.size() <= vertices.size()) {
-      for (const auto& r : plan.relocations)
-        if (r.new_triangle >= 0) ++vertices[static_cast<std::size_t>(r.new_triangle)];
-      for (const auto& edit : plan.polyline_edits)
-        for (Index t : edit.segment_triangle)
-          if (t < 0) ++edges[static_cast<std::size_t>(-t - 1)];
-      for (std::size_t n = 0; n < plan.new_triangles.size(); ++n) {
-        s.triangle_vertices[static_cast<std::size_t>(base) + n].reserve(vertices[n]);
-        s.triangle_edges[static_cast<std::size_t>(base) + n].reserve(edges[n]);
-      }
-    }
+    // Each new triangle's lists of vertex preimages and S2 edges get their ranges at once,
+    // counted from the plan, and are filled below in the plan's order.
+    const std::size_t count = plan.new_triangles.size();
+    s.triangle_vertices.add_slots(count);
+    s.triangle_edges.add_slots(count);
+    s.list_sizes.assign(count, {0, 0});
+    for (std::size_t n = 0; n < count; ++n) s.list_sizes[n].first = base + static_cast<Index>(n);
+    for (const auto& r : plan.relocations)
+      if (r.new_triangle >= 0) ++s.list_sizes[static_cast<std::size_t>(r.new_triangle)].second;
+    s.triangle_vertices.open(s.list_sizes);
+    for (auto& size : s.list_sizes) size.second = 0;
+    for (const auto& edit : plan.polyline_edits)
+      for (std::size_t i = 0; i + 1 < edit.points.size(); ++i)
+        if (const Index t = edit.points[i].segment_triangle; t < 0) ++s.list_sizes[static_cast<std::size_t>(-t - 1)].second;
+    s.triangle_edges.open(s.list_sizes);
   }
   s.live_triangles += static_cast<Index>(plan.new_triangles.size()) - static_cast<Index>(plan.old_triangles.size());
 
@@ -262,7 +267,7 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
       s.preimage_triangle[w] = t;
       s.preimage_barycentric[w] = r.barycentric;
       s.preimage_edge[w] = {invalid_index, invalid_index};
-      s.triangle_vertices[t].push_back(w);
+      s.triangle_vertices.append(t, w);
     } else {
       s.preimage_triangle[w] = invalid_index;
       s.preimage_edge[w] = plan.line_edge;
@@ -270,31 +275,26 @@ void EditableMap::apply(const VertexRemovalPlan& plan) {
       s.edge_vertices[Impl::edge_key(plan.line_edge)].push_back(w);
     }
   }
-  for (const auto& edit : plan.polyline_edits) {
+  // As when the plan read them (cut_polylines), the polylines written here are asked for a few
+  // edits ahead: their entries and points have mostly left the cache since.
+  constexpr std::size_t entry_ahead = 8, points_ahead = 4;
+  const auto& edits = plan.polyline_edits;
+  for (std::size_t k = 0; k < edits.size(); ++k) {
+    if (k + entry_ahead < edits.size()) __builtin_prefetch(&s.polylines[edits[k + entry_ahead].target_edge]);
+    if (k + points_ahead < edits.size()) __builtin_prefetch(s.polylines[edits[k + points_ahead].target_edge].points.data(), 1);
+    const auto& edit = edits[k];
     EdgePolyline& p = s.polylines[edit.target_edge];
     ++s.polyline_version[edit.target_edge];
-    // A polyline gains points as S1 coarsens: its arrays grow by half at least, not by the
-    // few points of one step (a copy into a too small vector allocates exactly its size).
-    if (p.vertex.capacity() < edit.point_vertex.size()) {
-      const std::size_t grown = std::max(edit.point_vertex.size(), p.vertex.capacity() * 3 / 2);
-      p.vertex.reserve(grown);
-      p.edge.reserve(grown);
-      p.edge_parameter.reserve(grown);
-      p.target_parameter.reserve(grown);
-      p.segment_triangle.reserve(grown);
-    }
-    p.vertex = edit.point_vertex;
-    p.edge = edit.point_edge;
-    p.edge_parameter = edit.point_edge_parameter;
-    p.target_parameter = edit.point_target_parameter;
-    p.segment_triangle.resize(edit.segment_triangle.size());
-    for (std::size_t i = 0; i < edit.segment_triangle.size(); ++i) {
-      const Index t = edit.segment_triangle[i];
-      if (t >= 0) {
-        p.segment_triangle[i] = t;
-      } else {
-        p.segment_triangle[i] = base + (-t - 1);
-        s.triangle_edges[p.segment_triangle[i]].push_back(edit.target_edge);
+    // A polyline gains points as S1 coarsens: its array grows by half at least, not by the few
+    // points of one step (a copy into a too small vector allocates exactly its size).
+    if (p.points.capacity() < edit.points.size())
+      p.points.reserve(std::max(edit.points.size(), p.points.capacity() * 3 / 2));
+    p.points = edit.points;
+    for (std::size_t i = 0; i + 1 < p.points.size(); ++i) {
+      Index& t = p.points[i].segment_triangle;
+      if (t < 0) {
+        t = base + (-t - 1);
+        s.triangle_edges.append(t, edit.target_edge);
       }
     }
   }
@@ -402,8 +402,9 @@ PlMap<2> EditableMap::to_map(BuilderOptions options) const {
     if (!traced.empty()) {
       for (const TracedCrossing& c : traced[e]) add_crossing(e, c.edge, c.edge_parameter, c.target_parameter);
     } else {
-      const EdgePolyline& p = s.polylines[e];
-      for (std::size_t i = 1; i + 1 < p.vertex.size(); ++i) add_crossing(e, p.edge[i], p.edge_parameter[i], p.target_parameter[i]);
+      const std::vector<PolylinePoint>& points = s.polylines[e].points;
+      for (std::size_t i = 1; i + 1 < points.size(); ++i)
+        add_crossing(e, points[i].edge, points[i].edge_parameter, points[i].target_parameter);
     }
     if (crossings.empty())
       builder.add_edge(e);

@@ -81,11 +81,7 @@ void VertexRemovalPlan::reset() {
   max_node_distance = 0.0;
   relocations.clear();
   for (PolylineEdit& e : polyline_edits) {
-    e.point_vertex.clear();
-    e.point_edge.clear();
-    e.point_edge_parameter.clear();
-    e.point_target_parameter.clear();
-    e.segment_triangle.clear();
+    e.points.clear();
     spare_edits.push_back(std::move(e));
   }
   polyline_edits.clear();

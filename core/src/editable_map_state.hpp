@@ -5,6 +5,7 @@
 // (the deferred cut's trace).
 
 #include <plmap/core/editable_map.hpp>
+#include "triangle_lists.hpp"
 
 #include <algorithm>
 #include <array>
@@ -16,16 +17,13 @@
 namespace plmap {
 
 /// The preimage of one S2 edge: points from the preimage of its smaller-index vertex to the
-/// larger. Point i is an endpoint (vertex[i] is the S2 vertex) or a crossing of the S1 edge
-/// edge[i] (smaller vertex first) at parameter edge_parameter[i]; target_parameter[i] is where
-/// it lands on the S2 edge (0 at the smaller vertex). Segment i joins points i and i + 1 inside
-/// S1 triangle segment_triangle[i].
+/// larger. Point i is an endpoint (its vertex is the S2 vertex) or a crossing of the S1 edge
+/// `edge` (smaller vertex first) at `edge_parameter`; `target_parameter` is where it lands on
+/// the S2 edge (0 at the smaller vertex). Segment i joins points i and i + 1 inside S1 triangle
+/// points[i].segment_triangle.
 struct EdgePolyline {
-  std::vector<Index> vertex;
-  std::vector<std::array<Index, 2>> edge;
-  std::vector<double> edge_parameter;
-  std::vector<double> target_parameter;
-  std::vector<Index> segment_triangle;
+  std::vector<PolylinePoint> points;
+  int segment_count() const { return static_cast<int>(points.size()) - 1; }
 };
 
 struct EditableMap::Impl {
@@ -55,9 +53,10 @@ struct EditableMap::Impl {
   std::vector<EdgePolyline> polylines;  ///< per S2 edge
   std::vector<std::uint32_t> polyline_version;  ///< per S2 edge: how often apply() rewrote its polyline
   /// Per S1 triangle: the S2 vertices whose preimage is inside, and the S2 edges with a segment
-  /// inside (an edge may be listed more than once).
-  std::vector<std::vector<Index>> triangle_vertices;
-  std::vector<std::vector<Index>> triangle_edges;
+  /// inside (an edge may be listed more than once). Written when the triangle is made.
+  TriangleLists triangle_vertices;
+  TriangleLists triangle_edges;
+  std::vector<std::pair<Index, std::size_t>> list_sizes;  ///< apply()'s sizes of the new triangles' lists
 
   static std::uint64_t edge_key(std::array<Index, 2> e) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(e[0])) << 32) | static_cast<std::uint32_t>(e[1]);

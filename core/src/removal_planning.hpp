@@ -102,6 +102,10 @@ struct PlanScratch {
   std::vector<Cut> cuts;
   std::vector<PlanarPoint> run_points;
   std::vector<Piece> pieces;
+  /// The check's order of the pieces (by new triangle, then by the left end of the x-range):
+  /// per new triangle where its pieces start in `piece_order`, and each piece's left end.
+  std::vector<int> piece_start, piece_order;
+  std::vector<double> piece_left;
   /// The straight-fold check's unfolding of one sheet: per ring index, its position and whether
   /// it is placed yet.
   std::vector<Vec2> unfolded;
@@ -182,7 +186,7 @@ struct EditableMap::RemovalPlanning {
   RemovalRefusal cut_polylines();
   RemovalRefusal cut_polyline(Index e);
   std::pair<bool, int> triangle_along_kept_edge(const EdgePolyline& p) const;
-  RemovalRefusal cut_run(Index e, const EdgePolyline& p, int first, int last, VertexRemovalPlan::PolylineEdit& edit);
+  RemovalRefusal cut_run(const EdgePolyline& p, int first, int last, VertexRemovalPlan::PolylineEdit& edit);
   RemovalRefusal planar_points_of_run(int g, const EdgePolyline& p, int first, int last);
   RemovalRefusal find_cuts(int g, const removal::PlanarPoint& from, const removal::PlanarPoint& to);
   const Vec2* moved_position(int g, Index w) const;

@@ -81,10 +81,7 @@ bool same(const VertexRemovalPlan& a, const VertexRemovalPlan& b) {
       return false;
   for (std::size_t i = 0; i < a.polyline_edits.size(); ++i) {
     const auto &x = a.polyline_edits[i], &y = b.polyline_edits[i];
-    if (x.target_edge != y.target_edge || x.point_vertex != y.point_vertex || x.point_edge != y.point_edge ||
-        x.point_edge_parameter != y.point_edge_parameter || x.point_target_parameter != y.point_target_parameter ||
-        x.segment_triangle != y.segment_triangle)
-      return false;
+    if (x.target_edge != y.target_edge || x.points != y.points) return false;
   }
   return true;
 }

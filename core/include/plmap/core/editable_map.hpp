@@ -103,6 +103,22 @@ struct StarSheet {
   bool closed = true;
 };
 
+/// One point of the preimage of an S2 edge on S1 (a polyline, see EditableMap), with the segment
+/// that leaves it towards the next point. All of a point's fields sit together, so a polyline is
+/// one array: a plan copies a polyline point by point into its edit and apply() copies the edit
+/// back, both once per S2 edge in the star of every removal (with one array per field, that was
+/// five allocations per S2 edge and five copies per point).
+struct PolylinePoint {
+  Index vertex = invalid_index;                             ///< the S2 vertex, or invalid for a crossing
+  std::array<Index, 2> edge{invalid_index, invalid_index};  ///< a crossing's S1 edge (smaller vertex first)
+  /// The S1 triangle of the segment from this point to the next (in a plan's edit, -(k + 1) for
+  /// new triangle k); invalid on the last point.
+  Index segment_triangle = invalid_index;
+  double edge_parameter = 0.0;    ///< a crossing's place on its S1 edge, from the smaller vertex
+  double target_parameter = 0.0;  ///< the point's place on the S2 edge, 0 at its smaller vertex
+  bool operator==(const PolylinePoint&) const = default;
+};
+
 /// How far EditableMap::plan_vertex_removal goes. `ranking_bound` stops after the new triangles
 /// and the relocated vertex preimages: no S2 edge polyline is cut and no crossing is checked.
 /// It costs a fraction of the full plan, refuses a subset of what the full plan refuses (the
@@ -149,11 +165,7 @@ struct VertexRemovalPlan {
   };
   struct PolylineEdit {
     Index target_edge;
-    std::vector<Index> point_vertex;      ///< per point: S2 vertex or invalid (crossing)
-    std::vector<std::array<Index, 2>> point_edge;  ///< per crossing: S1 edge (smaller first)
-    std::vector<double> point_edge_parameter;
-    std::vector<double> point_target_parameter;
-    std::vector<Index> segment_triangle;  ///< S1 triangle, or -(k + 1) for new triangle k
+    std::vector<PolylinePoint> points;      ///< the whole polyline after the step
     std::uint32_t version_at_planning = 0;  ///< the polyline's edit count when it was copied
   };
   std::vector<Relocation> relocations;
