@@ -224,22 +224,34 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   PlMap<d> map = std::move(builder).finalize(&dropped);
   // faces closed on an element where the ray of a ghost node accepted from another element at
   // its vertex is folded (folded_regions.hpp)
+  // The image measures give the covered measures and show where images overlap on S2: two
+  // sheets of S1 whose rays reach the same part of S2, of which the farther one leaves D.
+  // (their terms are kept: after a removal only the elements that lost regions are measured
+  // again, and what a removal takes is the difference of the covered measures)
+  ImageMeasureTerms terms;
+  ImageMeasures images = image_measures(map, ctx.threads, terms);
   if (const std::vector<Index> folded = regions_with_folded_corners<d>(map, directions, focal_free_reach, ctx.threads);
       !folded.empty()) {
     FaceRemovalReport removal;
     map = remove_faces(std::move(map), std::span<const Index>(folded), &removal);
     report.folded_faces = removal.removed_faces;
     report.folded_regions = removal.removed_regions;
+    const double before = images.covered.domain;
+    images = image_measures_after_removal(map, ctx.threads, terms);
+    report.left_out.folded = before - images.covered.domain;
   }
-  // The image measures give the covered measures and show where images overlap on S2: two
-  // sheets of S1 whose rays reach the same part of S2, of which the farther one leaves D.
-  // (their terms are kept: after a removal only the elements that lost regions are measured again)
-  ImageMeasureTerms terms;
-  ImageMeasures images = image_measures(map, ctx.threads, terms);
-  if (options.keep_nearer_sheet) keep_nearer_sheet(map, images, terms, ctx.threads, report);
+  if (options.keep_nearer_sheet) {
+    const double before = images.covered.domain;
+    keep_nearer_sheet(map, images, terms, ctx.threads, report);
+    report.left_out.occluded = before - images.covered.domain;
+  }
   report.seconds.finalize = seconds_since(t0);
   report.reversed_faces = dropped.reversed_faces;
   report.unmapped_faces = dropped.unmapped_faces;
+  report.left_out.outside = dropped.left_out.outside;
+  report.left_out.reversed = dropped.left_out.reversed;
+  report.left_out.unmapped = dropped.left_out.unmapped;
+  report.left_out.enclosed = dropped.left_out.enclosed;
   insertion.report_edges_dropped_by_finalize(dropped, report);
 
   report.solver_calls = ctx.solver_calls.load();

@@ -85,6 +85,16 @@ void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part, 
     reserved(part.region_map, std::max(own.triangles, room.triangles));
 }
 
+FinalizeReport::MeasureLeftOut AssemblyCursor::LeftOutTally::measures(double s1_measure) const {
+  const double unit = s1_measure * 0x1p-60;
+  FinalizeReport::MeasureLeftOut m;
+  m.outside = static_cast<double>(outside) * unit;
+  m.reversed = static_cast<double>(reversed) * unit;
+  m.unmapped = static_cast<double>(unmapped) * unit;
+  m.enclosed = static_cast<double>(enclosed) * unit;
+  return m;
+}
+
 namespace {
 
 /// Neighbour entries and regions are written in place, into arrays reserved by their bounds but
@@ -178,6 +188,15 @@ Index number_regions(const BuilderContents<2>& in, const ClosureWorkspace& w, in
   const auto rbase = static_cast<Index>(at.regions);
   const int nf = static_cast<int>(w.closure.triangles.size());
   at.triangle_region.assign(nf, invalid_index);
+  // A closure triangle's S1 measure, in the tally's units: the reference triangle's measure is
+  // 1/2, so a triangle whose local corners span |cross| covers |cross| times the element's.
+  const double element_units = in.s1.element_measure(et.element) / in.s1.measure() * 0x1p60;
+  if (nf == 0) at.left_out.outside += std::llround(element_units);  // nothing of the map on the element
+  auto measure_of = [&](int f) {
+    const auto& tr = w.closure.triangles[f];
+    const LocalPoint<2> u = et.positions[tr[1]] - et.positions[tr[0]], v = et.positions[tr[2]] - et.positions[tr[0]];
+    return std::llround(std::abs(u(0) * v(1) - u(1) * v(0)) * element_units);
+  };
   for (const auto& comp : et.components) {
     if (comp.target != invalid_index && comp.sign != orientation) ++at.reversed_faces;
     if (!comp.outside && comp.target == invalid_index) ++at.unmapped_faces;
@@ -185,10 +204,19 @@ Index number_regions(const BuilderContents<2>& in, const ClosureWorkspace& w, in
   Index nr = 0;
   for (int f = 0; f < nf; ++f) {
     const auto& comp = et.components[w.closure.face[f]];
-    if (comp.outside || comp.target == invalid_index || comp.sign != orientation) continue;
-    at.triangle_region[f] = rbase + nr++;
+    if (comp.outside) {
+      at.left_out.outside += measure_of(f);
+    } else if (comp.target == invalid_index) {
+      at.left_out.unmapped += measure_of(f);
+    } else if (comp.sign != orientation) {
+      at.left_out.reversed += measure_of(f);
+    } else {
+      at.triangle_region[f] = rbase + nr++;
+    }
   }
   if (nr > 0 && nr < nf && encloses_a_hole(in, w, at)) {
+    for (int f = 0; f < nf; ++f)
+      if (at.triangle_region[f] != invalid_index) at.left_out.enclosed += measure_of(f);
     at.triangle_region.assign(nf, invalid_index);
     return 0;
   }

@@ -22,6 +22,7 @@
 #include <plmap/core/pl_map.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace plmap::detail {
@@ -34,6 +35,21 @@ struct AssemblyCursor {
   std::vector<Index> graph_elements;  // those elements, numbered in the block
   Index reversed_faces = 0;  // faces with a target element but the other orientation
   Index unmapped_faces = 0;  // faces inside S1's corners whose nodes share no S2 element
+  /// The S1 measure of what the elements leave out (FinalizeReport::MeasureLeftOut), in units of
+  /// S1's measure / 2^60: integers, so that the sums do not depend on how the elements are split
+  /// into blocks (the thread count).
+  struct LeftOutTally {
+    std::int64_t outside = 0, reversed = 0, unmapped = 0, enclosed = 0;
+    LeftOutTally& operator+=(const LeftOutTally& o) {
+      outside += o.outside;
+      reversed += o.reversed;
+      unmapped += o.unmapped;
+      enclosed += o.enclosed;
+      return *this;
+    }
+    FinalizeReport::MeasureLeftOut measures(double s1_measure) const;
+  };
+  LeftOutTally left_out;
   std::vector<Index> triangle_region;  // per closure triangle of the element: its region, or invalid
   /// Region maps deferred (finalize_region_maps.hpp): region_map is not written, and this holds
   /// omitted_image_weight per node of the part instead (sized like the node arrays). Null:

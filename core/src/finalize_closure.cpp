@@ -528,6 +528,7 @@ int centroid_triangle(const ElementTriangulation& et, const ElementClosure& clos
 bool close_graph(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
                  ClosureWorkspace& w) {
   const std::array<int, 3> corner_slot = place_slots(in, where, t, w);
+  w.et.element = t;
   if (w.et.slots.empty()) {  // nothing of the map on this element
     w.closure.clear();
     return false;

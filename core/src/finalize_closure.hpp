@@ -21,6 +21,7 @@ namespace plmap::detail {
 /// Per S1 element, the outcome of the closure, which the assembly writes into the flat arrays
 /// right away (one per thread, reused from element to element).
 struct ElementTriangulation {
+  Index element = invalid_index;          // the S1 element
   std::vector<Index> slots;               // builder node of each slot (node order of the element)
   std::vector<LocalPoint<2>> positions;   // of the slots, then of the virtual corners
   std::vector<std::int8_t> location;      // of the slots: corner, local edge, or -1 (inside)

@@ -91,7 +91,7 @@ class ClosingPass {
           if (!drop) return;  // finalize throws: the part and its count are not used
         }
       }
-      face_counts_[k] = {cursor.reversed_faces, cursor.unmapped_faces};
+      face_counts_[k] = {cursor.reversed_faces, cursor.unmapped_faces, cursor.left_out};
       trim_part(cursor, parts_[k]);
       for (Index& t : cursor.graph_elements) t += begin;  // numbered in the block
       graph_elements_[k] = std::move(cursor.graph_elements);
@@ -128,12 +128,14 @@ class ClosingPass {
   /// FinalizeReport::reversed_faces and unmapped_faces of the last run, over all blocks.
   struct FaceCounts {
     Index reversed = 0, unmapped = 0;
+    AssemblyCursor::LeftOutTally left_out;
   };
   FaceCounts face_counts() const {
     FaceCounts sum;
-    for (const FaceCounts& c : face_counts_) {
+    for (const FaceCounts& c : face_counts_) {  // in block order: the same sums for every thread count
       sum.reversed += c.reversed;
       sum.unmapped += c.unmapped;
+      sum.left_out += c.left_out;
     }
     return sum;
   }
@@ -305,6 +307,7 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   if (report) {
     report->reversed_faces += pass.face_counts().reversed;
     report->unmapped_faces += pass.face_counts().unmapped;
+    report->left_out += pass.face_counts().left_out.measures(in.s1.measure());
   }
   // Everything is closed: the builder's nodes and segments and their buckets are not read again.
   // Freed before the join, which with several blocks first-touches the later blocks' share of the

@@ -4,6 +4,8 @@
 # out along its normals by 0.2-0.3 mean edge lengths and flipped; inputs.cpp, femur_pair) and the
 # synthetic pairs, projects each with `plmap project` (default rules: averaged normals, no
 # distance limit, no normal check) and checks the map with `plmap check --against-rays`.
+# Prints two tables: the ray check's, and (d = 2) the measure of S1 that the projection left out
+# of D by why (`left_out_measure` of `plmap project --json`), as fractions of S1's measure.
 #
 # Usage: experiments/peers/against_rays.sh BUILD_DIR OUT_DIR [SAMPLES]
 # Needs libcgal-demo (the meshes are unpacked from its data.tar.gz).
@@ -21,7 +23,7 @@ run_pair() {  # NAME BENCH-ARGS...
   local ext=off; [[ -f $out/${name}_s1.curve ]] && ext=curve
   "$plmap" project "$out/${name}_s1.$ext" "$out/${name}_s2.$ext" -o "$out/$name.plmapb" --json > "$out/$name.project.json"
   "$plmap" check "$out/$name.plmapb" --against-rays "$samples" --json > "$out/$name.check.json" || true
-  python3 - "$name" "$out/$name.project.json" "$out/$name.check.json" <<'PY'
+  python3 - "$name" "$out/$name.project.json" "$out/$name.check.json" "$out/left_out.md" <<'PY'
 import json, sys
 name, p, c = sys.argv[1], json.load(open(sys.argv[2])), json.load(open(sys.argv[3]))
 r = c["against_rays"]; m = r["missed"]; e = r["image_error_relative_to_edge"]
@@ -31,9 +33,17 @@ print(f"| {name} | {p['covered_measure'] / p['domain_measure']:.4f} | {p['edges_
       f"{by['past_focal_point']:.2e} | {m['defect_fraction']:.2e} | {by['farther_sheet']:.2e} | {by['next_to_fold']:.2e} | "
       f"{by['not_covered']:.2e} | {r['extra']['fraction']:.2e} | {e['median']:.1e} | {e['p99']:.1e} | {e['max']:.1e} | "
       f"{c['violation_count']} |")
+lo = p.get("left_out_measure")
+if lo:
+    s1 = p["domain_measure"]
+    with open(sys.argv[4], "a") as f:
+        f.write(f"| {name} | {1 - p['covered_measure'] / s1:.2e} | " +
+                " | ".join(f"{lo[k] / s1:.2e}" for k in ("outside", "unmapped", "reversed", "enclosed", "folded", "occluded")) +
+                " |\n")
 PY
 }
 
+rm -f "$out/left_out.md"
 echo "| pair | covered / S1 | edges not inserted | missed | nearer sheet | S1 in between | S2 seen twice | past focal point | defects | farther sheet | next to fold | not covered | extra | error median | p99 | max | violations |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 run_pair femur --case femur --femur "$out/meshes/femur.off"
@@ -42,3 +52,8 @@ run_pair armadillo --case femur --femur "$out/meshes/armadillo.off"
 run_pair plane-200k --case plane --size 200000
 run_pair sphere-L7 --case sphere --size 7
 run_pair circle-1M --case circle --size 1000000
+
+echo
+echo "| pair | S1 outside D | outside | unmapped | reversed | enclosed | folded | occluded |"
+echo "|---|---|---|---|---|---|---|---|"
+cat "$out/left_out.md"

@@ -56,6 +56,21 @@ void assert_valid(const ProjectionResult<d>& r, const std::string& what) {
   const double slack = 1e-9 * (r.measures.domain + r.measures.target);
   RC_ASSERT(r.measures.covered_domain <= r.measures.domain + slack);
   RC_ASSERT(r.measures.covered_target <= r.measures.target + slack);
+  if constexpr (d == 2) {
+    // what is left out of D, by why, and what D covers add up to S1
+    const auto& out = r.report.left_out;
+    const double parts[] = {out.outside, out.reversed, out.unmapped, out.enclosed, out.folded, out.occluded};
+    double sum = r.measures.covered_domain;
+    for (const double part : parts) {
+      RC_ASSERT(part >= -slack);
+      sum += part;
+    }
+    if (!(std::abs(sum - r.measures.domain) <= 1e-9 * r.measures.domain))
+      RC_FAIL(what + fmt::format(": covered {:.17g} and left out (outside {}, reversed {}, unmapped {}, enclosed {}, "
+                                 "folded {}, occluded {}) add up to {:.17g}, not S1's {:.17g}",
+                                 r.measures.covered_domain, out.outside, out.reversed, out.unmapped, out.enclosed,
+                                 out.folded, out.occluded, sum, r.measures.domain));
+  }
 }
 
 /// The measures agree to a relative 1e-9 (of the larger surface measure).

@@ -111,6 +111,22 @@ struct ProjectionReport {
   /// vertex (docs/projection.md step 2), and their regions (cleared elements included).
   Index folded_faces = 0;
   Index folded_regions = 0;
+  /// d = 2: the measure of S1 outside D, by why. With ProjectionMeasures::covered_domain these
+  /// add up to S1's measure (up to rounding), so a user can tell where a coverage below 1 comes
+  /// from; `plmap check --against-rays` tells it for sampled points, by what the rays find.
+  struct MeasureLeftOut {
+    /// Beyond D's reach: the faces at S1 corners whose rays found no admissible image (past S2's
+    /// boundary, beyond the distance limit, behind a rim), and elements the map does not reach.
+    double outside = 0.0;
+    double reversed = 0.0;  ///< the reversed faces
+    double unmapped = 0.0;  ///< the unmapped faces
+    /// Regions of elements that left D whole because reversed or unmapped faces lay strictly
+    /// inside them (FinalizeReport::unmapped_faces).
+    double enclosed = 0.0;
+    double folded = 0.0;    ///< the folded faces' regions, cleared elements included
+    double occluded = 0.0;  ///< the occluded faces' regions, cleared elements included
+  };
+  MeasureLeftOut left_out;
   /// d = 2, end_on_rim: nodes and edges of the rim of D where S2 leaves the band of admissible
   /// distances, behind S1 or beyond max_distance (rim nodes inside elements and on S1 edges;
   /// ghost nodes the rim passes are not counted).

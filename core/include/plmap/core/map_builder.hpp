@@ -72,6 +72,27 @@ struct FinalizeReport {
   /// element whose boundary the regions cover (not a hole of S2), the whole element leaves D:
   /// such an element must be covered entirely (verify's region_tiling, face_removal.hpp).
   Index unmapped_faces = 0;
+  /// d = 2: the measure of S1 that finalize() leaves out of D, by why (finalize_reusing counts
+  /// only the elements it closes, not those it copies). With the measure D covers, these add up
+  /// to S1's measure.
+  struct MeasureLeftOut {
+    /// Beyond D's reach: faces that touch an S1 corner without a node (its ray found no
+    /// admissible image), and elements that nothing of the map reaches.
+    double outside = 0.0;
+    double reversed = 0.0;  ///< the reversed faces
+    double unmapped = 0.0;  ///< the unmapped faces
+    /// The regions of elements that left D whole because their reversed or unmapped faces lay
+    /// strictly inside them (see unmapped_faces).
+    double enclosed = 0.0;
+    MeasureLeftOut& operator+=(const MeasureLeftOut& o) {
+      outside += o.outside;
+      reversed += o.reversed;
+      unmapped += o.unmapped;
+      enclosed += o.enclosed;
+      return *this;
+    }
+  };
+  MeasureLeftOut left_out;
 };
 
 /// Where the preimage of an S2 edge crosses an S1 edge (d = 2).
