@@ -177,8 +177,8 @@ class Simplifier {
       a.refusal = to_string(RemovalRefusal::not_a_disk_star);
       return a;
     }
-    std::vector<Eigen::Vector3d> ring_positions;
-    ring_positions.reserve(ring.size());
+    std::vector<Eigen::Vector3d>& ring_positions = hole_buffers_.ring_positions;
+    ring_positions.clear();
     for (Index w : ring) ring_positions.push_back(map_.position(w));
     auto flat = flatten_(map_.position(v), ring_positions);
     if (!flat) {
@@ -190,9 +190,15 @@ class Simplifier {
     // has one (a flat regular grid, coarsened far: its nodes lie on every straight line between
     // grid points, and v itself on the line between opposite ring vertices), the flattening is
     // perturbed once and the hole planned again.
-    std::vector<StarSheet> sheet{StarSheet{std::move(ring), true}};
-    std::vector<std::vector<Eigen::Vector2d>> flats{std::move(*flat)};
-    std::vector<HoleTriangles> triangles(1);
+    // The one-sheet lists are those of hole_buffers_ (moved in, not copied from initializer
+    // lists); plan_on_perturbed_flattening may replace `flats` by another list of one flattening.
+    std::vector<StarSheet>& sheet = hole_buffers_.sheet;
+    std::vector<std::vector<Eigen::Vector2d>>& flats = hole_buffers_.flats;
+    std::vector<HoleTriangles>& triangles = hole_buffers_.triangles;
+    sheet[0].ring = std::move(ring);
+    sheet[0].closed = true;
+    flats[0] = std::move(*flat);
+    triangles[0].clear();
     HolePlanning planning = plan_avoiding_nodes(v, sheet, flats, triangles, extent, a);
     if (blocked_by_a_node(a, planning)) planning = plan_on_perturbed_flattening(v, sheet, flats, triangles, extent, a, planning);
     if (planning != HolePlanning::planned) {
@@ -230,6 +236,18 @@ class Simplifier {
     /// page faults, and zeroing in the constructor). Kept once made, for its buffers.
     std::unique_ptr<VertexRemovalPlan> full_plan;
   };
+  /// The lists of one attempt on a closed star, kept for the next attempt: made afresh, they
+  /// were about six allocations per attempt, and the ring and the flattening were copied out of
+  /// initializer lists. An accepted attempt's ring, flattening and triangulation move on into
+  /// its PreparedHole; the next attempt assigns every element before it reads one, and only the
+  /// elements are moved out, so each outer list keeps its one element.
+  struct HoleBuffers {
+    std::vector<Eigen::Vector3d> ring_positions;
+    std::vector<StarSheet> sheet = std::vector<StarSheet>(1);
+    std::vector<std::vector<Eigen::Vector2d>> flats = std::vector<std::vector<Eigen::Vector2d>>(1);
+    std::vector<HoleTriangles> triangles = std::vector<HoleTriangles>(1);
+  };
+  HoleBuffers hole_buffers_;
   std::uint64_t new_edges_at(const std::vector<Index>& ring) const {
     std::uint64_t sum = 0;
     for (Index w : ring) sum += new_edges_[w];
@@ -300,11 +318,18 @@ class Simplifier {
     for (const StarSheet& sheet : sheets) budget += sheet.ring.size();
     for (std::size_t tries = 0; tries < budget; ++tries) {
       for (std::size_t g = 0; g < sheets.size(); ++g) {
-        const std::vector<Index>& ring = sheets[g].ring;
-        const int sheet = static_cast<int>(g);
-        const DiagonalAllowed allowed = [&](int i, int j) {
-          const std::array<int, 3> key{sheet, std::min(i, j), std::max(i, j)};
-          return std::find(avoided.begin(), avoided.end(), key) == avoided.end() && !map_.has_edge(ring[i], ring[j]);
+        // One pointer captured: the std::function holds it in place (four references made it
+        // allocate for every triangulation).
+        const struct {
+          const std::vector<std::array<int, 3>>& avoided;
+          const std::vector<Index>& ring;
+          const EditableMap& map;
+          int sheet;
+        } ask{avoided, sheets[g].ring, map_, static_cast<int>(g)};
+        const DiagonalAllowed allowed = [c = &ask](int i, int j) {
+          const std::array<int, 3> key{c->sheet, std::min(i, j), std::max(i, j)};
+          return std::find(c->avoided.begin(), c->avoided.end(), key) == c->avoided.end() &&
+                 !c->map.has_edge(c->ring[i], c->ring[j]);
         };
         auto t = triangulate_(flats[g], allowed);
         if (!t) return avoided.empty() ? HolePlanning::no_triangulation : HolePlanning::no_triangulation_left;

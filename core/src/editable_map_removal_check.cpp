@@ -9,10 +9,8 @@
 // S2). So a node within edge_clearance times the star's size of another piece is refused like a
 // crossing, as a vertex preimage on a new edge is (node_on_new_edge).
 
-#include "piece_clearance.hpp"
+#include "piece_meeting.hpp"
 #include "removal_planning.hpp"
-
-#include <plmap/core/predicates.hpp>
 
 #include <algorithm>
 
@@ -24,27 +22,6 @@ using removal::Vec2;
 namespace {
 
 double min_x(const Piece& p) { return std::min(p.from.x(), p.to.x()); }
-
-/// True if pieces a and b of one new triangle cross, or come within `margin` of each other
-/// other than at a shared end.
-bool pieces_meet(const Piece& a, const Piece& b, double margin) {
-  const Vec2 &p = a.from, &q = a.to, &r = b.from, &t = b.to;
-  // Most pairs that get here share an end (consecutive pieces of a polyline, pieces ending at
-  // one node): those cross only if they are collinear, which one orientation of b's other end
-  // decides (segments_cross_properly's answer, at a quarter of its predicates), and come too
-  // close only if they leave the shared end at an angle so small that the shorter one's other
-  // end is within the margin of the longer one.
-  if (p == r || p == t || q == r || q == t) {
-    const Vec2& shared = (p == r || p == t) ? p : q;
-    const Vec2& end_a = shared == p ? q : p;
-    const Vec2& end_b = r == shared ? t : r;
-    if (orient2d(shared, end_a, end_b) != 0) return detail::pieces_leave_too_close(end_a - shared, end_b - shared, margin);
-  } else if (detail::within_margin(p, r, t, margin) || detail::within_margin(q, r, t, margin) ||
-             detail::within_margin(r, p, q, margin) || detail::within_margin(t, p, q, margin)) {
-    return true;
-  }
-  return segments_cross_properly(p, q, r, t);
-}
 
 }  // namespace
 
@@ -87,7 +64,7 @@ RemovalRefusal EditableMap::RemovalPlanning::check_pieces() {
         if (left[static_cast<std::size_t>(*b)] > max_x) break;
         const Piece& pb = pieces[static_cast<std::size_t>(*b)];
         if (std::max(pb.from.y(), pb.to.y()) < low_y || std::min(pb.from.y(), pb.to.y()) > high_y) continue;
-        if (pieces_meet(pa, pb, margin)) return RemovalRefusal::crossing_edges;
+        if (detail::pieces_meet(pa.from, pa.to, pb.from, pb.to, margin)) return RemovalRefusal::crossing_edges;
       }
     }
   }

@@ -11,7 +11,11 @@ std::optional<std::vector<Eigen::Vector2d>> PolarMapFlattening::flatten(const Ei
                                                                         std::span<const Eigen::Vector3d> ring) const {
   const std::size_t k = ring.size();
   if (k < 3) return std::nullopt;
-  std::vector<double> radius(k), angle(k);
+  // Per-thread buffers (as the hole triangulation's workspace): every entry is written before
+  // it is read, and a simplifier flattens a star for every ranking attempt.
+  thread_local std::vector<double> radius, angle;
+  radius.resize(k);
+  angle.resize(k);
   double total = 0.0;
   for (std::size_t i = 0; i < k; ++i) {
     const Eigen::Vector3d a = ring[i] - center, b = ring[(i + 1) % k] - center;
@@ -40,7 +44,9 @@ std::optional<std::vector<Eigen::Vector2d>> PolarMapFlattening::flatten_half(con
                                                                              std::span<const Eigen::Vector3d> ring) const {
   const std::size_t k = ring.size();
   if (k < 3) return std::nullopt;
-  std::vector<double> radius(k), angle(k - 1);
+  thread_local std::vector<double> radius, angle;  // as in flatten()
+  radius.resize(k);
+  angle.resize(k - 1);
   double total = 0.0, longest = 0.0;
   for (std::size_t i = 0; i < k; ++i) {
     radius[i] = (ring[i] - center).norm();
