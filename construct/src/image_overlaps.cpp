@@ -177,7 +177,8 @@ void mark_disconnected_preimages(const PlMap<d>& map, std::vector<char>& crowded
 template <int d>
   requires SurfaceDimension<d>
 std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageMeasures& images,
-                                               const OverlapTolerances& tolerances, unsigned threads) {
+                                               const OverlapTolerances& tolerances, unsigned threads,
+                                               std::span<const Index> also_compared) {
   const auto& m = map.stored();
   const Index n2 = map.target().element_count();
   const Index nt = map.domain().element_count();
@@ -203,6 +204,8 @@ std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageM
     if (sum > 1.0 + tolerances.measure_tolerance || (sum > 0.0 && sum < 1.0 - tolerances.measure_tolerance))
       crowded[static_cast<std::size_t>(t2)] = 1;
   }
+  // - and where regions split off unmapped faces map (their images end inside the element).
+  for (const Index t2 : also_compared) crowded[static_cast<std::size_t>(t2)] = 1;
   mark_disconnected_preimages(map, crowded, threads);
   if (std::find(crowded.begin(), crowded.end(), 1) == crowded.end()) return {};
   // The images on the crowded elements, compared pairwise per element. The crowded regions are
@@ -280,8 +283,8 @@ std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageM
 }
 
 template std::vector<Index> farther_overlapping_regions<1>(const PlMap<1>&, const ImageMeasures&,
-                                                           const OverlapTolerances&, unsigned);
+                                                           const OverlapTolerances&, unsigned, std::span<const Index>);
 template std::vector<Index> farther_overlapping_regions<2>(const PlMap<2>&, const ImageMeasures&,
-                                                           const OverlapTolerances&, unsigned);
+                                                           const OverlapTolerances&, unsigned, std::span<const Index>);
 
 }  // namespace plmap::projection

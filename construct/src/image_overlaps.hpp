@@ -17,6 +17,7 @@
 #include <plmap/core/pl_map.hpp>
 #include <plmap/core/regions.hpp>
 
+#include <span>
 #include <vector>
 
 namespace plmap::projection {
@@ -34,15 +35,20 @@ struct OverlapTolerances {
 /// image_measures (core/regions.hpp), which project() computes anyway for the covered measures:
 /// only S2 elements whose images add up to more or less than the element, or whose regions lie
 /// on S1 elements that are not edge-connected, are looked at. The connectivity search runs on up
-/// to `threads` threads (0: all); the result does not depend on their number.
+/// to `threads` threads (0: all); the result does not depend on their number. The S2 elements
+/// in `also_compared` are compared whatever their images add up to: those where the argument of
+/// the tiling does not hold (FinalizeReport::split_targets).
 template <int d>
   requires SurfaceDimension<d>
 std::vector<Index> farther_overlapping_regions(const PlMap<d>& map, const ImageMeasures& images,
-                                               const OverlapTolerances& tolerances = {}, unsigned threads = 1);
+                                               const OverlapTolerances& tolerances = {}, unsigned threads = 1,
+                                               std::span<const Index> also_compared = {});
 
 extern template std::vector<Index> farther_overlapping_regions<1>(const PlMap<1>&, const ImageMeasures&,
-                                                                  const OverlapTolerances&, unsigned);
+                                                                  const OverlapTolerances&, unsigned,
+                                                                  std::span<const Index>);
 extern template std::vector<Index> farther_overlapping_regions<2>(const PlMap<2>&, const ImageMeasures&,
-                                                                  const OverlapTolerances&, unsigned);
+                                                                  const OverlapTolerances&, unsigned,
+                                                                  std::span<const Index>);
 
 }  // namespace plmap::projection

@@ -72,6 +72,10 @@ MapBuilder<d> builder_for(const ProjectionContext<d>& ctx) {
   // Where the projection folds, preimages of S2 edges cross on S1; those edges are left out
   // and reported (EdgeFailureReason::overlap) instead of losing the whole map.
   options.drop_conflicting_edges = true;
+  // Faces that a partly inserted S2 edge leaves without one S2 element keep the triangles that
+  // map into one; their images are compared with the rest by the sheet selection, without which
+  // they could overlap it (BuilderOptions::split_unmapped_faces).
+  options.split_unmapped_faces = ctx.options.keep_nearer_sheet;
   return MapBuilder<d>(ctx.s1_shared, ctx.s2_shared, options);
 }
 
@@ -242,7 +246,7 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   }
   if (options.keep_nearer_sheet) {
     const double before = images.covered.domain;
-    keep_nearer_sheet(map, images, terms, ctx.threads, report);
+    keep_nearer_sheet(map, images, terms, ctx.threads, report, std::span<const Index>(dropped.split_targets));
     report.left_out.occluded = before - images.covered.domain;
   }
   report.seconds.finalize = seconds_since(t0);

@@ -76,8 +76,8 @@ std::vector<bool> coincident_preimage_losers(const ProjectionContext<d>& ctx,
 
 template <int d>
 void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, ImageMeasureTerms& terms, unsigned threads,
-                       ProjectionReport<d>& report) {
-  const std::vector<Index> farther = farther_overlapping_regions(map, images, {}, threads);
+                       ProjectionReport<d>& report, std::span<const Index> split_targets) {
+  const std::vector<Index> farther = farther_overlapping_regions(map, images, {}, threads, split_targets);
   if (farther.empty()) return;
   FaceRemovalReport removal;
   map = remove_faces(std::move(map), std::span<const Index>(farther), &removal);
@@ -90,7 +90,9 @@ template std::vector<bool> coincident_preimage_losers<1>(const ProjectionContext
                                                          const std::vector<std::optional<Place<1>>>&);
 template std::vector<bool> coincident_preimage_losers<2>(const ProjectionContext<2>&,
                                                          const std::vector<std::optional<Place<2>>>&);
-template void keep_nearer_sheet<1>(PlMap<1>&, ImageMeasures&, ImageMeasureTerms&, unsigned, ProjectionReport<1>&);
-template void keep_nearer_sheet<2>(PlMap<2>&, ImageMeasures&, ImageMeasureTerms&, unsigned, ProjectionReport<2>&);
+template void keep_nearer_sheet<1>(PlMap<1>&, ImageMeasures&, ImageMeasureTerms&, unsigned, ProjectionReport<1>&,
+                                   std::span<const Index>);
+template void keep_nearer_sheet<2>(PlMap<2>&, ImageMeasures&, ImageMeasureTerms&, unsigned, ProjectionReport<2>&,
+                                   std::span<const Index>);
 
 }  // namespace plmap::projection

@@ -13,6 +13,7 @@
 #include <plmap/core/regions.hpp>
 
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace plmap::projection {
@@ -34,8 +35,9 @@ std::vector<bool> coincident_preimage_losers(const ProjectionContext<d>& ctx,
 /// overlap the image of a nearer region (core/face_removal.hpp), counts them in
 /// report.occluded_faces and occluded_regions, and recomputes `images` for the map left from
 /// `terms` (image_measures' terms of `map`: only the elements that lose regions are measured again).
+/// The S2 elements in `split_targets` (FinalizeReport::split_targets) are always compared.
 template <int d>
 void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, ImageMeasureTerms& terms, unsigned threads,
-                       ProjectionReport<d>& report);
+                       ProjectionReport<d>& report, std::span<const Index> split_targets);
 
 }  // namespace plmap::projection

@@ -118,12 +118,19 @@ NodeType node_type_of(const BuilderNode<2>& bn) {
   return NodeType::interior;
 }
 
+/// The S2 element of closure triangle f's region: its face's, or, in an unmapped face, its own
+/// (ElementTriangulation::split_target).
+Index target_of(const ElementTriangulation& et, const ElementClosure& closure, int f) {
+  const Index t2 = et.components[closure.face[f]].target;
+  return t2 != invalid_index || et.split_target.empty() ? t2 : et.split_target[f];
+}
+
 /// Whether the side of closure triangle f opposite its corner i maps onto a boundary edge of S2
 /// (f a region's triangle: its corner images are on its face's target). Within the tolerance
 /// verify judges this with (VerifyOptions::local_tolerance).
 bool side_on_target_boundary(const Surface<2>& s2, const ClosureWorkspace& w, int f, int i) {
   constexpr double tolerance = 1e-9;
-  const Index t2 = w.et.components[w.closure.face[f]].target;
+  const Index t2 = target_of(w.et, w.closure, f);
   const auto& image = w.et.corner_images[f];
   const LocalPoint<2>& ya = image[(i + 1) % 3];
   const LocalPoint<2>& yb = image[(i + 2) % 3];
@@ -201,23 +208,48 @@ Index number_regions(const BuilderContents<2>& in, const ClosureWorkspace& w, in
     if (comp.target != invalid_index && comp.sign != orientation) ++at.reversed_faces;
     if (!comp.outside && comp.target == invalid_index) ++at.unmapped_faces;
   }
-  Index nr = 0;
+  // The triangles of unmapped faces that map into an S2 element of their own with the map's
+  // orientation are regions too (split_unmapped_face), unless keeping them would leave a hole
+  // strictly inside the element that keeping none of them does not.
+  auto number = [&](bool split) {
+    Index nr = 0;
+    at.split_kept = false;
+    for (int f = 0; f < nf; ++f) {
+      const auto& comp = et.components[w.closure.face[f]];
+      at.triangle_region[f] = invalid_index;
+      if (comp.outside) continue;
+      if (comp.target == invalid_index) {
+        if (!split || et.split_target.empty() || et.split_target[f] == invalid_index || et.split_sign[f] != orientation)
+          continue;
+        at.split_kept = true;
+      } else if (comp.sign != orientation) {
+        continue;
+      }
+      at.triangle_region[f] = rbase + nr++;
+    }
+    return nr;
+  };
+  Index nr = number(true);
+  bool enclosed = nr > 0 && nr < nf && encloses_a_hole(in, w, at);
+  if (enclosed && at.split_kept) {
+    nr = number(false);
+    enclosed = nr > 0 && nr < nf && encloses_a_hole(in, w, at);
+  }
   for (int f = 0; f < nf; ++f) {
     const auto& comp = et.components[w.closure.face[f]];
-    if (comp.outside) {
+    if (at.triangle_region[f] != invalid_index) {
+      if (enclosed) at.left_out.enclosed += measure_of(f);
+    } else if (comp.outside) {
       at.left_out.outside += measure_of(f);
     } else if (comp.target == invalid_index) {
       at.left_out.unmapped += measure_of(f);
-    } else if (comp.sign != orientation) {
-      at.left_out.reversed += measure_of(f);
     } else {
-      at.triangle_region[f] = rbase + nr++;
+      at.left_out.reversed += measure_of(f);
     }
   }
-  if (nr > 0 && nr < nf && encloses_a_hole(in, w, at)) {
-    for (int f = 0; f < nf; ++f)
-      if (at.triangle_region[f] != invalid_index) at.left_out.enclosed += measure_of(f);
+  if (enclosed) {
     at.triangle_region.assign(nf, invalid_index);
+    at.split_kept = false;
     return 0;
   }
   return nr;
@@ -307,7 +339,8 @@ void write_regions(const ClosureWorkspace& w, Index base, Index region_count, Ma
       const int g = closure.neighbors[f][i];
       neighbors[i] = g >= 0 ? at.triangle_region[g] : invalid_index;
     }
-    part.region_target[at.regions] = et.components[closure.face[f]].target;
+    part.region_target[at.regions] = target_of(et, closure, f);
+    if (et.components[closure.face[f]].target == invalid_index) at.split_targets.push_back(part.region_target[at.regions]);
     // judged with the face (a region's face has sign != 0); or written after the builder is freed
     if (at.omitted_weights == nullptr) part.region_map[at.regions] = et.corner_maps[f];
     ++at.regions;
@@ -366,9 +399,11 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
     has_rim = has_rim || in.nodes[slot].kind == BuilderNodeKind::rim;
   }
   const std::size_t first_entry = at.entries, first_edge_node = at.edge_nodes, first_graph_region = at.graph_regions;
-  write_nodes(in, w, tiled && !has_ghost && !has_rim, part, at);
+  // Split triangles (number_regions) keep the graph too: the derivation would read their sides
+  // between regions of different S2 elements as graph edges, which no walk inserted.
+  write_nodes(in, w, tiled && !has_ghost && !has_rim && !at.split_kept, part, at);
   write_regions(w, base, region_count, part, at);
-  if (tiled && has_ghost && !has_rim &&
+  if (tiled && has_ghost && !has_rim && !at.split_kept &&
       ghost_sides_derive_as_written(in.s2, part, base, static_cast<Index>(at.nodes), at.graph_nodes,
                                     at.regions - static_cast<std::size_t>(region_count), at.regions))
     at.entries = first_entry;  // the derivation gives these entries back: drop them

@@ -509,6 +509,72 @@ void classify_faces(const BuilderContents<2>& in, ClosureWorkspace& w, int ns, i
   w.collapsed_faces.clear();
 }
 
+/// The triangles of face c, which has no target (its nodes share no S2 element: an S2 edge's
+/// preimage that would split it is missing in part): each triangle whose own three corners map
+/// into one S2 element gets that element and the sign of its image there, as a face would. The
+/// assembly keeps those with the map's orientation as regions of their own; two such triangles of
+/// different elements share only corners whose images lie on the S2 edge between the elements,
+/// so the map stays continuous across their common side.
+void split_unmapped_face(const BuilderContents<2>& in, ClosureWorkspace& w, int c) {
+  const Surface<2>& s2 = in.s2;
+  auto& et = w.et;
+  const int ns = static_cast<int>(et.slots.size());
+  for (int q = w.face_begin[c]; q < w.face_begin[c + 1]; ++q) {
+    const int f = w.face_order[q];
+    const auto& tr = w.closure.triangles[f];
+    if (tr[0] >= ns || tr[1] >= ns || tr[2] >= ns) continue;
+    std::array<Index, 3> vertices{};
+    int count = 0;
+    for (int v : tr) {
+      const Support<2>& support = in.nodes[et.slots[v]].image;
+      for (int j = 0; j < support.count && count <= 3; ++j) {
+        const Index x = support.vertex(s2, j);
+        if (std::find(vertices.begin(), vertices.begin() + std::min(count, 3), x) != vertices.begin() + std::min(count, 3))
+          continue;
+        if (count < 3) vertices[count] = x;
+        ++count;
+      }
+    }
+    if (count != 3) continue;  // collapses onto an S2 edge, or spans more than one S2 element
+    Index target = invalid_index;
+    for (Index cand : s2.vertex_elements(vertices[0]))
+      if (s2.local_corner(cand, vertices[1]) >= 0 && s2.local_corner(cand, vertices[2]) >= 0) {
+        target = cand;
+        break;
+      }
+    if (target == invalid_index) continue;
+    bool inserted = true;
+    for (int k = 0; k < 3; ++k) inserted = inserted && in.edge_inserted[s2.element_edge(target, k)];
+    if (!inserted) continue;
+    const std::array<LocalPoint<2>, 3> image{support_local<2>(s2, in.nodes[et.slots[tr[0]]].image, target),
+                                             support_local<2>(s2, in.nodes[et.slots[tr[1]]].image, target),
+                                             support_local<2>(s2, in.nodes[et.slots[tr[2]]].image, target)};
+    const std::array<LocalPoint<2>, 3> from{et.positions[tr[0]], et.positions[tr[1]], et.positions[tr[2]]};
+    const int sign = orient2d(image[0], image[1], image[2]);
+    if (sign == 0) continue;
+    const AffineMap<2> map = affine_through<2>(from, image);
+    if (orient2d(apply<2>(map, from[0]), apply<2>(map, from[1]), apply<2>(map, from[2])) != sign) continue;
+    et.split_target[f] = target;
+    et.split_sign[f] = static_cast<signed char>(sign);
+    et.corner_images[f] = image;
+    et.corner_maps[f] = map;
+  }
+}
+
+/// Gives the triangles of every unmapped face their own S2 elements where they have one
+/// (split_unmapped_face).
+void split_unmapped_faces(const BuilderContents<2>& in, ClosureWorkspace& w) {
+  auto& et = w.et;
+  bool any = false;
+  for (const auto& comp : et.components) any = any || (!comp.outside && comp.target == invalid_index);
+  if (!any) return;
+  const std::size_t nf = w.closure.triangles.size();
+  et.split_target.assign(nf, invalid_index);
+  et.split_sign.assign(nf, 0);
+  for (int c = 0; c < static_cast<int>(et.components.size()); ++c)
+    if (!et.components[c].outside && et.components[c].target == invalid_index) split_unmapped_face(in, w, c);
+}
+
 /// The closure triangle a point-location walk starts from: the first inside D at the element's
 /// centroid, or -1.
 int centroid_triangle(const ElementTriangulation& et, const ElementClosure& closure) {
@@ -548,6 +614,7 @@ void close_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2
   const int vertex_count = static_cast<int>(w.et.positions.size());
   classify_faces(in, w, ns, vertex_count);
   if (!w.collapsed_faces.empty()) rejudge_collapsed_faces(in, w);
+  if (in.options.split_unmapped_faces) split_unmapped_faces(in, w);
   w.et.centroid_triangle = centroid_triangle(w.et, w.closure);
   // where each node's ring of neighbours starts (they are circulated at assembly)
   ring_starts(w.closure, vertex_count, w.ring_start);

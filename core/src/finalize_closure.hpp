@@ -40,6 +40,11 @@ struct ElementTriangulation {
   // when the face's triangles are judged, used again as the region's map; only where
   // ClosureWorkspace::corner_maps_wanted, or where the judgement needed it).
   std::vector<AffineMap<2>> corner_maps;
+  // Per closure triangle, where some face has no target (an unmapped face: its nodes share no S2
+  // element): the S2 element the triangle's own three corners map into, with the sign of its image
+  // there (invalid / 0 where it has none); empty if the element has no unmapped face.
+  std::vector<Index> split_target;
+  std::vector<signed char> split_sign;
   std::vector<int> edge_slots;                // along local edges 0, 1, 2, corners included
   std::array<int, 4> edge_slots_begin{};
   int corner_count = 0;                       // slots at corners of the element
@@ -51,6 +56,8 @@ struct ElementTriangulation {
     positions.clear();
     location.clear();
     components.clear();
+    split_target.clear();
+    split_sign.clear();
     edge_slots.clear();
     edge_slots_begin = {};
     corner_count = 0;

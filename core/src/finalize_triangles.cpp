@@ -91,7 +91,7 @@ class ClosingPass {
           if (!drop) return;  // finalize throws: the part and its count are not used
         }
       }
-      face_counts_[k] = {cursor.reversed_faces, cursor.unmapped_faces, cursor.left_out};
+      face_counts_[k] = {cursor.reversed_faces, cursor.unmapped_faces, cursor.left_out, std::move(cursor.split_targets)};
       trim_part(cursor, parts_[k]);
       for (Index& t : cursor.graph_elements) t += begin;  // numbered in the block
       graph_elements_[k] = std::move(cursor.graph_elements);
@@ -129,6 +129,7 @@ class ClosingPass {
   struct FaceCounts {
     Index reversed = 0, unmapped = 0;
     AssemblyCursor::LeftOutTally left_out;
+    std::vector<Index> split_targets;  // sorted, each once
   };
   FaceCounts face_counts() const {
     FaceCounts sum;
@@ -136,7 +137,10 @@ class ClosingPass {
       sum.reversed += c.reversed;
       sum.unmapped += c.unmapped;
       sum.left_out += c.left_out;
+      sum.split_targets.insert(sum.split_targets.end(), c.split_targets.begin(), c.split_targets.end());
     }
+    std::sort(sum.split_targets.begin(), sum.split_targets.end());
+    sum.split_targets.erase(std::unique(sum.split_targets.begin(), sum.split_targets.end()), sum.split_targets.end());
     return sum;
   }
   std::vector<MapData<2>>& parts() { return parts_; }
@@ -308,6 +312,7 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
     report->reversed_faces += pass.face_counts().reversed;
     report->unmapped_faces += pass.face_counts().unmapped;
     report->left_out += pass.face_counts().left_out.measures(in.s1.measure());
+    report->split_targets = pass.face_counts().split_targets;
   }
   // Everything is closed: the builder's nodes and segments and their buckets are not read again.
   // Freed before the join, which with several blocks first-touches the later blocks' share of the

@@ -53,6 +53,15 @@ struct BuilderOptions {
   /// FinalizeReport. The rest of the preimage stays, ending at the element's boundary as a piece
   /// does (add_edge_piece); faces next to a dropped stretch are not regions.
   bool drop_conflicting_edges = false;
+  /// d = 2: what finalize() does with a face whose nodes map into no one S2 element (the
+  /// preimage of an S2 edge that would split it is missing in part: FinalizeReport::unmapped_faces).
+  /// false (default): the face leaves D. true: each triangle of its closure whose three corners map
+  /// into one S2 element with the map's orientation stays, as a region of that element; the rest
+  /// leaves D. Such regions are continuous with each other and with the faces around them, but
+  /// their images are not bounded by their S2 element's edges and may overlap another part of
+  /// the map's image: the caller must check the elements listed in FinalizeReport::split_targets
+  /// (the projection compares them with keep_nearer_sheet, which is why it sets this only then).
+  bool split_unmapped_faces = false;
 };
 
 /// What finalize() had to leave out.
@@ -93,6 +102,10 @@ struct FinalizeReport {
     }
   };
   MeasureLeftOut left_out;
+  /// d = 2: the S2 elements that regions split off unmapped faces map into (sorted, each once).
+  /// Such a region's image is not bounded by preimages of its S2 element's edges, so unlike a
+  /// face's it can overlap the image of another part of S1 (see image_overlaps.hpp).
+  std::vector<Index> split_targets;
 };
 
 /// Where the preimage of an S2 edge crosses an S1 edge (d = 2).

@@ -1,0 +1,105 @@
+// BuilderOptions::split_unmapped_faces: the triangles of a face whose nodes share no S2 element
+// (an S2 edge's preimage that would split it is inserted only in part) stay in D where their own
+// corners map into one S2 element with the map's orientation (core/src/finalize_closure.cpp,
+// split_unmapped_face; finalize_assembly.cpp, number_regions).
+#include <plmap/core/map_builder.hpp>
+#include <plmap/core/regions.hpp>
+#include <plmap/verify/check.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <vector>
+
+using namespace plmap;
+
+namespace {
+
+WorldPoint<2> P(double x, double y) { return {x, y, 0.0}; }
+
+std::shared_ptr<const Surface<2>> make_surface(std::vector<WorldPoint<2>> v, std::vector<ElementCorners<2>> e) {
+  return std::make_shared<const Surface<2>>(std::move(v), std::move(e));
+}
+
+/// S1 the unit square, cut by its diagonal 0-2 into A = (0, 1, 2) and B = (0, 2, 3). S2 the same
+/// square with two more vertices p = (0.6, 0.3) (over A) and q = (0.3, 0.6) (over B) and six
+/// triangles; its edge p-q crosses the diagonal at c = (0.45, 0.45). Xi is the identity. Every S2
+/// edge is inserted whole but p-q, of which only the piece from p to c is (as a walk that stops at
+/// S1's edge would leave it). On B the face 0-c-2-q then has nodes on four S2 vertices: unmapped.
+/// Its closure has the one diagonal c-q, and the triangles 0-c-q and c-2-q map into the S2
+/// elements 0-p-q and p-2-q.
+struct HalfInsertedEdge {
+  std::shared_ptr<const Surface<2>> s1 = make_surface({P(0, 0), P(1, 0), P(1, 1), P(0, 1)}, {{0, 1, 2}, {0, 2, 3}});
+  static constexpr Index p = 4, q = 5;
+  std::shared_ptr<const Surface<2>> s2 =
+      make_surface({P(0, 0), P(1, 0), P(1, 1), P(0, 1), P(0.6, 0.3), P(0.3, 0.6)},
+                   {{0, 1, p}, {1, 2, p}, {0, p, q}, {p, 2, q}, {2, 3, q}, {3, 0, q}});
+
+  PlMap<2> map(bool split, FinalizeReport& report) const {
+    BuilderOptions options;
+    options.split_unmapped_faces = split;
+    MapBuilder<2> b(s1, s2, options);
+    for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
+    b.add_vertex_preimage(p, {0, LocalPoint<2>(0.3, 0.3)});  // (u + v, v) on A
+    b.add_vertex_preimage(q, {1, LocalPoint<2>(0.3, 0.3)});  // (u, u + v) on B
+    const Index pq = s2->find_edge(p, q);
+    for (Index k = 0; k < s2->edge_count(); ++k)
+      if (k != pq) b.add_edge(k);
+    const EdgeCrossing c{s1->find_edge(0, 2), 0.45, 0.5};
+    b.add_edge_piece(pq, std::span(&c, 1), PieceStart::first_vertex, PieceEnd::last_crossing);
+    return std::move(b).finalize(&report);
+  }
+  Index element(Index a, Index b, Index c) const {
+    for (Index t : s2->vertex_elements(a))
+      if (s2->local_corner(t, b) >= 0 && s2->local_corner(t, c) >= 0) return t;
+    return invalid_index;
+  }
+};
+
+std::string violations_of(const PlMap<2>& map) {
+  std::string text;
+  for (const auto& check : verify(map).checks)
+    for (const auto& v : check.violations) text += check.name + "/" + v.rule + ": " + v.message + "\n";
+  return text;
+}
+
+/// Areas of the two triangles of the unmapped face: 0-c-q and c-2-q.
+constexpr double area_0cq = 0.0675, area_c2q = 0.0825;
+
+}  // namespace
+
+TEST(MapBuilderSplitFaces, WithoutTheOptionTheUnmappedFaceLeavesD) {
+  const HalfInsertedEdge fixture;
+  FinalizeReport report;
+  const PlMap<2> m = fixture.map(false, report);
+  EXPECT_EQ(violations_of(m), "");
+  EXPECT_EQ(report.unmapped_faces, 1);
+  EXPECT_TRUE(report.split_targets.empty());
+  EXPECT_NEAR(covered_measure(m).domain, 1.0 - area_0cq - area_c2q, 1e-15);
+  EXPECT_NEAR(report.left_out.unmapped, area_0cq + area_c2q, 1e-15);
+}
+
+TEST(MapBuilderSplitFaces, ItsTrianglesThatMapIntoOneElementStay) {
+  const HalfInsertedEdge fixture;
+  FinalizeReport report;
+  const PlMap<2> m = fixture.map(true, report);
+  EXPECT_EQ(violations_of(m), "");
+  EXPECT_EQ(report.unmapped_faces, 1);  // the face is counted; its triangles became regions
+  EXPECT_EQ(report.left_out.unmapped, 0.0);
+  const auto covered = covered_measure(m);
+  EXPECT_NEAR(covered.domain, 1.0, 1e-15);
+  EXPECT_NEAR(covered.target, 1.0, 1e-15);
+  std::vector<Index> expected = {fixture.element(0, HalfInsertedEdge::p, HalfInsertedEdge::q),
+                                 fixture.element(HalfInsertedEdge::p, 2, HalfInsertedEdge::q)};
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(report.split_targets, expected);
+  // Xi is the identity on the split triangles as on the rest: q's preimage and c map where they lie
+  const auto& data = m.data();
+  for (Index r = 0; r < m.region_count(); ++r)
+    for (Index n : data.region_corners[r]) {
+      const WorldPoint<2> x = m.domain().world_position(m.node_element(n), data.node_position[n]);
+      EXPECT_NEAR((m.node_target_world(n) - x).norm(), 0.0, 1e-14) << "region " << r << " node " << n;
+    }
+}
