@@ -309,6 +309,13 @@ int gather_face_supports(const BuilderContents<2>& in, ClosureWorkspace& w, int 
   return union_size;
 }
 
+/// The S2 element whose corners are a, b and c (elements are distinct vertex sets), or invalid.
+Index element_with_corners(const Surface<2>& s2, Index a, Index b, Index c) {
+  for (Index t : s2.vertex_elements(a))
+    if (s2.local_corner(t, b) >= 0 && s2.local_corner(t, c) >= 0) return t;
+  return invalid_index;
+}
+
 /// Chooses face c's S2 element. The candidates are the S2 elements containing all the images,
 /// tried in the order of the star of one support vertex; of those with every edge inserted, the
 /// one where the face's image has the largest area wins (ties: the first). Returns that signed
@@ -344,13 +351,10 @@ double choose_face_target(const BuilderContents<2>& in, ClosureWorkspace& w, int
     }
   };
   if (union_size == 3) {
-    // Three S2 vertices: only the S2 element with exactly these corners (elements are
-    // distinct vertex sets) can contain every image.
-    for (Index cand : s2.vertex_elements(support_union[0]))
-      if (s2.local_corner(cand, support_union[1]) >= 0 && s2.local_corner(cand, support_union[2]) >= 0) {
-        try_candidate(cand);
-        break;
-      }
+    // Three S2 vertices: only the S2 element with exactly these corners can contain every image.
+    if (const Index cand = element_with_corners(s2, support_union[0], support_union[1], support_union[2]);
+        cand != invalid_index)
+      try_candidate(cand);
   } else if (union_size < 3) {
     // All images on one S2 edge or vertex: every element around it contains them. The
     // search starts from a node with the most support vertices, the first such slot.
@@ -369,6 +373,24 @@ double choose_face_target(const BuilderContents<2>& in, ClosureWorkspace& w, int
   return best_area;
 }
 
+/// The distinct S2 vertices that carry the images of closure triangle tr's corners (slots, not
+/// virtual corners): the first three into `vertices`. Returns how many there are, counting
+/// stops at 4 (more than 3: no S2 element holds all the images).
+int corner_support_vertices(const BuilderContents<2>& in, const ElementTriangulation& et, const std::array<int, 3>& tr,
+                            std::array<Index, 3>& vertices) {
+  int count = 0;
+  for (int v : tr) {
+    const Support<2>& support = in.nodes[et.slots[v]].image;
+    for (int j = 0; j < support.count; ++j) {
+      const Index x = support.vertex(in.s2, j);
+      if (std::find(vertices.begin(), vertices.begin() + count, x) != vertices.begin() + count) continue;
+      if (count == 3) return 4;
+      vertices[count++] = x;
+    }
+  }
+  return count;
+}
+
 /// Whether the images of closure triangle tr's corners all lie on one S2 edge (or vertex): their
 /// supports span at most two S2 vertices. Xi then collapses the triangle onto a segment, whatever
 /// the rounding of the corner images makes orient2d say (on the edge between corners 1 and 2 of
@@ -377,19 +399,10 @@ double choose_face_target(const BuilderContents<2>& in, ClosureWorkspace& w, int
 /// reversed in a rotated one). Virtual corners (S1 corners without a node) never collapse.
 [[gnu::noinline]] bool image_collapses(const BuilderContents<2>& in, const ElementTriangulation& et,
                                        const std::array<int, 3>& tr) {
-  std::array<Index, 3> vertices{};
-  int count = 0;
-  for (int v : tr) {
+  for (int v : tr)
     if (v >= static_cast<int>(et.slots.size())) return false;
-    const Support<2>& support = in.nodes[et.slots[v]].image;
-    for (int j = 0; j < support.count; ++j) {
-      const Index x = support.vertex(in.s2, j);
-      if (std::find(vertices.begin(), vertices.begin() + count, x) != vertices.begin() + count) continue;
-      if (count == 2) return false;  // a third S2 vertex: the images span a triangle
-      vertices[count++] = x;
-    }
-  }
-  return true;
+  std::array<Index, 3> vertices{};
+  return corner_support_vertices(in, et, tr, vertices) <= 2;  // a third S2 vertex: the images span a triangle
 }
 
 /// Whether the corner images a, b, c may be collinear: their cross product is within what the
@@ -524,24 +537,9 @@ void split_unmapped_face(const BuilderContents<2>& in, ClosureWorkspace& w, int 
     const auto& tr = w.closure.triangles[f];
     if (tr[0] >= ns || tr[1] >= ns || tr[2] >= ns) continue;
     std::array<Index, 3> vertices{};
-    int count = 0;
-    for (int v : tr) {
-      const Support<2>& support = in.nodes[et.slots[v]].image;
-      for (int j = 0; j < support.count && count <= 3; ++j) {
-        const Index x = support.vertex(s2, j);
-        if (std::find(vertices.begin(), vertices.begin() + std::min(count, 3), x) != vertices.begin() + std::min(count, 3))
-          continue;
-        if (count < 3) vertices[count] = x;
-        ++count;
-      }
-    }
-    if (count != 3) continue;  // collapses onto an S2 edge, or spans more than one S2 element
-    Index target = invalid_index;
-    for (Index cand : s2.vertex_elements(vertices[0]))
-      if (s2.local_corner(cand, vertices[1]) >= 0 && s2.local_corner(cand, vertices[2]) >= 0) {
-        target = cand;
-        break;
-      }
+    // fewer than three: it collapses onto an S2 edge; more: no one S2 element holds it
+    if (corner_support_vertices(in, et, tr, vertices) != 3) continue;
+    const Index target = element_with_corners(s2, vertices[0], vertices[1], vertices[2]);
     if (target == invalid_index) continue;
     bool inserted = true;
     for (int k = 0; k < 3; ++k) inserted = inserted && in.edge_inserted[s2.element_edge(target, k)];
