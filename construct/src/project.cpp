@@ -226,14 +226,14 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   report_progress(options.progress, "finalize", 0, 1);
   FinalizeReport dropped;
   PlMap<d> map = std::move(builder).finalize(&dropped);
-  // faces closed on an element where the ray of a ghost node accepted from another element at
-  // its vertex is folded (folded_regions.hpp)
   // The image measures give the covered measures and show where images overlap on S2: two
   // sheets of S1 whose rays reach the same part of S2, of which the farther one leaves D.
   // (their terms are kept: after a removal only the elements that lost regions are measured
   // again, and what a removal takes is the difference of the covered measures)
   ImageMeasureTerms terms;
   ImageMeasures images = image_measures(map, ctx.threads, terms);
+  // faces closed on an element where the ray of a ghost node accepted from another element at
+  // its vertex is folded (folded_regions.hpp)
   if (const std::vector<Index> folded = regions_with_folded_corners<d>(map, directions, focal_free_reach, ctx.threads);
       !folded.empty()) {
     FaceRemovalReport removal;
