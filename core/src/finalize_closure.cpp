@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace plmap::detail {
 
@@ -522,46 +523,122 @@ void classify_faces(const BuilderContents<2>& in, ClosureWorkspace& w, int ns, i
   w.collapsed_faces.clear();
 }
 
+/// The S2 element that closure triangle tr's own three corners map into, with every edge
+/// inserted, and the orientation of its image there (split_unmapped_face); nullopt where it has
+/// none or the image is degenerate, before or after the affine map.
+struct SplitJudgement {
+  Index target;
+  int sign;
+  std::array<LocalPoint<2>, 3> image;
+  AffineMap<2> map;
+};
+
+std::optional<SplitJudgement> judge_split_triangle(const BuilderContents<2>& in, const ElementTriangulation& et,
+                                                   const std::array<int, 3>& tr) {
+  const Surface<2>& s2 = in.s2;
+  const int ns = static_cast<int>(et.slots.size());
+  if (tr[0] >= ns || tr[1] >= ns || tr[2] >= ns) return std::nullopt;
+  std::array<Index, 3> vertices{};
+  // fewer than three: it collapses onto an S2 edge; more: no one S2 element holds it
+  if (corner_support_vertices(in, et, tr, vertices) != 3) return std::nullopt;
+  const Index target = element_with_corners(s2, vertices[0], vertices[1], vertices[2]);
+  if (target == invalid_index) return std::nullopt;
+  for (int k = 0; k < 3; ++k)
+    if (!in.edge_inserted[s2.element_edge(target, k)]) return std::nullopt;
+  const std::array<LocalPoint<2>, 3> image{support_local<2>(s2, in.nodes[et.slots[tr[0]]].image, target),
+                                           support_local<2>(s2, in.nodes[et.slots[tr[1]]].image, target),
+                                           support_local<2>(s2, in.nodes[et.slots[tr[2]]].image, target)};
+  const std::array<LocalPoint<2>, 3> from{et.positions[tr[0]], et.positions[tr[1]], et.positions[tr[2]]};
+  const int sign = orient2d(image[0], image[1], image[2]);
+  if (sign == 0) return std::nullopt;
+  const AffineMap<2> map = affine_through<2>(from, image);
+  if (orient2d(apply<2>(map, from[0]), apply<2>(map, from[1]), apply<2>(map, from[2])) != sign) return std::nullopt;
+  return SplitJudgement{target, sign, image, map};
+}
+
+/// The local measure (twice the area) of closure triangle tr that a split keeps: all of it if its
+/// corners map into one S2 element with the map's orientation, else none.
+double kept_by_split(const BuilderContents<2>& in, const ElementTriangulation& et, const std::array<int, 3>& tr,
+                     int orientation) {
+  const std::optional<SplitJudgement> judged = judge_split_triangle(in, et, tr);
+  if (!judged || judged->sign != orientation) return 0.0;
+  const LocalPoint<2> u = et.positions[tr[1]] - et.positions[tr[0]], v = et.positions[tr[2]] - et.positions[tr[0]];
+  return std::abs(u(0) * v(1) - u(1) * v(0));
+}
+
+/// Re-triangulates unmapped face c so that more of it maps into single S2 elements: a diagonal
+/// (a side inside the face that is no constraint) is flipped where the two new triangles keep
+/// more of the quadrilateral than the two old ones (kept_by_split). The face's nodes stay; only
+/// which three of them span a triangle changes, and with it which triangles a split keeps. Each
+/// flip raises the kept measure, so the loop ends; it is also bounded by a pass count.
+void flip_towards_split(const BuilderContents<2>& in, ClosureWorkspace& w, int c, int orientation) {
+  auto& closure = w.closure;
+  const auto& et = w.et;
+  auto is_constraint = [&](int a, int b) {
+    return std::binary_search(w.segment_keys.begin(), w.segment_keys.end(), segment_key(a, b, false)) ||
+           std::binary_search(w.segment_keys.begin(), w.segment_keys.end(), segment_key(a, b, true));
+  };
+  // the kept measure of each triangle of the face as it stands (indexed by closure triangle)
+  auto& kept = w.kept_measure;
+  if (kept.size() < closure.triangles.size()) kept.resize(closure.triangles.size());
+  for (int k = w.face_begin[c]; k < w.face_begin[c + 1]; ++k)
+    kept[w.face_order[k]] = kept_by_split(in, et, closure.triangles[w.face_order[k]], orientation);
+  const int count = w.face_begin[c + 1] - w.face_begin[c];
+  for (int pass = 0; pass < 2 * count + 2; ++pass) {
+    bool flipped = false;
+    for (int k = w.face_begin[c]; k < w.face_begin[c + 1]; ++k) {
+      const int t = w.face_order[k];
+      for (int i = 0; i < 3; ++i) {
+        const int u = closure.neighbors[t][i];
+        if (u < 0 || closure.face[u] != c || ((closure.graph_sides[t] >> i) & 1u)) continue;
+        const auto& tr = closure.triangles[t];
+        const int p = tr[i], a = tr[(i + 1) % 3], b = tr[(i + 2) % 3];
+        if (is_constraint(a, b)) continue;
+        int q = -1;
+        for (int j = 0; j < 3; ++j)
+          if (closure.neighbors[u][j] == t) q = closure.triangles[u][j];
+        if (q < 0) continue;
+        const double before = kept[t] + kept[u];
+        const double kept_t = kept_by_split(in, et, {p, a, q}, orientation);
+        const double kept_u = kept_by_split(in, et, {q, b, p}, orientation);
+        // a margin above rounding: equal measures computed two ways must not flip back and forth
+        if (kept_t + kept_u <= before * (1.0 + 1e-9) + 1e-300) continue;
+        if (flip_side(et.positions, closure, t, i)) {  // t becomes (p, a, q), u (q, b, p)
+          kept[t] = kept_t;
+          kept[u] = kept_u;
+          flipped = true;
+          break;  // t changed: its sides are looked at in the next pass
+        }
+      }
+    }
+    if (!flipped) break;
+  }
+}
+
 /// The triangles of face c, which has no target (its nodes share no S2 element: an S2 edge's
 /// preimage that would split it is missing in part): each triangle whose own three corners map
 /// into one S2 element gets that element and the sign of its image there, as a face would. The
 /// assembly keeps those with the map's orientation as regions of their own; two such triangles of
-/// different elements share only corners whose images lie on the S2 edge between the elements,
-/// so the map stays continuous across their common side.
-void split_unmapped_face(const BuilderContents<2>& in, ClosureWorkspace& w, int c) {
-  const Surface<2>& s2 = in.s2;
+/// different elements share only corners whose images lie on the S2 edge between them, so the
+/// map stays continuous across their common side. Where the map's orientation is known, the
+/// face is first re-triangulated to keep more (flip_towards_split).
+void split_unmapped_face(const BuilderContents<2>& in, ClosureWorkspace& w, int c, int orientation) {
   auto& et = w.et;
-  const int ns = static_cast<int>(et.slots.size());
+  if (orientation != 0) flip_towards_split(in, w, c, orientation);
   for (int q = w.face_begin[c]; q < w.face_begin[c + 1]; ++q) {
     const int f = w.face_order[q];
-    const auto& tr = w.closure.triangles[f];
-    if (tr[0] >= ns || tr[1] >= ns || tr[2] >= ns) continue;
-    std::array<Index, 3> vertices{};
-    // fewer than three: it collapses onto an S2 edge; more: no one S2 element holds it
-    if (corner_support_vertices(in, et, tr, vertices) != 3) continue;
-    const Index target = element_with_corners(s2, vertices[0], vertices[1], vertices[2]);
-    if (target == invalid_index) continue;
-    bool inserted = true;
-    for (int k = 0; k < 3; ++k) inserted = inserted && in.edge_inserted[s2.element_edge(target, k)];
-    if (!inserted) continue;
-    const std::array<LocalPoint<2>, 3> image{support_local<2>(s2, in.nodes[et.slots[tr[0]]].image, target),
-                                             support_local<2>(s2, in.nodes[et.slots[tr[1]]].image, target),
-                                             support_local<2>(s2, in.nodes[et.slots[tr[2]]].image, target)};
-    const std::array<LocalPoint<2>, 3> from{et.positions[tr[0]], et.positions[tr[1]], et.positions[tr[2]]};
-    const int sign = orient2d(image[0], image[1], image[2]);
-    if (sign == 0) continue;
-    const AffineMap<2> map = affine_through<2>(from, image);
-    if (orient2d(apply<2>(map, from[0]), apply<2>(map, from[1]), apply<2>(map, from[2])) != sign) continue;
-    et.split_target[f] = target;
-    et.split_sign[f] = static_cast<signed char>(sign);
-    et.corner_images[f] = image;
-    et.corner_maps[f] = map;
+    const std::optional<SplitJudgement> judged = judge_split_triangle(in, et, w.closure.triangles[f]);
+    if (!judged) continue;
+    et.split_target[f] = judged->target;
+    et.split_sign[f] = static_cast<signed char>(judged->sign);
+    et.corner_images[f] = judged->image;
+    et.corner_maps[f] = judged->map;
   }
 }
 
 /// Gives the triangles of every unmapped face their own S2 elements where they have one
 /// (split_unmapped_face).
-void split_unmapped_faces(const BuilderContents<2>& in, ClosureWorkspace& w) {
+void split_unmapped_faces(const BuilderContents<2>& in, ClosureWorkspace& w, int orientation) {
   auto& et = w.et;
   bool any = false;
   for (const auto& comp : et.components) any = any || (!comp.outside && comp.target == invalid_index);
@@ -570,7 +647,8 @@ void split_unmapped_faces(const BuilderContents<2>& in, ClosureWorkspace& w) {
   et.split_target.assign(nf, invalid_index);
   et.split_sign.assign(nf, 0);
   for (int c = 0; c < static_cast<int>(et.components.size()); ++c)
-    if (!et.components[c].outside && et.components[c].target == invalid_index) split_unmapped_face(in, w, c);
+    if (!et.components[c].outside && et.components[c].target == invalid_index)
+      split_unmapped_face(in, w, c, orientation);
 }
 
 /// The closure triangle a point-location walk starts from: the first inside D at the element's
@@ -606,13 +684,13 @@ bool close_graph(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>&
 }
 
 void close_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
-                   ClosureWorkspace& w) {
+                   ClosureWorkspace& w, int orientation) {
   if (!close_graph(in, where, t, w)) return;
   const int ns = static_cast<int>(w.et.slots.size());
   const int vertex_count = static_cast<int>(w.et.positions.size());
   classify_faces(in, w, ns, vertex_count);
   if (!w.collapsed_faces.empty()) rejudge_collapsed_faces(in, w);
-  if (in.options.split_unmapped_faces) split_unmapped_faces(in, w);
+  if (in.options.split_unmapped_faces) split_unmapped_faces(in, w, orientation);
   w.et.centroid_triangle = centroid_triangle(w.et, w.closure);
   // where each node's ring of neighbours starts (they are circulated at assembly)
   ring_starts(w.closure, vertex_count, w.ring_start);

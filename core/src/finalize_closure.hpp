@@ -95,6 +95,7 @@ struct ClosureWorkspace {
   std::vector<int> face_order, face_begin, comp_nodes, vertex_stamp;
   std::vector<LocalPoint<2>> on_candidate;  // per vertex: its image on a candidate S2 element
   std::vector<int> collapsed_faces;  // faces with a triangle whose image collapses (finalize_closure.cpp)
+  std::vector<double> kept_measure;  // per closure triangle of an unmapped face (flip_towards_split)
   // Whether the assembly takes the closure triangles' affine maps as the regions' maps
   // (ElementTriangulation::corner_maps). Where the region maps are written after the closing
   // pass instead (finalize_region_maps.hpp), a triangle's map is computed only when its image
@@ -103,9 +104,11 @@ struct ClosureWorkspace {
 };
 
 /// Closes S1 element t into w (throws BuilderError where the graph cannot be closed: crossing
-/// edges, an edge through a node, coinciding nodes).
+/// edges, an edge through a node, coinciding nodes). `orientation` is the map's (+1 or -1), or 0
+/// where it is not known yet (the faces then only vote): unmapped faces are re-triangulated
+/// towards it before they are split (BuilderOptions::split_unmapped_faces).
 void close_element(const BuilderContents<2>& in, const NodesAndSegmentsByPlace<2>& where, Index t,
-                   ClosureWorkspace& w);
+                   ClosureWorkspace& w, int orientation);
 
 /// The first half of close_element: the graph of S1 element t closed into triangles in w, its
 /// faces neither given their S2 elements nor judged. It throws exactly where close_element does

@@ -80,7 +80,7 @@ class ClosingPass {
             continue;
           }
           if (assembling) {
-            close_element(in_, where_, t, workspaces_[k]);
+            close_element(in_, where_, t, workspaces_[k], orientation);
             assemble_element(in_, workspaces_[k], orientation, parts_[k], cursor);
           } else {
             close_graph(in_, where_, t, workspaces_[k]);
@@ -240,7 +240,7 @@ int sampled_orientation(const BuilderContents<2>& in, const NodesAndSegmentsByPl
   const Index stride = std::max<Index>(1, n1 / 64);
   for (Index t = 0; t < n1; t += stride) {
     try {
-      close_element(in, where, t, w);
+      close_element(in, where, t, w, 0);
     } catch (...) {
       // an element that cannot be closed does not vote; the full pass reports it
     }

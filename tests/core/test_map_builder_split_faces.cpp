@@ -103,3 +103,64 @@ TEST(MapBuilderSplitFaces, ItsTrianglesThatMapIntoOneElementStay) {
       EXPECT_NEAR((m.node_target_world(n) - x).norm(), 0.0, 1e-14) << "region " << r << " node " << n;
     }
 }
+
+namespace {
+
+/// A face whose own closure splits badly: S1 as above; S2 the square with p = (0.6, 0.3) over A
+/// and q = (0.05, 0.95), r = (0.15, 0.55), s = (0.65, 0.75) over B, in ten triangles, among them
+/// (p, q, r) and (p, s, q) on the two sides of edge p-q. Xi is the identity; p-q is inserted
+/// only from p to where it crosses the diagonal (c, at a quarter of the edge). On B the face bounded by
+/// the pieces of p-r and p-s, by r-q-s and by the diagonal is a convex hexagon c1, c, c2, s, q, r
+/// with nodes on four S2 vertices: unmapped. Its Delaunay triangulation (c1 c r, c c2 s, c s r,
+/// s q r) has two triangles with corners on both sides of the missing stretch c-q, which no one
+/// S2 element holds; flipping s-r to c-q gives c s q in (p, s, q) and c q r in (p, q, r).
+struct GapInAHexagon {
+  std::shared_ptr<const Surface<2>> s1 = make_surface({P(0, 0), P(1, 0), P(1, 1), P(0, 1)}, {{0, 1, 2}, {0, 2, 3}});
+  static constexpr Index p = 4, q = 5, r = 6, s = 7;
+  std::shared_ptr<const Surface<2>> s2 = make_surface(
+      {P(0, 0), P(1, 0), P(1, 1), P(0, 1), P(0.6, 0.3), P(0.05, 0.95), P(0.15, 0.55), P(0.65, 0.75)},
+      {{0, 1, p}, {1, 2, p}, {0, p, r}, {p, q, r}, {p, s, q}, {p, 2, s}, {2, 3, s}, {s, 3, q}, {q, 3, r}, {r, 3, 0}});
+
+  PlMap<2> map(FinalizeReport& report) const {
+    BuilderOptions options;
+    options.split_unmapped_faces = true;
+    MapBuilder<2> b(s1, s2, options);
+    for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
+    b.add_vertex_preimage(p, {0, LocalPoint<2>(0.3, 0.3)});   // (u + v, v) on A
+    b.add_vertex_preimage(q, {1, LocalPoint<2>(0.05, 0.9)});  // (u, u + v) on B
+    b.add_vertex_preimage(r, {1, LocalPoint<2>(0.15, 0.4)});
+    b.add_vertex_preimage(s, {1, LocalPoint<2>(0.65, 0.1)});
+    const Index pq = s2->find_edge(p, q), pr = s2->find_edge(p, r), ps = s2->find_edge(p, s);
+    for (Index k = 0; k < s2->edge_count(); ++k)
+      if (k != pq && k != pr && k != ps) b.add_edge(k);
+    // p + eta (x - p) meets the diagonal y = x: for x = r at eta = 3/7, (2.85/7, 2.85/7); for
+    // x = s at eta = 3/4, (0.6375, 0.6375); for x = q at eta = 1/4, (0.4625, 0.4625)
+    const Index diagonal = s1->find_edge(0, 2);
+    const EdgeCrossing c1{diagonal, 2.85 / 7.0, 3.0 / 7.0}, c2{diagonal, 0.6375, 0.75};
+    b.add_edge(pr, std::span(&c1, 1));
+    b.add_edge(ps, std::span(&c2, 1));
+    const EdgeCrossing c{diagonal, 0.4625, 0.25};
+    b.add_edge_piece(pq, std::span(&c, 1), PieceStart::first_vertex, PieceEnd::last_crossing);
+    return std::move(b).finalize(&report);
+  }
+};
+
+}  // namespace
+
+TEST(MapBuilderSplitFaces, AnUnmappedFaceIsRetriangulatedSoThatItsTrianglesMapIntoOneElement) {
+  const GapInAHexagon fixture;
+  FinalizeReport report;
+  const PlMap<2> m = fixture.map(report);
+  EXPECT_EQ(violations_of(m), "");
+  EXPECT_EQ(report.unmapped_faces, 1);
+  // the whole hexagon stays: with B's Delaunay triangles c s r and s q r it would not
+  EXPECT_EQ(report.left_out.unmapped, 0.0);
+  const auto covered = covered_measure(m);
+  EXPECT_NEAR(covered.domain, 1.0, 1e-15);
+  EXPECT_NEAR(covered.target, 1.0, 1e-15);
+  for (Index r = 0; r < m.region_count(); ++r)
+    for (Index n : m.data().region_corners[r]) {
+      const WorldPoint<2> x = m.domain().world_position(m.node_element(n), m.data().node_position[n]);
+      EXPECT_NEAR((m.node_target_world(n) - x).norm(), 0.0, 1e-14) << "region " << r << " node " << n;
+    }
+}
