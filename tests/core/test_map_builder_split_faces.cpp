@@ -23,6 +23,19 @@ std::shared_ptr<const Surface<2>> make_surface(std::vector<WorldPoint<2>> v, std
   return std::make_shared<const Surface<2>>(std::move(v), std::move(e));
 }
 
+/// A builder of the identity from S1, the unit square cut by its diagonal 0-2 into A = (0, 1, 2)
+/// and B = (0, 2, 3), onto an S2 whose vertices 0-3 are the square's corners and vertex 4 lies at
+/// (0.6, 0.3), over A: those five preimages are added.
+MapBuilder<2> identity_on_square(std::shared_ptr<const Surface<2>> s1, std::shared_ptr<const Surface<2>> s2,
+                                 bool split) {
+  BuilderOptions options;
+  options.split_unmapped_faces = split;
+  MapBuilder<2> b(std::move(s1), std::move(s2), options);
+  for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
+  b.add_vertex_preimage(4, {0, LocalPoint<2>(0.3, 0.3)});  // (u + v, v) on A
+  return b;
+}
+
 /// S1 the unit square, cut by its diagonal 0-2 into A = (0, 1, 2) and B = (0, 2, 3). S2 the same
 /// square with two more vertices p = (0.6, 0.3) (over A) and q = (0.3, 0.6) (over B) and six
 /// triangles; its edge p-q crosses the diagonal at c = (0.45, 0.45). Xi is the identity. Every S2
@@ -38,11 +51,7 @@ struct HalfInsertedEdge {
                    {{0, 1, p}, {1, 2, p}, {0, p, q}, {p, 2, q}, {2, 3, q}, {3, 0, q}});
 
   PlMap<2> map(bool split, FinalizeReport& report) const {
-    BuilderOptions options;
-    options.split_unmapped_faces = split;
-    MapBuilder<2> b(s1, s2, options);
-    for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
-    b.add_vertex_preimage(p, {0, LocalPoint<2>(0.3, 0.3)});  // (u + v, v) on A
+    MapBuilder<2> b = identity_on_square(s1, s2, split);
     b.add_vertex_preimage(q, {1, LocalPoint<2>(0.3, 0.3)});  // (u, u + v) on B
     const Index pq = s2->find_edge(p, q);
     for (Index k = 0; k < s2->edge_count(); ++k)
@@ -122,11 +131,7 @@ struct GapInAHexagon {
       {{0, 1, p}, {1, 2, p}, {0, p, r}, {p, q, r}, {p, s, q}, {p, 2, s}, {2, 3, s}, {s, 3, q}, {q, 3, r}, {r, 3, 0}});
 
   PlMap<2> map(FinalizeReport& report) const {
-    BuilderOptions options;
-    options.split_unmapped_faces = true;
-    MapBuilder<2> b(s1, s2, options);
-    for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
-    b.add_vertex_preimage(p, {0, LocalPoint<2>(0.3, 0.3)});   // (u + v, v) on A
+    MapBuilder<2> b = identity_on_square(s1, s2, true);
     b.add_vertex_preimage(q, {1, LocalPoint<2>(0.05, 0.9)});  // (u, u + v) on B
     b.add_vertex_preimage(r, {1, LocalPoint<2>(0.15, 0.4)});
     b.add_vertex_preimage(s, {1, LocalPoint<2>(0.65, 0.1)});
