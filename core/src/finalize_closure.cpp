@@ -550,7 +550,7 @@ std::optional<SplitJudgement> judge_split_triangle(const BuilderContents<2>& in,
                                            support_local<2>(s2, in.nodes[et.slots[tr[2]]].image, target)};
   const std::array<LocalPoint<2>, 3> from{et.positions[tr[0]], et.positions[tr[1]], et.positions[tr[2]]};
   const int sign = orient2d(image[0], image[1], image[2]);
-  if (sign == 0) return std::nullopt;
+  if (sign == 0 || orient2d(from[0], from[1], from[2]) <= 0) return std::nullopt;  // no affine map
   const AffineMap<2> map = affine_through<2>(from, image);
   if (orient2d(apply<2>(map, from[0]), apply<2>(map, from[1]), apply<2>(map, from[2])) != sign) return std::nullopt;
   return SplitJudgement{target, sign, image, map};
@@ -597,7 +597,11 @@ void flip_towards_split(const BuilderContents<2>& in, ClosureWorkspace& w, int c
         int q = -1;
         for (int j = 0; j < 3; ++j)
           if (closure.neighbors[u][j] == t) q = closure.triangles[u][j];
-        if (q < 0) continue;
+        // only a strictly convex quadrilateral can flip (flip_side): the new triangles are then
+        // proper, and only those are judged (a degenerate one has no affine map)
+        if (q < 0 || orient2d(et.positions[p], et.positions[a], et.positions[q]) <= 0 ||
+            orient2d(et.positions[q], et.positions[b], et.positions[p]) <= 0)
+          continue;
         const double before = kept[t] + kept[u];
         const double kept_t = kept_by_split(in, et, {p, a, q}, orientation);
         const double kept_u = kept_by_split(in, et, {q, b, p}, orientation);
