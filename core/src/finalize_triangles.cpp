@@ -125,7 +125,8 @@ class ClosingPass {
     for (const auto& w : workspaces_) votes += w.votes;
     return votes >= 0 ? 1 : -1;
   }
-  /// FinalizeReport::reversed_faces and unmapped_faces of the last run, over all blocks.
+  /// FinalizeReport::reversed_faces, unmapped_faces, left_out and split_targets of the last run,
+  /// over all blocks.
   struct FaceCounts {
     Index reversed = 0, unmapped = 0;
     AssemblyCursor::LeftOutTally left_out;
@@ -309,10 +310,11 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
     if (!failed.empty()) std::rethrow_exception(failed.front().second);
   }
   if (report) {
-    report->reversed_faces += pass.face_counts().reversed;
-    report->unmapped_faces += pass.face_counts().unmapped;
-    report->left_out += pass.face_counts().left_out.measures(in.s1.measure());
-    report->split_targets = pass.face_counts().split_targets;
+    ClosingPass::FaceCounts counts = pass.face_counts();  // summed over the blocks once
+    report->reversed_faces += counts.reversed;
+    report->unmapped_faces += counts.unmapped;
+    report->left_out += counts.left_out.measures(in.s1.measure());
+    report->split_targets = std::move(counts.split_targets);
   }
   // Everything is closed: the builder's nodes and segments and their buckets are not read again.
   // Freed before the join, which with several blocks first-touches the later blocks' share of the
