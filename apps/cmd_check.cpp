@@ -9,12 +9,14 @@
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/map_file.hpp>
+#include <plmap/core/surface_fingerprint.hpp>
 #include <plmap/verify/ray_check.hpp>
 #include <plmap/verify/check.hpp>
 #include <plmap/verify/report_json.hpp>
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iostream>
 #include <limits>
 #include <optional>
@@ -32,8 +34,9 @@ struct CheckOptions {
   bool parametrization = false;
   double max_condition = std::numeric_limits<double>::infinity();
   std::size_t max_reported = 20;
-  // --against-rays: the sample and the projection's acceptance rules (the map file does not
-  // record them; the defaults are `plmap project`'s)
+  // --against-rays: the sample and the projection's acceptance rules. The rules a map records
+  // (`plmap project` records them) apply unless an option below says otherwise; without recorded
+  // rules the defaults are `plmap project`'s.
   std::size_t ray_samples = 0;
   std::uint64_t ray_seed = 1;
   double ray_tolerance = 1e-4;
@@ -41,38 +44,74 @@ struct CheckOptions {
   bool relative_distance = false, allow_negative = false;
   std::string normal_check = "none";
   std::string directions_file;  // empty: S1's averaged vertex normals
+  bool ignore_recorded_rules = false;
+  // which rules the command line gave (they win over the recorded ones)
+  bool max_distance_given = false, normal_check_given = false;
 };
 
 RayNormalCheck ray_normal_check_from(const std::string& name) {
-  if (name == "none") return RayNormalCheck::none;
-  if (name == "facing") return RayNormalCheck::facing;
-  if (name == "aligned") return RayNormalCheck::aligned;
+  if (const auto check = ray_normal_check_from_name(name)) return *check;
   throw Error(fmt::format("unknown normal check '{}' (valid: none, facing, aligned)", name));
 }
 
-/// The ray check with the rules of the command line and the directions given (default: S1's
+/// The rules of the ray check: those the map records (unless told to ignore them), each replaced
+/// by the command line's where it gives one. Returns where they came from, for the report.
+template <int d>
+std::string choose_rules(const PlMap<d>& map, const CheckOptions& o, std::span<const double> given_directions,
+                         RayCheckOptions<d>& options) {
+  const std::optional<ProjectionRules> recorded =
+      o.ignore_recorded_rules ? std::nullopt : apply_recorded_rules(map, options);
+  if (!recorded || o.max_distance_given) options.max_distance = o.max_distance;
+  if (!recorded || o.relative_distance) options.max_distance_is_relative = o.relative_distance;
+  if (!recorded || o.allow_negative) options.allow_negative_distance = o.allow_negative;
+  if (!recorded || o.normal_check_given) options.normal_check = ray_normal_check_from(o.normal_check);
+  if (recorded) {
+    // The field is not in the map: a given one must be given again, and a different one is said.
+    if (o.directions_file.empty() && recorded->directions_fingerprint)
+      throw UsageError(fmt::format(
+          "{} was projected along directions given to `plmap project` (fingerprint {}); pass the same file with "
+          "--directions, or check under other rules with --no-recorded-rules",
+          o.file, fingerprint_hex(*recorded->directions_fingerprint)));
+    if (!o.directions_file.empty() &&
+        (!recorded->directions_fingerprint ||
+         *recorded->directions_fingerprint != directions_fingerprint(given_directions, d + 1)))
+      std::cerr << "warning: the directions of " << o.directions_file << " are not those " << o.file
+                << " was projected along (" << directions_description(*recorded) << ")\n";
+  }
+  const bool overridden = o.max_distance_given || o.relative_distance || o.allow_negative || o.normal_check_given;
+  if (!recorded) return o.ignore_recorded_rules ? "command line" : "command line (the map records none)";
+  return overridden ? "map, with the command line's" : "map";
+}
+
+/// The ray check under the rules choose_rules picks and along the directions given (default: S1's
 /// averaged vertex normals, the projection's default field). Passes if the missed area that is not outside D on
 /// purpose and the extra area that the interpolation at S2's boundary does not explain are each
 /// at most ray_tolerance of S1's measure.
 template <int d>
 std::pair<Json, bool> ray_check(const PlMap<d>& map, const CheckOptions& o) {
   RayCheckOptions<d> options;
+  // the values as read, as `plmap project` took them: the recorded fingerprint is theirs
+  const std::vector<double> given_directions =
+      o.directions_file.empty() ? std::vector<double>{}
+                                : read_directions(o.directions_file, d, map.domain().vertex_count());
   options.directions = o.directions_file.empty()
                            ? averaged_vertex_normals(map.domain())
-                           : directions_from_values(map.domain(), std::span<const double>(read_directions(
-                                                                      o.directions_file, d, map.domain().vertex_count())));
+                           : directions_from_values(map.domain(), std::span<const double>(given_directions));
   options.samples = o.ray_samples;
   options.seed = o.ray_seed;
-  options.max_distance = o.max_distance;
-  options.max_distance_is_relative = o.relative_distance;
-  options.allow_negative_distance = o.allow_negative;
-  options.normal_check = ray_normal_check_from(o.normal_check);
+  const std::string rules_from = choose_rules(map, o, given_directions, options);
   options.max_listed = o.max_reported;
   const RayCheckReport<d> report = check_against_rays(map, options);
   const bool ok = report.fraction(report.missed_defects()) <= o.ray_tolerance &&
                   report.fraction(report.extra_defects()) <= o.ray_tolerance &&
                   report.fraction(report.in_domain_defects()) <= o.ray_tolerance;
   Json j = to_json(report);
+  j["rules"] = {{"from", rules_from},
+                {"max_distance", std::isfinite(options.max_distance) ? Json(options.max_distance) : Json("inf")},
+                {"max_distance_is_relative", options.max_distance_is_relative},
+                {"allow_negative_distance", options.allow_negative_distance},
+                {"normal_check", std::string(to_string(options.normal_check))},
+                {"directions", o.directions_file.empty() ? "averaged-normals" : o.directions_file}};
   j["tolerance"] = o.ray_tolerance;
   j["ok"] = ok;
   return {j, ok};
@@ -86,15 +125,19 @@ std::string ray_summary(const Json& j) {
   const auto a = [&](const char* reason) {
     return j["image_error_relative_to_edge"]["above_one_by_reason"][reason]["fraction"].get<double>();
   };
-  // The map file does not record the projection's options: a map projected with other ones than
-  // the check was given shows as extra area on the ray, which this line points out.
+  // A map checked under other rules than it was projected with (a map without recorded rules,
+  // or rules changed on the command line) shows extra area on the ray, which this line points out.
   const bool rejected = x("behind_domain") + x("beyond_distance_limit") + x("against_normal_check") > 0.0;
   const std::string rules_hint =
       rejected ? "    note: the map puts parts of D where this check's rules reject the ray's hit; check with the "
                  "options the map was projected with (--allow-negative, --max-distance, --normal-check)\n"
                : "";
+  const auto& rules = j["rules"];
+  const std::string max_distance =
+      rules["max_distance"].is_number() ? fmt::format("{}", rules["max_distance"].get<double>()) : "none";
   return fmt::format(
       "against rays ({} samples): {}\n"
+      "  rules from the {}: distance limit {}{}, {}, normal check {}, directions {}\n"
       "  missed {:.3g} of S1, defects {:.3g}\n"
       "    outside D for a reason: nearer sheet {:.3g}, S1 in between {:.3g}, S2 seen twice {:.3g}, past a focal "
       "point {:.3g}, just inside S2's boundary {:.3g}\n"
@@ -105,7 +148,11 @@ std::string ray_summary(const Json& j) {
       "{}"
       "  image error / S2 edge length: median {:.3g}, p99 {:.3g}, max {:.3g}; above 1 {:.3g} of S1 (the hit "
       "is the image of a nearer part of S1 {:.3g}; defects: of a farther part {:.3g}, of none {:.3g})\n",
-      j["samples"].get<std::size_t>(), j["ok"].get<bool>() ? "ok" : "FAILED", j["missed"]["fraction"].get<double>(),
+      j["samples"].get<std::size_t>(), j["ok"].get<bool>() ? "ok" : "FAILED", rules["from"].get<std::string>(),
+      max_distance, rules["max_distance_is_relative"].get<bool>() ? " (relative)" : "",
+      rules["allow_negative_distance"].get<bool>() ? "hits behind S1 too" : "hits in front of S1 only",
+      rules["normal_check"].get<std::string>(), rules["directions"].get<std::string>(),
+      j["missed"]["fraction"].get<double>(),
       j["missed"]["defect_fraction"].get<double>(), f("nearer_sheet"), f("domain_in_between"),
       f("target_seen_twice"), f("past_focal_point"), f("inside_target_boundary"), f("farther_sheet"), f("next_to_fold"), f("not_covered"),
       j["extra"]["fraction"].get<double>(), j["extra"]["by_reason"]["beyond_target_boundary"]["fraction"].get<double>(), x("past_focal_point"),
@@ -180,15 +227,26 @@ void register_check(CLI::App& app, Action& action) {
                   "the extra area (not counting the interpolation at S2's boundary) exceeds this fraction of S1")
       ->capture_default_str()
       ->check(non_negative_number);
-  cmd->add_option("--max-distance", o->max_distance, "Ray check: largest projection distance |mu|, as given to project")
-      ->check(positive_number);
+  CLI::Option* max_distance =
+      cmd->add_option("--max-distance", o->max_distance,
+                      "Ray check: largest projection distance |mu| (default: the map's recorded rule)")
+          ->check(positive_number);
   cmd->add_flag("--relative-distance", o->relative_distance,
                 "Ray check: --max-distance is a multiple of S1's bounding-box diagonal");
   cmd->add_flag("--allow-negative", o->allow_negative, "Ray check: also accept hits behind S1");
-  cmd->add_option("--normal-check", o->normal_check, "Ray check: none, facing or aligned, as given to project")
-      ->capture_default_str();
+  CLI::Option* normal_check =
+      cmd->add_option("--normal-check", o->normal_check,
+                      "Ray check: none, facing or aligned (default: the map's recorded rule, else none)");
+  cmd->add_flag("--no-recorded-rules", o->ignore_recorded_rules,
+                "Ray check: ignore the acceptance rules that `plmap project` recorded in the map, and check under "
+                "the options given here and project's defaults")
+      ->needs(against_rays);
   add_progress_options(*cmd, o->progress);
-  cmd->callback([o, &action] { action = [o] { return run_check(*o); }; });
+  cmd->callback([o, max_distance, normal_check, &action] {
+    o->max_distance_given = max_distance->count() > 0;
+    o->normal_check_given = normal_check->count() > 0;
+    action = [o] { return run_check(*o); };
+  });
 }
 
 }  // namespace plmap::cli

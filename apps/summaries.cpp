@@ -117,6 +117,8 @@ Json map_summary(const PlMap<d>& map, bool with_quality) {
                    {"domain_fraction", s1 > 0 ? covered.domain / s1 : 0.0},
                    {"target_fraction", s2 > 0 ? covered.target / s2 : 0.0}};
   j["memory_bytes"] = map.memory_bytes();
+  // how the map was made (the projection's acceptance rules, for one), when its maker recorded it
+  if (!map.provenance().empty()) j["provenance"] = map.provenance();
   if (with_quality) j["quality"] = to_json(compute_quality(map));
   return j;
 }

@@ -295,14 +295,41 @@ ProjectionResult<d> project(std::shared_ptr<const Surface<d>> s1, std::shared_pt
     return run_projection<d>(unit.s1, unit.s2, unit_options, solver);
   });
   result = projection::in_user_units<d>(std::move(result), r1.surface, r2.surface, unit.exponent);
-  if (!r1.renumbered() && !r2.renumbered()) return result;
+  // the rules go with the map, so that a check against rays applies them unasked
+  MapProvenance provenance;
+  record_projection_rules(projection_rules(options, d), provenance);
+  if (!r1.renumbered() && !r2.renumbered()) {
+    result.map.set_provenance(std::move(provenance));
+    return result;
+  }
   const auto t1 = Clock::now();
   result = projection::in_original_numbering<d>(std::move(result), r1, r2, s1, s2, threads);
   result.report.renumbered_domain = r1.renumbered();
   result.report.renumbered_target = r2.renumbered();
   result.report.seconds.renumbering = copying + seconds_since(t1);
   result.report.seconds.total += result.report.seconds.renumbering;
+  result.map.set_provenance(std::move(provenance));
   return result;
+}
+
+std::string_view to_string(TargetNormalCheck check) {
+  switch (check) {
+    case TargetNormalCheck::none: return "none";
+    case TargetNormalCheck::facing: return "facing";
+    case TargetNormalCheck::aligned: return "aligned";
+  }
+  return "none";
+}
+
+ProjectionRules projection_rules(const ProjectionOptions& options, int dimension) {
+  ProjectionRules rules;
+  rules.max_distance = options.max_distance;
+  rules.max_distance_is_relative = options.max_distance_is_relative;
+  rules.allow_negative_distance = options.allow_negative_distance;
+  rules.normal_check = std::string(to_string(options.normal_check));
+  if (!options.directions.empty())
+    rules.directions_fingerprint = directions_fingerprint(options.directions, dimension + 1);
+  return rules;
 }
 
 template ProjectionResult<1> project<1>(std::shared_ptr<const Surface<1>>, std::shared_ptr<const Surface<1>>,

@@ -279,7 +279,11 @@ void PlMap<d>::keep_only_underived_graph() {
 template <int d>
   requires SurfaceDimension<d>
 PlMap<d>::PlMap(const PlMap& other)
-    : domain_(other.domain_), target_(other.target_), data_(other.data_), stored_graph_(other.stored_graph_) {
+    : domain_(other.domain_),
+      target_(other.target_),
+      data_(other.data_),
+      stored_graph_(other.stored_graph_),
+      provenance_(other.provenance_) {
   if constexpr (d == 2) for_each_graph_array(data_, [](auto& v) { release(v); });
 }
 
@@ -293,6 +297,13 @@ PlMap<d>& PlMap<d>::operator=(const PlMap& other) {
 template <int d>
   requires SurfaceDimension<d>
 PlMap<d>::~PlMap() = default;
+
+template <int d>
+  requires SurfaceDimension<d>
+void PlMap<d>::set_provenance(MapProvenance provenance) {
+  validate_provenance(provenance);
+  provenance_ = std::move(provenance);
+}
 
 template <int d>
   requires SurfaceDimension<d>

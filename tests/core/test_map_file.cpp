@@ -170,8 +170,8 @@ TEST_F(DamagedMapFile, WrongMagic) {
 }
 
 TEST_F(DamagedMapFile, FutureVersion) {
-  const auto what = parse_error_message<ParseError>(replace_once(text, "plmap-map 1", "plmap-map 2"));
-  EXPECT_THAT(what, HasSubstr("unsupported map file version 2"));
+  const auto what = parse_error_message<ParseError>(replace_once(text, "plmap-map 1", "plmap-map 3"));
+  EXPECT_THAT(what, HasSubstr("unsupported map file version 3 (this build reads versions 1 and 2)"));
 }
 
 TEST_F(DamagedMapFile, UnsupportedDimension) {

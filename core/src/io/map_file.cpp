@@ -310,6 +310,7 @@ class MapFileReader {
 struct Header {
   int dimension = 0;
   int orientation = 0;
+  MapProvenance provenance;  // version 2 only
 };
 
 /// A surface file given where a map is expected is common enough to deserve its own message
@@ -337,9 +338,9 @@ Header read_header(MapFileReader& r) {
                        map_file_version));
   }
   const long long version = r.integer(f.token[1], 0, std::numeric_limits<int>::max(), "version");
-  if (version != map_file_version) {
-    r.fail(fmt::format("unsupported map file version {} (this build reads version {})", version,
-                       map_file_version));
+  if (version != map_file_version && version != map_file_version_with_provenance) {
+    r.fail(fmt::format("unsupported map file version {} (this build reads versions {} and {})", version,
+                       map_file_version, map_file_version_with_provenance));
   }
   Header h;
   f = r.next_record(2);
@@ -351,6 +352,16 @@ Header read_header(MapFileReader& r) {
   }
   h.orientation = static_cast<int>(r.integer(f.token[1], -1, 1, "orientation"));
   if (h.orientation == 0) r.fail("orientation must be 1 or -1");
+  if (version == map_file_version_with_provenance) {
+    const std::size_t entries = r.section_header("provenance");
+    for (std::size_t i = 0; i < entries; ++i) {
+      f = r.next_record(2);
+      if (!is_provenance_token(f.token[0]) || !is_provenance_token(f.token[1]))
+        r.fail("a provenance entry must be two tokens of printable ASCII");
+      if (!h.provenance.emplace(std::string(f.token[0]), std::string(f.token[1])).second)
+        r.fail(fmt::format("provenance entry '{}' appears twice", f.token[0]));
+    }
+  }
   return h;
 }
 
@@ -385,7 +396,7 @@ std::vector<Index> read_index_array(MapFileReader& r, std::string_view name) {
 }
 
 template <int d>
-PlMap<d> read_map_body(MapFileReader& r, int orientation) {
+PlMap<d> read_map_body(MapFileReader& r, int orientation, MapProvenance provenance) {
   auto domain = read_surface<d>(r, "domain");
   auto target = read_surface<d>(r, "target");
 
@@ -464,6 +475,7 @@ PlMap<d> read_map_body(MapFileReader& r, int orientation) {
   try {
     PlMap<d> map(std::move(domain), std::move(target), std::move(m));
     validate_map_structure(map);
+    map.set_provenance(std::move(provenance));
     return map;
   } catch (const InvalidMapError& e) {
     throw InvalidMapError(fmt::format("{}: {}", r.file(), e.what()));
@@ -496,8 +508,15 @@ std::uint64_t record_count(const PlMap<d>& map) {
 template <int d>
 void write_map(std::ostream& out, const PlMap<d>& map, const ProgressCallback& progress) {
   MapFileWriter w(out, progress, record_count(map));
-  w.text(fmt::format("{} {}\ndimension {}\norientation {}\n", map_file_magic, map_file_version, d,
+  // Version 1 where there is no provenance, so that older readers still read such maps.
+  const MapProvenance& provenance = map.provenance();
+  w.text(fmt::format("{} {}\ndimension {}\norientation {}\n", map_file_magic,
+                     provenance.empty() ? map_file_version : map_file_version_with_provenance, d,
                      map.data().orientation));
+  if (!provenance.empty()) {
+    w.text(fmt::format("provenance {}\n", provenance.size()));
+    for (const auto& [key, value] : provenance) w.text(fmt::format("{} {}\n", key, value));
+  }
   write_surface(w, map.domain(), "domain");
   write_surface(w, map.target(), "target");
   write_map_data(w, map.data());
@@ -527,8 +546,8 @@ AnyPlMap parse_map(std::string_view content, const std::string& source_name, con
   if (looks_like_binary_map(content)) return parse_binary_map(content, source_name, options);
   MapFileReader r(content, source_name, options.progress);
   const Header h = read_header(r);
-  if (h.dimension == 1) return read_map_body<1>(r, h.orientation);
-  return read_map_body<2>(r, h.orientation);
+  if (h.dimension == 1) return read_map_body<1>(r, h.orientation, h.provenance);
+  return read_map_body<2>(r, h.orientation, h.provenance);
 }
 
 AnyPlMap load_map(const std::filesystem::path& path, const MapReadOptions& options) {
@@ -557,7 +576,7 @@ PlMap<d> load_map(const std::filesystem::path& path, const MapReadOptions& optio
     throw ParseError(path.string(), "line 2",
                      fmt::format("the map has dimension {}, expected {}", h.dimension, d));
   }
-  return read_map_body<d>(r, h.orientation);
+  return read_map_body<d>(r, h.orientation, h.provenance);
 }
 
 template <int d>
@@ -577,7 +596,10 @@ PlMap<d> load_map(const std::filesystem::path& path, std::shared_ptr<const Surfa
   };
   refuse_if_other(map.domain(), *domain, "domain (S1)");
   refuse_if_other(map.target(), *target, "target (S2)");
-  return PlMap<d>(std::move(domain), std::move(target), std::move(map).release_data());
+  MapProvenance provenance = map.provenance();
+  PlMap<d> result(std::move(domain), std::move(target), std::move(map).release_data());
+  result.set_provenance(std::move(provenance));
+  return result;
 }
 
 int map_file_dimension(const std::filesystem::path& path) {

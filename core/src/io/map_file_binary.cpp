@@ -679,7 +679,7 @@ void read_map_arrays(const Container& c, MapArrayReader& r, std::uint64_t T, boo
 }
 
 template <int d>
-PlMap<d> read_map(const Container& c, int orientation, const MapReadOptions& options) {
+PlMap<d> read_map(const Container& c, int orientation, MapProvenance provenance, const MapReadOptions& options) {
   if (options.verify_checksums) c.verify_all_checksums(options.threads);
   MapArrayReader r(c, options);
   std::shared_ptr<const Surface<d>> domain, target;
@@ -714,6 +714,7 @@ PlMap<d> read_map(const Container& c, int orientation, const MapReadOptions& opt
       return PlMap<d>(std::move(domain), std::move(target), std::move(m));
     }();
     validate_map_structure(map, options.threads);
+    map.set_provenance(std::move(provenance));
     return map;
   } catch (const InvalidMapError& e) {
     throw InvalidMapError(fmt::format("{}: {}", c.file(), e.what()));
@@ -723,6 +724,7 @@ PlMap<d> read_map(const Container& c, int orientation, const MapReadOptions& opt
 struct TableHeader {
   int dimension = 0;
   int orientation = 0;
+  MapProvenance provenance;  // the optional key "provenance": an object of string values
 };
 
 TableHeader read_table_header(const nlohmann::json& toc, const std::string& file) {
@@ -741,6 +743,15 @@ TableHeader read_table_header(const nlohmann::json& toc, const std::string& file
   h.dimension = integer("dimension", 1, 2);
   h.orientation = integer("orientation", -1, 1);
   if (h.orientation == 0) throw ParseError(file, "table of contents", "'orientation' must be 1 or -1");
+  if (const auto p = toc.find("provenance"); p != toc.end()) {
+    if (!p->is_object()) throw ParseError(file, "table of contents", "'provenance' is not an object");
+    for (const auto& [key, value] : p->items()) {
+      if (!value.is_string() || !is_provenance_token(key) || !is_provenance_token(value.get_ref<const std::string&>()))
+        throw ParseError(file, "table of contents",
+                         "a 'provenance' entry is not a pair of tokens of printable ASCII");
+      h.provenance.emplace(key, value.get<std::string>());
+    }
+  }
   return h;
 }
 
@@ -761,15 +772,16 @@ void write_binary_map(std::ostream& out, const PlMap<d>& map, const MapWriteOpti
                         {"orientation", map.stored().orientation},
                         {"domain_fingerprint", fingerprint_hex(surface_fingerprint(map.domain()))},
                         {"target_fingerprint", fingerprint_hex(surface_fingerprint(map.target()))}};
+  if (!map.provenance().empty()) toc["provenance"] = map.provenance();
   const std::vector<OutArray> arrays = map_arrays(map, toc, options.threads);
   binary::write_container(out, std::move(toc), arrays, options.progress, options.threads);
 }
 
 AnyPlMap parse_binary_map(std::string_view content, const std::string& source_name, const MapReadOptions& options) {
   const Container c(content, source_name, options.verify_checksums);
-  const TableHeader h = read_table_header(c.toc(), source_name);
-  if (h.dimension == 1) return read_map<1>(c, h.orientation, options);
-  return read_map<2>(c, h.orientation, options);
+  TableHeader h = read_table_header(c.toc(), source_name);
+  if (h.dimension == 1) return read_map<1>(c, h.orientation, std::move(h.provenance), options);
+  return read_map<2>(c, h.orientation, std::move(h.provenance), options);
 }
 
 int binary_map_file_dimension(const std::filesystem::path& path) {

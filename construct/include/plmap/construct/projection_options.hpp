@@ -3,6 +3,7 @@
 /// ProjectionOptions: everything normal projection (project.hpp) can be told, with defaults.
 
 #include <plmap/core/progress.hpp>
+#include <plmap/core/projection_rules.hpp>
 
 #include <limits>
 #include <optional>
@@ -160,5 +161,13 @@ struct ProjectionOptions {
   /// Limits and slacks of the searches; see ProjectionSearchLimits.
   ProjectionSearchLimits search_limits = {};
 };
+
+/// The name of a normal check as ProjectionRules and the command line spell it.
+std::string_view to_string(TargetNormalCheck check);
+
+/// The acceptance rules these options give (their distance band, normal check and direction
+/// field) for surfaces of dimension d: what project<d>() records in the map it returns
+/// (PlMap::provenance), and what a ray check of the map applies unless told otherwise.
+ProjectionRules projection_rules(const ProjectionOptions& options, int dimension);
 
 }  // namespace plmap

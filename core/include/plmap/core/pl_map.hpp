@@ -21,6 +21,7 @@
 /// element's graph compared with the derivation once and keeps it where they differ, so
 /// data() gives back what it was handed. Segment maps (d = 1) store everything.
 
+#include <plmap/core/map_provenance.hpp>
 #include <plmap/core/node_type.hpp>
 #include <plmap/core/surface.hpp>
 #include <plmap/core/types.hpp>
@@ -204,6 +205,13 @@ class PlMap {
   /// them in stored()).
   const StoredGraph& stored_graph() const { return stored_graph_; }
 
+  /// How the map was made (map_provenance.hpp): empty unless its maker recorded something, as
+  /// normal projection records its acceptance rules (projection_rules.hpp). Saved and loaded with
+  /// the map in both file formats, and kept by copies and moves of the map.
+  const MapProvenance& provenance() const { return provenance_; }
+  /// Replaces the provenance; throws InvalidMapError if an entry is not a pair of tokens.
+  void set_provenance(MapProvenance provenance);
+
  private:
   /// The cheap structural checks of the arrays every map stores (sizes, ranges of the indices
   /// that queries dereference), and of the stored graph.
@@ -220,6 +228,7 @@ class PlMap {
   /// The stored arrays; the derived graph arrays are written into it once, under the flags.
   mutable MapData<d> data_;
   StoredGraph stored_graph_;
+  MapProvenance provenance_;
   struct DerivationFlags {
     std::once_flag region_neighbors, graph;
     // set after the call_once above, so that the walks' per-query check is one load

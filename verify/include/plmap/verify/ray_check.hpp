@@ -24,6 +24,7 @@
 /// sqrt(f (1 - f) / N)).
 
 #include <plmap/core/pl_map.hpp>
+#include <plmap/core/projection_rules.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -31,6 +32,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -40,9 +43,9 @@ namespace plmap {
 /// dependency of verify/, so the rule is named again here).
 enum class RayNormalCheck { none, facing, aligned };
 
-/// The acceptance rules of the projection that produced the map, and the sample. The map
-/// file does not record how it was made, so the caller states the rules; the defaults are
-/// ProjectionOptions' defaults.
+/// The acceptance rules of the projection that produced the map, and the sample; the defaults
+/// are ProjectionOptions' defaults. A map made by project() records its rules
+/// (core/projection_rules.hpp): apply_recorded_rules sets them here.
 template <int d>
 struct RayCheckOptions {
   /// Direction per S1 vertex (e.g. averaged_vertex_normals of S1, the projection's default).
@@ -113,10 +116,10 @@ enum class ExtraReason {
   /// Anything else. A defect.
   unexplained,
   /// Xi(x) lies on the ray (within half an edge length of the S2 element it is on), but behind
-  /// S1 (mu < 0) while the check does not allow negative distances. The map file does not record
-  /// the options the map was projected with; a map projected with --allow-negative shows this
-  /// when it is checked without. Counted as a defect: the check cannot tell a wrong map from
-  /// wrong options.
+  /// S1 (mu < 0) while the check does not allow negative distances: a map projected with
+  /// --allow-negative shows this when it is checked under other rules than those it records
+  /// (apply_recorded_rules). Counted as a defect: the check cannot tell a wrong map from wrong
+  /// options.
   behind_domain,
   /// Xi(x) lies on the ray, beyond the check's distance limit (as behind_domain, for
   /// --max-distance).
@@ -207,6 +210,21 @@ struct RayCheckReport {
            extra_by_reason[static_cast<std::size_t>(ExtraReason::against_normal_check)];
   }
 };
+
+/// The name of a normal check as ProjectionRules spells it, and back (nullopt for another name).
+std::string_view to_string(RayNormalCheck check);
+std::optional<RayNormalCheck> ray_normal_check_from_name(std::string_view name);
+
+/// Sets the acceptance rules of `options` (max_distance, max_distance_is_relative,
+/// allow_negative_distance, normal_check) to those `map` records (project() records them in
+/// PlMap::provenance) and returns them; for a map without recorded rules leaves `options` as it
+/// is and returns nullopt. The directions stay the caller's: where the returned rules have a
+/// directions_fingerprint, the projection ran along directions given to it, and the same ones
+/// belong in options.directions (core's directions_fingerprint of the values given to project()
+/// tells them apart). Throws InvalidMapError if the recorded
+/// rules cannot be read.
+template <int d>
+std::optional<ProjectionRules> apply_recorded_rules(const PlMap<d>& map, RayCheckOptions<d>& options);
 
 /// Runs the ray check. Throws plmap::Error if the directions do not fit S1 or max_distance is
 /// negative.

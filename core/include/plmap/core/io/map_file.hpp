@@ -28,8 +28,12 @@ namespace plmap {
 
 /// The first token of every map file.
 inline constexpr std::string_view map_file_magic = "plmap-map";
-/// The format version this build writes and the only one it reads.
+/// The format version of a map without provenance (PlMap::provenance), as every version of plmap
+/// reads it.
 inline constexpr int map_file_version = 1;
+/// The version of a map with provenance: version 1 with a section `provenance` after the
+/// orientation. This build reads both and writes the lower one that holds the map.
+inline constexpr int map_file_version_with_provenance = 2;
 
 /// A map of either dimension, as returned by the dimension-agnostic loader.
 using AnyPlMap = std::variant<PlMap<1>, PlMap<2>>;

@@ -1,0 +1,80 @@
+// project() records its acceptance rules in the map (core/projection_rules.hpp), on both of its
+// return paths (with and without renumbered copies), and the ray check applies them by itself
+// (apply_recorded_rules): a map with area behind S1 is checked without being told so.
+#include "projection_fixtures.hpp"
+
+#include <plmap/construct/direction_field.hpp>
+#include <plmap/construct/project.hpp>
+#include <plmap/verify/ray_check.hpp>
+
+#include <gtest/gtest.h>
+
+using namespace plmap;
+using namespace plmap::test;
+
+namespace {
+
+/// The unit square, and above it a plane tilted about the line x = 0.5, so that its half
+/// x < 0.5 lies behind S1 (z < 0).
+std::shared_ptr<const Surface<2>> tilted_plane() {
+  auto flat = grid(9, 9, -0.1, 1.1, -0.1, 1.1, 0.0, true, 0.2);
+  std::vector<WorldPoint<2>> v = flat->vertices();
+  for (auto& p : v) p.z() = 0.3 * (p.x() - 0.5);
+  return std::make_shared<const Surface<2>>(std::move(v), flat->elements());
+}
+
+}  // namespace
+
+TEST(ProjectRules, TheMapRecordsTheRulesItWasProjectedWith) {
+  auto s1 = grid(6, 6, 0.0, 1.0, 0.0, 1.0, 0.0, false, 0.2);
+  auto s2 = tilted_plane();
+  for (const SpatialRenumbering renumbering : {SpatialRenumbering::never, SpatialRenumbering::always}) {
+    ProjectionOptions o{.max_distance = 0.5,
+                        .max_distance_is_relative = true,
+                        .allow_negative_distance = true,
+                        .normal_check = TargetNormalCheck::facing};
+    o.renumbering = renumbering;
+    const auto r = project<2>(s1, s2, o);
+    const std::optional<ProjectionRules> recorded = recorded_projection_rules(r.map.provenance());
+    ASSERT_TRUE(recorded.has_value()) << to_string(renumbering);
+    EXPECT_EQ(*recorded, projection_rules(o, 2));
+    EXPECT_EQ(recorded->max_distance, 0.5);
+    EXPECT_TRUE(recorded->max_distance_is_relative && recorded->allow_negative_distance);
+    EXPECT_EQ(recorded->normal_check, "facing");
+    EXPECT_FALSE(recorded->directions_fingerprint.has_value());
+    EXPECT_EQ(r.map.provenance().at("made_by"), "project");
+
+    o.directions = constant_directions(*s1, WorldPoint<2>(0.1, 0, 1));
+    const auto given = project<2>(s1, s2, o);
+    const std::optional<ProjectionRules> along = recorded_projection_rules(given.map.provenance());
+    ASSERT_TRUE(along.has_value() && along->directions_fingerprint.has_value());
+    EXPECT_EQ(*along->directions_fingerprint, directions_fingerprint(o.directions, 3));
+    EXPECT_NE(*along->directions_fingerprint,
+              directions_fingerprint(constant_directions(*s1, WorldPoint<2>(0.1, 0, 1.5)), 3));
+  }
+}
+
+TEST(ProjectRules, TheRayCheckAppliesTheRecordedRules) {
+  auto s1 = grid(8, 8, 0.0, 1.0, 0.0, 1.0, 0.0, false, 0.2);
+  const auto r = project<2>(s1, tilted_plane(), {.allow_negative_distance = true});
+  ASSERT_GT(r.measures.covered_domain, 0.99);
+  RayCheckOptions<2> o;
+  o.directions = averaged_vertex_normals(*s1);
+  o.samples = 4000;
+  // under the default rules the half behind S1 is area the rays do not accept
+  const RayCheckReport<2> strict = check_against_rays(r.map, o);
+  EXPECT_GT(strict.extra_by_reason[static_cast<std::size_t>(ExtraReason::behind_domain)], 1000u);
+  const std::optional<ProjectionRules> applied = apply_recorded_rules(r.map, o);
+  ASSERT_TRUE(applied.has_value());
+  EXPECT_TRUE(o.allow_negative_distance);
+  const RayCheckReport<2> same = check_against_rays(r.map, o);
+  EXPECT_EQ(same.extra, 0u);
+  EXPECT_EQ(same.missed, 0u);
+
+  // a map without recorded rules leaves the options as they are
+  PlMap<2> plain = r.map;
+  plain.set_provenance({});
+  RayCheckOptions<2> untouched;
+  EXPECT_FALSE(apply_recorded_rules(plain, untouched).has_value());
+  EXPECT_FALSE(untouched.allow_negative_distance);
+}
