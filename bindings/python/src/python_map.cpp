@@ -308,6 +308,8 @@ py::object map_summary(const PlMap<d>& map, bool quality) {
     j["covered_target_measure"] = covered.target;
     j["orientation"] = map.stored().orientation;
     j["memory_bytes"] = map.memory_bytes();
+    // how the map was made (projection records its acceptance rules), if its maker said
+    if (!map.provenance().empty()) j["provenance"] = map.provenance();
     if (quality) j["quality"] = to_json(compute_quality(map));
   }
   return json_to_python(j);
@@ -412,7 +414,8 @@ void bind_map(py::module_& m) {
       .def("info", [](const PyMap& pm, bool quality) {
         return visit_map(pm, [&](const auto& map) { return map_summary(map, quality); });
       }, py::kw_only(), py::arg("quality") = true,
-         "Counts (surfaces, nodes by type, regions), covered measures, orientation, memory and "
+         "Counts (surfaces, nodes by type, regions), covered measures, orientation, memory, the "
+         "provenance if the map has one (project() records its acceptance rules there) and "
          "(with quality=True) the distribution of kappa, as a dict.")
       .def("__repr__", [](const PyMap& pm) {
         return visit_map(pm, [&](const auto& map) {

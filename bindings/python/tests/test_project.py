@@ -57,6 +57,9 @@ def test_curves_project_and_their_regions_sum_to_the_overlap_length():
     r = m.regions()
     assert m.dimension == 1
     assert r["domain_local"].shape[1:] == (2, 1)
+    # the map records the rules it was projected with (docs/map-format.md, "Provenance")
+    assert m.info(quality=False)["provenance"]["projection.allow_negative_distance"] == "true"
+    assert m.info(quality=False)["provenance"]["made_by"] == "project"
     assert r["domain_measure"].sum() == pytest.approx(0.75, rel=1e-12)
     assert r["target_measure"].sum() == pytest.approx(0.75, rel=1e-12)
 
