@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -73,6 +74,20 @@ TEST(MapProvenance, BinaryFilesKeepItAndCopiesToo) {
   EXPECT_EQ(copy.provenance(), map.provenance());
   const PlMap<2> without = std::get<PlMap<2>>(parse_map(binary_of(test_maps::builder_square_flip()), "q.plmapb"));
   EXPECT_TRUE(without.provenance().empty());
+}
+
+TEST(MapProvenance, LoadingAgainstGivenSurfacesKeepsIt) {
+  PlMap<2> map = test_maps::builder_square_flip();
+  map.set_provenance(some_provenance());
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("plmap_provenance_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  std::filesystem::create_directories(dir);
+  for (const char* name : {"m.plmap", "m.plmapb"}) {
+    save_map(dir / name, map);
+    const PlMap<2> back = load_map<2>(dir / name, map.domain_ptr(), map.target_ptr());
+    EXPECT_EQ(back.provenance(), map.provenance()) << name;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(MapProvenance, EntriesMustBeTokensOfPrintableAscii) {
