@@ -50,7 +50,7 @@ struct CheckOptions {
 };
 
 RayNormalCheck ray_normal_check_from(const std::string& name) {
-  if (const auto check = ray_normal_check_from_name(name)) return *check;
+  if (const auto check = normal_check_from_name(name)) return *check;
   throw Error(fmt::format("unknown normal check '{}' (valid: none, facing, aligned)", name));
 }
 

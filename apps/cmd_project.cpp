@@ -35,9 +35,7 @@ struct ProjectCommand {
 };
 
 TargetNormalCheck normal_check_from(const std::string& name) {
-  if (name == "none") return TargetNormalCheck::none;
-  if (name == "facing") return TargetNormalCheck::facing;
-  if (name == "aligned") return TargetNormalCheck::aligned;
+  if (const auto check = normal_check_from_name(name)) return *check;
   throw Error(fmt::format("unknown normal check '{}' (valid: none, facing, aligned)", name));
 }
 

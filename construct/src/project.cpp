@@ -312,21 +312,12 @@ ProjectionResult<d> project(std::shared_ptr<const Surface<d>> s1, std::shared_pt
   return result;
 }
 
-std::string_view to_string(TargetNormalCheck check) {
-  switch (check) {
-    case TargetNormalCheck::none: return "none";
-    case TargetNormalCheck::facing: return "facing";
-    case TargetNormalCheck::aligned: return "aligned";
-  }
-  return "none";
-}
-
 ProjectionRules projection_rules(const ProjectionOptions& options, int dimension) {
   ProjectionRules rules;
   rules.max_distance = options.max_distance;
   rules.max_distance_is_relative = options.max_distance_is_relative;
   rules.allow_negative_distance = options.allow_negative_distance;
-  rules.normal_check = std::string(to_string(options.normal_check));
+  rules.normal_check = options.normal_check;
   if (!options.directions.empty())
     rules.directions_fingerprint = directions_fingerprint(options.directions, dimension + 1);
   return rules;

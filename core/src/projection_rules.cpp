@@ -25,8 +25,6 @@ constexpr std::string_view key_directions = "projection.directions";
 constexpr std::string_view averaged_normals = "averaged-normals";
 constexpr std::string_view given_prefix = "given:";
 
-bool is_normal_check_name(std::string_view name) { return name == "none" || name == "facing" || name == "aligned"; }
-
 std::string_view boolean_text(bool b) { return b ? "true" : "false"; }
 
 [[noreturn]] void unreadable(std::string_view key, std::string_view value, std::string_view expected) {
@@ -48,15 +46,28 @@ bool boolean_entry(const MapProvenance& p, std::string_view key) {
 
 }  // namespace
 
+std::string_view to_string(NormalCheck check) {
+  switch (check) {
+    case NormalCheck::none: return "none";
+    case NormalCheck::facing: return "facing";
+    case NormalCheck::aligned: return "aligned";
+  }
+  return "none";
+}
+
+std::optional<NormalCheck> normal_check_from_name(std::string_view name) {
+  for (const NormalCheck check : {NormalCheck::none, NormalCheck::facing, NormalCheck::aligned})
+    if (to_string(check) == name) return check;
+  return std::nullopt;
+}
+
 void record_projection_rules(const ProjectionRules& rules, MapProvenance& provenance) {
-  if (!is_normal_check_name(rules.normal_check))
-    throw Error(fmt::format("unknown normal check '{}' (valid: none, facing, aligned)", rules.normal_check));
   provenance[std::string(provenance_made_by)] = made_by_project;
   // the shortest text that reads back as the same double ("inf" without a limit)
   provenance[std::string(key_max_distance)] = fmt::format("{}", rules.max_distance);
   provenance[std::string(key_relative)] = boolean_text(rules.max_distance_is_relative);
   provenance[std::string(key_allow_negative)] = boolean_text(rules.allow_negative_distance);
-  provenance[std::string(key_normal_check)] = rules.normal_check;
+  provenance[std::string(key_normal_check)] = to_string(rules.normal_check);
   provenance[std::string(key_directions)] = directions_description(rules);
 }
 
@@ -73,8 +84,12 @@ std::optional<ProjectionRules> recorded_projection_rules(const MapProvenance& pr
   }
   rules.max_distance_is_relative = boolean_entry(provenance, key_relative);
   rules.allow_negative_distance = boolean_entry(provenance, key_allow_negative);
-  rules.normal_check = entry(provenance, key_normal_check);
-  if (!is_normal_check_name(rules.normal_check)) unreadable(key_normal_check, rules.normal_check, "none, facing or aligned");
+  {
+    const std::string& value = entry(provenance, key_normal_check);
+    const std::optional<NormalCheck> check = normal_check_from_name(value);
+    if (!check) unreadable(key_normal_check, value, "none, facing or aligned");
+    rules.normal_check = *check;
+  }
   const std::string& directions = entry(provenance, key_directions);
   if (directions != averaged_normals) {
     const std::string_view hex = std::string_view(directions).substr(std::min(directions.size(), given_prefix.size()));

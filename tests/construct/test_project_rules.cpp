@@ -40,7 +40,7 @@ TEST(ProjectRules, TheMapRecordsTheRulesItWasProjectedWith) {
     EXPECT_EQ(*recorded, projection_rules(o, 2));
     EXPECT_EQ(recorded->max_distance, 0.5);
     EXPECT_TRUE(recorded->max_distance_is_relative && recorded->allow_negative_distance);
-    EXPECT_EQ(recorded->normal_check, "facing");
+    EXPECT_EQ(recorded->normal_check, NormalCheck::facing);
     EXPECT_FALSE(recorded->directions_fingerprint.has_value());
     EXPECT_EQ(r.map.provenance().at("made_by"), "project");
 

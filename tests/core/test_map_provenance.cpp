@@ -25,7 +25,7 @@ MapProvenance some_provenance() {
   ProjectionRules rules;
   rules.max_distance = 0.25;
   rules.allow_negative_distance = true;
-  rules.normal_check = "facing";
+  rules.normal_check = NormalCheck::facing;
   MapProvenance p;
   record_projection_rules(rules, p);
   p["note"] = "made-by-a-test";
@@ -133,7 +133,7 @@ TEST(ProjectionRules, RecordedRulesReadBackEqual) {
     rules.max_distance = limit;
     rules.max_distance_is_relative = limit < 1.0;
     rules.allow_negative_distance = limit > 1.0;
-    rules.normal_check = limit > 1.0 ? "aligned" : "none";
+    rules.normal_check = limit > 1.0 ? NormalCheck::aligned : NormalCheck::none;
     if (limit == 0.1) rules.directions_fingerprint = directions_fingerprint(std::vector<double>{0.0, 0.0, 1.0}, 3);
     MapProvenance p{{"other", "kept"}};
     record_projection_rules(rules, p);
@@ -144,10 +144,9 @@ TEST(ProjectionRules, RecordedRulesReadBackEqual) {
   }
   EXPECT_FALSE(recorded_projection_rules({}).has_value());
   EXPECT_FALSE(recorded_projection_rules({{"made_by", "simplify"}}).has_value());
-  ProjectionRules bad;
-  bad.normal_check = "sideways";
-  MapProvenance p;
-  EXPECT_THROW(record_projection_rules(bad, p), Error);
+  for (const NormalCheck check : {NormalCheck::none, NormalCheck::facing, NormalCheck::aligned})
+    EXPECT_EQ(normal_check_from_name(to_string(check)), check);
+  EXPECT_FALSE(normal_check_from_name("sideways").has_value());
 }
 
 TEST(ProjectionRules, UnreadableRecordsNameTheEntry) {

@@ -4,21 +4,6 @@
 
 namespace plmap {
 
-std::string_view to_string(RayNormalCheck check) {
-  switch (check) {
-    case RayNormalCheck::none: return "none";
-    case RayNormalCheck::facing: return "facing";
-    case RayNormalCheck::aligned: return "aligned";
-  }
-  return "none";
-}
-
-std::optional<RayNormalCheck> ray_normal_check_from_name(std::string_view name) {
-  for (const RayNormalCheck check : {RayNormalCheck::none, RayNormalCheck::facing, RayNormalCheck::aligned})
-    if (to_string(check) == name) return check;
-  return std::nullopt;
-}
-
 template <int d>
 std::optional<ProjectionRules> apply_recorded_rules(const PlMap<d>& map, RayCheckOptions<d>& options) {
   std::optional<ProjectionRules> rules = recorded_projection_rules(map.provenance());
@@ -26,7 +11,7 @@ std::optional<ProjectionRules> apply_recorded_rules(const PlMap<d>& map, RayChec
   options.max_distance = rules->max_distance;
   options.max_distance_is_relative = rules->max_distance_is_relative;
   options.allow_negative_distance = rules->allow_negative_distance;
-  options.normal_check = *ray_normal_check_from_name(rules->normal_check);  // validated when read
+  options.normal_check = rules->normal_check;
   return rules;
 }
 

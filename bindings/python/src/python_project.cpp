@@ -16,10 +16,8 @@ namespace plmap::python {
 
 namespace {
 
-TargetNormalCheck normal_check_from_name(const std::string& name) {
-  if (name == "none") return TargetNormalCheck::none;
-  if (name == "facing") return TargetNormalCheck::facing;
-  if (name == "aligned") return TargetNormalCheck::aligned;
+TargetNormalCheck normal_check_named(const std::string& name) {
+  if (const auto check = normal_check_from_name(name)) return *check;
   throw py::value_error("project(): normal_check must be 'none', 'facing' or 'aligned', got '" + name + "'");
 }
 
@@ -47,7 +45,7 @@ const KeywordFields<ProjectCall>& projection_fields() {
       {"max_distance_is_relative", option_field(&O::max_distance_is_relative, "a bool")},
       {"allow_negative_distance", option_field(&O::allow_negative_distance, "a bool")},
       {"normal_check", {"a str ('none', 'facing' or 'aligned')", [](ProjectCall& c, py::handle v) {
-         c.options.normal_check = normal_check_from_name(py::cast<std::string>(v));
+         c.options.normal_check = normal_check_named(py::cast<std::string>(v));
        }}},
       {"threads", option_field(&O::threads, "a non-negative int (0: all cores)")},
       {"search_seeds", option_field(&O::search_seeds, "an int")},

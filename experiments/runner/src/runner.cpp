@@ -148,10 +148,7 @@ class Pipeline {
       options.max_distance_is_relative = p.boolean("relative_distance");
     }
     options.allow_negative_distance = p.boolean("allow_negative_distance");
-    const std::string& check = p.text("normal_check");
-    options.normal_check = check == "facing" ? TargetNormalCheck::facing
-                           : check == "aligned" ? TargetNormalCheck::aligned
-                                                : TargetNormalCheck::none;
+    options.normal_check = *normal_check_from_name(p.text("normal_check"));  // the schema checked it
     options.threads = unsigned(p.integer("threads"));
     options.renumbering = *spatial_renumbering_from_name(p.text("renumbering"));  // the schema checked it
     const auto start = std::chrono::steady_clock::now();

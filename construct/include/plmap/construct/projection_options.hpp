@@ -13,15 +13,9 @@
 
 namespace plmap {
 
-/// Which S2 points may be the image of an S1 point, judged by the S2 vertex normal n2 at the
-/// image against the projection direction nu at the preimage (paper section 3.2 compares n2 with
-/// w = q - p; w = mu nu, and comparing nu itself keeps the test meaningful for mu = 0 (S1 = S2)
-/// and for negative mu (penetrating contact)).
-enum class TargetNormalCheck {
-  none,     ///< accept any orientation (default)
-  facing,   ///< <nu, n2> < 0: the paper's check, for contact pairs whose normals face each other
-  aligned,  ///< <nu, n2> > 0: both surfaces oriented the same way (offset or remeshed copies)
-};
+/// Which S2 points may be the image of an S1 point (core/projection_rules.hpp: none, facing,
+/// aligned), under the name the projection's options have always used.
+using TargetNormalCheck = NormalCheck;
 
 /// Whether normal projection works on copies of S1 and S2 renumbered along a space-filling curve
 /// (docs/projection.md, "The order of the input"). The map and the report are always in the
@@ -161,9 +155,6 @@ struct ProjectionOptions {
   /// Limits and slacks of the searches; see ProjectionSearchLimits.
   ProjectionSearchLimits search_limits = {};
 };
-
-/// The name of a normal check as ProjectionRules and the command line spell it.
-std::string_view to_string(TargetNormalCheck check);
 
 /// The acceptance rules these options give (their distance band, normal check and direction
 /// field) for surfaces of dimension d: what project<d>() records in the map it returns

@@ -16,6 +16,22 @@
 
 namespace plmap {
 
+/// Which S2 points may be the image of an S1 point, judged by the S2 vertex normal n2 at the
+/// image against the projection direction nu at the preimage (paper section 3.2 compares n2 with
+/// w = q - p; w = mu nu, and comparing nu itself keeps the test meaningful for mu = 0 (S1 = S2)
+/// and for negative mu (penetrating contact)). ProjectionOptions::normal_check (as
+/// TargetNormalCheck) and RayCheckOptions::normal_check (as RayNormalCheck) take it.
+enum class NormalCheck {
+  none,     ///< accept any orientation (default)
+  facing,   ///< <nu, n2> < 0: the paper's check, for contact pairs whose normals face each other
+  aligned,  ///< <nu, n2> > 0: both surfaces oriented the same way (offset or remeshed copies)
+};
+
+/// "none", "facing", "aligned": the names of the command line and of the recorded rules.
+std::string_view to_string(NormalCheck check);
+/// The check of that name, or nullopt.
+std::optional<NormalCheck> normal_check_from_name(std::string_view name);
+
 struct ProjectionRules {
   /// Largest |mu| of an accepted hit (infinity: no limit).
   double max_distance = std::numeric_limits<double>::infinity();
@@ -23,8 +39,7 @@ struct ProjectionRules {
   bool max_distance_is_relative = false;
   /// Hits behind S1 (mu < 0) count too.
   bool allow_negative_distance = false;
-  /// "none", "facing" or "aligned" (ProjectionOptions::normal_check, RayCheckOptions::normal_check).
-  std::string normal_check = "none";
+  NormalCheck normal_check = NormalCheck::none;
   /// The fingerprint of the direction field given to the projection (directions_fingerprint),
   /// or nullopt for the default field, S1's averaged vertex normals.
   std::optional<std::uint64_t> directions_fingerprint;
@@ -37,7 +52,6 @@ struct ProjectionRules {
 inline constexpr std::string_view provenance_made_by = "made_by";
 
 /// Writes the rules into `provenance` (keys "made_by" and "projection.*"; other keys stay).
-/// Throws Error if normal_check is not one of the three names.
 void record_projection_rules(const ProjectionRules& rules, MapProvenance& provenance);
 
 /// The rules recorded by record_projection_rules, or nullopt if `provenance` holds none (a map

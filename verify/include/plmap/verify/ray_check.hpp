@@ -39,9 +39,9 @@
 
 namespace plmap {
 
-/// The projection's normal check (ProjectionOptions::normal_check; construct/ is not a
-/// dependency of verify/, so the rule is named again here).
-enum class RayNormalCheck { none, facing, aligned };
+/// The projection's normal check (core/projection_rules.hpp), under the name the ray check's
+/// options have always used.
+using RayNormalCheck = NormalCheck;
 
 /// The acceptance rules of the projection that produced the map, and the sample; the defaults
 /// are ProjectionOptions' defaults. A map made by project() records its rules
@@ -210,10 +210,6 @@ struct RayCheckReport {
            extra_by_reason[static_cast<std::size_t>(ExtraReason::against_normal_check)];
   }
 };
-
-/// The name of a normal check as ProjectionRules spells it, and back (nullopt for another name).
-std::string_view to_string(RayNormalCheck check);
-std::optional<RayNormalCheck> ray_normal_check_from_name(std::string_view name);
 
 /// Sets the acceptance rules of `options` (max_distance, max_distance_is_relative,
 /// allow_negative_distance, normal_check) to those `map` records (project() records them in
