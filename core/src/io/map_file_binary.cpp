@@ -1,6 +1,7 @@
 #include "plmap/core/io/map_file_binary.hpp"
 
 #include "binary_container.hpp"
+#include "map_file_binary_table.hpp"
 #include "region_map_derivation.hpp"
 #include "plmap/core/errors.hpp"
 #include "plmap/core/map_validation.hpp"
@@ -721,40 +722,6 @@ PlMap<d> read_map(const Container& c, int orientation, MapProvenance provenance,
   }
 }
 
-struct TableHeader {
-  int dimension = 0;
-  int orientation = 0;
-  MapProvenance provenance;  // the optional key "provenance": an object of string values
-};
-
-TableHeader read_table_header(const nlohmann::json& toc, const std::string& file) {
-  auto integer = [&](const char* key, int lo, int hi) {
-    const auto it = toc.find(key);
-    if (it == toc.end() || !it->is_number_integer() || *it < lo || *it > hi) {
-      throw ParseError(file, "table of contents", fmt::format("'{}' is missing or not in [{}, {}]", key, lo, hi));
-    }
-    return it->get<int>();
-  };
-  const auto format = toc.find("format");
-  if (format == toc.end() || *format != "plmap-map") {
-    throw ParseError(file, "table of contents", "'format' is not \"plmap-map\"");
-  }
-  TableHeader h;
-  h.dimension = integer("dimension", 1, 2);
-  h.orientation = integer("orientation", -1, 1);
-  if (h.orientation == 0) throw ParseError(file, "table of contents", "'orientation' must be 1 or -1");
-  if (const auto p = toc.find("provenance"); p != toc.end()) {
-    if (!p->is_object()) throw ParseError(file, "table of contents", "'provenance' is not an object");
-    for (const auto& [key, value] : p->items()) {
-      if (!value.is_string() || !is_provenance_token(key) || !is_provenance_token(value.get_ref<const std::string&>()))
-        throw ParseError(file, "table of contents",
-                         "a 'provenance' entry is not a pair of tokens of printable ASCII");
-      h.provenance.emplace(key, value.get<std::string>());
-    }
-  }
-  return h;
-}
-
 }  // namespace
 
 bool has_binary_map_extension(const std::filesystem::path& path) {
@@ -767,19 +734,14 @@ bool looks_like_binary_map(std::string_view head) { return head.starts_with(bina
 
 template <int d>
 void write_binary_map(std::ostream& out, const PlMap<d>& map, const MapWriteOptions& options) {
-  nlohmann::json toc = {{"format", "plmap-map"},
-                        {"dimension", d},
-                        {"orientation", map.stored().orientation},
-                        {"domain_fingerprint", fingerprint_hex(surface_fingerprint(map.domain()))},
-                        {"target_fingerprint", fingerprint_hex(surface_fingerprint(map.target()))}};
-  if (!map.provenance().empty()) toc["provenance"] = map.provenance();
+  nlohmann::json toc = binary::map_table_header(map);
   const std::vector<OutArray> arrays = map_arrays(map, toc, options.threads);
   binary::write_container(out, std::move(toc), arrays, options.progress, options.threads);
 }
 
 AnyPlMap parse_binary_map(std::string_view content, const std::string& source_name, const MapReadOptions& options) {
   const Container c(content, source_name, options.verify_checksums);
-  TableHeader h = read_table_header(c.toc(), source_name);
+  binary::MapTableHeader h = binary::read_map_table_header(c.toc(), source_name);
   if (h.dimension == 1) return read_map<1>(c, h.orientation, std::move(h.provenance), options);
   return read_map<2>(c, h.orientation, std::move(h.provenance), options);
 }
@@ -793,7 +755,7 @@ int binary_map_file_dimension(const std::filesystem::path& path) {
   head.resize(binary::header_bytes + table);
   in.read(head.data() + binary::header_bytes, static_cast<std::streamsize>(table));
   head.resize(binary::header_bytes + static_cast<std::size_t>(in.gcount()));
-  return read_table_header(Container::table_only(head, path.string()), path.string()).dimension;
+  return binary::read_map_table_header(Container::table_only(head, path.string()), path.string()).dimension;
 }
 
 template void write_binary_map<1>(std::ostream&, const PlMap<1>&, const MapWriteOptions&);
