@@ -61,6 +61,7 @@ std::string choose_rules(const PlMap<d>& map, const CheckOptions& o, std::span<c
                          RayCheckOptions<d>& options) {
   const std::optional<ProjectionRules> recorded =
       o.ignore_recorded_rules ? std::nullopt : apply_recorded_rules(map, options);
+  const RayCheckOptions<d> as_recorded = options;
   if (!recorded || o.max_distance_given) options.max_distance = o.max_distance;
   if (!recorded || o.relative_distance) options.max_distance_is_relative = o.relative_distance;
   if (!recorded || o.allow_negative) options.allow_negative_distance = o.allow_negative;
@@ -78,7 +79,11 @@ std::string choose_rules(const PlMap<d>& map, const CheckOptions& o, std::span<c
       std::cerr << "warning: the directions of " << o.directions_file << " are not those " << o.file
                 << " was projected along (" << directions_description(*recorded) << ")\n";
   }
-  const bool overridden = o.max_distance_given || o.relative_distance || o.allow_negative || o.normal_check_given;
+  // Only an option that changes a rule counts: repeating the recorded value is no override.
+  const bool overridden = options.max_distance != as_recorded.max_distance ||
+                          options.max_distance_is_relative != as_recorded.max_distance_is_relative ||
+                          options.allow_negative_distance != as_recorded.allow_negative_distance ||
+                          options.normal_check != as_recorded.normal_check;
   if (!recorded) return o.ignore_recorded_rules ? "command line" : "command line (the map records none)";
   return overridden ? "map, with the command line's" : "map";
 }

@@ -136,6 +136,10 @@ def check_against_rays_under_the_recorded_rules():
            and rays["rules"]["allow_negative_distance"] is True, rays["rules"])
     expect(j["ok"] is False and rays["extra"]["samples"] == 1000, rays["extra"])
     expect(rays["extra"]["by_reason"]["against_normal_check"]["samples"] > 300, rays["extra"])
+    # repeating a recorded rule on the command line changes nothing, and is not called an override
+    j = run_json("check", "rules.plmapb", "--against-rays", 300, "--allow-negative", "--normal-check", "facing",
+                 "--json")
+    expect(j["ok"] is True and j["against_rays"]["rules"]["from"] == "map", j["against_rays"]["rules"])
     # a map made otherwise records nothing and is checked under the command line's rules
     run("build", "identity", "rules_up.off", "-o", "rules_id.plmap")
     expect(text_of("rules_id.plmap").startswith("plmap-map 1\n"), text_of("rules_id.plmap")[:40])
