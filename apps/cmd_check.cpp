@@ -213,7 +213,7 @@ void register_check(CLI::App& app, Action& action) {
                   "Report regions whose condition number kappa exceeds this as violations")
       ->check(positive_number);
   cmd->add_option("--max-reported", o->max_reported,
-                  "Violations listed per rule (further ones are only counted)")
+                  "Violations listed per rule, and examples per class of the ray check (further ones are only counted)")
       ->capture_default_str();
   CLI::Option* against_rays =
       cmd->add_option("--against-rays", o->ray_samples,

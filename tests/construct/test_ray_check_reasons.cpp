@@ -206,6 +206,24 @@ TEST(RayCheckReasons, ImagesMoreThanAnEdgeFromTheHitAreCounted) {
   EXPECT_NEAR(by(MissedReason::farther_sheet), 0.5, 0.05);
   EXPECT_NEAR(by(MissedReason::not_covered), 0.5, 0.05);
   EXPECT_EQ(r.in_domain_defects(), r.samples);
+  // The defects are listed (up to max_listed), each with Xi(x)'s element, which is not the one
+  // hit, and its error: the tilt puts Xi(x) 0.5 from the hit, 2.93 times the mean edge length
+  // (0.15, 0.15, 0.15 sqrt 2) of an S2 element.
+  ASSERT_EQ(r.in_domain_defect_examples.size(), o.max_listed);
+  for (const RaySample<2>& s : r.in_domain_defect_examples) {
+    EXPECT_TRUE(s.reason == MissedReason::farther_sheet || s.reason == MissedReason::not_covered);
+    EXPECT_NE(s.image_element, s.hit_element);
+    EXPECT_NEAR(s.image_error, 0.5 / ((0.3 + 0.15 * std::sqrt(2.0)) / 3.0), 1e-6);
+    EXPECT_LT(s.element, s1->element_count());
+    EXPECT_EQ(s.point.z(), 0.0);  // on S1
+  }
+  const nlohmann::json listed = to_json(r)["image_error_relative_to_edge"]["examples"];
+  ASSERT_EQ(listed.size(), o.max_listed);
+  EXPECT_EQ(listed[0]["image_element"], r.in_domain_defect_examples[0].image_element);
+  EXPECT_EQ(listed[0]["error"], r.in_domain_defect_examples[0].image_error);
+  // none is listed where there is no defect
+  o.directions = directions_from_values(*s1, po.directions);
+  EXPECT_TRUE(check_against_rays(map, o).in_domain_defect_examples.empty());
 }
 
 // The next two are the interpolation error at S2's boundary, which the property

@@ -249,7 +249,14 @@ class RayChecker {
       errors.push_back((lifted<d>(e.world) - hit->point).norm() / mean_edge_length(s2_, hit->element));
       if (errors.back() > 1.0) {
         ++report.error_above_one_edge;
-        ++report.above_one_by_reason[static_cast<std::size_t>(classify_missed(x, *hit))];
+        const MissedReason reason = classify_missed(x, *hit);
+        ++report.above_one_by_reason[static_cast<std::size_t>(reason)];
+        if (reason != MissedReason::nearer_sheet && report.in_domain_defect_examples.size() < o_.max_listed) {
+          RaySample<d> s{t, x, hit->element, hit->mu, reason};
+          s.image_element = e.image.element;
+          s.image_error = errors.back();
+          report.in_domain_defect_examples.push_back(s);
+        }
       }
     } else if (region != invalid_index) {
       ++report.extra;
@@ -603,6 +610,10 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
       if (s.hit_element != invalid_index) e[with_reason ? "hit_element" : "image_element"] = s.hit_element;
       if (with_reason) e["mu"] = s.mu;
       e["reason"] = with_reason ? std::string(to_string(s.reason)) : std::string(to_string(s.extra_reason));
+      if (with_reason && s.image_element != invalid_index) {
+        e["image_element"] = s.image_element;
+        e["error"] = s.image_error;
+      }
       a.push_back(e);
     }
     return a;
@@ -648,7 +659,8 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
                                        {"samples_above_one", r.error_above_one_edge},
                                        {"fraction_above_one", r.fraction(r.error_above_one_edge)},
                                        {"above_one_by_reason", above_one_by_reason},
-                                       {"defect_fraction", r.fraction(r.in_domain_defects())}};
+                                       {"defect_fraction", r.fraction(r.in_domain_defects())},
+                                       {"examples", examples(r.in_domain_defect_examples, true)}};
   return j;
 }
 

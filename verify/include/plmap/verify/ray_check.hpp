@@ -58,7 +58,8 @@ struct RayCheckOptions {
   bool max_distance_is_relative = false;
   bool allow_negative_distance = false;
   RayNormalCheck normal_check = RayNormalCheck::none;
-  /// Examples of missed and extra samples listed in the report (the rest are counted).
+  /// Examples of missed and extra samples, and of in-D defects, listed in the report (the rest
+  /// are counted).
   std::size_t max_listed = 20;
 };
 
@@ -148,8 +149,12 @@ struct RaySample {
   WorldPoint<d> point = WorldPoint<d>::Zero();
   Index hit_element = invalid_index;  ///< S2 element hit (invalid for extra samples)
   double mu = 0.0;                    ///< ray parameter of the hit
-  MissedReason reason = MissedReason::not_covered;  ///< for missed samples
+  MissedReason reason = MissedReason::not_covered;  ///< for missed samples and in-D defects
   ExtraReason extra_reason = ExtraReason::unexplained;  ///< for extra samples
+  /// For in-D defects: the S2 element Xi(x) lies on, and |Xi(x) - hit| relative to the mean
+  /// edge length of the element hit.
+  Index image_element = invalid_index;
+  double image_error = 0.0;
 };
 
 template <int d>
@@ -180,6 +185,9 @@ struct RayCheckReport {
   std::size_t error_above_one_edge = 0;
   std::array<std::size_t, 3> above_one_by_reason{};
   std::vector<RaySample<d>> missed_examples, extra_examples;
+  /// Examples of the in-D defects (image more than an edge from the hit, reason farther_sheet
+  /// or not_covered), so that a user can find where the map takes another part of S2.
+  std::vector<RaySample<d>> in_domain_defect_examples;
 
   double fraction(std::size_t count) const { return samples ? double(count) / double(samples) : 0.0; }
   /// Missed samples that are not outside D for a stated reason: farther_sheet, not_covered and
@@ -229,7 +237,9 @@ RayCheckReport<d> check_against_rays(const PlMap<d>& map, const RayCheckOptions<
 
 /// {"samples", "domain_measure", "missed": {"samples", "fraction", "by_reason": {reason:
 /// {"samples", "fraction"}}, "defect_fraction", "examples": [...]}, "extra": {...},
-/// "in_domain_with_hit", "neither", "image_error_relative_to_edge": {"median", "p99", "max"}}
+/// "in_domain_with_hit", "neither", "image_error_relative_to_edge": {"median", "p99", "max",
+/// "samples_above_one", "fraction_above_one", "above_one_by_reason", "defect_fraction",
+/// "examples": in-D defects with "image_element" and "error"}}
 template <int d>
 nlohmann::json to_json(const RayCheckReport<d>& report);
 
