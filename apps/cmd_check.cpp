@@ -10,7 +10,7 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/map_file.hpp>
 #include <plmap/core/surface_fingerprint.hpp>
-#include <plmap/verify/ray_check.hpp>
+#include <plmap/verify/ray_check_rules.hpp>
 #include <plmap/verify/check.hpp>
 #include <plmap/verify/report_json.hpp>
 
@@ -55,37 +55,34 @@ RayNormalCheck ray_normal_check_from(const std::string& name) {
 }
 
 /// The rules of the ray check: those the map records (unless told to ignore them), each replaced
-/// by the command line's where it gives one. Returns where they came from, for the report.
+/// by the command line's where it gives one (verify/ray_check_rules.hpp). Returns where they came
+/// from, for the report.
 template <int d>
 std::string choose_rules(const PlMap<d>& map, const CheckOptions& o, std::span<const double> given_directions,
                          RayCheckOptions<d>& options) {
-  const std::optional<ProjectionRules> recorded =
-      o.ignore_recorded_rules ? std::nullopt : apply_recorded_rules(map, options);
-  const RayCheckOptions<d> as_recorded = options;
-  if (!recorded || o.max_distance_given) options.max_distance = o.max_distance;
-  if (!recorded || o.relative_distance) options.max_distance_is_relative = o.relative_distance;
-  if (!recorded || o.allow_negative) options.allow_negative_distance = o.allow_negative;
-  if (!recorded || o.normal_check_given) options.normal_check = ray_normal_check_from(o.normal_check);
-  if (recorded) {
-    // The field is not in the map: a given one must be given again, and a different one is said.
-    if (o.directions_file.empty() && recorded->directions_fingerprint)
-      throw UsageError(fmt::format(
-          "{} was projected along directions given to `plmap project` (fingerprint {}); pass the same file with "
-          "--directions, or check under other rules with --no-recorded-rules",
-          o.file, fingerprint_hex(*recorded->directions_fingerprint)));
-    if (!o.directions_file.empty() &&
-        (!recorded->directions_fingerprint ||
-         *recorded->directions_fingerprint != directions_fingerprint(given_directions, d + 1)))
-      std::cerr << "warning: the directions of " << o.directions_file << " are not those " << o.file
-                << " was projected along (" << directions_description(*recorded) << ")\n";
+  RayRuleChoice choice;
+  choice.use_recorded = !o.ignore_recorded_rules;
+  // The options' defaults are RayCheckOptions' (and `plmap project`'s): only what is given changes.
+  if (o.max_distance_given) choice.max_distance = o.max_distance;
+  if (o.relative_distance) choice.max_distance_is_relative = true;
+  if (o.allow_negative) choice.allow_negative_distance = true;
+  if (o.normal_check_given) choice.normal_check = ray_normal_check_from(o.normal_check);
+  const ChosenRayRules chosen = choose_ray_rules(map, choice, given_directions, options);
+  if (chosen.directions_missing)
+    throw UsageError(fmt::format(
+        "{} was projected along directions given to `plmap project` (fingerprint {}); pass the same file with "
+        "--directions, or check under other rules with --no-recorded-rules",
+        o.file, fingerprint_hex(*chosen.recorded->directions_fingerprint)));
+  if (chosen.directions_differ)
+    std::cerr << "warning: the directions of " << o.directions_file << " are not those " << o.file
+              << " was projected along (" << directions_description(*chosen.recorded) << ")\n";
+  switch (chosen.source) {
+    case RayRulesSource::recorded: return "map";
+    case RayRulesSource::recorded_with_changes: return "map, with the command line's";
+    case RayRulesSource::given: return "command line";
+    case RayRulesSource::given_none_recorded: break;
   }
-  // Only an option that changes a rule counts: repeating the recorded value is no override.
-  const bool overridden = options.max_distance != as_recorded.max_distance ||
-                          options.max_distance_is_relative != as_recorded.max_distance_is_relative ||
-                          options.allow_negative_distance != as_recorded.allow_negative_distance ||
-                          options.normal_check != as_recorded.normal_check;
-  if (!recorded) return o.ignore_recorded_rules ? "command line" : "command line (the map records none)";
-  return overridden ? "map, with the command line's" : "map";
+  return "command line (the map records none)";
 }
 
 /// The ray check under the rules choose_rules picks and along the directions given (default: S1's
@@ -107,9 +104,7 @@ std::pair<Json, bool> ray_check(const PlMap<d>& map, const CheckOptions& o) {
   const std::string rules_from = choose_rules(map, o, given_directions, options);
   options.max_listed = o.max_reported;
   const RayCheckReport<d> report = check_against_rays(map, options);
-  const bool ok = report.fraction(report.missed_defects()) <= o.ray_tolerance &&
-                  report.fraction(report.extra_defects()) <= o.ray_tolerance &&
-                  report.fraction(report.in_domain_defects()) <= o.ray_tolerance;
+  const bool ok = ray_check_passes(report, o.ray_tolerance);
   Json j = to_json(report);
   j["rules"] = {{"from", rules_from},
                 {"max_distance", std::isfinite(options.max_distance) ? Json(options.max_distance) : Json("inf")},

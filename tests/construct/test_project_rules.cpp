@@ -5,7 +5,7 @@
 
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/construct/project.hpp>
-#include <plmap/verify/ray_check.hpp>
+#include <plmap/verify/ray_check_rules.hpp>
 
 #include <gtest/gtest.h>
 
@@ -77,4 +77,59 @@ TEST(ProjectRules, TheRayCheckAppliesTheRecordedRules) {
   RayCheckOptions<2> untouched;
   EXPECT_FALSE(apply_recorded_rules(plain, untouched).has_value());
   EXPECT_FALSE(untouched.allow_negative_distance);
+}
+
+TEST(ProjectRules, TheCallersRulesReplaceTheRecordedOnes) {
+  auto s1 = grid(8, 8, 0.0, 1.0, 0.0, 1.0, 0.0, false, 0.2);
+  const auto r = project<2>(s1, tilted_plane(), {.allow_negative_distance = true, .normal_check = NormalCheck::facing});
+  const auto choose = [&](const RayRuleChoice& choice, std::span<const double> values = {}) {
+    RayCheckOptions<2> o;
+    o.directions = averaged_vertex_normals(*s1);
+    o.samples = 2000;
+    const ChosenRayRules chosen = choose_ray_rules(r.map, choice, values, o);
+    return std::pair{chosen, o};
+  };
+  // nothing given: the map's rules, and the check passes
+  auto [as_recorded, o1] = choose({});
+  EXPECT_EQ(as_recorded.source, RayRulesSource::recorded);
+  EXPECT_TRUE(o1.allow_negative_distance);
+  EXPECT_EQ(o1.normal_check, NormalCheck::facing);
+  EXPECT_FALSE(as_recorded.directions_missing || as_recorded.directions_differ);
+  EXPECT_TRUE(ray_check_passes(check_against_rays(r.map, o1), 1e-4));
+  // the recorded value given again is no change
+  EXPECT_EQ(choose({.allow_negative_distance = true}).first.source, RayRulesSource::recorded);
+  // a changed rule replaces the recorded one, the others stay
+  auto [changed, o2] = choose({.allow_negative_distance = false});
+  EXPECT_EQ(changed.source, RayRulesSource::recorded_with_changes);
+  EXPECT_FALSE(o2.allow_negative_distance);
+  EXPECT_EQ(o2.normal_check, NormalCheck::facing);
+  EXPECT_FALSE(ray_check_passes(check_against_rays(r.map, o2), 1e-4));  // the half behind S1 is extra
+  // the map's rules ignored: the defaults and what is given
+  auto [ignored, o3] = choose({.use_recorded = false, .normal_check = NormalCheck::aligned});
+  EXPECT_EQ(ignored.source, RayRulesSource::given);
+  EXPECT_FALSE(ignored.recorded.has_value());
+  EXPECT_FALSE(o3.allow_negative_distance);
+  EXPECT_EQ(o3.normal_check, NormalCheck::aligned);
+  // direction values given for a map projected along S1's averaged normals
+  const std::vector<double> tilted = constant_directions(*s1, WorldPoint<2>(0.1, 0, 1));
+  EXPECT_TRUE(choose({}, tilted).first.directions_differ);
+
+  // a map projected along a given field: its values must come along, and other ones differ
+  const auto along = project<2>(s1, tilted_plane(), {.directions = tilted, .allow_negative_distance = true});
+  RayCheckOptions<2> o;
+  o.directions = directions_from_values(*s1, tilted);
+  const ChosenRayRules missing = choose_ray_rules(along.map, {}, {}, o);
+  EXPECT_TRUE(missing.directions_missing);
+  const ChosenRayRules same = choose_ray_rules(along.map, {}, tilted, o);
+  EXPECT_FALSE(same.directions_missing || same.directions_differ);
+  const std::vector<double> other = constant_directions(*s1, WorldPoint<2>(0.2, 0, 1));
+  EXPECT_TRUE(choose_ray_rules(along.map, {}, other, o).directions_differ);
+
+  // a map that records nothing
+  PlMap<2> plain = r.map;
+  plain.set_provenance({});
+  RayCheckOptions<2> p;
+  EXPECT_EQ(choose_ray_rules(plain, {.allow_negative_distance = true}, {}, p).source,
+            RayRulesSource::given_none_recorded);
+  EXPECT_TRUE(p.allow_negative_distance);
 }

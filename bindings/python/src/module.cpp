@@ -27,6 +27,7 @@ PYBIND11_MODULE(_plmap, m) {
 
   python::bind_surface(m);
   python::bind_map(m);
+  python::bind_ray_check(m);
   python::bind_project(m);
   m.attr("__version__") = PLMAP_VERSION;
 }

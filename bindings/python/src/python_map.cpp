@@ -29,15 +29,6 @@ namespace plmap::python {
 
 namespace {
 
-template <class F>
-decltype(auto) visit_map(const PyMap& m, F&& f) {
-  return std::visit([&](const auto& ptr) -> decltype(auto) { return f(*ptr); }, m.map);
-}
-
-py::object json_to_python(const nlohmann::json& j) {
-  return py::module_::import("json").attr("loads")(j.dump());
-}
-
 const KeywordFields<VerifyOptions>& verify_fields() {
   static const KeywordFields<VerifyOptions> fields = {
       {"snap_tolerance", keyword_field(&VerifyOptions::snap_tolerance, "a float")},

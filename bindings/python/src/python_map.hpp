@@ -4,6 +4,7 @@
 #include <plmap/core/inverse_evaluation.hpp>
 #include <plmap/core/pl_map.hpp>
 
+#include <nlohmann/json.hpp>
 #include <pybind11/pybind11.h>
 
 #include <memory>
@@ -26,6 +27,19 @@ struct PyMap {
   int dimension() const { return static_cast<int>(map.index()) + 1; }
 };
 
+/// f(map) for the PlMap<1> or PlMap<2> that `m` holds.
+template <class F>
+decltype(auto) visit_map(const PyMap& m, F&& f) {
+  return std::visit([&](const auto& ptr) -> decltype(auto) { return f(*ptr); }, m.map);
+}
+
+/// A JSON value as the Python object json.loads makes of it (dicts, lists, numbers, str).
+inline py::object json_to_python(const nlohmann::json& j) {
+  return py::module_::import("json").attr("loads")(j.dump());
+}
+
 void bind_map(py::module_& m);
+/// Map.check_against_rays (python_ray_check.cpp); after bind_map.
+void bind_ray_check(py::module_& m);
 
 }  // namespace plmap::python
