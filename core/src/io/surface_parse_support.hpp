@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 #include <limits>
 #include <span>
 #include <string>
@@ -32,6 +33,9 @@ struct RawMesh {
   std::vector<WorldPoint<d>> vertices;
   std::vector<ElementCorners<d>> elements;
   std::vector<std::size_t> element_offset;
+  /// The polygons of more than three corners, each as (first element, element count) of the
+  /// fan add_polygon made of it (polygon_triangulation.hpp cuts those that fold again).
+  std::vector<std::pair<std::size_t, std::size_t>> polygons;
 };
 
 inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
@@ -236,7 +240,8 @@ inline void check_finite(const Cursor& cursor, std::size_t at, double value, std
 }
 
 /// Adds a polygon face given by vertex indices already resolved to 0-based and in range
-/// (checked by the caller, or later by check_indices); fan-triangulates or rejects polygons.
+/// (checked by the caller, or later by check_indices); fan-triangulates or rejects polygons (a
+/// fan that folds is cut again once all vertices are read: polygon_triangulation.hpp).
 inline void add_polygon(const Cursor& cursor, std::size_t at, std::span<const Index> corners,
                         const SurfaceReadOptions& options, RawMesh<2>& mesh) {
   if (corners.size() < 3)
@@ -245,6 +250,7 @@ inline void add_polygon(const Cursor& cursor, std::size_t at, std::span<const In
     cursor.fail_at(at, fmt::format("face with {} vertices; only triangles are accepted "
                                    "(PolygonPolicy::reject)",
                                    corners.size()));
+  if (corners.size() > 3) mesh.polygons.emplace_back(mesh.elements.size(), corners.size() - 2);
   for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
     mesh.elements.push_back({corners[0], corners[k], corners[k + 1]});
     mesh.element_offset.push_back(at);

@@ -1,5 +1,6 @@
 #include <plmap/core/io/surface_reader.hpp>
 
+#include "polygon_triangulation.hpp"
 #include "surface_parse_support.hpp"
 #include "whole_file.hpp"
 
@@ -90,6 +91,8 @@ Surface<d> parse_surface(std::string_view bytes, SurfaceFormat format, const std
   const bool text = format != SurfaceFormat::stl || !stl_is_binary(bytes);
   Cursor cursor(bytes, file_name, text);
   RawMesh<d> raw = parse_raw<d>(cursor, format, options);
+  if constexpr (d == 2)
+    if (options.polygons == PolygonPolicy::triangulate) triangulate_polygons_in_their_planes(raw);
   if (raw.elements.empty())
     throw ParseError(file_name, "",
                      format == SurfaceFormat::gmsh

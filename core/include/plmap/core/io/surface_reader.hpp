@@ -21,14 +21,16 @@ namespace plmap {
 
 /// What to do with polygon faces (more than three corners) in OFF, OBJ and PLY files.
 enum class PolygonPolicy {
-  fan_triangulate,  ///< split corners (0, k, k+1) into triangles; fine for convex polygons
+  /// Triangles inside the polygon, seen along its Newell normal: the fan (0, k, k+1) from the
+  /// first corner where that lies inside (every convex polygon), else ear clipping in the
+  /// polygon's plane. A polygon with no ear there (not simple in its plane) keeps the fan.
+  triangulate,
+  fan_triangulate,  ///< always the fan (0, k, k+1); right for convex polygons, folds others
   reject,           ///< raise ParseError naming the face
 };
 
 struct SurfaceReadOptions {
-  /// Default: fan triangulation, because quads are common and convex in practice; a
-  /// non-convex polygon may yield a folded or degenerate triangle (the latter is rejected).
-  PolygonPolicy polygons = PolygonPolicy::fan_triangulate;
+  PolygonPolicy polygons = PolygonPolicy::triangulate;
 };
 
 /// Reads a surface of dimension d from `path`. The format comes from the extension, or from

@@ -1,0 +1,107 @@
+#include "polygon_triangulation.hpp"
+
+#include <Eigen/Dense>
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace plmap::surface_io_detail {
+
+namespace {
+
+using Point2 = Eigen::Vector2d;
+
+/// Twice the signed area of (a, b, c).
+double orientation(const Point2& a, const Point2& b, const Point2& c) {
+  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+}
+
+/// The polygon's corners in order, from its fan (0, k, k+1) in `count` triangles from `first`.
+std::vector<Index> corners_of_fan(const RawMesh<2>& mesh, std::size_t first, std::size_t count) {
+  std::vector<Index> corners{mesh.elements[first][0], mesh.elements[first][1]};
+  for (std::size_t k = 0; k < count; ++k) corners.push_back(mesh.elements[first + k][2]);
+  return corners;
+}
+
+/// The corners projected onto the plane through the polygon normal to its Newell normal (the
+/// polygon's area vector), in a frame in which the polygon turns counter-clockwise. Empty if the
+/// normal vanishes (a degenerate polygon, which the fan leaves for Surface to reject).
+std::vector<Point2> in_plane(const RawMesh<2>& mesh, const std::vector<Index>& corners) {
+  // relative to the first corner, so that a mesh far from the origin loses no digits
+  const WorldPoint<2>& origin = mesh.vertices[corners[0]];
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  const std::size_t n = corners.size();
+  for (std::size_t i = 1; i + 1 < n; ++i)
+    normal += (mesh.vertices[corners[i]] - origin).cross(mesh.vertices[corners[i + 1]] - origin);
+  const double length = normal.norm();
+  if (!(length > 0.0) || !std::isfinite(length)) return {};
+  normal /= length;
+  // any unit vector normal to `normal`, and the third of a right-handed frame
+  const Eigen::Vector3d u = normal.unitOrthogonal(), v = normal.cross(u);
+  std::vector<Point2> points;
+  points.reserve(n);
+  for (Index c : corners) {
+    const Eigen::Vector3d p = mesh.vertices[c] - origin;
+    points.emplace_back(p.dot(u), p.dot(v));
+  }
+  return points;
+}
+
+/// Whether every fan triangle turns the polygon's way (then the fan lies inside it).
+bool fan_is_inside(const std::vector<Point2>& p) {
+  for (std::size_t k = 1; k + 1 < p.size(); ++k)
+    if (!(orientation(p[0], p[k], p[k + 1]) > 0.0)) return false;
+  return true;
+}
+
+/// Ear clipping: the triangles as triples of positions in `p`, or empty if at some point no
+/// corner is an ear (a triangle turning the polygon's way with no other remaining corner in or
+/// on it). O(n^2) per ear, fine for the polygons of mesh files.
+std::vector<std::array<std::size_t, 3>> ear_clipping(const std::vector<Point2>& p) {
+  std::vector<std::size_t> left(p.size());
+  for (std::size_t i = 0; i < left.size(); ++i) left[i] = i;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  while (left.size() > 3) {
+    const std::size_t m = left.size();
+    bool clipped = false;
+    for (std::size_t i = 0; i < m && !clipped; ++i) {
+      const std::size_t a = left[(i + m - 1) % m], b = left[i], c = left[(i + 1) % m];
+      if (!(orientation(p[a], p[b], p[c]) > 0.0)) continue;
+      bool empty = true;
+      for (std::size_t j : left) {
+        if (j == a || j == b || j == c) continue;
+        if (orientation(p[a], p[b], p[j]) >= 0.0 && orientation(p[b], p[c], p[j]) >= 0.0 &&
+            orientation(p[c], p[a], p[j]) >= 0.0) {
+          empty = false;
+          break;
+        }
+      }
+      if (!empty) continue;
+      triangles.push_back({a, b, c});
+      left.erase(left.begin() + static_cast<std::ptrdiff_t>(i));
+      clipped = true;
+    }
+    if (!clipped) return {};
+  }
+  if (!(orientation(p[left[0]], p[left[1]], p[left[2]]) > 0.0)) return {};
+  triangles.push_back({left[0], left[1], left[2]});
+  return triangles;
+}
+
+}  // namespace
+
+void triangulate_polygons_in_their_planes(RawMesh<2>& mesh) {
+  for (const auto& [first, count] : mesh.polygons) {
+    const std::vector<Index> corners = corners_of_fan(mesh, first, count);
+    const std::vector<Point2> points = in_plane(mesh, corners);
+    if (points.empty() || fan_is_inside(points)) continue;
+    const std::vector<std::array<std::size_t, 3>> triangles = ear_clipping(points);
+    if (triangles.size() != count) continue;
+    for (std::size_t k = 0; k < count; ++k)
+      mesh.elements[first + k] = {corners[triangles[k][0]], corners[triangles[k][1]], corners[triangles[k][2]]};
+  }
+}
+
+}  // namespace plmap::surface_io_detail
