@@ -6,6 +6,7 @@
 #include "preimage_rank_floor.hpp"
 #include "projection_seeds.hpp"
 #include "simplex_distance.hpp"
+#include "vertex_star_probe.hpp"
 
 #include <plmap/core/parallel_first_touch.hpp>
 #include <plmap/core/parallel_ranges.hpp>
@@ -239,11 +240,23 @@ class VertexPreimageSearch {
     const WorldPoint<d>& target = ctx_.s2.vertex(q);
     std::optional<SurfacePoint<d>> best;
     double best_rank = std::numeric_limits<double>::infinity();
+    // Whether the best one lies on the sheet of S1 that sees q's star (vertex_star_probe.hpp):
+    // of two preimages of equal rank (within the snapping tolerance of their elements' size, as
+    // at a seam), one that does beats one that does not. Walks are skipped only after one that
+    // does: a tie may still come.
+    // Asked only when needed (a tie, or before walks are skipped): -1 not yet known.
+    int best_sees_star = -1;
+    double best_tie_margin = 0.0, best_mu = 0.0;
+    const auto sees_star = [&] {
+      if (best_sees_star < 0) best_sees_star = probe_sees_star(ctx_, best->element, best->local, best_mu, q) ? 1 : 0;
+      return best_sees_star == 1;
+    };
     SolvedElements solved;
     Rivals rivals;
     long long calls = 0, failures = 0;
     for (int s = 0; s < count; ++s) {
-      if (may_skip_walks_ && best && no_rival_left(target, best_rank, best->element, solved, rivals)) break;
+      if (may_skip_walks_ && best && no_rival_left(target, best_rank, best->element, solved, rivals) && sees_star())
+        break;
       Index t = static_cast<Index>(seeds[s]);
       for (int step = 0; step < ctx_.options.search_limits.seed_walk_steps && t != invalid_index; ++step) {
         if (solved.contains(t)) break;  // walked from here already
@@ -270,12 +283,25 @@ class VertexPreimageSearch {
           const double mu = r.x(d);
           WorldPoint<d> direction = sys.directions[0];
           for (int k = 0; k < d; ++k) direction += xi(k) * (sys.directions[k + 1] - sys.directions[0]);
+          const double rank = ctx_.rank(mu);
           if (ctx_.distance_ok(mu, sys.scale()) && (ctx_.s2_vertex_normals.empty() || ctx_.normal_ok(direction, ctx_.s2_vertex_normals[q])) &&
-              ctx_.rank(mu) < best_rank && ctx_.unfolded_in(t, xi, mu)) {
-            best_rank = ctx_.rank(mu);
+              rank < best_rank + best_tie_margin && ctx_.unfolded_in(t, xi, mu)) {
             Barycentric<d> bc = b.cwiseMax(0.0);
             bc /= bc.sum();
-            best = SurfacePoint<d>{t, local_from_barycentric<d>(bc)};
+            const LocalPoint<d> local = local_from_barycentric<d>(bc);
+            int candidate_sees_star = -1;
+            bool better = rank < best_rank;
+            if (best && rank >= best_rank - best_tie_margin) {  // a tie: the side of q's star decides
+              candidate_sees_star = probe_sees_star(ctx_, t, local, mu, q) ? 1 : 0;
+              better = candidate_sees_star != int(sees_star()) ? candidate_sees_star == 1 : rank < best_rank;
+            }
+            if (better) {
+              best_rank = rank;
+              best_mu = mu;
+              best = SurfacePoint<d>{t, local};
+              best_sees_star = candidate_sees_star;
+              best_tie_margin = ctx_.options.snap_tolerance * longest_edge<d>(corners_of(t));
+            }
           }
           break;
         }
