@@ -248,7 +248,8 @@ class VertexPreimageSearch {
     int best_sees_star = -1;
     double best_tie_margin = 0.0, best_mu = 0.0;
     const auto sees_star = [&] {
-      if (best_sees_star < 0) best_sees_star = probe_sees_star(ctx_, best->element, best->local, best_mu, q) ? 1 : 0;
+      if (best_sees_star < 0)
+        best_sees_star = probe_sees_star(ctx_, best->element, best->local, best_mu, q) ? 1 : 0;
       return best_sees_star == 1;
     };
     SolvedElements solved;
