@@ -52,6 +52,9 @@ class VertexPreimageSearch {
     std::optional<SurfacePoint<d>> preimage;
     /// A walk stopped because the solver did not converge (more seeds may then help).
     bool solver_failed = false;
+    /// The preimage's element sees the S2 vertex's star (vertex_star_probe.hpp); if not, it
+    /// may lie on the far side of a seam of S1.
+    bool sees_star = true;
   };
 
   /// The preimage of S2 vertex q, seeded next to q moved by the chunk's previous offset (if
@@ -59,8 +62,8 @@ class VertexPreimageSearch {
   std::optional<SurfacePoint<d>> find_vertex_preimage(Index q, const SearchOffset& offset,
                                                       NearestElements<d>& nearest) const {
     if (offset.valid) {
-      auto found = search_from_seeds(q, ctx_.s2.vertex(q) - offset.value, ctx_.seed_count, &nearest).preimage;
-      if (found) return found;
+      SeededSearch moved = search_from_seeds(q, ctx_.s2.vertex(q) - offset.value, ctx_.seed_count, &nearest);
+      if (moved.preimage && moved.sees_star) return moved.preimage;
     }
     return find_vertex_preimage(q);
   }
@@ -74,7 +77,38 @@ class VertexPreimageSearch {
     // nothing extra.
     if (!search.preimage && search.solver_failed && ctx_.seed_count < ctx_.retry_seed_count)
       search = search_from_seeds(q, ctx_.s2.vertex(q), ctx_.retry_seed_count, nullptr);
+    // A preimage on the far side of a seam of S1 (its element does not see q's star), found
+    // where q lies on S1: the near side's elements through q may be long ones whose centroids
+    // are not among the nearest (CGAL's oblong-shuffled.off, a lid cut free on three sides),
+    // and no walk crosses a seam. The walks are repeated from every element through the preimage
+    // found, on either side; of equal ranks the one that sees the star wins.
+    if (search.preimage && !search.sees_star) {
+      const WorldPoint<d> at = ctx_.s1.world_position(search.preimage->element, search.preimage->local);
+      SeedElements through;
+      const int count = elements_through(at, through);
+      if (count > 0) {
+        const SeededSearch again = walk_to_preimage(q, through, count);
+        if (again.preimage && again.sees_star) search = again;
+      }
+    }
     return search.preimage;
+  }
+
+  /// The S1 elements (up to max_search_seeds) whose closure contains x, up to the snapping
+  /// tolerance of their size; their centroids lie within the index's radius of x.
+  int elements_through(const WorldPoint<d>& x, SeedElements& out) const {
+    int count = 0;
+    auto consider = [&](Index t) {
+      if (count < max_search_seeds &&
+          element_distance(x, t) <= ctx_.options.snap_tolerance * longest_edge<d>(corners_of(t)))
+        out[count++] = static_cast<std::uint32_t>(t);
+    };
+    if (ctx_.s1_boxes->has_tree()) {
+      ctx_.s1_boxes->visit_near(x, ctx_.options.snap_tolerance * longest_edge_, consider);
+    } else {
+      for (Index t : ctx_.s1_index->within(x, ctx_.s1_index->radius * (1.0 + 1e-12))) consider(t);
+    }
+    return count;
   }
 
   /// Eq. (3) for S2 vertex q on walks across S1 that start at the `seed_count` elements nearest
@@ -311,7 +345,7 @@ class VertexPreimageSearch {
     }
     ctx_.solver_calls += calls;
     ctx_.solver_failures += failures;
-    return SeededSearch{best, failures > 0};
+    return SeededSearch{best, failures > 0, !best || sees_star()};
   }
 
   /// Whether a curve's walk step on segment t can be decided without solving: no solution of

@@ -79,6 +79,16 @@ TEST(ProjectRules, TheRayCheckAppliesTheRecordedRules) {
   EXPECT_FALSE(untouched.allow_negative_distance);
 }
 
+namespace {
+
+RayRuleChoice allow_negative(bool allow) {
+  RayRuleChoice choice;
+  choice.allow_negative_distance = allow;
+  return choice;
+}
+
+}  // namespace
+
 TEST(ProjectRules, TheCallersRulesReplaceTheRecordedOnes) {
   auto s1 = grid(8, 8, 0.0, 1.0, 0.0, 1.0, 0.0, false, 0.2);
   const auto r = project<2>(s1, tilted_plane(), {.allow_negative_distance = true, .normal_check = NormalCheck::facing});
@@ -97,15 +107,18 @@ TEST(ProjectRules, TheCallersRulesReplaceTheRecordedOnes) {
   EXPECT_FALSE(as_recorded.directions_missing || as_recorded.directions_differ);
   EXPECT_TRUE(ray_check_passes(check_against_rays(r.map, o1), 1e-4));
   // the recorded value given again is no change
-  EXPECT_EQ(choose({.allow_negative_distance = true}).first.source, RayRulesSource::recorded);
+  EXPECT_EQ(choose(allow_negative(true)).first.source, RayRulesSource::recorded);
   // a changed rule replaces the recorded one, the others stay
-  auto [changed, o2] = choose({.allow_negative_distance = false});
+  auto [changed, o2] = choose(allow_negative(false));
   EXPECT_EQ(changed.source, RayRulesSource::recorded_with_changes);
   EXPECT_FALSE(o2.allow_negative_distance);
   EXPECT_EQ(o2.normal_check, NormalCheck::facing);
   EXPECT_FALSE(ray_check_passes(check_against_rays(r.map, o2), 1e-4));  // the half behind S1 is extra
   // the map's rules ignored: the defaults and what is given
-  auto [ignored, o3] = choose({.use_recorded = false, .normal_check = NormalCheck::aligned});
+  RayRuleChoice ignoring;
+  ignoring.use_recorded = false;
+  ignoring.normal_check = NormalCheck::aligned;
+  auto [ignored, o3] = choose(ignoring);
   EXPECT_EQ(ignored.source, RayRulesSource::given);
   EXPECT_FALSE(ignored.recorded.has_value());
   EXPECT_FALSE(o3.allow_negative_distance);
@@ -129,7 +142,7 @@ TEST(ProjectRules, TheCallersRulesReplaceTheRecordedOnes) {
   PlMap<2> plain = r.map;
   plain.set_provenance({});
   RayCheckOptions<2> p;
-  EXPECT_EQ(choose_ray_rules(plain, {.allow_negative_distance = true}, {}, p).source,
+  EXPECT_EQ(choose_ray_rules(plain, allow_negative(true), {}, p).source,
             RayRulesSource::given_none_recorded);
   EXPECT_TRUE(p.allow_negative_distance);
 }

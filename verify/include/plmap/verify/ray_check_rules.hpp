@@ -19,10 +19,11 @@ namespace plmap {
 struct RayRuleChoice {
   /// false: ignore what the map records, check under the given rules and the defaults.
   bool use_recorded = true;
-  std::optional<double> max_distance;
-  std::optional<bool> max_distance_is_relative;
-  std::optional<bool> allow_negative_distance;
-  std::optional<NormalCheck> normal_check;
+  // initialized, so that designated initializers may leave them out (-Wmissing-field-initializers)
+  std::optional<double> max_distance = std::nullopt;
+  std::optional<bool> max_distance_is_relative = std::nullopt;
+  std::optional<bool> allow_negative_distance = std::nullopt;
+  std::optional<NormalCheck> normal_check = std::nullopt;
 };
 
 /// Where the rules of a check came from.
@@ -37,7 +38,7 @@ enum class RayRulesSource {
 struct ChosenRayRules {
   RayRulesSource source = RayRulesSource::given_none_recorded;
   /// The rules the map records (nullopt: none, or ignored).
-  std::optional<ProjectionRules> recorded;
+  std::optional<ProjectionRules> recorded = std::nullopt;
   /// The map was projected along a direction field given to project() (recorded as a
   /// fingerprint only), and no direction values were given here: the check would cast along
   /// other rays than the projection did. The caller should refuse.
