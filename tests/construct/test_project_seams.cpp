@@ -50,19 +50,23 @@ void expect_identity(const ProjectionResult<2>& r, const Surface<2>& s) {
   }
 }
 
+/// S1 projected onto a copy of itself (another object) on 1 and 2 threads is the identity.
+void expect_identity_onto_a_copy(const std::shared_ptr<const Surface<2>>& s1) {
+  const auto s2 = std::make_shared<const Surface<2>>(s1->vertices(), s1->elements());
+  for (const unsigned threads : {1u, 2u}) {
+    ProjectionOptions o;
+    o.threads = threads;
+    o.renumbering = SpatialRenumbering::never;
+    expect_identity(project<2>(s1, s2, o), *s1);
+  }
+}
+
 }  // namespace
 
 TEST(ProjectSeams, ASurfaceWithASeamProjectsOntoItsCopyAsTheIdentity) {
   for (const int cells : {1, 4, 9}) {
     SCOPED_TRACE(cells);
-    const auto s1 = two_strips(cells);
-    const auto s2 = std::make_shared<const Surface<2>>(s1->vertices(), s1->elements());  // another object
-    for (const unsigned threads : {1u, 2u}) {
-      ProjectionOptions o;
-      o.threads = threads;
-      o.renumbering = SpatialRenumbering::never;
-      expect_identity(project<2>(s1, s2, o), *s1);
-    }
+    expect_identity_onto_a_copy(two_strips(cells));
   }
 }
 
@@ -80,21 +84,10 @@ TEST(ProjectSeams, ALongElementOnTheFarSideOfASeamIsFound) {
   v.insert(v.end(), {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}});
   e.push_back({n, n + 1, n + 2});
   e.push_back({n, n + 2, n + 3});
-  const auto s1 = std::make_shared<const Surface<2>>(v, e);
-  const auto s2 = std::make_shared<const Surface<2>>(std::move(v), std::move(e));
-  for (const unsigned threads : {1u, 2u}) {
-    ProjectionOptions o;
-    o.threads = threads;
-    o.renumbering = SpatialRenumbering::never;
-    expect_identity(project<2>(s1, s2, o), *s1);
-  }
+  expect_identity_onto_a_copy(std::make_shared<const Surface<2>>(std::move(v), std::move(e)));
 }
 
 TEST(ProjectSeams, ASeamThatIsNoneStillProjects) {
   // The same strips a little apart: no vertex has a twin, and the strips project as before.
-  const auto s1 = two_strips(4, 0.01);
-  const auto s2 = std::make_shared<const Surface<2>>(s1->vertices(), s1->elements());
-  ProjectionOptions o;
-  o.renumbering = SpatialRenumbering::never;
-  expect_identity(project<2>(s1, s2, o), *s1);
+  expect_identity_onto_a_copy(two_strips(4, 0.01));
 }
