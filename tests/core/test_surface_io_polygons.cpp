@@ -125,3 +125,24 @@ RC_GTEST_PROP(SurfaceIoPolygons, StarShapedPolygonsInAnyPlaneAreCutInsideThem, (
   for (Index t = 0; t < s.element_count(); ++t) RC_ASSERT(area_vector(s, t).dot(normal) > 0.0);
   RC_ASSERT(std::abs(s.measure() - area) <= 1e-9 * area);
 }
+
+TEST(SurfaceIoPolygons, ALargeNonConvexPolygonIsCutInsideIt) {
+  // A comb of 2,000 teeth (8,000 corners) whose fan from its fourth corner folds: ear clipping
+  // cuts it into 7,998 triangles of the comb's area, each turning the comb's way.
+  // counter-clockwise seen from +z: along the back, up the last tooth, then tooth by tooth
+  // to the left (top, down into the gap, along its bottom, up the next tooth)
+  const int teeth = 2000;
+  std::vector<Eigen::Vector3d> comb = {{0.0, -1.0, 0.0}, {2.0 * teeth - 1.0, -1.0, 0.0}};
+  for (int i = teeth - 1; i >= 0; --i) {
+    comb.emplace_back(2.0 * i + 1.0, 5.0, 0.0);
+    comb.emplace_back(2.0 * i, 5.0, 0.0);
+    if (i > 0) {
+      comb.emplace_back(2.0 * i, 0.0, 0.0);
+      comb.emplace_back(2.0 * i - 1.0, 0.0, 0.0);
+    }
+  }
+  const Surface<2> s = parse_surface<2>(one_polygon_off(comb, 3), SurfaceFormat::off, "comb.off");
+  ASSERT_EQ(s.element_count(), static_cast<Index>(comb.size()) - 2);
+  EXPECT_NEAR(s.measure(), teeth * 5.0 + (2.0 * teeth - 1.0) * 1.0, 1e-6);
+  for (Index t = 0; t < s.element_count(); ++t) ASSERT_GT(area_vector(s, t).z(), 0.0) << t;
+}

@@ -58,32 +58,37 @@ bool fan_is_inside(const std::vector<Point2>& p) {
 
 /// Ear clipping: the triangles as triples of positions in `p`, or empty if at some point no
 /// corner is an ear (a triangle turning the polygon's way with no other remaining corner in or
-/// on it). O(n^2) per ear, fine for the polygons of mesh files.
+/// on it). The scan goes on from the last ear instead of starting over, so a polygon of n
+/// corners costs O(n^2) tests where ears come in turn (the usual case), O(n^3) at worst.
 std::vector<std::array<std::size_t, 3>> ear_clipping(const std::vector<Point2>& p) {
   std::vector<std::size_t> left(p.size());
   for (std::size_t i = 0; i < left.size(); ++i) left[i] = i;
+  const auto is_ear = [&](std::size_t a, std::size_t b, std::size_t c) {
+    if (!(orientation(p[a], p[b], p[c]) > 0.0)) return false;
+    for (std::size_t j : left) {
+      if (j == a || j == b || j == c) continue;
+      if (orientation(p[a], p[b], p[j]) >= 0.0 && orientation(p[b], p[c], p[j]) >= 0.0 &&
+          orientation(p[c], p[a], p[j]) >= 0.0)
+        return false;
+    }
+    return true;
+  };
   std::vector<std::array<std::size_t, 3>> triangles;
+  std::size_t i = 0, tried = 0;  // corners tried since the last ear
   while (left.size() > 3) {
     const std::size_t m = left.size();
-    bool clipped = false;
-    for (std::size_t i = 0; i < m && !clipped; ++i) {
-      const std::size_t a = left[(i + m - 1) % m], b = left[i], c = left[(i + 1) % m];
-      if (!(orientation(p[a], p[b], p[c]) > 0.0)) continue;
-      bool empty = true;
-      for (std::size_t j : left) {
-        if (j == a || j == b || j == c) continue;
-        if (orientation(p[a], p[b], p[j]) >= 0.0 && orientation(p[b], p[c], p[j]) >= 0.0 &&
-            orientation(p[c], p[a], p[j]) >= 0.0) {
-          empty = false;
-          break;
-        }
-      }
-      if (!empty) continue;
+    if (tried == m) return {};  // a full turn without an ear
+    i %= m;
+    const std::size_t a = left[(i + m - 1) % m], b = left[i], c = left[(i + 1) % m];
+    if (is_ear(a, b, c)) {
       triangles.push_back({a, b, c});
       left.erase(left.begin() + static_cast<std::ptrdiff_t>(i));
-      clipped = true;
+      i = i == 0 ? 0 : i - 1;  // the corner before the ear may have become one
+      tried = 0;
+    } else {
+      ++i;
+      ++tried;
     }
-    if (!clipped) return {};
   }
   if (!(orientation(p[left[0]], p[left[1]], p[left[2]]) > 0.0)) return {};
   triangles.push_back({left[0], left[1], left[2]});
