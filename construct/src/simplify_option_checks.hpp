@@ -13,7 +13,8 @@
 namespace plmap::detail {
 
 /// Throws Error naming the option when `options` cannot be run on an input of `elements`
-/// elements and `vertices` vertices; `element_noun` names the elements ("triangles", "segments")
+/// elements and `vertices` vertices; `element_noun` names the elements in the plural
+/// ("triangles", "segments"; the message drops the "s" for one)
 /// and `input_noun` the input ("surface", "curve") in the messages.
 inline void check_simplify_options(const SimplifyOptions& options, Index elements, Index vertices,
                                    std::string_view input_noun, std::string_view element_noun) {
@@ -21,7 +22,8 @@ inline void check_simplify_options(const SimplifyOptions& options, Index element
     throw Error("simplify: the element and vertex targets must not be negative");
   if (options.target_elements > 0 && options.target_elements >= elements)
     throw Error(fmt::format("simplify: the target of {} elements is not below the {}'s {} {}", options.target_elements,
-                            input_noun, elements, element_noun));
+                            input_noun, elements,
+                            elements == 1 ? element_noun.substr(0, element_noun.size() - 1) : element_noun));
   if (options.target_vertices > 0 && options.target_vertices >= vertices)
     throw Error(fmt::format("simplify: the target of {} vertices is not below the {}'s {} vertices",
                             options.target_vertices, input_noun, vertices));

@@ -55,7 +55,10 @@ bool probe_sees_star(const ProjectionContext<d>& ctx, Index t, const LocalPoint<
     Eigen::Matrix<double, d + 1, d + 1> inverse;
     double determinant = 0.0;
     bool invertible = false;
-    m.computeInverseAndDetWithCheck(inverse, determinant, invertible, 1e-14 * longest * nu.norm());
+    // the determinant is a d-volume of tau times |nu|: the threshold scales alike
+    double volume_scale = nu.norm();
+    for (int k = 0; k < d; ++k) volume_scale *= longest;
+    m.computeInverseAndDetWithCheck(inverse, determinant, invertible, 1e-14 * volume_scale);
     if (!invertible) continue;
     const Eigen::Matrix<double, d + 1, 1> solution = inverse * (x - a);
     constexpr double slack = 1e-9;

@@ -85,6 +85,18 @@ TEST(SimplifyBadInput, TargetNotBelowTheMeshSizeIsAClearError) {
   options.target_elements = 0;
   options.target_vertices = 1000;
   EXPECT_THROW((void)simplify(small_sphere(), options), Error);
+  // one triangle is named in the singular
+  const auto triangle = std::make_shared<const Surface<2>>(std::vector<WorldPoint<2>>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
+                                                           std::vector<ElementCorners<2>>{{0, 1, 2}});
+  options.target_vertices = 0;
+  options.target_elements = 4;
+  try {
+    (void)simplify(triangle, options);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not below the surface's 1 triangle"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("1 triangles"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SimplifyBadInput, AnIsolatedVertexIsNamedBeforeTheRun) {
