@@ -6,6 +6,8 @@
 #include <plmap/core/io/surface_reader.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 
+#include <fmt/format.h>
+
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -166,6 +168,11 @@ void reject_bad_numbers(CLI::App& app) {
       option->check(finite_number);
   }
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) reject_bad_numbers(*sub);
+}
+
+NormalCheck normal_check_named(const std::string& name) {
+  if (const auto check = normal_check_from_name(name)) return *check;
+  throw Error(fmt::format("unknown normal check '{}' (valid: none, facing, aligned)", name));
 }
 
 std::string lower_extension(const std::filesystem::path& path) {

@@ -5,6 +5,7 @@
 
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/map_file.hpp>
+#include <plmap/core/projection_rules.hpp>
 #include <plmap/core/surface.hpp>
 
 #include <CLI/CLI.hpp>
@@ -137,6 +138,10 @@ struct CommandInput {
   std::string role;  ///< e.g. "MAP", "S2", "--directions"
   std::filesystem::path path;
 };
+
+/// The normal check named by --normal-check (none, facing, aligned); Error naming the valid
+/// names for any other (`project` and `check --against-rays` take the same option).
+NormalCheck normal_check_named(const std::string& name);
 
 /// The extension in lower case, with the dot ("" if none).
 std::string lower_extension(const std::filesystem::path& path);

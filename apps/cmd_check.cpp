@@ -49,11 +49,6 @@ struct CheckOptions {
   bool max_distance_given = false, normal_check_given = false;
 };
 
-RayNormalCheck ray_normal_check_from(const std::string& name) {
-  if (const auto check = normal_check_from_name(name)) return *check;
-  throw Error(fmt::format("unknown normal check '{}' (valid: none, facing, aligned)", name));
-}
-
 /// The rules of the ray check: those the map records (unless told to ignore them), each replaced
 /// by the command line's where it gives one (verify/ray_check_rules.hpp). Returns where they came
 /// from, for the report.
@@ -66,7 +61,7 @@ std::string choose_rules(const PlMap<d>& map, const CheckOptions& o, std::span<c
   if (o.max_distance_given) choice.max_distance = o.max_distance;
   if (o.relative_distance) choice.max_distance_is_relative = true;
   if (o.allow_negative) choice.allow_negative_distance = true;
-  if (o.normal_check_given) choice.normal_check = ray_normal_check_from(o.normal_check);
+  if (o.normal_check_given) choice.normal_check = normal_check_named(o.normal_check);
   const ChosenRayRules chosen = choose_ray_rules(map, choice, given_directions, options);
   if (chosen.directions_missing)
     throw UsageError(fmt::format(
@@ -106,12 +101,8 @@ std::pair<Json, bool> ray_check(const PlMap<d>& map, const CheckOptions& o) {
   const RayCheckReport<d> report = check_against_rays(map, options);
   const bool ok = ray_check_passes(report, o.ray_tolerance);
   Json j = to_json(report);
-  j["rules"] = {{"from", rules_from},
-                {"max_distance", std::isfinite(options.max_distance) ? Json(options.max_distance) : Json("inf")},
-                {"max_distance_is_relative", options.max_distance_is_relative},
-                {"allow_negative_distance", options.allow_negative_distance},
-                {"normal_check", std::string(to_string(options.normal_check))},
-                {"directions", o.directions_file.empty() ? "averaged-normals" : o.directions_file}};
+  j["rules"] = ray_rules_json(options, rules_from,
+                              o.directions_file.empty() ? std::string("averaged-normals") : o.directions_file);
   j["tolerance"] = o.ray_tolerance;
   j["ok"] = ok;
   return {j, ok};
@@ -168,7 +159,7 @@ int run_check(const CheckOptions& o) {
   options.expect_parametrization = o.parametrization;
   options.max_condition = o.max_condition;
   options.max_reported_per_rule = o.max_reported;
-  if (o.ray_samples > 0) ray_normal_check_from(o.normal_check);  // a bad name fails before the work
+  if (o.ray_samples > 0) normal_check_named(o.normal_check);  // a bad name fails before the work
   const AnyPlMap any_map = load_map_showing_progress(o.file, o.progress);
   const VerificationReport report = std::visit([&](const auto& map) { return verify(map, options); }, any_map);
   std::optional<std::pair<Json, bool>> rays;

@@ -34,11 +34,6 @@ struct ProjectCommand {
   ProgressMode progress = ProgressMode::automatic;
 };
 
-TargetNormalCheck normal_check_from(const std::string& name) {
-  if (const auto check = normal_check_from_name(name)) return *check;
-  throw Error(fmt::format("unknown normal check '{}' (valid: none, facing, aligned)", name));
-}
-
 SpatialRenumbering renumbering_from(const std::string& name) {
   if (const auto r = spatial_renumbering_from_name(name)) return *r;
   throw Error(fmt::format("unknown renumbering '{}' (valid: auto, always, target, never)", name));
@@ -63,7 +58,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   options.max_distance_is_relative = o.relative_distance;
   options.allow_negative_distance = o.allow_negative;
   options.end_on_rim = !o.no_rim;
-  options.normal_check = normal_check_from(o.normal_check);
+  options.normal_check = normal_check_named(o.normal_check);
   options.threads = o.threads;
   options.renumbering = renumbering_from(o.renumber);
   if (!o.directions_file.empty()) options.directions = read_directions(o.directions_file, d, s1->vertex_count());
@@ -140,7 +135,7 @@ int run_project(const ProjectCommand& o) {
   // the names are checked before the inputs are read: a misspelt option should not cost a minute
   // of reading two large surfaces first
   solver_kind_from_string(o.solver);
-  normal_check_from(o.normal_check);
+  normal_check_named(o.normal_check);
   renumbering_from(o.renumber);
   check_output_file(o.output, OutputKind::map,
                     {{"S1", o.s1}, {"S2", o.s2}, {"--directions", o.directions_file}});

@@ -3,6 +3,8 @@
 
 #include <plmap/verify/ray_check_rules.hpp>
 
+#include <cmath>
+
 namespace plmap {
 
 template <int d>
@@ -47,6 +49,16 @@ ChosenRayRules choose_ray_rules(const PlMap<d>& map, const RayRuleChoice& choice
 }
 
 template <int d>
+nlohmann::json ray_rules_json(const RayCheckOptions<d>& options, std::string_view from, std::string_view directions) {
+  return {{"from", from},
+          {"max_distance", std::isfinite(options.max_distance) ? nlohmann::json(options.max_distance) : "inf"},
+          {"max_distance_is_relative", options.max_distance_is_relative},
+          {"allow_negative_distance", options.allow_negative_distance},
+          {"normal_check", to_string(options.normal_check)},
+          {"directions", directions}};
+}
+
+template <int d>
 bool ray_check_passes(const RayCheckReport<d>& report, double tolerance) {
   return report.fraction(report.missed_defects()) <= tolerance && report.fraction(report.extra_defects()) <= tolerance &&
          report.fraction(report.in_domain_defects()) <= tolerance;
@@ -58,6 +70,8 @@ template ChosenRayRules choose_ray_rules<1>(const PlMap<1>&, const RayRuleChoice
                                             RayCheckOptions<1>&);
 template ChosenRayRules choose_ray_rules<2>(const PlMap<2>&, const RayRuleChoice&, std::span<const double>,
                                             RayCheckOptions<2>&);
+template nlohmann::json ray_rules_json<1>(const RayCheckOptions<1>&, std::string_view, std::string_view);
+template nlohmann::json ray_rules_json<2>(const RayCheckOptions<2>&, std::string_view, std::string_view);
 template bool ray_check_passes<1>(const RayCheckReport<1>&, double);
 template bool ray_check_passes<2>(const RayCheckReport<2>&, double);
 

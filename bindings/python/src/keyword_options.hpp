@@ -4,6 +4,8 @@
 // an unknown name is a TypeError naming it (as Python's own calls do), a value of the wrong
 // type a TypeError naming the field and the type it expects.
 
+#include <plmap/core/projection_rules.hpp>
+
 #include <pybind11/pybind11.h>
 
 #include <functional>
@@ -28,6 +30,13 @@ using KeywordFields = std::map<std::string, KeywordField<Options>, std::less<>>;
 template <class T, class Options>
 KeywordField<Options> keyword_field(T Options::*member, std::string expected) {
   return {std::move(expected), [member](Options& o, py::handle value) { o.*member = py::cast<T>(value); }};
+}
+
+/// The normal check a str argument names; ValueError naming `function` and the valid names
+/// for any other (project() and Map.check_against_rays() take the same names).
+inline NormalCheck normal_check_argument(const std::string& function, const std::string& name) {
+  if (const auto check = normal_check_from_name(name)) return *check;
+  throw py::value_error(function + "(): normal_check must be 'none', 'facing' or 'aligned', got '" + name + "'");
 }
 
 template <class Options>

@@ -16,11 +16,6 @@ namespace plmap::python {
 
 namespace {
 
-TargetNormalCheck normal_check_named(const std::string& name) {
-  if (const auto check = normal_check_from_name(name)) return *check;
-  throw py::value_error("project(): normal_check must be 'none', 'facing' or 'aligned', got '" + name + "'");
-}
-
 /// The keyword arguments of project(): the ProjectionOptions, with the directions kept as the
 /// array they came as until the dimension is known (to check their shape).
 struct ProjectCall {
@@ -45,7 +40,7 @@ const KeywordFields<ProjectCall>& projection_fields() {
       {"max_distance_is_relative", option_field(&O::max_distance_is_relative, "a bool")},
       {"allow_negative_distance", option_field(&O::allow_negative_distance, "a bool")},
       {"normal_check", {"a str ('none', 'facing' or 'aligned')", [](ProjectCall& c, py::handle v) {
-         c.options.normal_check = normal_check_named(py::cast<std::string>(v));
+         c.options.normal_check = normal_check_argument("project", py::cast<std::string>(v));
        }}},
       {"threads", option_field(&O::threads, "a non-negative int (0: all cores)")},
       {"search_seeds", option_field(&O::search_seeds, "an int")},

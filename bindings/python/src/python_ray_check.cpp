@@ -2,6 +2,7 @@
 // under the rules the map records unless the arguments change them, as `plmap check
 // --against-rays` does (verify/ray_check_rules.hpp chooses for both).
 
+#include "keyword_options.hpp"
 #include "numpy_arrays.hpp"
 #include "python_map.hpp"
 
@@ -30,12 +31,6 @@ struct RayCall {
   std::size_t max_listed = 20;
   RayRuleChoice choice;
 };
-
-NormalCheck normal_check_argument(const std::string& name) {
-  if (const auto check = normal_check_from_name(name)) return *check;
-  throw py::value_error("check_against_rays(): normal_check must be 'none', 'facing' or 'aligned', got '" + name +
-                        "'");
-}
 
 const char* source_name(RayRulesSource source) {
   switch (source) {
@@ -83,13 +78,7 @@ py::object check_map(const PlMap<d>& map, const RayCall& call) {
     report.emplace(check_against_rays(map, options));
   }
   nlohmann::json j = to_json(*report);
-  j["rules"] = {{"from", source_name(chosen.source)},
-                {"max_distance", std::isfinite(options.max_distance) ? nlohmann::json(options.max_distance)
-                                                                     : nlohmann::json("inf")},
-                {"max_distance_is_relative", options.max_distance_is_relative},
-                {"allow_negative_distance", options.allow_negative_distance},
-                {"normal_check", std::string(to_string(options.normal_check))},
-                {"directions", call.directions ? "given" : "averaged-normals"}};
+  j["rules"] = ray_rules_json(options, source_name(chosen.source), call.directions ? "given" : "averaged-normals");
   j["tolerance"] = call.tolerance;
   j["ok"] = ray_check_passes(*report, call.tolerance);
   return json_to_python(j);
@@ -119,7 +108,7 @@ void bind_ray_check(py::module_& m) {
                        .max_distance = max_distance,
                        .max_distance_is_relative = max_distance_is_relative,
                        .allow_negative_distance = allow_negative_distance,
-                       .normal_check = normal_check ? std::optional(normal_check_argument(*normal_check))
+                       .normal_check = normal_check ? std::optional(normal_check_argument("check_against_rays", *normal_check))
                                                     : std::nullopt};
         return visit_map(pm, [&](const auto& map) { return check_map(map, call); });
       },

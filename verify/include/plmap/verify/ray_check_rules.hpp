@@ -57,6 +57,12 @@ template <int d>
 ChosenRayRules choose_ray_rules(const PlMap<d>& map, const RayRuleChoice& choice,
                                 std::span<const double> direction_values, RayCheckOptions<d>& options);
 
+/// The rules `options` holds as a report gives them: {"from": from, "max_distance": a number or
+/// "inf", "max_distance_is_relative", "allow_negative_distance", "normal_check": its name,
+/// "directions": directions} (the CLI's and Python's "rules").
+template <int d>
+nlohmann::json ray_rules_json(const RayCheckOptions<d>& options, std::string_view from, std::string_view directions);
+
 /// Whether a report passes at `tolerance` (a fraction of S1's measure): the missed defects, the
 /// extra defects and the in-D defects are each at most that. `plmap check`'s verdict.
 template <int d>
