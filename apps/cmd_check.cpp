@@ -130,8 +130,8 @@ std::string ray_summary(const Json& j) {
       "against rays ({} samples): {}\n"
       "  rules from the {}: distance limit {}{}, {}, normal check {}, directions {}\n"
       "  missed {:.3g} of S1, defects {:.3g}\n"
-      "    outside D for a reason: nearer sheet {:.3g}, S1 in between {:.3g}, S2 seen twice {:.3g}, past a focal "
-      "point {:.3g}, just inside S2's boundary {:.3g}\n"
+      "    outside D for a reason: nearer sheet {:.3g}, S1 in between {:.3g}, S2 seen twice {:.3g}, S2 crossing "
+      "itself {:.3g}, past a focal point {:.3g}, just inside S2's boundary {:.3g}\n"
       "    defects: farther sheet {:.3g}, next to a fold {:.3g}, not covered {:.3g}\n"
       "  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, past a focal point {:.3g}, unexplained {:.3g}; rejected by "
       "this check's rules: "
@@ -145,7 +145,8 @@ std::string ray_summary(const Json& j) {
       rules["normal_check"].get<std::string>(), rules["directions"].get<std::string>(),
       j["missed"]["fraction"].get<double>(),
       j["missed"]["defect_fraction"].get<double>(), f("nearer_sheet"), f("domain_in_between"),
-      f("target_seen_twice"), f("past_focal_point"), f("inside_target_boundary"), f("farther_sheet"), f("next_to_fold"), f("not_covered"),
+      f("target_seen_twice"), f("target_crosses_itself"), f("past_focal_point"), f("inside_target_boundary"),
+      f("farther_sheet"), f("next_to_fold"), f("not_covered"),
       j["extra"]["fraction"].get<double>(), j["extra"]["by_reason"]["beyond_target_boundary"]["fraction"].get<double>(), x("past_focal_point"),
       j["extra"]["by_reason"]["unexplained"]["fraction"].get<double>(), x("behind_domain"),
       x("beyond_distance_limit"), x("against_normal_check"), rules_hint, e["median"].get<double>(),

@@ -1,8 +1,9 @@
 // The reasons the ray check (verify/ray_check.hpp) gives for missed samples that no region
 // covers: another part of S1 between the sample and its hit, S2 crossing the ray twice within
-// an edge length, a fold of the projection in or next to the sample's element. Each case
-// projects with a distance limit far below the gap, so that the map covers nothing, and checks
-// without the limit: every sample with a hit is missed, and its class is known from the geometry.
+// an edge length, S2 crossing itself within an edge length of the hit, a fold of the projection
+// in or next to the sample's element. Each case projects with a distance limit far below the
+// gap, so that the map covers nothing, and checks without the limit: every sample with a hit is
+// missed, and its class is known from the geometry.
 #include "offset_height_field_pair.hpp"
 #include "projection_fixtures.hpp"
 
@@ -103,6 +104,46 @@ TEST(RayCheckReasons, S2SeenTwiceWithinAnEdgeLength) {
                                       constant_directions(*s1, WorldPoint<2>(0, 0, 1)));
   EXPECT_EQ(far.missed, far.samples);
   EXPECT_EQ(fraction_of(far, MissedReason::not_covered), 1.0);
+}
+
+TEST(RayCheckReasons, S2CrossingItselfWithinAnEdgeLength) {
+  // S2: two sheets over the unit square, both facing S1, tilted against each other, z = 1 +- (x
+  // - 0.5) / 2: they cross along x = 0.5, z = 1, in the middle of a column of cells. The rays go
+  // straight up and meet both sheets from the same side (no second crossing from the other side,
+  // so not target_seen_twice). A hit lies within one mean S2 edge length (about 0.111) of the
+  // crossing line where |x - 0.5| < 0.111 / sqrt(1.25): 0.199 of S1. The rest stays unexplained.
+  auto s1 = grid(10, 10, 0, 1, 0, 1, 0.0);
+  auto sheet = [](double slope, int cells) {
+    return transformed<2>(*grid(cells, cells, -0.1, 1.1, -0.1, 1.1, 0.0, true), [slope](const WorldPoint<2>& p) {
+      return WorldPoint<2>(p.x(), p.y(), 1.0 + slope * (p.x() - 0.5));
+    });
+  };
+  const auto up = constant_directions(*s1, WorldPoint<2>(0, 0, 1));
+  const auto r = check_of_empty_map(s1, joined(*sheet(0.5, 13), *sheet(-0.5, 13)), up);
+  EXPECT_EQ(r.missed, r.samples);
+  const double band = std::sqrt(0.1032 * 0.1032 + 0.0923 * 0.0923);  // the longest edge: a diagonal
+  EXPECT_NEAR(fraction_of(r, MissedReason::target_crosses_itself), 0.199, 0.015);
+  EXPECT_EQ(fraction_of(r, MissedReason::target_seen_twice), 0.0);
+  EXPECT_EQ(r.missed_examples.size(), r.missed);
+  for (const auto& s : r.missed_examples) {
+    const double from_crossing = std::abs(s.point.x() - 0.5);
+    if (s.reason == MissedReason::target_crosses_itself) {
+      EXPECT_LT(from_crossing, band);
+    }
+    if (from_crossing > band) {
+      EXPECT_EQ(s.reason, MissedReason::not_covered);
+    }
+  }
+  EXPECT_EQ(r.missed_defects(), r.missed_by_reason[static_cast<std::size_t>(MissedReason::not_covered)]);
+
+  // One sheet bent along x = 0.5 (a ridge of its own elements, which meet only where they share
+  // vertices) does not cross itself.
+  auto ridge = transformed<2>(*grid(12, 12, -0.1, 1.1, -0.1, 1.1, 0.0, true), [](const WorldPoint<2>& p) {
+    return WorldPoint<2>(p.x(), p.y(), 1.0 - 0.5 * std::abs(p.x() - 0.5));
+  });
+  const auto bent = check_of_empty_map(s1, ridge, up);
+  EXPECT_EQ(bent.missed, bent.samples);
+  EXPECT_EQ(fraction_of(bent, MissedReason::not_covered), 1.0);
 }
 
 TEST(RayCheckReasons, FoldsAtAValleyCrease) {

@@ -11,6 +11,7 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Simple_cartesian.h>
 #include <fmt/format.h>
 
@@ -28,6 +29,7 @@ std::string_view to_string(MissedReason reason) {
     case MissedReason::not_covered: return "not_covered";
     case MissedReason::domain_in_between: return "domain_in_between";
     case MissedReason::target_seen_twice: return "target_seen_twice";
+    case MissedReason::target_crosses_itself: return "target_crosses_itself";
     case MissedReason::past_focal_point: return "past_focal_point";
     case MissedReason::next_to_fold: return "next_to_fold";
     case MissedReason::inside_target_boundary: return "inside_target_boundary";
@@ -55,6 +57,15 @@ using Triangle3 = Kernel::Triangle_3;
 using TriangleIterator = std::vector<Triangle3>::const_iterator;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+// The tree's double triangles answer which pairs may meet; whether two of them meet is decided
+// with exact predicates, so that a rounding error cannot make S2 cross itself.
+using ExactKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using ExactTriangle = ExactKernel::Triangle_3;
+
+ExactTriangle exact_triangle(const Triangle3& t) {
+  auto p = [](const Point3& q) { return ExactKernel::Point_3(q.x(), q.y(), q.z()); };
+  return {p(t[0]), p(t[1]), p(t[2])};
+}
 
 template <int d>
 Eigen::Vector3d lifted(const WorldPoint<d>& p) {
@@ -494,6 +505,7 @@ class RayChecker {
   MissedReason explain_not_covered(Index t, const WorldPoint<d>& x, const WorldPoint<d>& nu, const Hit& hit) const {
     if (domain_between(lifted<d>(x), hit.point)) return MissedReason::domain_in_between;
     if (target_seen_again(lifted<d>(nu), hit)) return MissedReason::target_seen_twice;
+    if (target_crosses_itself_near(hit)) return MissedReason::target_crosses_itself;
     if (folds_within(t, hit.mu)) return MissedReason::past_focal_point;
     if (fold_next_to(t, hit.mu)) return MissedReason::next_to_fold;
     return MissedReason::not_covered;
@@ -547,6 +559,74 @@ class RayChecker {
     return false;
   }
 
+  /// S2 crosses itself within one mean edge length of the hit: the hit lies that close to a
+  /// point where an S2 element meets another with which it shares no vertex
+  /// (MissedReason::target_crosses_itself).
+  bool target_crosses_itself_near(const Hit& hit) const {
+    const double reach = mean_edge_length(s2_, hit.element);
+    if (!(reach > 0.0)) return false;
+    const Point3 c = cgal_point(hit.point);
+    const Kernel::Iso_cuboid_3 box(c.x() - reach, c.y() - reach, c.z() - reach, c.x() + reach, c.y() + reach,
+                                   c.z() + reach);
+    std::vector<TriangleIterator> near;
+    tree_.all_intersected_primitives(box, std::back_inserter(near));
+    for (const TriangleIterator it : near)
+      for (const Kernel::Segment_3& crossing : crossings_of(static_cast<std::size_t>(it - triangles_.triangles.cbegin())))
+        if (CGAL::squared_distance(c, crossing) <= reach * reach) return true;
+    return false;
+  }
+
+  /// Where triangle i of the tree (of S2 element triangles_.element[i]) meets the triangles of
+  /// S2 elements that share no vertex with its own: one segment per such triangle (a point is a
+  /// segment of length 0; where the two overlap in one plane, or touch where the rounded
+  /// construction finds nothing, triangle i's edges stand for the place). Whether they meet is decided with exact predicates; memoized.
+  const std::vector<Kernel::Segment_3>& crossings_of(std::size_t i) const {
+    if (crossings_.empty()) crossings_.resize(triangles_.triangles.size());
+    auto& [known, segments] = crossings_[i];
+    if (known) return segments;
+    known = true;
+    const Index tau = triangles_.element[i];
+    const auto& corners = s2_.element(tau);
+    const auto shares_a_vertex = [&](Index sigma) {
+      for (Index v : s2_.element(sigma))
+        if (std::find(corners.begin(), corners.end(), v) != corners.end()) return true;
+      return false;
+    };
+    const Triangle3& mine = triangles_.triangles[i];
+    const ExactTriangle exact_mine = exact_triangle(mine);
+    std::vector<TriangleIterator> candidates;
+    tree_.all_intersected_primitives(mine, std::back_inserter(candidates));
+    for (const TriangleIterator it : candidates) {
+      const Index sigma = triangles_.element[static_cast<std::size_t>(it - triangles_.triangles.cbegin())];
+      if (sigma == tau || shares_a_vertex(sigma) || !CGAL::do_intersect(exact_mine, exact_triangle(*it))) continue;
+      const auto where = CGAL::intersection(mine, *it);
+      if (where) {
+        add_crossing(*where, mine, segments);
+      } else if (const auto cut = CGAL::intersection(mine, it->supporting_plane())) {
+        add_crossing(*cut, mine, segments);  // a touch the rounded construction misses: the line it lies on
+      } else {
+        add_crossing(mine, mine, segments);
+      }
+    }
+    return segments;
+  }
+
+  /// Adds the place where two triangles meet (a point, a segment, or an overlap in one plane,
+  /// which the edges of `mine` stand for) to the list.
+  template <class Place>
+  static void add_crossing(const Place& where, const Triangle3& mine, std::vector<Kernel::Segment_3>& segments) {
+    if (const Point3* p = boost::get<Point3>(&where)) {
+      segments.emplace_back(*p, *p);
+    } else if (const Kernel::Segment_3* g = boost::get<Kernel::Segment_3>(&where)) {
+      segments.push_back(*g);
+    } else {
+      for (int k = 0; k < 3; ++k) segments.emplace_back(mine[k], mine[(k + 1) % 3]);
+    }
+  }
+  static void add_crossing(const Triangle3&, const Triangle3& mine, std::vector<Kernel::Segment_3>& segments) {
+    for (int k = 0; k < 3; ++k) segments.emplace_back(mine[k], mine[(k + 1) % 3]);
+  }
+
   /// The sign of the S2 element's normal along the unit direction (0 for curves, whose
   /// extruded segments have no orientation here, and for grazing elements).
   double facing_sign(Index tau, const Eigen::Vector3d& unit) const {
@@ -592,6 +672,8 @@ class RayChecker {
   Tree domain_tree_;
   double limit_ = 0.0, reach_ = 0.0;
   std::vector<std::vector<Index>> regions_of_target_;
+  /// per tree triangle: whether crossings_of has been computed, and its answer
+  mutable std::vector<std::pair<bool, std::vector<Kernel::Segment_3>>> crossings_;
 };
 
 }  // namespace
@@ -621,7 +703,7 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
   nlohmann::json by_reason = nlohmann::json::object();
   for (MissedReason reason : {MissedReason::nearer_sheet, MissedReason::farther_sheet, MissedReason::not_covered,
                               MissedReason::domain_in_between, MissedReason::target_seen_twice,
-                              MissedReason::past_focal_point, MissedReason::next_to_fold,
+                              MissedReason::target_crosses_itself, MissedReason::past_focal_point, MissedReason::next_to_fold,
                               MissedReason::inside_target_boundary}) {
     const std::size_t n = r.missed_by_reason[static_cast<std::size_t>(reason)];
     by_reason[std::string(to_string(reason))] = {{"samples", n}, {"fraction", r.fraction(n)}};

@@ -66,8 +66,9 @@ struct RayCheckOptions {
 /// Why a sample whose ray hits S2 lies outside D. The first three say what covers the hit on
 /// S2; a sample that no region covers is then put in the first of the later classes that applies
 /// (in the order listed); not_covered is what none of them explains. nearer_sheet,
-/// domain_in_between, target_seen_twice and past_focal_point are outside D for a stated reason;
-/// farther_sheet, not_covered and next_to_fold are defects of the construction.
+/// domain_in_between, target_seen_twice, target_crosses_itself, past_focal_point and
+/// inside_target_boundary are outside D for a stated reason; farther_sheet, not_covered and
+/// next_to_fold are defects of the construction.
 enum class MissedReason {
   /// The hit lies in the image of a region whose preimage is nearer to it along the ray's
   /// measure than x: a nearer sheet of S1 claims that part of S2 (the projection keeps the
@@ -86,6 +87,12 @@ enum class MissedReason {
   /// edge length of the S2 element hit: S2 folds back over itself (or two of its sheets face
   /// each other) closer than its edges, so the preimages of its edges there cross or reverse.
   target_seen_twice,
+  /// Not covered, and S2 intersects itself within one edge length of the hit: an S2 element there
+  /// meets another with which it shares no vertex (overlapping bodies, such as CGAL's bones,
+  /// whose components interpenetrate, and offset copies of them). Across the preimage of that
+  /// intersection the nearest hit jumps from one sheet of S2 to the other, so Xi cannot be
+  /// continuous there, and D, bounded by S1 edges and preimages of S2 edges, ends beside it.
+  target_crosses_itself,
   /// Not covered, and the projection folds in x's S1 element: the ray from one of its corners
   /// passes a focal point before the hit's distance. The preimages of the S2 edges that reach
   /// the fold end there, and D, bounded by S1 edges and S2-edge preimages, cannot follow the
@@ -102,7 +109,7 @@ enum class MissedReason {
   /// Outside D for a stated reason.
   inside_target_boundary,
 };
-constexpr std::size_t missed_reason_count = 8;
+constexpr std::size_t missed_reason_count = 9;
 std::string_view to_string(MissedReason reason);
 
 /// Why a sample in D has no admissible ray hit.
