@@ -5,6 +5,7 @@
 #include "summaries.hpp"
 
 #include <plmap/core/io/map_file.hpp>
+#include <plmap/verify/self_intersections.hpp>
 
 namespace plmap::cli {
 
@@ -27,8 +28,13 @@ int run_info(const InfoOptions& o) {
     std::visit([&](const auto& map) { j.update(map_summary(map, o.quality)); }, load_map_showing_progress(o.file, o.progress));
   } else {
     j["kind"] = "surface";
-    std::visit([&](const auto& surface) { j.update(surface_summary(surface)); },
-               read_any_surface(o.file, o.dimension));
+    std::visit(
+        [&](const auto& surface) {
+          j.update(surface_summary(surface));
+          // (not for the surfaces inside a map: the test costs about a projection's time)
+          j["self_intersecting_pairs"] = self_intersections(surface).size();
+        },
+        read_any_surface(o.file, o.dimension));
   }
   print_result(j, o.json);
   return exit_code::success;
@@ -41,7 +47,9 @@ void register_info(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand(
       "info",
       "Describe a surface or map file. Surfaces: vertex/element/edge counts, dimension, measure "
-      "(length or area), bounding box, boundary and non-manifold counts. Maps (.plmap): both "
+      "(length or area), bounding box, boundary and non-manifold counts, coincident vertices, and the "
+      "pairs of elements that cross each other without sharing a vertex (the surface intersects "
+      "itself). Maps (.plmap): both "
       "surfaces, node counts by type, regions, covered measure and the distribution of the "
       "condition number kappa.");
   cmd->add_option("FILE", o->file, "Surface (.off .obj .stl .ply .msh .curve) or map (.plmap)")

@@ -325,3 +325,19 @@ def unstitched_seams_are_counted_and_warned_about():
     expect(run_json("info", "no_seam.off", "--json")["coincident_vertices"] == 0, "no seam")
     _, err, _ = run("project", "no_seam.off", "no_seam.off", "-o", "no_seam.plmap")
     expect("position of another vertex" not in err, err)
+
+
+@case
+def surfaces_that_cross_themselves_are_counted():
+    # A unit square (two triangles) pierced by a vertical triangle through the inside of the first
+    # one: `info` counts one pair of elements that meet without sharing a vertex; the square alone,
+    # whose triangles share an edge, none. (The ray check names the area such a crossing costs a
+    # projection: missed reason target_crosses_itself.)
+    write("pierced.off", "OFF\n7 3 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0.2 -0.1\n0.7 0.2 -0.1\n0.6 0.2 0.1\n"
+          "3 0 1 2\n3 0 2 3\n3 4 5 6\n")
+    j = run_json("info", "pierced.off", "--json")
+    expect(j["self_intersecting_pairs"] == 1, j)
+    out, _, _ = run("info", "pierced.off")
+    expect("self_intersecting_pairs: 1" in out, out)
+    write("square.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n")
+    expect(run_json("info", "square.off", "--json")["self_intersecting_pairs"] == 0, "square")

@@ -153,7 +153,8 @@ def info_surface():
     j = run_json("info", s, "--json")
     expect_keys(j, ["kind", "dimension", "vertices", "elements", "edges", "measure",
                     "bounding_box", "boundary_edges", "boundary_vertices", "non_manifold_edges",
-                    "non_manifold_vertices"], "info surface")
+                    "non_manifold_vertices", "coincident_vertices", "self_intersecting_pairs"], "info surface")
+    expect(j["self_intersecting_pairs"] == 0, j)
     expect(j["kind"] == "surface" and j["dimension"] == 2, j)
     expect(j["vertices"] == 25 and j["elements"] == 32, f"4x4 grid counts: {j}")
     expect(j["edges"] == 25 + 32 - 1, f"Euler: V - E + F = 1 for a disc: {j}")

@@ -3,16 +3,13 @@
 
 #include <plmap/verify/ray_check.hpp>
 
+#include "cgal_triangles.hpp"
+
 #include <plmap/core/errors.hpp>
 #include <plmap/core/evaluation.hpp>
 
 #include <Eigen/Dense>
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Simple_cartesian.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -51,61 +48,7 @@ std::string_view to_string(ExtraReason reason) {
 
 namespace {
 
-using Kernel = CGAL::Simple_cartesian<double>;
-using Point3 = Kernel::Point_3;
-using Triangle3 = Kernel::Triangle_3;
-using TriangleIterator = std::vector<Triangle3>::const_iterator;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-// The tree's double triangles answer which pairs may meet; whether two of them meet is decided
-// with exact predicates, so that a rounding error cannot make S2 cross itself.
-using ExactKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using ExactTriangle = ExactKernel::Triangle_3;
-
-ExactTriangle exact_triangle(const Triangle3& t) {
-  auto p = [](const Point3& q) { return ExactKernel::Point_3(q.x(), q.y(), q.z()); };
-  return {p(t[0]), p(t[1]), p(t[2])};
-}
-
-template <int d>
-Eigen::Vector3d lifted(const WorldPoint<d>& p) {
-  if constexpr (d == 2)
-    return p;
-  else
-    return Eigen::Vector3d(p.x(), p.y(), 0.0);
-}
-
-Point3 cgal_point(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
-Eigen::Vector3d eigen_point(const Point3& p) { return {p.x(), p.y(), p.z()}; }
-
-/// S2's elements as CGAL triangles, and for each triangle its S2 element. Curves (d = 1) are
-/// extruded: each segment becomes the rectangle segment x [-h, h] along z (two triangles), so
-/// that a ray in the plane z = 0 meets the rectangle exactly where it meets the segment.
-template <int d>
-struct TargetTriangles {
-  std::vector<Triangle3> triangles;
-  std::vector<Index> element;
-
-  explicit TargetTriangles(const Surface<d>& s2) {
-    if constexpr (d == 2) {
-      for (Index t = 0; t < s2.element_count(); ++t) {
-        triangles.emplace_back(cgal_point(s2.corner(t, 0)), cgal_point(s2.corner(t, 1)), cgal_point(s2.corner(t, 2)));
-        element.push_back(t);
-      }
-    } else {
-      // the rectangles' height only has to be nonzero; S2's size keeps it relative to the input
-      const double diagonal = (s2.bounding_box_max() - s2.bounding_box_min()).norm();
-      const double h = diagonal > 0.0 ? diagonal : 1.0;
-      for (Index t = 0; t < s2.element_count(); ++t) {
-        const Eigen::Vector3d a = lifted<1>(s2.corner(t, 0)), b = lifted<1>(s2.corner(t, 1)), z(0, 0, h);
-        triangles.emplace_back(cgal_point(a - z), cgal_point(b - z), cgal_point(b + z));
-        triangles.emplace_back(cgal_point(a - z), cgal_point(b + z), cgal_point(a + z));
-        element.push_back(t);
-        element.push_back(t);
-      }
-    }
-  }
-};
+using namespace verify_detail;
 
 /// Barycentric coordinates of x with respect to the simplex with the given corners (local
 /// coordinates of dimension d).
@@ -571,60 +514,9 @@ class RayChecker {
     std::vector<TriangleIterator> near;
     tree_.all_intersected_primitives(box, std::back_inserter(near));
     for (const TriangleIterator it : near)
-      for (const Kernel::Segment_3& crossing : crossings_of(static_cast<std::size_t>(it - triangles_.triangles.cbegin())))
+      for (const Kernel::Segment_3& crossing : crossings_.of(static_cast<std::size_t>(it - triangles_.triangles.cbegin())))
         if (CGAL::squared_distance(c, crossing) <= reach * reach) return true;
     return false;
-  }
-
-  /// Where triangle i of the tree (of S2 element triangles_.element[i]) meets the triangles of
-  /// S2 elements that share no vertex with its own: one segment per such triangle (a point is a
-  /// segment of length 0; where the two overlap in one plane, or touch where the rounded
-  /// construction finds nothing, triangle i's edges stand for the place). Whether they meet is decided with exact predicates; memoized.
-  const std::vector<Kernel::Segment_3>& crossings_of(std::size_t i) const {
-    if (crossings_.empty()) crossings_.resize(triangles_.triangles.size());
-    auto& [known, segments] = crossings_[i];
-    if (known) return segments;
-    known = true;
-    const Index tau = triangles_.element[i];
-    const auto& corners = s2_.element(tau);
-    const auto shares_a_vertex = [&](Index sigma) {
-      for (Index v : s2_.element(sigma))
-        if (std::find(corners.begin(), corners.end(), v) != corners.end()) return true;
-      return false;
-    };
-    const Triangle3& mine = triangles_.triangles[i];
-    const ExactTriangle exact_mine = exact_triangle(mine);
-    std::vector<TriangleIterator> candidates;
-    tree_.all_intersected_primitives(mine, std::back_inserter(candidates));
-    for (const TriangleIterator it : candidates) {
-      const Index sigma = triangles_.element[static_cast<std::size_t>(it - triangles_.triangles.cbegin())];
-      if (sigma == tau || shares_a_vertex(sigma) || !CGAL::do_intersect(exact_mine, exact_triangle(*it))) continue;
-      const auto where = CGAL::intersection(mine, *it);
-      if (where) {
-        add_crossing(*where, mine, segments);
-      } else if (const auto cut = CGAL::intersection(mine, it->supporting_plane())) {
-        add_crossing(*cut, mine, segments);  // a touch the rounded construction misses: the line it lies on
-      } else {
-        add_crossing(mine, mine, segments);
-      }
-    }
-    return segments;
-  }
-
-  /// Adds the place where two triangles meet (a point, a segment, or an overlap in one plane,
-  /// which the edges of `mine` stand for) to the list.
-  template <class Place>
-  static void add_crossing(const Place& where, const Triangle3& mine, std::vector<Kernel::Segment_3>& segments) {
-    if (const Point3* p = boost::get<Point3>(&where)) {
-      segments.emplace_back(*p, *p);
-    } else if (const Kernel::Segment_3* g = boost::get<Kernel::Segment_3>(&where)) {
-      segments.push_back(*g);
-    } else {
-      for (int k = 0; k < 3; ++k) segments.emplace_back(mine[k], mine[(k + 1) % 3]);
-    }
-  }
-  static void add_crossing(const Triangle3&, const Triangle3& mine, std::vector<Kernel::Segment_3>& segments) {
-    for (int k = 0; k < 3; ++k) segments.emplace_back(mine[k], mine[(k + 1) % 3]);
   }
 
   /// The sign of the S2 element's normal along the unit direction (0 for curves, whose
@@ -672,8 +564,7 @@ class RayChecker {
   Tree domain_tree_;
   double limit_ = 0.0, reach_ = 0.0;
   std::vector<std::vector<Index>> regions_of_target_;
-  /// per tree triangle: whether crossings_of has been computed, and its answer
-  mutable std::vector<std::pair<bool, std::vector<Kernel::Segment_3>>> crossings_;
+  mutable SelfCrossings<d> crossings_{s2_, triangles_, tree_};  ///< where S2 meets itself, memoized
 };
 
 }  // namespace
