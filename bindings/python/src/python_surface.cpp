@@ -5,6 +5,7 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/surface_reader.hpp>
 #include <plmap/core/io/surface_writer.hpp>
+#include <plmap/verify/self_intersections.hpp>
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -137,6 +138,13 @@ void bind_surface(py::module_& m) {
       .def_property_readonly("measure", [](const PySurface& s) {
         return visit_surface(s, [](const auto& surface) { return surface.measure(); });
       }, "Total length (d = 1) or area (d = 2)")
+      .def("self_intersections", [](const PySurface& s, unsigned threads) {
+        py::gil_scoped_release unlocked;
+        return visit_surface(s, [&](const auto& surface) { return plmap::self_intersections(surface, threads); });
+      }, py::arg("threads") = 0,
+         "Pairs (a, b), a < b, of elements that meet although they share no vertex: where the "
+         "surface crosses itself (overlapping bodies in one file). Sorted list of tuples; CGAL's "
+         "exact predicates decide; threads=0 uses all cores.")
       .def("save", [](const PySurface& s, const std::filesystem::path& path) {
         py::gil_scoped_release unlocked;
         visit_surface(s, [&](const auto& surface) { write_surface(path, surface); });

@@ -25,6 +25,17 @@ def test_arrays_round_trip_exactly_for_both_dimensions():
     assert np.array_equal(c.vertices, points)
 
 
+def test_self_intersections_are_the_pairs_that_meet_without_a_shared_vertex():
+    # the unit square (two triangles sharing an edge) and a vertical triangle through the inside
+    # of the first: one pair; without it, none
+    vertices = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+                         [0.5, 0.2, -0.1], [0.7, 0.2, -0.1], [0.6, 0.2, 0.1]], dtype=float)
+    triangles = np.array([[0, 1, 2], [0, 2, 3], [4, 5, 6]])
+    assert plmap.Surface(vertices, triangles).self_intersections() == [(0, 2)]
+    assert plmap.Surface(vertices, triangles).self_intersections(threads=1) == [(0, 2)]
+    assert plmap.Surface(vertices[:4], triangles[:2]).self_intersections() == []
+
+
 def test_measure_is_the_area():
     s = plmap.Surface(*grid(3, 5, 0.0, 0.0, 2.0, 0.5))
     assert s.measure == pytest.approx(1.0, rel=1e-14)
