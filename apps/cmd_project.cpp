@@ -13,11 +13,13 @@
 #include <plmap/core/io/map_file.hpp>
 #include <plmap/core/regions.hpp>
 #include <plmap/solvers/solver_kind.hpp>
+#include <plmap/verify/self_intersections.hpp>
 
 #include <fmt/format.h>
 
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace plmap::cli {
@@ -76,6 +78,20 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
                  "--directions is given) meets S2 in front of S1; if S2 lies behind S1, try --allow-negative\n";
 
   const auto& r = result.report;
+  // Where S2 crosses itself (overlapping bodies in one file), the nearest hit jumps from one sheet
+  // to the other, and the faces beside the crossing map into no one S2 element. Looked for only
+  // when such faces cost more than 1 % of S1: the test takes about a quarter of a projection's
+  // time (0.26 s on the armadillo pair, whose unmapped faces are 0.1 % of S1 and S2 does not
+  // cross itself).
+  std::optional<std::size_t> s2_crossings;
+  if (d == 2 && r.left_out.unmapped > 0.01 * result.measures.domain) {
+    s2_crossings = self_intersections(*s2, o.threads).size();
+    if (*s2_crossings > 0)
+      std::cerr << "note: S2 crosses itself: " << *s2_crossings << " pairs of its elements meet without sharing a "
+                << "vertex (overlapping bodies, or a sheet folded through another); the map leaves out the faces beside such crossings, where the "
+                << "nearest hit jumps between sheets (`plmap check MAP --against-rays N` reports that area as "
+                << "target_crosses_itself)\n";
+  }
   Json j;
   j["map"] = o.output;
   j["dimension"] = d;
@@ -93,6 +109,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   j["edges_outside"] = r.edges_outside;
   j["edges_not_inserted"] = r.edges_not_inserted.size();
   j["reversed_faces"] = r.reversed_faces;
+  if (s2_crossings) j["target_self_intersecting_pairs"] = *s2_crossings;
   j["unmapped_faces"] = r.unmapped_faces;
   j["occluded_faces"] = r.occluded_faces;
   j["folded_faces"] = r.folded_faces;

@@ -341,3 +341,40 @@ def surfaces_that_cross_themselves_are_counted():
     expect("self_intersecting_pairs: 1" in out, out)
     write("square.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n")
     expect(run_json("info", "square.off", "--json")["self_intersecting_pairs"] == 0, "square")
+
+
+def tilted_sheets_off(cells, slopes):
+    """Sheets over [-0.1, 1.1]^2 at z = 1 + slope (x - 0.5), facing down (-z); two with opposite
+    slopes cross along x = 0.5, z = 1."""
+    n = cells + 1
+    vertices, faces = [], []
+    for sheet, slope in enumerate(slopes):
+        for j in range(n):
+            for i in range(n):
+                x, y = -0.1 + 1.2 * i / cells, -0.1 + 1.2 * j / cells
+                vertices.append(f"{x!r} {y!r} {1 + slope * (x - 0.5)!r}")
+        base = sheet * n * n
+        for j in range(cells):
+            for i in range(cells):
+                a, b, c, d = (base + j * n + i, base + j * n + i + 1, base + (j + 1) * n + i + 1,
+                              base + (j + 1) * n + i)
+                faces += [f"3 {a} {c} {b}", f"3 {a} {d} {c}"]
+    return f"OFF\n{len(vertices)} {len(faces)} 0\n" + "\n".join(vertices + faces) + "\n"
+
+
+@case
+def projecting_onto_a_surface_that_crosses_itself_says_so():
+    # S2 crosses itself above the middle of S1: the nearest hit jumps from one sheet to the other
+    # there, the faces beside the crossing are left out, and `project` names the crossing (and
+    # counts its pairs in the JSON). Onto one of the sheets alone it says nothing.
+    flat = grid("crossed_flat.off", cells=10)
+    write("crossing.off", tilted_sheets_off(13, (0.5, -0.5)))
+    out, err, _ = run("project", flat, "crossing.off", "-o", "crossed.plmap", "--json")
+    j = json.loads(out)
+    expect(j.get("target_self_intersecting_pairs", 0) > 0, j)
+    expect("S2 crosses itself" in err and "target_crosses_itself" in err, err)
+    expect(j["covered_measure"] < j["domain_measure"], j)
+    write("one_sheet.off", tilted_sheets_off(13, (0.5,)))
+    out, err, _ = run("project", flat, "one_sheet.off", "-o", "one_sheet.plmap", "--json")
+    expect("S2 crosses itself" not in err, err)
+    expect(json.loads(out).get("target_self_intersecting_pairs", 0) == 0, out)
