@@ -31,7 +31,7 @@ int run_info(const InfoOptions& o) {
     std::visit(
         [&](const auto& surface) {
           j.update(surface_summary(surface));
-          // (not for the surfaces inside a map: the test costs about a projection's time)
+          // (not for the surfaces inside a map: the test costs about a quarter of a projection)
           j["self_intersecting_pairs"] = self_intersections(surface).size();
         },
         read_any_surface(o.file, o.dimension));
@@ -49,9 +49,8 @@ void register_info(CLI::App& app, Action& action) {
       "Describe a surface or map file. Surfaces: vertex/element/edge counts, dimension, measure "
       "(length or area), bounding box, boundary and non-manifold counts, coincident vertices, and the "
       "pairs of elements that cross each other without sharing a vertex (the surface intersects "
-      "itself). Maps (.plmap): both "
-      "surfaces, node counts by type, regions, covered measure and the distribution of the "
-      "condition number kappa.");
+      "itself). Maps (.plmap): both surfaces, node counts by type, regions, covered measure and the "
+      "distribution of the condition number kappa.");
   cmd->add_option("FILE", o->file, "Surface (.off .obj .stl .ply .msh .curve) or map (.plmap)")
       ->required();
   add_dimension_option(*cmd, o->dimension);

@@ -88,9 +88,9 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
     s2_crossings = self_intersections(*s2, o.threads).size();
     if (*s2_crossings > 0)
       std::cerr << "note: S2 crosses itself: " << *s2_crossings << " pairs of its elements meet without sharing a "
-                << "vertex (overlapping bodies, or a sheet folded through another); the map leaves out the faces beside such crossings, where the "
-                << "nearest hit jumps between sheets (`plmap check MAP --against-rays N` reports that area as "
-                << "target_crosses_itself)\n";
+                << "vertex (overlapping bodies, or a sheet folded through another); the map leaves out the faces "
+                << "beside such crossings, where the nearest hit jumps between sheets (`plmap check MAP "
+                << "--against-rays N` reports that area as target_crosses_itself)\n";
   }
   Json j;
   j["map"] = o.output;

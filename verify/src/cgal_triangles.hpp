@@ -104,6 +104,10 @@ class SelfCrossings {
     };
     const Triangle3& mine = triangles_.triangles[i];
     const ExactTriangle exact_mine = exact_triangle(mine);
+    // CGAL's test requires proper triangles; a surface refuses elements of zero area, but the
+    // area it computes in doubles may be the rounding of exactly collinear corners
+    // (defensive: not seen in the meshes of libcgal-demo)
+    if (exact_mine.is_degenerate()) return;
     std::vector<TriangleIterator> candidates;
     // by box: cheaper per tree node than the triangle, and the exact test decides anyway
     const CGAL::Bbox_3 box = mine.bbox();
@@ -111,7 +115,9 @@ class SelfCrossings {
     for (const TriangleIterator it : candidates) {
       const std::size_t j = triangles_.index_of(it);
       const Index sigma = triangles_.element[j];
-      if (sigma == tau || shares_a_vertex(sigma) || !CGAL::do_intersect(exact_mine, exact_triangle(*it))) continue;
+      if (sigma == tau || shares_a_vertex(sigma)) continue;
+      const ExactTriangle exact_other = exact_triangle(*it);
+      if (exact_other.is_degenerate() || !CGAL::do_intersect(exact_mine, exact_other)) continue;
       f(j);
     }
   }

@@ -342,7 +342,7 @@ class RayChecker {
       std::vector<Tree::Intersection_and_primitive_id<Query>::Type> hits;
       tree_.all_intersections(segment, std::back_inserter(hits));
       for (const auto& [where, id] : hits) {
-        const Index tau = triangles_.element[static_cast<std::size_t>(id - triangles_.triangles.cbegin())];
+        const Index tau = triangles_.element[triangles_.index_of(id)];
         if (const Point3* p = boost::get<Point3>(&where)) consider(eigen_point(*p), tau);
         // a segment: the ray runs inside the element's plane (grazing); its nearer end counts
         else if (const auto* s = boost::get<Kernel::Segment_3>(&where)) {
@@ -496,7 +496,7 @@ class RayChecker {
     for (const auto& [where, id] : hits) {
       const Point3* p = boost::get<Point3>(&where);
       if (!p || (eigen_point(*p) - hit.point).norm() <= 1e-6 * reach) continue;
-      const Index tau = triangles_.element[static_cast<std::size_t>(id - triangles_.triangles.cbegin())];
+      const Index tau = triangles_.element[triangles_.index_of(id)];
       if (facing_sign(tau, unit) == -side) return true;
     }
     return false;
@@ -514,7 +514,7 @@ class RayChecker {
     std::vector<TriangleIterator> near;
     tree_.all_intersected_primitives(box, std::back_inserter(near));
     for (const TriangleIterator it : near)
-      for (const Kernel::Segment_3& crossing : crossings_.of(static_cast<std::size_t>(it - triangles_.triangles.cbegin())))
+      for (const Segment3& crossing : crossings_.of(triangles_.index_of(it)))
         if (CGAL::squared_distance(c, crossing) <= reach * reach) return true;
     return false;
   }
@@ -594,8 +594,8 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
   nlohmann::json by_reason = nlohmann::json::object();
   for (MissedReason reason : {MissedReason::nearer_sheet, MissedReason::farther_sheet, MissedReason::not_covered,
                               MissedReason::domain_in_between, MissedReason::target_seen_twice,
-                              MissedReason::target_crosses_itself, MissedReason::past_focal_point, MissedReason::next_to_fold,
-                              MissedReason::inside_target_boundary}) {
+                              MissedReason::target_crosses_itself, MissedReason::past_focal_point,
+                              MissedReason::next_to_fold, MissedReason::inside_target_boundary}) {
     const std::size_t n = r.missed_by_reason[static_cast<std::size_t>(reason)];
     by_reason[std::string(to_string(reason))] = {{"samples", n}, {"fraction", r.fraction(n)}};
   }
