@@ -92,9 +92,10 @@ class SelfCrossings {
       : s_(s), triangles_(triangles), tree_(tree) {}
 
   /// Calls f(j) for each triangle j of the tree whose element shares no vertex with triangle i's
-  /// and which meets triangle i (exact predicates).
+  /// and which meets triangle i (exact predicates). `candidates` is working space, kept by the
+  /// caller from call to call.
   template <class F>
-  void for_each_met(std::size_t i, F&& f) const {
+  void for_each_met(std::size_t i, std::vector<TriangleIterator>& candidates, F&& f) const {
     const Index tau = triangles_.element[i];
     const auto& corners = s_.element(tau);
     const auto shares_a_vertex = [&](Index sigma) {
@@ -108,7 +109,7 @@ class SelfCrossings {
     // area it computes in doubles may be the rounding of exactly collinear corners
     // (defensive: not seen in the meshes of libcgal-demo)
     if (exact_mine.is_degenerate()) return;
-    std::vector<TriangleIterator> candidates;
+    candidates.clear();
     // by box: cheaper per tree node than the triangle, and the exact test decides anyway
     const CGAL::Bbox_3 box = mine.bbox();
     tree_.all_intersected_primitives(Kernel::Iso_cuboid_3(box), std::back_inserter(candidates));
@@ -135,7 +136,7 @@ class SelfCrossings {
     if (known_[i]) return segments;
     known_[i] = true;
     const Triangle3& mine = triangles_.triangles[i];
-    for_each_met(i, [&](std::size_t j) {
+    for_each_met(i, candidates_, [&](std::size_t j) {
       const Triangle3& other = triangles_.triangles[j];
       if (const auto where = CGAL::intersection(mine, other)) {
         add(*where, mine, segments);
@@ -166,6 +167,7 @@ class SelfCrossings {
   const Surface<d>& s_;
   const TargetTriangles<d>& triangles_;
   const Tree& tree_;
+  std::vector<TriangleIterator> candidates_;
   std::vector<bool> known_;
   std::vector<std::vector<Segment3>> segments_;
 };

@@ -24,9 +24,10 @@ std::vector<std::pair<Index, Index>> self_intersections(const Surface<d>& s, uns
   std::vector<std::vector<std::pair<Index, Index>>> found((n + chunk - 1) / chunk);
   parallel_for_chunks(n, chunk, threads, [&](std::size_t begin, std::size_t end) {
     auto& list = found[begin / chunk];
+    std::vector<TriangleIterator> candidates;
     for (std::size_t i = begin; i < end; ++i) {
       const Index a = triangles.element[i];
-      crossings.for_each_met(i, [&](std::size_t j) {
+      crossings.for_each_met(i, candidates, [&](std::size_t j) {
         if (const Index b = triangles.element[j]; a < b) list.emplace_back(a, b);
       });
     }

@@ -19,16 +19,17 @@ double orientation(const Point2& a, const Point2& b, const Point2& c) {
 }
 
 /// The polygon's corners in order, from its fan (0, k, k+1) in `count` triangles from `first`.
-std::vector<Index> corners_of_fan(const RawMesh<2>& mesh, std::size_t first, std::size_t count) {
-  std::vector<Index> corners{mesh.elements[first][0], mesh.elements[first][1]};
+void corners_of_fan(const RawMesh<2>& mesh, std::size_t first, std::size_t count, std::vector<Index>& corners) {
+  corners.assign({mesh.elements[first][0], mesh.elements[first][1]});
   for (std::size_t k = 0; k < count; ++k) corners.push_back(mesh.elements[first + k][2]);
-  return corners;
 }
 
 /// The corners projected onto the plane through the polygon normal to its Newell normal (the
-/// polygon's area vector), in a frame in which the polygon turns counter-clockwise. Empty if the
-/// normal vanishes (a degenerate polygon, which the fan leaves for Surface to reject).
-std::vector<Point2> in_plane(const RawMesh<2>& mesh, const std::vector<Index>& corners) {
+/// polygon's area vector), in a frame in which the polygon turns counter-clockwise, into
+/// `points`; left empty if the normal vanishes (a degenerate polygon, which the fan leaves for
+/// Surface to reject).
+void in_plane(const RawMesh<2>& mesh, const std::vector<Index>& corners, std::vector<Point2>& points) {
+  points.clear();
   // relative to the first corner, so that a mesh far from the origin loses no digits
   const WorldPoint<2>& origin = mesh.vertices[corners[0]];
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
@@ -36,17 +37,14 @@ std::vector<Point2> in_plane(const RawMesh<2>& mesh, const std::vector<Index>& c
   for (std::size_t i = 1; i + 1 < n; ++i)
     normal += (mesh.vertices[corners[i]] - origin).cross(mesh.vertices[corners[i + 1]] - origin);
   const double length = normal.norm();
-  if (!(length > 0.0) || !std::isfinite(length)) return {};
+  if (!(length > 0.0) || !std::isfinite(length)) return;
   normal /= length;
   // any unit vector normal to `normal`, and the third of a right-handed frame
   const Eigen::Vector3d u = normal.unitOrthogonal(), v = normal.cross(u);
-  std::vector<Point2> points;
-  points.reserve(n);
   for (Index c : corners) {
     const Eigen::Vector3d p = mesh.vertices[c] - origin;
     points.emplace_back(p.dot(u), p.dot(v));
   }
-  return points;
 }
 
 /// Whether every fan triangle turns the polygon's way (then the fan lies inside it).
@@ -98,9 +96,12 @@ std::vector<std::array<std::size_t, 3>> ear_clipping(const std::vector<Point2>& 
 }  // namespace
 
 void triangulate_polygons_in_their_planes(RawMesh<2>& mesh) {
+  // reused from polygon to polygon: most are quads, read by the million in a quad mesh
+  std::vector<Index> corners;
+  std::vector<Point2> points;
   for (const auto& [first, count] : mesh.polygons) {
-    const std::vector<Index> corners = corners_of_fan(mesh, first, count);
-    const std::vector<Point2> points = in_plane(mesh, corners);
+    corners_of_fan(mesh, first, count, corners);
+    in_plane(mesh, corners, points);
     if (points.empty() || fan_is_inside(points)) continue;
     const std::vector<std::array<std::size_t, 3>> triangles = ear_clipping(points);
     if (triangles.size() != count) continue;
