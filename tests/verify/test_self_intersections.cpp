@@ -108,4 +108,37 @@ TEST(SelfIntersections, CurvesCrossWhereTheirSegmentsDo) {
   EXPECT_EQ(self_intersections(Surface<1>(v, e)), Pairs{});
 }
 
+TEST(SelfIntersections, FlatSheetsAndStraightCurvesAreSearchedOverTheAxesTheySpan) {
+  // The candidate boxes leave out an axis along which the surface does not extend; pairs that
+  // only overlap within the surface's plane or line must still be found.
+  // A small triangle lying in the plane z = 0 of the flat 4 x 4 grid, strictly inside element 10
+  // (cell (1, 1), below its diagonal y = x): they overlap in the plane and share no vertex.
+  std::vector<WorldPoint<2>> v;
+  std::vector<ElementCorners<2>> e;
+  add_sheet(4, flat, v, e);
+  const auto n = static_cast<Index>(v.size());
+  v.emplace_back(0.40, 0.26, 0.0);
+  v.emplace_back(0.44, 0.26, 0.0);
+  v.emplace_back(0.43, 0.29, 0.0);
+  e.push_back({n, n + 1, n + 2});
+  EXPECT_EQ(self_intersections(Surface<2>(v, e)), (Pairs{{10, 32}}));
+  // lifted off the plane, it meets nothing
+  for (Index k = n; k < n + 3; ++k) v[static_cast<std::size_t>(k)].z() = 0.01;
+  EXPECT_EQ(self_intersections(Surface<2>(v, e)), Pairs{});
+
+  // On the line y = 0: segments [0, 1], [1, 2], [2, 3] and a separate segment [1.5, 2.5], which
+  // overlaps the second and the third.
+  std::vector<WorldPoint<1>> c;
+  std::vector<ElementCorners<1>> s;
+  for (int i = 0; i <= 3; ++i) c.emplace_back(double(i), 0.0);
+  c.emplace_back(1.5, 0.0);
+  c.emplace_back(2.5, 0.0);
+  s = {{0, 1}, {1, 2}, {2, 3}, {4, 5}};
+  EXPECT_EQ(self_intersections(Surface<1>(c, s)), (Pairs{{1, 3}, {2, 3}}));
+  // moved beyond the end of the line, it meets nothing
+  c[4].x() = 3.5;
+  c[5].x() = 4.5;
+  EXPECT_EQ(self_intersections(Surface<1>(c, s)), Pairs{});
+}
+
 }  // namespace plmap

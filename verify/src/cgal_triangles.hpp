@@ -1,7 +1,8 @@
 #pragma once
-// A surface's elements as CGAL triangles in an AABB tree, for the checks that ask CGAL rather
-// than plmap's own geometry (the ray check, self-intersections), and where the elements meet each
-// other although they share no vertex. Private to verify/.
+// A surface's elements as CGAL triangles in an AABB tree, for the ray check, which asks CGAL
+// rather than plmap's own geometry, and where the elements meet each other although they share no
+// vertex. Private to verify/. (self_intersections.cpp lists such pairs for the whole surface with
+// a sweep over boxes instead: cheaper than a tree query per element.)
 
 #include <plmap/core/surface.hpp>
 

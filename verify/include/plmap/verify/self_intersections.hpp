@@ -8,8 +8,8 @@
 /// nearest hit jumps from one sheet to the other there. `plmap info` counts such pairs, and the
 /// ray check names the area they cost (MissedReason::target_crosses_itself).
 ///
-/// The candidates come from CGAL's AABB tree of the elements' boxes; whether two elements meet is
-/// decided with CGAL's exact predicates. Elements that share a vertex are not compared (they meet
+/// The candidates are the pairs of elements whose bounding boxes meet (CGAL's box intersection,
+/// one sweep over all boxes); whether two elements meet is decided with CGAL's exact predicates. Elements that share a vertex are not compared (they meet
 /// there by construction; a fold through a shared vertex is not reported). Curves (d = 1): two
 /// segments that cross or overlap in the plane.
 
