@@ -141,4 +141,33 @@ TEST(SelfIntersections, FlatSheetsAndStraightCurvesAreSearchedOverTheAxesTheySpa
   EXPECT_EQ(self_intersections(Surface<1>(c, s)), Pairs{});
 }
 
+TEST(SelfIntersections, MoreCandidatesThanOneBatchAreAllDecided) {
+  // 1500 parallel segments P_i: y = x + i h and 1500 parallel segments Q_j: y = 2 + j h - 3x, on
+  // x in [0, 1], h = 1e-3, each its own component. Every box overlaps every other (4.5M candidate
+  // pairs, several of the search's batches); P_i meets Q_j at x = (2 + (j - i) h) / 4, inside
+  // both, and parallel segments never meet: exactly the 2.25M pairs (P_i, Q_j).
+  constexpr int n = 1500;
+  constexpr double h = 1e-3;
+  std::vector<WorldPoint<1>> v;
+  std::vector<ElementCorners<1>> e;
+  for (int i = 0; i < n; ++i) {
+    v.emplace_back(0.0, i * h);
+    v.emplace_back(1.0, 1.0 + i * h);
+  }
+  for (int j = 0; j < n; ++j) {
+    v.emplace_back(0.0, 2.0 + j * h);
+    v.emplace_back(1.0, -1.0 + j * h);
+  }
+  for (Index k = 0; k < 2 * n; ++k) e.push_back({2 * k, 2 * k + 1});
+  const Pairs pairs = self_intersections(Surface<1>(v, e));
+  ASSERT_EQ(pairs.size(), std::size_t{n} * n);
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const Index i = static_cast<Index>(k / n), j = static_cast<Index>(k % n);
+    if (pairs[k] != std::make_pair(i, n + j)) {
+      ADD_FAILURE() << "pair " << k << " is (" << pairs[k].first << ", " << pairs[k].second << ")";
+      break;
+    }
+  }
+}
+
 }  // namespace plmap
