@@ -7,9 +7,13 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/map_file.hpp>
 #include <plmap/core/io/surface_writer.hpp>
+#include <plmap/core/vertex_merging.hpp>
+
+#include <fmt/format.h>
 
 #include <iostream>
 #include <map>
+#include <type_traits>
 
 namespace plmap::cli {
 
@@ -21,6 +25,7 @@ struct ConvertOptions {
   int dimension = 0;
   std::string encoding = "default";
   std::string gmsh_version = "4.1";
+  bool merge_coincident = false;
 };
 
 int convert_map(const ConvertOptions& o) {
@@ -38,7 +43,11 @@ int convert_map(const ConvertOptions& o) {
 
 int run_convert(const ConvertOptions& o) {
   require_readable_file(o.input);
-  if (looks_like_map_file(o.input)) return convert_map(o);
+  if (looks_like_map_file(o.input)) {
+    if (o.merge_coincident)
+      throw UsageError(fmt::format("--merge-coincident merges the vertices of a surface; {} is a map file", o.input));
+    return convert_map(o);
+  }
   SurfaceWriteOptions options;
   static const std::map<std::string, Encoding> encodings = {
       {"default", Encoding::format_default},
@@ -50,11 +59,18 @@ int run_convert(const ConvertOptions& o) {
   // Fail on an unknown output extension before reading a possibly large input.
   check_output_file(o.output, OutputKind::surface, {{"IN", o.input}});
   std::visit(
-      [&](const auto& surface) {
+      [&](const auto& read) {
+        using SurfaceType = std::decay_t<decltype(read)>;
+        VertexMergeReport merged;
+        const SurfaceType surface = o.merge_coincident ? merge_coincident_vertices(read, &merged) : read;
         write_surface(o.output, surface, options);
         std::cout << "wrote " << o.output << ": " << surface.vertex_count() << " vertices, "
-                  << surface.element_count() << (surface.dimension == 1 ? " segments" : " triangles")
-                  << '\n';
+                  << surface.element_count() << (surface.dimension == 1 ? " segments" : " triangles");
+        if (o.merge_coincident)
+          std::cout << " (merged " << merged.merged_vertices << " vertices into others at their position, dropped "
+                    << merged.duplicate_elements << " duplicate " << (surface.dimension == 1 ? "segments" : "triangles")
+                    << ")";
+        std::cout << '\n';
       },
       read_any_surface(o.input, o.dimension));
   return exit_code::success;
@@ -81,6 +97,10 @@ void register_convert(CLI::App& app, Action& action) {
   cmd->add_option("--gmsh-version", o->gmsh_version, "Gmsh MSH version written: 2.2 or 4.1")
       ->check(CLI::IsMember({"2.2", "4.1"}))
       ->capture_default_str();
+  cmd->add_flag("--merge-coincident", o->merge_coincident,
+               "Merge vertices at exactly the same position into one (the first of them), and keep "
+               "elements with the same corners once: welds a polygon soup or an unstitched seam, "
+               "which `plmap project` warns about. Surfaces only.");
   cmd->callback([o, &action] { action = [o] { return run_convert(*o); }; });
 }
 

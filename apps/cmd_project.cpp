@@ -53,7 +53,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
     if (const Index n = coincident_vertex_count(*surface); n > 0)
       std::cerr << "warning: " << name << " has " << n << " vertices at the position of another vertex (seams whose "
                 << "sides are not stitched together); the map may leave out elements along them: merge such "
-                << "vertices first\n";
+                << "vertices first (plmap convert IN OUT --merge-coincident)\n";
   ProjectionOptions options;
   options.solver = o.solver;
   options.max_distance = o.max_distance;

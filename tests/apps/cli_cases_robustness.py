@@ -328,6 +328,31 @@ def unstitched_seams_are_counted_and_warned_about():
 
 
 @case
+def convert_merges_coincident_vertices():
+    # The seam above, merged by `convert --merge-coincident`: the diagonal's two copies become one
+    # edge, `project` no longer warns, and the square projected onto itself is the identity on all
+    # of it. A triangle listed twice is kept once; a map file is not a surface to merge.
+    write("seam.off", "OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 3 4 5\n")
+    out, _, _ = run("convert", "seam.off", "welded.off", "--merge-coincident")
+    expect("merged 2 vertices" in out and "dropped 0 duplicate" in out, out)
+    j = run_json("info", "welded.off", "--json")
+    expect(j["vertices"] == 4 and j["elements"] == 2 and j["coincident_vertices"] == 0, j)
+    expect(j["boundary_edges"] == 4, f"the diagonal is one interior edge: {j}")
+    _, err, _ = run("project", "welded.off", "welded.off", "-o", "welded.plmap")
+    expect("position of another vertex" not in err, err)
+    p = run_json("project", "welded.off", "welded.off", "-o", "welded.plmap", "--json")
+    expect(abs(p["covered_measure"] - 1.0) < 1e-12 and abs(p["domain_measure"] - 1.0) < 1e-12, p)
+    run("check", "welded.plmap")
+    # a soup listing one triangle twice (its own corners each time, the second reversed): merged,
+    # the two have the same corners, which a surface refuses, so the second goes
+    write("twice.off", "OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 5 4 3\n")
+    out, _, _ = run("convert", "twice.off", "once.off", "--merge-coincident")
+    expect("merged 3 vertices" in out and "dropped 1 duplicate" in out, out)
+    expect(run_json("info", "once.off", "--json")["elements"] == 1, "duplicate kept once")
+    expect_clean_error(["convert", "welded.plmap", "w2.plmap", "--merge-coincident"], code=64, mention="map file")
+
+
+@case
 def surfaces_that_cross_themselves_are_counted():
     # A unit square (two triangles) pierced by a vertical triangle through the inside of the first
     # one: `info` counts one pair of elements that meet without sharing a vertex; the square alone,

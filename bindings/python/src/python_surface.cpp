@@ -5,6 +5,7 @@
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/surface_reader.hpp>
 #include <plmap/core/io/surface_writer.hpp>
+#include <plmap/core/vertex_merging.hpp>
 #include <plmap/verify/self_intersections.hpp>
 
 #include <pybind11/numpy.h>
@@ -14,6 +15,7 @@
 #include <filesystem>
 #include <optional>
 #include <string_view>
+#include <type_traits>
 
 namespace plmap::python {
 
@@ -145,6 +147,23 @@ void bind_surface(py::module_& m) {
          "Pairs (a, b), a < b, of elements that meet although they share no vertex: where the "
          "surface crosses itself (overlapping bodies in one file). Sorted list of tuples; CGAL's "
          "exact predicates decide; threads=0 uses all cores.")
+      .def("merge_coincident_vertices", [](const PySurface& s) {
+        return visit_surface(s, [&](const auto& surface) {
+          using SurfaceType = std::decay_t<decltype(surface)>;
+          VertexMergeReport report;
+          SurfaceType merged;
+          {
+            py::gil_scoped_release unlocked;
+            merged = plmap::merge_coincident_vertices(surface, &report);
+          }
+          return py::make_tuple(PySurface{std::make_shared<const SurfaceType>(std::move(merged))},
+                                report.merged_vertices, report.duplicate_elements);
+        });
+      },
+         "(surface, merged_vertices, duplicate_elements): the surface with every vertex at exactly "
+         "the position of an earlier one merged into it, and elements that then have the same "
+         "corners kept once (welds a polygon soup or an unstitched seam, which normal projection "
+         "cannot walk across). Positions are compared exactly; vertex and element order are kept.")
       .def("save", [](const PySurface& s, const std::filesystem::path& path) {
         py::gil_scoped_release unlocked;
         visit_surface(s, [&](const auto& surface) { write_surface(path, surface); });

@@ -106,3 +106,15 @@ def test_bad_arrays_are_type_value_and_index_errors():
         plmap.Surface(vertices, out_of_range)
     with pytest.raises(TypeError, match="expected a plmap.Surface or a file path"):
         plmap.project(42, plmap.Surface(vertices, triangles))
+
+
+def test_merge_coincident_vertices_welds_a_soup():
+    # the unit square as two triangles with corners of their own: vertices 3 and 5 lie on 1 and 2
+    vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=float)
+    soup = plmap.Surface(vertices, np.array([[0, 1, 2], [3, 4, 5]]))
+    welded, merged, duplicates = soup.merge_coincident_vertices()
+    assert (merged, duplicates) == (2, 0)
+    assert welded.vertex_count == 4
+    assert welded.elements.tolist() == [[0, 1, 2], [1, 3, 2]]
+    assert welded.vertices.tolist()[3] == [1.0, 1.0, 0.0]
+    assert soup.vertex_count == 6  # the original is unchanged
