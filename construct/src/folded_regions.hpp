@@ -8,7 +8,7 @@
 /// from the ghost node and the pieces that end on the element's edges, and its region would then
 /// map points whose rays are folded (area that the ray check finds extra). Such a region has a
 /// corner whose ray, from the node's point to its image, passes a focal point of the element:
-/// those regions are found here and their faces left out of D (core/face_removal.hpp).
+/// those regions are found here and left out of D (remove_regions, core/face_removal.hpp).
 
 #include <plmap/core/pl_map.hpp>
 

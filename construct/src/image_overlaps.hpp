@@ -11,7 +11,7 @@
 /// preimage, and one sheet can reach over itself there), or come from S1 elements that are not connected
 /// (two sheets each covering part of the element), it compares them pairwise, and of two overlapping
 /// regions names the one whose points lie farther from their images. project() then removes
-/// their faces (core/face_removal.hpp): of the two sheets the nearer one stays, as for a vertex
+/// them (remove_regions, core/face_removal.hpp): of the two sheets the nearer one stays, as for a vertex
 /// preimage.
 
 #include <plmap/core/pl_map.hpp>

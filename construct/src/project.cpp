@@ -237,7 +237,7 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   if (const std::vector<Index> folded = regions_with_folded_corners<d>(map, directions, focal_free_reach, ctx.threads);
       !folded.empty()) {
     FaceRemovalReport removal;
-    map = remove_faces(std::move(map), std::span<const Index>(folded), &removal);
+    map = remove_regions(std::move(map), std::span<const Index>(folded), &removal);
     report.folded_faces = removal.removed_faces;
     report.folded_regions = removal.removed_regions;
     const double before = images.covered.domain;

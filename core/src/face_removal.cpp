@@ -28,11 +28,12 @@ Index neighbor_entry(const MapData<d>& m, Index a, Index b) {
   return invalid_index;
 }
 
-/// Marks the faces of the named regions (and, where a face lies strictly inside its element, all
-/// regions of that element) in `removed`.
+/// Marks what goes with the named regions in `removed` (face_removal_rules.hpp: their faces, or
+/// with RemovalExtent::named_regions their parts that reach the element's boundary; where a face
+/// lies strictly inside its element, all regions of that element). Curves: the named regions.
 template <int d>
-void mark_faces(const PlMap<d>& map, std::span<const Index> regions, std::vector<char>& removed,
-                FaceRemovalReport& report) {
+void mark_removed(const PlMap<d>& map, std::span<const Index> regions, detail::RemovalExtent extent,
+                  std::vector<char>& removed, FaceRemovalReport& report) {
   const MapData<d>& m = map.data();
   if constexpr (d == 1) {
     for (Index r : regions)
@@ -41,22 +42,23 @@ void mark_faces(const PlMap<d>& map, std::span<const Index> regions, std::vector
         ++report.removed_faces;
       }
   } else {
-    std::vector<Index> stack;
+    std::vector<char> named;
+    if (extent == detail::RemovalExtent::named_regions) {
+      named.assign(removed.size(), 0);
+      for (Index r : regions) named[static_cast<std::size_t>(r)] = 1;
+    }
+    std::vector<Index> stack, part;
     for (Index r0 : regions) {
       if (removed[r0]) continue;
-      ++report.removed_faces;
-      const bool reaches_boundary = detail::mark_face(
-          m, r0, removed, stack,
+      const Index t = map.node_element(m.region_corners[r0][0]);
+      detail::remove_for_named_region(
+          m, r0, map.regions_begin(t), map.regions_end(t), extent, removed, stack, part, report,
+          [&](Index r) { return named[static_cast<std::size_t>(r)] != 0; },
           [&](Index a, Index b) {
             const Index entry = neighbor_entry(m, a, b);
             return entry != invalid_index && m.neighbor_edge_kind[entry] == GraphEdgeKind::closure;
           },
           [&](Index r, int i) { return m.region_neighbors[r][i]; });
-      if (!reaches_boundary) {
-        const Index t = map.node_element(m.region_corners[r0][0]);
-        for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) removed[r] = 1;
-        ++report.cleared_elements;
-      }
     }
   }
 }
@@ -167,25 +169,29 @@ void compact_neighbors(MapData<d>& m, const std::vector<Index>& leaving) {
 
 }  // namespace
 
+namespace {
+
 template <int d>
   requires SurfaceDimension<d>
-PlMap<d> remove_faces(PlMap<d>&& map, std::span<const Index> regions, FaceRemovalReport* report) {
+PlMap<d> remove_from_domain(PlMap<d>&& map, std::span<const Index> regions, detail::RemovalExtent extent,
+                            FaceRemovalReport* report) {
   const Index nr = map.region_count();
   const Index nt = map.domain().element_count();
   for (Index r : regions)
     if (r < 0 || r >= nr)
-      throw InvalidMapError(fmt::format("remove_faces: region {} does not exist (the map has {})", r, nr));
+      throw InvalidMapError(fmt::format("{}: region {} does not exist (the map has {})",
+                                        extent == detail::RemovalExtent::whole_faces ? "remove_faces" : "remove_regions", r, nr));
 
   FaceRemovalReport rep;
   // A triangle map in its stored form is changed element by element where regions go; its
   // graph is neither derived whole nor compared whole again (face_removal_stored_form.hpp).
   if constexpr (d == 2)
-    if (std::optional<PlMap<2>> smaller = detail::remove_faces_in_stored_form(map, regions, rep)) {
+    if (std::optional<PlMap<2>> smaller = detail::remove_faces_in_stored_form(map, regions, extent, rep)) {
       if (report) *report = rep;
       return std::move(*smaller);
     }
   std::vector<char> removed(static_cast<std::size_t>(nr), 0);
-  mark_faces(map, regions, removed, rep);
+  mark_removed(map, regions, extent, removed, rep);
   std::shared_ptr<const Surface<d>> domain = map.domain_ptr(), target = map.target_ptr();
   // The map's arrays are changed in place: nodes, graph edges and edge arrays stay as they are,
   // and only the regions and the entries that leave with them are taken out.
@@ -198,6 +204,20 @@ PlMap<d> remove_faces(PlMap<d>&& map, std::span<const Index> regions, FaceRemova
   return PlMap<d>(std::move(domain), std::move(target), std::move(m));
 }
 
+}  // namespace
+
+template <int d>
+  requires SurfaceDimension<d>
+PlMap<d> remove_faces(PlMap<d>&& map, std::span<const Index> regions, FaceRemovalReport* report) {
+  return remove_from_domain(std::move(map), regions, detail::RemovalExtent::whole_faces, report);
+}
+
+template <int d>
+  requires SurfaceDimension<d>
+PlMap<d> remove_regions(PlMap<d>&& map, std::span<const Index> regions, FaceRemovalReport* report) {
+  return remove_from_domain(std::move(map), regions, detail::RemovalExtent::named_regions, report);
+}
+
 template <int d>
   requires SurfaceDimension<d>
 PlMap<d> remove_faces(const PlMap<d>& map, std::span<const Index> regions, FaceRemovalReport* report) {
@@ -208,5 +228,7 @@ template PlMap<1> remove_faces<1>(const PlMap<1>&, std::span<const Index>, FaceR
 template PlMap<2> remove_faces<2>(const PlMap<2>&, std::span<const Index>, FaceRemovalReport*);
 template PlMap<1> remove_faces<1>(PlMap<1>&&, std::span<const Index>, FaceRemovalReport*);
 template PlMap<2> remove_faces<2>(PlMap<2>&&, std::span<const Index>, FaceRemovalReport*);
+template PlMap<1> remove_regions<1>(PlMap<1>&&, std::span<const Index>, FaceRemovalReport*);
+template PlMap<2> remove_regions<2>(PlMap<2>&&, std::span<const Index>, FaceRemovalReport*);
 
 }  // namespace plmap

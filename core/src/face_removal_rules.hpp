@@ -3,8 +3,10 @@
 // on a map's full arrays (face_removal.cpp) and the one on a triangle map's stored form
 // (face_removal_stored_form.cpp).
 
+#include <plmap/core/face_removal.hpp>
 #include <plmap/core/pl_map.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -57,6 +59,67 @@ bool mark_face(const MapData<2>& m, Index r0, std::vector<char>& removed, std::v
     }
   }
   return reaches_boundary;
+}
+
+/// How much of a face goes with a named region: all of it (remove_faces), or the named regions
+/// only where they reach the element's boundary (remove_regions).
+enum class RemovalExtent { whole_faces, named_regions };
+
+/// Marks in `removed` the part of named region r0's face that the named regions make: r0 and the
+/// named regions reached from it across closure edges, if that part has a side on its element's
+/// boundary; returns whether it does (and marks nothing if not). `named(r)` says whether region r
+/// was named; `whole` tells whether the part is all of the face. The rest as mark_face; `part`
+/// is scratch space.
+template <class Named, class IsClosure, class Across>
+bool mark_named_part_of_face(const MapData<2>& m, Index r0, std::vector<char>& removed, std::vector<Index>& stack,
+                             std::vector<Index>& part, bool& whole, Named&& named, IsClosure&& is_closure,
+                             Across&& across) {
+  part.assign(1, r0);
+  stack.assign(1, r0);
+  bool reaches_boundary = false;
+  whole = true;
+  while (!stack.empty()) {
+    const Index r = stack.back();
+    stack.pop_back();
+    const auto& c = m.region_corners[r];
+    for (int i = 0; i < 3; ++i) {
+      const Index a = c[(i + 1) % 3], b = c[(i + 2) % 3];
+      if (element_edges_through(m, a) & element_edges_through(m, b)) reaches_boundary = true;
+      const Index next = across(r, i);
+      if (next == invalid_index || !is_closure(a, b)) continue;
+      if (!named(next)) {
+        whole = false;
+      } else if (std::find(part.begin(), part.end(), next) == part.end()) {
+        part.push_back(next);
+        stack.push_back(next);
+      }
+    }
+  }
+  if (reaches_boundary)
+    for (Index r : part) removed[static_cast<std::size_t>(r)] = 1;
+  return reaches_boundary;
+}
+
+/// The rule for one named region r0 of a triangle map that is not removed yet, for both paths:
+/// with RemovalExtent::named_regions its named part alone if that reaches the element's
+/// boundary; else its face, and if the face lies strictly inside its element, every region of
+/// the element ([element_begin, element_end)). Counts what it did in `report`.
+template <class Named, class IsClosure, class Across>
+void remove_for_named_region(const MapData<2>& m, Index r0, Index element_begin, Index element_end,
+                             RemovalExtent extent, std::vector<char>& removed, std::vector<Index>& stack,
+                             std::vector<Index>& part, FaceRemovalReport& report, Named&& named,
+                             IsClosure&& is_closure, Across&& across) {
+  ++report.removed_faces;
+  bool whole = true;
+  if (extent == RemovalExtent::named_regions &&
+      mark_named_part_of_face(m, r0, removed, stack, part, whole, named, is_closure, across)) {
+    if (!whole) ++report.partial_faces;
+    return;
+  }
+  if (!mark_face(m, r0, removed, stack, is_closure, across)) {
+    for (Index r = element_begin; r < element_end; ++r) removed[static_cast<std::size_t>(r)] = 1;
+    ++report.cleared_elements;
+  }
 }
 
 /// Whether the side a-b of a removed region of the element whose regions are [begin, end) leaves

@@ -101,28 +101,24 @@ std::vector<Index> list_begins(const ElementGraph& g) {
   return begin;
 }
 
-/// Marks the faces of element t's named regions in `removed` (remove_faces' rule: a face is the
-/// element's regions joined across closure edges; one strictly inside the element takes all of
-/// its regions).
-void mark_faces_of_element(const MapData<2>& m, const ElementGraph& g, const std::vector<Index>& named,
-                           std::vector<char>& removed, FaceRemovalReport& report) {
+/// Marks what goes with element t's named regions in `removed` (face_removal_rules.hpp: the
+/// faces of the named regions, or with RemovalExtent::named_regions their parts that reach the
+/// element's boundary; a face strictly inside the element takes all of its regions).
+void mark_removed_in_element(const MapData<2>& m, const ElementGraph& g, const std::vector<Index>& named,
+                             RemovalExtent extent, std::vector<char>& removed, FaceRemovalReport& report) {
   const Index t = g.element, nb = m.node_begin[t], rb = m.region_begin[t], re = m.region_begin[t + 1];
   const std::vector<Index> begin = list_begins(g);
-  std::vector<Index> stack;
+  std::vector<Index> stack, part;
   for (Index r0 : named) {
     if (removed[static_cast<std::size_t>(r0)]) continue;
-    ++report.removed_faces;
-    const bool reaches_boundary = mark_face(
-        m, r0, removed, stack,
+    remove_for_named_region(
+        m, r0, rb, re, extent, removed, stack, part, report,
+        [&](Index r) { return std::find(named.begin(), named.end(), r) != named.end(); },
         [&](Index a, Index b) {
           const Index entry = g.entry(begin, a - nb, b);
           return entry != invalid_index && g.kind[static_cast<std::size_t>(entry)] == GraphEdgeKind::closure;
         },
         [&](Index r, int i) { return g.region_neighbors[static_cast<std::size_t>(r - rb)][i]; });
-    if (!reaches_boundary) {
-      for (Index r = rb; r < re; ++r) removed[static_cast<std::size_t>(r)] = 1;
-      ++report.cleared_elements;
-    }
   }
 }
 
@@ -191,7 +187,7 @@ void append(const ElementGraph& g, StoredGraph& out) {
 }  // namespace
 
 std::optional<PlMap<2>> remove_faces_in_stored_form(PlMap<2>& map, std::span<const Index> regions,
-                                                    FaceRemovalReport& report) {
+                                                    RemovalExtent extent, FaceRemovalReport& report) {
   const MapData<2>& stored = map.stored();
   const StoredGraph& stored_graph = map.stored_graph();
   const Surface<2>& target = map.target();
@@ -217,7 +213,7 @@ std::optional<PlMap<2>> remove_faces_in_stored_form(PlMap<2>& map, std::span<con
 
   std::vector<char> removed(static_cast<std::size_t>(map.region_count()), 0);
   for (std::size_t i = 0; i < changed.size(); ++i) {
-    mark_faces_of_element(stored, changed[i], named.regions[i], removed, report);
+    mark_removed_in_element(stored, changed[i], named.regions[i], extent, removed, report);
     drop_leaving_entries(stored, removed, changed[i]);
   }
   std::vector<Index> old_region_begin;

@@ -9,6 +9,8 @@
 // graph exactly when its regions no longer give it back, which is what the full-array
 // constructor would keep. Every other element's graph follows from its regions as before.
 
+#include "face_removal_rules.hpp"
+
 #include <plmap/core/face_removal.hpp>
 
 #include <optional>
@@ -17,12 +19,13 @@
 
 namespace plmap::detail {
 
-/// The map without the faces of the named regions (already checked to be in range), built from
+/// The map without the faces of the named regions, or with RemovalExtent::named_regions without
+/// the named regions (face_removal_rules.hpp; indices already checked to be in range), built from
 /// its stored form; `map` is consumed. Nothing (and `map` untouched) where an element that loses
 /// regions has regions that do not give its graph back and no stored graph (a damaged map): the
 /// caller then takes the full-array path.
 std::optional<PlMap<2>> remove_faces_in_stored_form(PlMap<2>& map, std::span<const Index> regions,
-                                                    FaceRemovalReport& report);
+                                                    RemovalExtent extent, FaceRemovalReport& report);
 
 /// Drops the removed regions from m's region arrays in place, keeping the order of the rest,
 /// and renumbers the region neighbours (when m holds them) and start regions; renumbered[r] is

@@ -46,14 +46,20 @@ std::set<std::pair<Index, Index>> entries_of(const PlMap<d>& map) {
   return out;
 }
 
-/// Removes `named` in place and compares with the rule; returns the smaller map.
+/// How the tests remove regions: remove_faces (whole faces) or remove_regions (named parts).
+enum class Removal { faces, regions };
+
+/// Removes `named` in place (remove_faces or remove_regions) and compares with the rule; returns
+/// the smaller map, and in `removed_out` (if given) which of map's regions went.
 template <int d>
-PlMap<d> expect_rule_holds(const PlMap<d>& map, const std::vector<Index>& named) {
-  // which regions go: the copying overload's report of removed regions fixes the count, the
-  // in-place result's region targets and corners fix which (the kept ones stay in order)
+PlMap<d> expect_rule_holds(const PlMap<d>& map, const std::vector<Index>& named, Removal removal = Removal::faces,
+                           std::vector<char>* removed_out = nullptr) {
+  // which regions go: the report of removed regions fixes the count, the in-place result's
+  // region targets and corners fix which (the kept ones stay in order)
   PlMap<d> copy = map;
   FaceRemovalReport report;
-  PlMap<d> smaller = remove_faces(std::move(copy), std::span<const Index>(named), &report);
+  PlMap<d> smaller = removal == Removal::faces ? remove_faces(std::move(copy), std::span<const Index>(named), &report)
+                                               : remove_regions(std::move(copy), std::span<const Index>(named), &report);
   EXPECT_EQ(smaller.region_count(), map.region_count() - report.removed_regions);
   std::vector<char> removed(static_cast<std::size_t>(map.region_count()), 1);
   const MapData<d>& m = map.data();
@@ -86,6 +92,7 @@ PlMap<d> expect_rule_holds(const PlMap<d>& map, const std::vector<Index>& named)
     EXPECT_EQ(smaller.stored_graph(), from_full.stored_graph());
     EXPECT_EQ(smaller.elements_with_stored_graph(), from_full.elements_with_stored_graph());
   }
+  if (removed_out) *removed_out = removed;
   return smaller;
 }
 

@@ -84,9 +84,11 @@ TEST(FaceRemoval, AFaceStrictlyInsideItsElementTakesTheWholeElement) {
   EXPECT_EQ(violations(smaller), "");
 }
 
-TEST(FaceRemoval, AFaceOfSeveralRegionsGoesWhole) {
-  // S1: one triangle. S2: a larger sheet whose edge D-C (y = 1/2) cuts S1 into a quadrilateral
-  // (mapped into S2 triangle ACD; the closure cuts it into two regions) and a triangle (in DCF).
+namespace {
+
+/// S1: one triangle. S2: a larger sheet whose edge D-C (y = 1/2) cuts S1 into a quadrilateral
+/// (mapped into S2 triangle ACD; the closure cuts it into two regions) and a triangle (in DCF).
+PlMap<2> quadrilateral_and_triangle_map() {
   auto s1 = std::make_shared<const Surface<2>>(std::vector<WorldPoint<2>>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
                                                std::vector<ElementCorners<2>>{{0, 1, 2}});
   // A, B, C, D, E, F
@@ -104,7 +106,18 @@ TEST(FaceRemoval, AFaceOfSeveralRegionsGoesWhole) {
   const std::array<EdgeCrossing, 2> crossings = {EdgeCrossing{s1->find_edge(1, 2), 0.5, 0.625},
                                                  EdgeCrossing{s1->find_edge(0, 2), 0.5, 0.75}};
   b.add_edge_piece(dc, crossings, PieceStart::first_crossing, PieceEnd::last_crossing);
-  const PlMap<2> map = std::move(b).finalize();
+  return std::move(b).finalize();
+}
+
+Index closure_entries(const PlMap<2>& m) {
+  const auto& kinds = m.data().neighbor_edge_kind;
+  return static_cast<Index>(std::count(kinds.begin(), kinds.end(), GraphEdgeKind::closure));
+}
+
+}  // namespace
+
+TEST(FaceRemoval, AFaceOfSeveralRegionsGoesWhole) {
+  const PlMap<2> map = quadrilateral_and_triangle_map();
   ASSERT_EQ(violations(map), "");
   ASSERT_EQ(map.region_count(), 3);
   Index in_quad = invalid_index;
@@ -121,12 +134,48 @@ TEST(FaceRemoval, AFaceOfSeveralRegionsGoesWhole) {
   EXPECT_NEAR(covered_measure(smaller).domain, 0.125, 1e-15);
   // Gone with it: the closure edge across the quadrilateral and its three pieces of the element
   // boundary (boundary pieces are closure edges too), each listed at both ends.
-  const auto closure_entries = [](const PlMap<2>& m) {
-    const auto& kinds = m.data().neighbor_edge_kind;
-    return std::count(kinds.begin(), kinds.end(), GraphEdgeKind::closure);
-  };
   EXPECT_EQ(closure_entries(smaller), closure_entries(map) - 8);
   EXPECT_EQ(violations(smaller), "");
+}
+
+TEST(RegionRemoval, ARegionOfAFaceOnTheElementBoundaryGoesAlone) {
+  // remove_regions on the quadrilateral of the test above: either of its two regions goes alone
+  // (both have sides on the element boundary), the other stays with its image, and the closure
+  // edge between them stays as the edge of D; named together, they are the whole face.
+  const PlMap<2> map = quadrilateral_and_triangle_map();
+  std::vector<Index> quad;
+  for (Index r = 0; r < map.region_count(); ++r)
+    if (map.data().region_target[r] == 1) quad.push_back(r);
+  ASSERT_EQ(quad.size(), 2u);
+  const auto& a = map.data().region_corners[quad[0]];
+  const auto& b = map.data().region_corners[quad[1]];
+  std::vector<Index> diagonal;  // the two nodes the quadrilateral's regions share
+  for (Index n : a)
+    if (std::find(b.begin(), b.end(), n) != b.end()) diagonal.push_back(n);
+  ASSERT_EQ(diagonal.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const Index named = quad[k], other = quad[1 - k];
+    const double area = remote_intersection(map, named).domain_measure();
+    FaceRemovalReport report;
+    const PlMap<2> smaller = remove_regions(PlMap<2>(map), std::span<const Index>(&named, 1), &report);
+    EXPECT_EQ(report.removed_faces, 1);
+    EXPECT_EQ(report.partial_faces, 1);
+    EXPECT_EQ(report.removed_regions, 1);
+    EXPECT_EQ(report.cleared_elements, 0);
+    ASSERT_EQ(smaller.region_count(), 2);
+    EXPECT_NEAR(covered_measure(smaller).domain, 0.5 - area, 1e-15);
+    EXPECT_NEAR(area + remote_intersection(map, other).domain_measure(), 0.375, 1e-15);
+    const auto around = smaller.neighbors(diagonal[0]);
+    EXPECT_NE(std::find(around.begin(), around.end(), diagonal[1]), around.end()) << "the diagonal went";
+    EXPECT_LT(closure_entries(smaller), closure_entries(map));  // the named region's boundary pieces
+    EXPECT_EQ(violations(smaller), "");
+  }
+  FaceRemovalReport report;
+  const PlMap<2> both = remove_regions(PlMap<2>(map), std::span<const Index>(quad), &report);
+  EXPECT_EQ(report.removed_faces, 1);
+  EXPECT_EQ(report.partial_faces, 0);
+  EXPECT_EQ(report.removed_regions, 2);
+  EXPECT_EQ(both.data(), remove_faces(map, std::span<const Index>(&quad[0], 1)).data());
 }
 
 TEST(FaceRemoval, CurvesLoseTheRegionAndItsGraphEdge) {

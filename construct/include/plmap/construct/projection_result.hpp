@@ -101,14 +101,17 @@ struct ProjectionReport {
   /// (FinalizeReport::unmapped_faces): an S2 edge's preimage that would split them is missing,
   /// also where no edge failure names it (a walk that stopped at a fold and went on beyond it).
   Index unmapped_faces = 0;
-  /// Faces left out of D because their images overlap on S2 the images of faces whose points lie
-  /// nearer to their images (ProjectionOptions::keep_nearer_sheet), and their regions. An
-  /// element whose left-out face lay strictly inside it loses all its regions (core/face_removal.hpp).
+  /// Faces that lost regions because their images overlap on S2 the images of regions whose
+  /// points lie nearer to their images (ProjectionOptions::keep_nearer_sheet), and the regions
+  /// left out: the overlapping regions only, unless that would leave a hole strictly inside an
+  /// element (then the whole face, and an element whose face lay strictly inside it loses all its
+  /// regions; core/face_removal.hpp, remove_regions).
   Index occluded_faces = 0;
   Index occluded_regions = 0;
-  /// Faces left out of D because a corner's ray passes a focal point of their element before
+  /// Faces that lost regions with a corner whose ray passes a focal point of their element before
   /// its image: closed from a ghost node whose ray is unfolded only in other elements at its
-  /// vertex (docs/projection.md step 2), and their regions (cleared elements included).
+  /// vertex (docs/projection.md step 2), and the regions left out (by the rule of occluded_faces,
+  /// cleared elements included).
   Index folded_faces = 0;
   Index folded_regions = 0;
   /// d = 2: the measure of S1 outside D, by why. With ProjectionMeasures::covered_domain these
@@ -123,8 +126,8 @@ struct ProjectionReport {
     /// Regions of elements that left D whole because reversed or unmapped faces lay strictly
     /// inside them (FinalizeReport::unmapped_faces).
     double enclosed = 0.0;
-    double folded = 0.0;    ///< the folded faces' regions, cleared elements included
-    double occluded = 0.0;  ///< the occluded faces' regions, cleared elements included
+    double folded = 0.0;    ///< the regions left out as folded (folded_faces), cleared elements included
+    double occluded = 0.0;  ///< the regions left out as occluded (occluded_faces), cleared elements included
   };
   MeasureLeftOut left_out;
   /// d = 2, end_on_rim: nodes and edges of the rim of D where S2 leaves the band of admissible
