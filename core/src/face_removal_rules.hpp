@@ -32,16 +32,15 @@ bool has_side(const std::array<Index, n>& c, Index a, Index b) {
   return false;
 }
 
-/// Marks in `removed` the face of region r0 of a triangle map: r0 and every region reached from
-/// it across closure edges. `is_closure(a, b)` says whether the graph edge a-b is a closure edge,
+/// Walks a triangle map's face from region r0 across closure edges: `enter(next)` is asked for
+/// each region across a closure side and says whether the walk goes on from it (and must not say
+/// so twice for one region). `is_closure(a, b)` says whether the graph edge a-b is a closure edge,
 /// `across(r, i)` names the region across the side of r opposite corner i (or invalid_index);
-/// the two paths of remove_faces read these from different arrays. Returns whether the face
-/// touches its element's boundary; a face strictly inside its element takes all of the element's
-/// regions, which the caller clears. `stack` is scratch space.
-template <class IsClosure, class Across>
-bool mark_face(const MapData<2>& m, Index r0, std::vector<char>& removed, std::vector<Index>& stack,
-               IsClosure&& is_closure, Across&& across) {
-  removed[static_cast<std::size_t>(r0)] = 1;
+/// the two paths of remove_faces read these from different arrays. Returns whether a region
+/// walked has a side on its element's boundary. `stack` is scratch space.
+template <class IsClosure, class Across, class Enter>
+bool walk_face(const MapData<2>& m, Index r0, std::vector<Index>& stack, IsClosure&& is_closure, Across&& across,
+               Enter&& enter) {
   stack.assign(1, r0);
   bool reaches_boundary = false;
   while (!stack.empty()) {
@@ -52,13 +51,24 @@ bool mark_face(const MapData<2>& m, Index r0, std::vector<char>& removed, std::v
       const Index a = c[(i + 1) % 3], b = c[(i + 2) % 3];
       if (element_edges_through(m, a) & element_edges_through(m, b)) reaches_boundary = true;
       const Index next = across(r, i);
-      if (next != invalid_index && !removed[static_cast<std::size_t>(next)] && is_closure(a, b)) {
-        removed[static_cast<std::size_t>(next)] = 1;
-        stack.push_back(next);
-      }
+      if (next != invalid_index && is_closure(a, b) && enter(next)) stack.push_back(next);
     }
   }
   return reaches_boundary;
+}
+
+/// Marks in `removed` the face of region r0: r0 and every region reached from it across closure
+/// edges (walk_face). Returns whether the face touches its element's boundary; a face strictly
+/// inside its element takes all of the element's regions, which the caller clears.
+template <class IsClosure, class Across>
+bool mark_face(const MapData<2>& m, Index r0, std::vector<char>& removed, std::vector<Index>& stack,
+               IsClosure&& is_closure, Across&& across) {
+  removed[static_cast<std::size_t>(r0)] = 1;
+  return walk_face(m, r0, stack, is_closure, across, [&](Index next) {
+    if (removed[static_cast<std::size_t>(next)]) return false;
+    removed[static_cast<std::size_t>(next)] = 1;
+    return true;
+  });
 }
 
 /// How much of a face goes with a named region: all of it (remove_faces), or the named regions
@@ -75,26 +85,16 @@ bool mark_named_part_of_face(const MapData<2>& m, Index r0, std::vector<char>& r
                              std::vector<Index>& part, bool& whole, Named&& named, IsClosure&& is_closure,
                              Across&& across) {
   part.assign(1, r0);
-  stack.assign(1, r0);
-  bool reaches_boundary = false;
   whole = true;
-  while (!stack.empty()) {
-    const Index r = stack.back();
-    stack.pop_back();
-    const auto& c = m.region_corners[r];
-    for (int i = 0; i < 3; ++i) {
-      const Index a = c[(i + 1) % 3], b = c[(i + 2) % 3];
-      if (element_edges_through(m, a) & element_edges_through(m, b)) reaches_boundary = true;
-      const Index next = across(r, i);
-      if (next == invalid_index || !is_closure(a, b)) continue;
-      if (!named(next)) {
-        whole = false;
-      } else if (std::find(part.begin(), part.end(), next) == part.end()) {
-        part.push_back(next);
-        stack.push_back(next);
-      }
+  const bool reaches_boundary = walk_face(m, r0, stack, is_closure, across, [&](Index next) {
+    if (!named(next)) {
+      whole = false;
+      return false;
     }
-  }
+    if (std::find(part.begin(), part.end(), next) != part.end()) return false;
+    part.push_back(next);
+    return true;
+  });
   if (reaches_boundary)
     for (Index r : part) removed[static_cast<std::size_t>(r)] = 1;
   return reaches_boundary;
