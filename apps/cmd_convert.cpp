@@ -13,6 +13,7 @@
 
 #include <iostream>
 #include <map>
+#include <optional>
 #include <type_traits>
 
 namespace plmap::cli {
@@ -62,7 +63,10 @@ int run_convert(const ConvertOptions& o) {
       [&](const auto& read) {
         using SurfaceType = std::decay_t<decltype(read)>;
         VertexMergeReport merged;
-        const SurfaceType surface = o.merge_coincident ? merge_coincident_vertices(read, &merged) : read;
+        // (merged into a new surface only when asked: a plain conversion writes what it read)
+        const std::optional<SurfaceType> welded =
+            o.merge_coincident ? std::optional<SurfaceType>(merge_coincident_vertices(read, &merged)) : std::nullopt;
+        const SurfaceType& surface = welded ? *welded : read;
         write_surface(o.output, surface, options);
         std::cout << "wrote " << o.output << ": " << surface.vertex_count() << " vertices, "
                   << surface.element_count() << (surface.dimension == 1 ? " segments" : " triangles");
