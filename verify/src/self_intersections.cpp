@@ -4,7 +4,7 @@
 // boxes (CGAL's box intersection); each candidate that shares no vertex is then decided with exact
 // predicates, in pieces on all threads. (The first version queried the ray check's AABB tree once
 // per element, with each curve segment extruded to two triangles in space: on a 1M-segment curve
-// `plmap info` took 4.6 s and 490 MB for it, docs/benchmarks.md.)
+// `plmap info` took 4.3 s and 490 MB for it, docs/benchmarks.md.)
 
 #include <plmap/verify/self_intersections.hpp>
 
@@ -15,8 +15,8 @@
 #include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
-#include <cstddef>
 #include <array>
+#include <cstddef>
 #include <limits>
 #include <numeric>
 
