@@ -92,38 +92,6 @@ class SelfCrossings {
   SelfCrossings(const Surface<d>& s, const TargetTriangles<d>& triangles, const Tree& tree)
       : s_(s), triangles_(triangles), tree_(tree) {}
 
-  /// Calls f(j) for each triangle j of the tree whose element shares no vertex with triangle i's
-  /// and which meets triangle i (exact predicates). `candidates` is working space, kept by the
-  /// caller from call to call.
-  template <class F>
-  void for_each_met(std::size_t i, std::vector<TriangleIterator>& candidates, F&& f) const {
-    const Index tau = triangles_.element[i];
-    const auto& corners = s_.element(tau);
-    const auto shares_a_vertex = [&](Index sigma) {
-      for (Index v : s_.element(sigma))
-        if (std::find(corners.begin(), corners.end(), v) != corners.end()) return true;
-      return false;
-    };
-    const Triangle3& mine = triangles_.triangles[i];
-    const ExactTriangle exact_mine = exact_triangle(mine);
-    // CGAL's test requires proper triangles; a surface refuses elements of zero area, but the
-    // area it computes in doubles may be the rounding of exactly collinear corners
-    // (defensive: not seen in the meshes of libcgal-demo)
-    if (exact_mine.is_degenerate()) return;
-    candidates.clear();
-    // by box: cheaper per tree node than the triangle, and the exact test decides anyway
-    const CGAL::Bbox_3 box = mine.bbox();
-    tree_.all_intersected_primitives(Kernel::Iso_cuboid_3(box), std::back_inserter(candidates));
-    for (const TriangleIterator it : candidates) {
-      const std::size_t j = triangles_.index_of(it);
-      const Index sigma = triangles_.element[j];
-      if (sigma == tau || shares_a_vertex(sigma)) continue;
-      const ExactTriangle exact_other = exact_triangle(*it);
-      if (exact_other.is_degenerate() || !CGAL::do_intersect(exact_mine, exact_other)) continue;
-      f(j);
-    }
-  }
-
   /// Where triangle i meets the triangles that for_each_met names: one segment per such triangle
   /// (a point is a segment of length 0; where the two overlap in one plane, or touch where the
   /// rounded construction finds nothing, the line of triangle i in the other's plane or, failing
@@ -137,7 +105,7 @@ class SelfCrossings {
     if (known_[i]) return segments;
     known_[i] = true;
     const Triangle3& mine = triangles_.triangles[i];
-    for_each_met(i, candidates_, [&](std::size_t j) {
+    for_each_met(i, [&](std::size_t j) {
       const Triangle3& other = triangles_.triangles[j];
       if (const auto where = CGAL::intersection(mine, other)) {
         add(*where, mine, segments);
@@ -151,6 +119,37 @@ class SelfCrossings {
   }
 
  private:
+  /// Calls f(j) for each triangle j of the tree whose element shares no vertex with triangle i's
+  /// and which meets triangle i (exact predicates).
+  template <class F>
+  void for_each_met(std::size_t i, F&& f) {
+    const Index tau = triangles_.element[i];
+    const auto& corners = s_.element(tau);
+    const auto shares_a_vertex = [&](Index sigma) {
+      for (Index v : s_.element(sigma))
+        if (std::find(corners.begin(), corners.end(), v) != corners.end()) return true;
+      return false;
+    };
+    const Triangle3& mine = triangles_.triangles[i];
+    const ExactTriangle exact_mine = exact_triangle(mine);
+    // CGAL's test requires proper triangles; a surface refuses elements of zero area, but the
+    // area it computes in doubles may be the rounding of exactly collinear corners
+    // (defensive: not seen in the meshes of libcgal-demo)
+    if (exact_mine.is_degenerate()) return;
+    candidates_.clear();
+    // by box: cheaper per tree node than the triangle, and the exact test decides anyway
+    const CGAL::Bbox_3 box = mine.bbox();
+    tree_.all_intersected_primitives(Kernel::Iso_cuboid_3(box), std::back_inserter(candidates_));
+    for (const TriangleIterator it : candidates_) {
+      const std::size_t j = triangles_.index_of(it);
+      const Index sigma = triangles_.element[j];
+      if (sigma == tau || shares_a_vertex(sigma)) continue;
+      const ExactTriangle exact_other = exact_triangle(*it);
+      if (exact_other.is_degenerate() || !CGAL::do_intersect(exact_mine, exact_other)) continue;
+      f(j);
+    }
+  }
+
   template <class Place>
   static void add(const Place& where, const Triangle3& mine, std::vector<Segment3>& segments) {
     if (const Point3* p = boost::get<Point3>(&where)) {
