@@ -113,10 +113,12 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   j["unmapped_faces"] = r.unmapped_faces;
   j["occluded_faces"] = r.occluded_faces;
   j["folded_faces"] = r.folded_faces;
+  j["unbacked_regions"] = r.unbacked_regions;
   if constexpr (d == 2)  // the measure of S1 outside D, by why: with covered_measure, S1's measure
     j["left_out_measure"] = {{"outside", r.left_out.outside},   {"reversed", r.left_out.reversed},
                              {"unmapped", r.left_out.unmapped}, {"enclosed", r.left_out.enclosed},
-                             {"folded", r.left_out.folded},     {"occluded", r.left_out.occluded}};
+                             {"folded", r.left_out.folded},     {"unbacked", r.left_out.unbacked},
+                             {"occluded", r.left_out.occluded}};
   j["rim_nodes"] = r.rim_nodes;
   j["rim_edges"] = r.rim_edges;
   Json listed = Json::array();

@@ -14,6 +14,7 @@
 // index order, so the result does not depend on the number of threads.
 
 #include "folded_regions.hpp"
+#include "split_region_rays.hpp"
 #include "projection_context.hpp"
 #include "projection_edge_walks.hpp"
 #include "projection_ghost_rays.hpp"
@@ -33,6 +34,7 @@
 #include <plmap/solvers/solver_kind.hpp>
 
 #include <algorithm>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <span>
@@ -233,16 +235,28 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   ImageMeasureTerms terms;
   ImageMeasures images = image_measures(map, ctx.threads, terms);
   // faces closed on an element where the ray of a ghost node accepted from another element at
-  // its vertex is folded (folded_regions.hpp)
-  if (const std::vector<Index> folded = regions_with_folded_corners<d>(map, directions, focal_free_reach, ctx.threads);
-      !folded.empty()) {
+  // its vertex is folded (folded_regions.hpp), and regions split off faces without a target that
+  // the rays do not back (split_region_rays.hpp): one removal for both
+  std::vector<Index> folded = regions_with_folded_corners<d>(map, directions, focal_free_reach, ctx.threads);
+  std::vector<Index> unbacked;
+  if constexpr (d == 2) {
+    const std::vector<Index> off = split_regions_off_their_rays(map, directions, dropped.split_targets, ctx.threads);
+    std::set_difference(off.begin(), off.end(), folded.begin(), folded.end(), std::back_inserter(unbacked));
+  }
+  if (!folded.empty() || !unbacked.empty()) {
+    double unbacked_measure = 0.0;
+    for (Index r : unbacked) unbacked_measure += remote_intersection(map, r).domain_measure();
+    std::vector<Index> named;
+    std::set_union(folded.begin(), folded.end(), unbacked.begin(), unbacked.end(), std::back_inserter(named));
     FaceRemovalReport removal;
-    map = remove_regions(std::move(map), std::span<const Index>(folded), &removal);
+    map = remove_regions(std::move(map), std::span<const Index>(named), &removal);
     report.folded_faces = removal.removed_faces;
-    report.folded_regions = removal.removed_regions;
+    report.unbacked_regions = static_cast<Index>(unbacked.size());
+    report.folded_regions = removal.removed_regions - report.unbacked_regions;
     const double before = images.covered.domain;
     images = image_measures_after_removal(map, ctx.threads, terms);
-    report.left_out.folded = before - images.covered.domain;
+    report.left_out.unbacked = unbacked_measure;
+    report.left_out.folded = std::max(0.0, before - images.covered.domain - unbacked_measure);
   }
   if (options.keep_nearer_sheet) {
     const double before = images.covered.domain;

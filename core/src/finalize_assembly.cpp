@@ -217,8 +217,7 @@ Index number_regions(const BuilderContents<2>& in, const ClosureWorkspace& w, in
     for (int f = 0; f < nf; ++f) {
       const auto& comp = et.components[w.closure.face[f]];
       at.triangle_region[f] = invalid_index;
-      if (comp.outside) continue;
-      if (comp.target == invalid_index) {
+      if (comp.target == invalid_index) {  // unmapped, or outside (no target either)
         if (!split || et.split_target.empty() || et.split_target[f] == invalid_index || et.split_sign[f] != orientation)
           continue;
         at.split_kept = true;

@@ -640,19 +640,20 @@ void split_unmapped_face(const BuilderContents<2>& in, ClosureWorkspace& w, int 
   }
 }
 
-/// Gives the triangles of every unmapped face their own S2 elements where they have one
-/// (split_unmapped_face).
+/// Gives the triangles of every face without a target their own S2 elements where they have one
+/// (split_unmapped_face). That includes the faces at a corner of the element that has no node
+/// (outside D as a whole): the triangles touching the corner have no image, but the others,
+/// between nodes the walks did reach, are judged like those of an unmapped face.
 void split_unmapped_faces(const BuilderContents<2>& in, ClosureWorkspace& w, int orientation) {
   auto& et = w.et;
   bool any = false;
-  for (const auto& comp : et.components) any = any || (!comp.outside && comp.target == invalid_index);
+  for (const auto& comp : et.components) any = any || comp.target == invalid_index;
   if (!any) return;
   const std::size_t nf = w.closure.triangles.size();
   et.split_target.assign(nf, invalid_index);
   et.split_sign.assign(nf, 0);
   for (int c = 0; c < static_cast<int>(et.components.size()); ++c)
-    if (!et.components[c].outside && et.components[c].target == invalid_index)
-      split_unmapped_face(in, w, c, orientation);
+    if (et.components[c].target == invalid_index) split_unmapped_face(in, w, c, orientation);
 }
 
 /// The closure triangle a point-location walk starts from: the first inside D at the element's

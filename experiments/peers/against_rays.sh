@@ -38,7 +38,7 @@ if lo:
     s1 = p["domain_measure"]
     with open(sys.argv[4], "a") as f:
         f.write(f"| {name} | {1 - p['covered_measure'] / s1:.2e} | " +
-                " | ".join(f"{lo[k] / s1:.2e}" for k in ("outside", "unmapped", "reversed", "enclosed", "folded", "occluded")) +
+                " | ".join(f"{lo[k] / s1:.2e}" for k in ("outside", "unmapped", "reversed", "enclosed", "folded", "unbacked", "occluded")) +
                 " |\n")
 PY
 }
@@ -54,6 +54,6 @@ run_pair sphere-L7 --case sphere --size 7
 run_pair circle-1M --case circle --size 1000000
 
 echo
-echo "| pair | S1 outside D | outside | unmapped | reversed | enclosed | folded | occluded |"
-echo "|---|---|---|---|---|---|---|---|"
+echo "| pair | S1 outside D | outside | unmapped | reversed | enclosed | folded | unbacked | occluded |"
+echo "|---|---|---|---|---|---|---|---|---|"
 cat "$out/left_out.md"

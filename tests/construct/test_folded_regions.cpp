@@ -5,30 +5,20 @@
 // directions (no focal point at any distance, the elements the test skips) nothing is named.
 #include "folded_regions.hpp"
 
-#include <plmap/core/map_builder.hpp>
+#include "triangle_under_triangle.hpp"
+
 #include <plmap/solvers/focal_points.hpp>
 
 #include <gtest/gtest.h>
 
 #include <array>
 #include <limits>
-#include <memory>
 #include <vector>
 
 using namespace plmap;
+using plmap::test::triangle_under_triangle;
 
 namespace {
-
-PlMap<2> triangle_under_triangle() {
-  auto s1 = std::make_shared<const Surface<2>>(std::vector<WorldPoint<2>>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
-                                               std::vector<ElementCorners<2>>{{0, 1, 2}});
-  auto s2 = std::make_shared<const Surface<2>>(std::vector<WorldPoint<2>>{{0, 0, 2}, {1, 0, 2}, {0, 1, 2}},
-                                               std::vector<ElementCorners<2>>{{0, 1, 2}});
-  MapBuilder<2> b(s1, s2);
-  for (Index v = 0; v < 3; ++v) b.add_vertex_preimage_at_vertex(v, v);
-  b.add_target_element(0);
-  return std::move(b).finalize();
-}
 
 std::vector<Index> named_with(const PlMap<2>& map, const std::array<WorldPoint<2>, 3>& directions) {
   std::array<WorldPoint<2>, 3> corners;

@@ -22,7 +22,7 @@ TEST(ProjectLeftOutMeasure, WhatS2DoesNotReachIsOutsideAndMeasuredExactly) {
   EXPECT_NEAR(r.measures.covered_domain, 0.55, 1e-12);
   EXPECT_NEAR(r.report.left_out.outside, 0.45, 1e-12);
   for (double other : {r.report.left_out.reversed, r.report.left_out.unmapped, r.report.left_out.enclosed,
-                       r.report.left_out.folded, r.report.left_out.occluded})
+                       r.report.left_out.folded, r.report.left_out.unbacked, r.report.left_out.occluded})
     EXPECT_EQ(other, 0.0);
 }
 
@@ -38,7 +38,7 @@ TEST(ProjectLeftOutMeasure, TheSameForEveryThreadCount) {
     const auto& out = r.report.left_out;
     EXPECT_GT(out.outside, 0.0);
     EXPECT_NEAR(r.measures.covered_domain + out.outside + out.reversed + out.unmapped + out.enclosed + out.folded +
-                    out.occluded,
+                    out.unbacked + out.occluded,
                 r.measures.domain, 1e-12);
     if (!first) {
       first = out;
@@ -49,6 +49,7 @@ TEST(ProjectLeftOutMeasure, TheSameForEveryThreadCount) {
     EXPECT_EQ(out.unmapped, first->unmapped) << threads;
     EXPECT_EQ(out.enclosed, first->enclosed) << threads;
     EXPECT_EQ(out.folded, first->folded) << threads;
+    EXPECT_EQ(out.unbacked, first->unbacked) << threads;
     EXPECT_EQ(out.occluded, first->occluded) << threads;
   }
 }

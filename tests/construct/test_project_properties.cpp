@@ -59,7 +59,7 @@ void assert_valid(const ProjectionResult<d>& r, const std::string& what) {
   if constexpr (d == 2) {
     // what is left out of D, by why, and what D covers add up to S1
     const auto& out = r.report.left_out;
-    const double parts[] = {out.outside, out.reversed, out.unmapped, out.enclosed, out.folded, out.occluded};
+    const double parts[] = {out.outside, out.reversed, out.unmapped, out.enclosed, out.folded, out.unbacked, out.occluded};
     double sum = r.measures.covered_domain;
     for (const double part : parts) {
       RC_ASSERT(part >= -slack);
@@ -67,9 +67,9 @@ void assert_valid(const ProjectionResult<d>& r, const std::string& what) {
     }
     if (!(std::abs(sum - r.measures.domain) <= 1e-9 * r.measures.domain))
       RC_FAIL(what + fmt::format(": covered {:.17g} and left out (outside {}, reversed {}, unmapped {}, enclosed {}, "
-                                 "folded {}, occluded {}) add up to {:.17g}, not S1's {:.17g}",
+                                 "folded {}, unbacked {}, occluded {}) add up to {:.17g}, not S1's {:.17g}",
                                  r.measures.covered_domain, out.outside, out.reversed, out.unmapped, out.enclosed,
-                                 out.folded, out.occluded, sum, r.measures.domain));
+                                 out.folded, out.unbacked, out.occluded, sum, r.measures.domain));
   }
 }
 

@@ -74,6 +74,15 @@ std::string violations_of(const PlMap<2>& map) {
   return text;
 }
 
+/// Xi is the identity in these fixtures: every region corner maps where it lies.
+void expect_identity_on_region_corners(const PlMap<2>& m) {
+  for (Index r = 0; r < m.region_count(); ++r)
+    for (Index n : m.data().region_corners[r]) {
+      const WorldPoint<2> x = m.domain().world_position(m.node_element(n), m.data().node_position[n]);
+      EXPECT_NEAR((m.node_target_world(n) - x).norm(), 0.0, 1e-14) << "region " << r << " node " << n;
+    }
+}
+
 /// Areas of the two triangles of the unmapped face: 0-c-q and c-2-q.
 constexpr double area_0cq = 0.0675, area_c2q = 0.0825;
 
@@ -105,12 +114,7 @@ TEST(MapBuilderSplitFaces, ItsTrianglesThatMapIntoOneElementStay) {
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(report.split_targets, expected);
   // Xi is the identity on the split triangles as on the rest: q's preimage and c map where they lie
-  const auto& data = m.data();
-  for (Index r = 0; r < m.region_count(); ++r)
-    for (Index n : data.region_corners[r]) {
-      const WorldPoint<2> x = m.domain().world_position(m.node_element(n), data.node_position[n]);
-      EXPECT_NEAR((m.node_target_world(n) - x).norm(), 0.0, 1e-14) << "region " << r << " node " << n;
-    }
+  expect_identity_on_region_corners(m);
 }
 
 namespace {
@@ -163,9 +167,69 @@ TEST(MapBuilderSplitFaces, AnUnmappedFaceIsRetriangulatedSoThatItsTrianglesMapIn
   const auto covered = covered_measure(m);
   EXPECT_NEAR(covered.domain, 1.0, 1e-15);
   EXPECT_NEAR(covered.target, 1.0, 1e-15);
-  for (Index r = 0; r < m.region_count(); ++r)
-    for (Index n : m.data().region_corners[r]) {
-      const WorldPoint<2> x = m.domain().world_position(m.node_element(n), m.data().node_position[n]);
-      EXPECT_NEAR((m.node_target_world(n) - x).norm(), 0.0, 1e-14) << "region " << r << " node " << n;
-    }
+  expect_identity_on_region_corners(m);
+}
+
+namespace {
+
+/// A face at a corner without a node. S1 the unit square as above (A = (0, 1, 2), B = (0, 2, 3));
+/// S2 the quadrilateral 0 = (0, 0), 1 = (1, 0), b = (1, 0.9), a = (0, 0.5) in the triangles
+/// (0, 1, b) and (0, b, a): it does not reach S1's corners 2 and 3, which get no node. Xi is the
+/// identity. Every S2 edge is inserted whole but b-a, of which only the piece from b to where it
+/// crosses the diagonal (c = (5/6, 5/6), at a sixth of the edge) is (as a walk that stops at a
+/// fold would leave it). On B the one face 0, c, 2, 3, a touches the corners without a node, so
+/// it lies outside D's reach; of its closure, the triangle 0-c-a maps into the S2 element
+/// (0, b, a), which its split keeps.
+struct CornerWithoutNode {
+  std::shared_ptr<const Surface<2>> s1 = make_surface({P(0, 0), P(1, 0), P(1, 1), P(0, 1)}, {{0, 1, 2}, {0, 2, 3}});
+  static constexpr Index b = 2, a = 3;
+  std::shared_ptr<const Surface<2>> s2 =
+      make_surface({P(0, 0), P(1, 0), P(1, 0.9), P(0, 0.5)}, {{0, 1, b}, {0, b, a}});
+
+  PlMap<2> map(bool split, FinalizeReport& report) const {
+    BuilderOptions options;
+    options.split_unmapped_faces = split;
+    MapBuilder<2> builder(s1, s2, options);
+    builder.add_vertex_preimage_at_vertex(0, 0);
+    builder.add_vertex_preimage_at_vertex(1, 1);
+    builder.add_vertex_preimage(b, {0, LocalPoint<2>(0.1, 0.9)});  // (u + v, v) on A, on its edge 1-2
+    builder.add_vertex_preimage(a, {1, LocalPoint<2>(0.0, 0.5)});  // (u, u + v) on B, on its edge 3-0
+    const Index ba = s2->find_edge(b, a);
+    for (Index k = 0; k < s2->edge_count(); ++k)
+      if (k != ba) builder.add_edge(k);
+    const EdgeCrossing c{s1->find_edge(0, 2), 5.0 / 6.0, 1.0 / 6.0};
+    builder.add_edge_piece(ba, std::span(&c, 1), PieceStart::first_vertex, PieceEnd::last_crossing);
+    return std::move(builder).finalize(&report);
+  }
+};
+
+/// Areas: S2 (all of it is the image of the square's part below b-a), and the triangle 0-c-a.
+constexpr double area_s2 = 0.7, area_0ca = 5.0 / 24.0;
+
+}  // namespace
+
+TEST(MapBuilderSplitFaces, WithoutTheOptionAFaceAtACornerWithoutANodeLeavesD) {
+  const CornerWithoutNode fixture;
+  FinalizeReport report;
+  const PlMap<2> m = fixture.map(false, report);
+  EXPECT_EQ(violations_of(m), "");
+  EXPECT_EQ(report.unmapped_faces, 0);  // outside, not unmapped
+  EXPECT_TRUE(report.split_targets.empty());
+  EXPECT_NEAR(covered_measure(m).domain, area_s2 - area_0ca, 1e-15);
+  EXPECT_NEAR(report.left_out.outside, 1.0 - area_s2 + area_0ca, 1e-15);
+}
+
+TEST(MapBuilderSplitFaces, AFaceAtACornerWithoutANodeKeepsItsTrianglesThatMapIntoOneElement) {
+  const CornerWithoutNode fixture;
+  FinalizeReport report;
+  const PlMap<2> m = fixture.map(true, report);
+  EXPECT_EQ(violations_of(m), "");
+  EXPECT_EQ(report.unmapped_faces, 0);
+  // all of S2 is covered now; only the part of the square beyond b-a stays outside
+  const auto covered = covered_measure(m);
+  EXPECT_NEAR(covered.domain, area_s2, 1e-15);
+  EXPECT_NEAR(covered.target, area_s2, 1e-15);
+  EXPECT_NEAR(report.left_out.outside, 1.0 - area_s2, 1e-15);
+  EXPECT_EQ(report.split_targets, std::vector<Index>{1});  // the S2 element (0, b, a)
+  expect_identity_on_region_corners(m);
 }

@@ -75,6 +75,7 @@ nlohmann::json report_json(const ProjectionResult<d>& result) {
   j["unmapped_faces"] = r.unmapped_faces;
   j["occluded_faces"] = r.occluded_faces;
   j["folded_faces"] = r.folded_faces;
+  j["unbacked_regions"] = r.unbacked_regions;
   nlohmann::json missing = nlohmann::json::array();
   for (const EdgeNotInserted<d>& e : r.edges_not_inserted) {
     std::vector<double> point(e.domain_point.data(), e.domain_point.data() + d + 1);

@@ -57,10 +57,12 @@ struct BuilderOptions {
   /// preimage of an S2 edge that would split it is missing in part: FinalizeReport::unmapped_faces).
   /// false (default): the face leaves D. true: each triangle of its closure whose three corners map
   /// into one S2 element with the map's orientation stays, as a region of that element; the rest
-  /// leaves D. Such regions are continuous with each other and with the faces around them, but
-  /// their images are not bounded by their S2 element's edges and may overlap another part of
-  /// the map's image: the caller must check the elements listed in FinalizeReport::split_targets
-  /// (the projection compares them with keep_nearer_sheet, which is why it sets this only then).
+  /// leaves D. The same holds for a face at an S1 corner without a node (outside D's reach as a
+  /// whole): its triangles that do not touch that corner are judged alike. Such regions are
+  /// continuous with each other and with the faces around them, but their images are not bounded
+  /// by their S2 element's edges and may overlap another part of the map's image: the caller
+  /// must check the elements listed in FinalizeReport::split_targets (the projection compares
+  /// them with keep_nearer_sheet, which is why it sets this only then).
   bool split_unmapped_faces = false;
 };
 
@@ -102,7 +104,8 @@ struct FinalizeReport {
     }
   };
   MeasureLeftOut left_out;
-  /// d = 2: the S2 elements that regions split off unmapped faces map into (sorted, each once).
+  /// d = 2: the S2 elements that regions split off unmapped faces (or faces at a corner without
+  /// a node) map into (sorted, each once).
   /// Such a region's image is not bounded by preimages of its S2 element's edges, so unlike a
   /// face's it can overlap the image of another part of S1 (see image_overlaps.hpp).
   std::vector<Index> split_targets;
