@@ -52,6 +52,9 @@ std::vector<Index> split_regions_off_their_rays(const PlMap<2>& map, std::span<c
   const Surface<2>& s1 = map.domain();
   const Surface<2>& s2 = map.target();
   const auto& m = map.stored();
+  // a look-up per region, not a search: most regions of a large map are on other elements
+  std::vector<char> listed(static_cast<std::size_t>(s2.element_count()), 0);
+  for (Index t2 : split_targets) listed[t2] = 1;
   constexpr std::size_t chunk = 4096;
   const auto n1 = static_cast<std::size_t>(s1.element_count());
   std::vector<std::vector<Index>> found((n1 + chunk - 1) / chunk);
@@ -60,7 +63,7 @@ std::vector<Index> split_regions_off_their_rays(const PlMap<2>& map, std::span<c
     for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t)
       for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) {
         const Index target = m.region_target[r];
-        if (!std::binary_search(split_targets.begin(), split_targets.end(), target)) continue;
+        if (!listed[target]) continue;
         std::array<LocalPoint<2>, 3> at;
         for (int k = 0; k < 3; ++k) {
           const Index n = m.region_corners[r][k];

@@ -19,7 +19,7 @@
 namespace plmap::projection {
 
 /// The regions (sorted, each once) whose target is among `split_targets` (FinalizeReport::
-/// split_targets, sorted) and at one of whose sample points (the centroid and the midpoints of
+/// split_targets) and at one of whose sample points (the centroid and the midpoints of
 /// the sides) the ray along the interpolated field of its S1 element (`directions`, one per S1
 /// vertex) meets the plane of the region's S2 element more than half that element's mean edge
 /// length away from Xi there, or not at all.
