@@ -235,12 +235,13 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   ImageMeasureTerms terms;
   ImageMeasures images = image_measures(map, ctx.threads, terms);
   // faces closed on an element where the ray of a ghost node accepted from another element at
-  // its vertex is folded (folded_regions.hpp), and regions split off faces without a target that
-  // the rays do not back (split_region_rays.hpp): one removal for both
+  // its vertex is folded (folded_regions.hpp), and regions split off faces at a corner without a
+  // node that the rays do not back (split_region_rays.hpp): one removal for both
   std::vector<Index> folded = regions_with_folded_corners<d>(map, directions, focal_free_reach, ctx.threads);
   std::vector<Index> unbacked;
   if constexpr (d == 2) {
-    const std::vector<Index> off = split_regions_off_their_rays(map, directions, dropped.split_targets, ctx.threads);
+    const std::vector<Index> off =
+        split_regions_off_their_rays(map, directions, focal_free_reach, dropped.regions_split_off_outside_faces, ctx.threads);
     std::set_difference(off.begin(), off.end(), folded.begin(), folded.end(), std::back_inserter(unbacked));
   }
   if (!folded.empty() || !unbacked.empty()) {

@@ -339,7 +339,10 @@ void write_regions(const ClosureWorkspace& w, Index base, Index region_count, Ma
       neighbors[i] = g >= 0 ? at.triangle_region[g] : invalid_index;
     }
     part.region_target[at.regions] = target_of(et, closure, f);
-    if (et.components[closure.face[f]].target == invalid_index) at.split_targets.push_back(part.region_target[at.regions]);
+    if (const auto& comp = et.components[closure.face[f]]; comp.target == invalid_index) {
+      at.split_targets.push_back(part.region_target[at.regions]);
+      if (comp.outside) at.outside_split_regions.push_back(static_cast<Index>(at.regions));
+    }
     // judged with the face (a region's face has sign != 0); or written after the builder is freed
     if (at.omitted_weights == nullptr) part.region_map[at.regions] = et.corner_maps[f];
     ++at.regions;

@@ -53,6 +53,9 @@ struct AssemblyCursor {
   std::vector<Index> triangle_region;  // per closure triangle of the element: its region, or invalid
   bool split_kept = false;  // the element keeps triangles of an unmapped face (number_regions)
   std::vector<Index> split_targets;  // the S2 elements of those triangles' regions (FinalizeReport::split_targets)
+  // those of the regions that come from faces at a corner without a node, numbered in the block
+  // (FinalizeReport::regions_split_off_outside_faces)
+  std::vector<Index> outside_split_regions;
   /// Region maps deferred (finalize_region_maps.hpp): region_map is not written, and this holds
   /// omitted_image_weight per node of the part instead (sized like the node arrays). Null:
   /// region_map is written with the regions.

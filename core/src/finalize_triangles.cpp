@@ -91,7 +91,8 @@ class ClosingPass {
           if (!drop) return;  // finalize throws: the part and its count are not used
         }
       }
-      face_counts_[k] = {cursor.reversed_faces, cursor.unmapped_faces, cursor.left_out, std::move(cursor.split_targets)};
+      face_counts_[k] = {cursor.reversed_faces, cursor.unmapped_faces, cursor.left_out, std::move(cursor.split_targets),
+                         std::move(cursor.outside_split_regions), static_cast<Index>(cursor.regions)};
       trim_part(cursor, parts_[k]);
       for (Index& t : cursor.graph_elements) t += begin;  // numbered in the block
       graph_elements_[k] = std::move(cursor.graph_elements);
@@ -125,12 +126,14 @@ class ClosingPass {
     for (const auto& w : workspaces_) votes += w.votes;
     return votes >= 0 ? 1 : -1;
   }
-  /// FinalizeReport::reversed_faces, unmapped_faces, left_out and split_targets of the last run,
-  /// over all blocks.
+  /// FinalizeReport::reversed_faces, unmapped_faces, left_out, split_targets and
+  /// regions_split_off_outside_faces of the last run, over all blocks.
   struct FaceCounts {
     Index reversed = 0, unmapped = 0;
     AssemblyCursor::LeftOutTally left_out;
     std::vector<Index> split_targets;  // sorted, each once
+    std::vector<Index> outside_split_regions;  // sorted; per block: numbered in the block
+    Index regions = 0;  // per block: the regions it assembled
   };
   FaceCounts face_counts() const {
     FaceCounts sum;
@@ -139,6 +142,9 @@ class ClosingPass {
       sum.unmapped += c.unmapped;
       sum.left_out += c.left_out;
       sum.split_targets.insert(sum.split_targets.end(), c.split_targets.begin(), c.split_targets.end());
+      // the parts are joined in block order: a block's regions follow those of the blocks before
+      for (Index r : c.outside_split_regions) sum.outside_split_regions.push_back(sum.regions + r);
+      sum.regions += c.regions;
     }
     std::sort(sum.split_targets.begin(), sum.split_targets.end());
     sum.split_targets.erase(std::unique(sum.split_targets.begin(), sum.split_targets.end()), sum.split_targets.end());
@@ -315,6 +321,7 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
     report->unmapped_faces += counts.unmapped;
     report->left_out += counts.left_out.measures(in.s1.measure());
     report->split_targets = std::move(counts.split_targets);
+    report->regions_split_off_outside_faces = std::move(counts.outside_split_regions);
   }
   // Everything is closed: the builder's nodes and segments and their buckets are not read again.
   // Freed before the join, which with several blocks first-touches the later blocks' share of the

@@ -113,6 +113,7 @@ TEST(MapBuilderSplitFaces, ItsTrianglesThatMapIntoOneElementStay) {
                                  fixture.element(HalfInsertedEdge::p, 2, HalfInsertedEdge::q)};
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(report.split_targets, expected);
+  EXPECT_TRUE(report.regions_split_off_outside_faces.empty());  // unmapped, not outside
   // Xi is the identity on the split triangles as on the rest: q's preimage and c map where they lie
   expect_identity_on_region_corners(m);
 }
@@ -231,5 +232,11 @@ TEST(MapBuilderSplitFaces, AFaceAtACornerWithoutANodeKeepsItsTrianglesThatMapInt
   EXPECT_NEAR(covered.target, area_s2, 1e-15);
   EXPECT_NEAR(report.left_out.outside, 1.0 - area_s2, 1e-15);
   EXPECT_EQ(report.split_targets, std::vector<Index>{1});  // the S2 element (0, b, a)
+  // the region split off is listed (the projection tests it against its rays): the one of
+  // element B on the S2 element (0, b, a)
+  ASSERT_EQ(report.regions_split_off_outside_faces.size(), 1u);
+  const Index split = report.regions_split_off_outside_faces[0];
+  EXPECT_EQ(m.data().region_target[split], 1);
+  EXPECT_TRUE(m.regions_begin(1) <= split && split < m.regions_end(1));
   expect_identity_on_region_corners(m);
 }

@@ -114,11 +114,11 @@ struct ProjectionReport {
   /// cleared elements included).
   Index folded_faces = 0;
   Index folded_regions = 0;
-  /// d = 2: regions that finalize split off a face without a target (an unmapped face, or one at
-  /// an S1 corner without a node) and that the rays do not back: at one of their sample points
-  /// the ray meets the plane of their S2 element more than half an edge from Xi there (at a
-  /// fold, or at S2's silhouette along the rays). They are left out of D with the folded regions
-  /// (construct/src/split_region_rays.hpp); folded_faces counts the faces of both.
+  /// d = 2: regions that finalize split off a face at an S1 corner without a node and that the
+  /// rays do not back: at one of their sample points the ray meets the plane of their S2 element
+  /// more than half an edge from Xi there (at S2's silhouette along the rays, or at a fold). They
+  /// are left out of D with the folded regions (construct/src/split_region_rays.hpp);
+  /// folded_faces counts the faces of both.
   Index unbacked_regions = 0;
   /// d = 2: the measure of S1 outside D, by why. With ProjectionMeasures::covered_domain these
   /// add up to S1's measure (up to rounding), so a user can tell where a coverage below 1 comes

@@ -109,6 +109,11 @@ struct FinalizeReport {
   /// Such a region's image is not bounded by preimages of its S2 element's edges, so unlike a
   /// face's it can overlap the image of another part of S1 (see image_overlaps.hpp).
   std::vector<Index> split_targets;
+  /// d = 2: the regions (sorted) split off faces at an S1 corner without a node, numbered as in
+  /// the map finalize() returns. Their corners are nodes the walks reached around that corner,
+  /// and nothing inserted between them vouches for the inside (the caller may test it, as the
+  /// projection does against its rays).
+  std::vector<Index> regions_split_off_outside_faces;
 };
 
 /// Where the preimage of an S2 edge crosses an S1 edge (d = 2).
