@@ -14,7 +14,6 @@
 // index order, so the result does not depend on the number of threads.
 
 #include "folded_regions.hpp"
-#include "split_region_rays.hpp"
 #include "projection_context.hpp"
 #include "projection_edge_walks.hpp"
 #include "projection_ghost_rays.hpp"
@@ -22,6 +21,7 @@
 #include "projection_sheet_selection.hpp"
 #include "projection_vertex_preimages.hpp"
 #include "spatial_renumbering.hpp"
+#include "split_region_rays.hpp"
 #include "unit_scale.hpp"
 
 #include <plmap/construct/project.hpp>
