@@ -250,7 +250,7 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
     std::vector<Index> named;
     std::set_union(folded.begin(), folded.end(), unbacked.begin(), unbacked.end(), std::back_inserter(named));
     FaceRemovalReport removal;
-    map = remove_regions(std::move(map), std::span<const Index>(named), &removal);
+    map = remove_regions(std::move(map), std::span<const Index>(named), &removal, ctx.threads);
     report.folded_faces = removal.removed_faces;
     report.unbacked_regions = static_cast<Index>(unbacked.size());
     report.folded_regions = removal.removed_regions - report.unbacked_regions;

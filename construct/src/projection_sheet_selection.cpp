@@ -80,7 +80,7 @@ void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, ImageMeasureTerms& 
   const std::vector<Index> farther = farther_overlapping_regions(map, images, {}, threads, split_targets);
   if (farther.empty()) return;
   FaceRemovalReport removal;
-  map = remove_regions(std::move(map), std::span<const Index>(farther), &removal);
+  map = remove_regions(std::move(map), std::span<const Index>(farther), &removal, threads);
   report.occluded_faces = removal.removed_faces;
   report.occluded_regions = removal.removed_regions;
   images = image_measures_after_removal(map, threads, terms);

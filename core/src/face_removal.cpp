@@ -174,7 +174,7 @@ namespace {
 template <int d>
   requires SurfaceDimension<d>
 PlMap<d> remove_from_domain(PlMap<d>&& map, std::span<const Index> regions, detail::RemovalExtent extent,
-                            FaceRemovalReport* report) {
+                            FaceRemovalReport* report, unsigned threads) {
   const Index nr = map.region_count();
   const Index nt = map.domain().element_count();
   for (Index r : regions)
@@ -186,7 +186,7 @@ PlMap<d> remove_from_domain(PlMap<d>&& map, std::span<const Index> regions, deta
   // A triangle map in its stored form is changed element by element where regions go; its
   // graph is neither derived whole nor compared whole again (face_removal_stored_form.hpp).
   if constexpr (d == 2)
-    if (std::optional<PlMap<2>> smaller = detail::remove_faces_in_stored_form(map, regions, extent, rep)) {
+    if (std::optional<PlMap<2>> smaller = detail::remove_faces_in_stored_form(map, regions, extent, rep, threads)) {
       if (report) *report = rep;
       return std::move(*smaller);
     }
@@ -208,27 +208,27 @@ PlMap<d> remove_from_domain(PlMap<d>&& map, std::span<const Index> regions, deta
 
 template <int d>
   requires SurfaceDimension<d>
-PlMap<d> remove_faces(PlMap<d>&& map, std::span<const Index> regions, FaceRemovalReport* report) {
-  return remove_from_domain(std::move(map), regions, detail::RemovalExtent::whole_faces, report);
+PlMap<d> remove_faces(PlMap<d>&& map, std::span<const Index> regions, FaceRemovalReport* report, unsigned threads) {
+  return remove_from_domain(std::move(map), regions, detail::RemovalExtent::whole_faces, report, threads);
 }
 
 template <int d>
   requires SurfaceDimension<d>
-PlMap<d> remove_regions(PlMap<d>&& map, std::span<const Index> regions, FaceRemovalReport* report) {
-  return remove_from_domain(std::move(map), regions, detail::RemovalExtent::named_regions, report);
+PlMap<d> remove_regions(PlMap<d>&& map, std::span<const Index> regions, FaceRemovalReport* report, unsigned threads) {
+  return remove_from_domain(std::move(map), regions, detail::RemovalExtent::named_regions, report, threads);
 }
 
 template <int d>
   requires SurfaceDimension<d>
-PlMap<d> remove_faces(const PlMap<d>& map, std::span<const Index> regions, FaceRemovalReport* report) {
-  return remove_faces(PlMap<d>(map), regions, report);
+PlMap<d> remove_faces(const PlMap<d>& map, std::span<const Index> regions, FaceRemovalReport* report, unsigned threads) {
+  return remove_faces(PlMap<d>(map), regions, report, threads);
 }
 
-template PlMap<1> remove_faces<1>(const PlMap<1>&, std::span<const Index>, FaceRemovalReport*);
-template PlMap<2> remove_faces<2>(const PlMap<2>&, std::span<const Index>, FaceRemovalReport*);
-template PlMap<1> remove_faces<1>(PlMap<1>&&, std::span<const Index>, FaceRemovalReport*);
-template PlMap<2> remove_faces<2>(PlMap<2>&&, std::span<const Index>, FaceRemovalReport*);
-template PlMap<1> remove_regions<1>(PlMap<1>&&, std::span<const Index>, FaceRemovalReport*);
-template PlMap<2> remove_regions<2>(PlMap<2>&&, std::span<const Index>, FaceRemovalReport*);
+template PlMap<1> remove_faces<1>(const PlMap<1>&, std::span<const Index>, FaceRemovalReport*, unsigned);
+template PlMap<2> remove_faces<2>(const PlMap<2>&, std::span<const Index>, FaceRemovalReport*, unsigned);
+template PlMap<1> remove_faces<1>(PlMap<1>&&, std::span<const Index>, FaceRemovalReport*, unsigned);
+template PlMap<2> remove_faces<2>(PlMap<2>&&, std::span<const Index>, FaceRemovalReport*, unsigned);
+template PlMap<1> remove_regions<1>(PlMap<1>&&, std::span<const Index>, FaceRemovalReport*, unsigned);
+template PlMap<2> remove_regions<2>(PlMap<2>&&, std::span<const Index>, FaceRemovalReport*, unsigned);
 
 }  // namespace plmap

@@ -6,8 +6,11 @@
 #include "map_graph_derivation.hpp"
 #include "stored_graph_offsets.hpp"
 
+#include <plmap/core/parallel_ranges.hpp>
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -184,32 +187,57 @@ void append(const ElementGraph& g, StoredGraph& out) {
   out.region_neighbors.insert(out.region_neighbors.end(), g.region_neighbors.begin(), g.region_neighbors.end());
 }
 
+/// The pieces' graphs, one after the other.
+StoredGraph join_in_order(std::vector<StoredGraph>& pieces) {
+  if (pieces.empty()) return {};
+  StoredGraph out = std::move(pieces[0]);
+  for (std::size_t k = 1; k < pieces.size(); ++k) {
+    const StoredGraph& p = pieces[k];
+    out.element.insert(out.element.end(), p.element.begin(), p.element.end());
+    out.neighbor_count.insert(out.neighbor_count.end(), p.neighbor_count.begin(), p.neighbor_count.end());
+    out.neighbor.insert(out.neighbor.end(), p.neighbor.begin(), p.neighbor.end());
+    out.neighbor_edge_kind.insert(out.neighbor_edge_kind.end(), p.neighbor_edge_kind.begin(), p.neighbor_edge_kind.end());
+    out.edge_node_count.insert(out.edge_node_count.end(), p.edge_node_count.begin(), p.edge_node_count.end());
+    out.edge_node.insert(out.edge_node.end(), p.edge_node.begin(), p.edge_node.end());
+    out.region_neighbors.insert(out.region_neighbors.end(), p.region_neighbors.begin(), p.region_neighbors.end());
+  }
+  return out;
+}
+
 }  // namespace
 
 std::optional<PlMap<2>> remove_faces_in_stored_form(PlMap<2>& map, std::span<const Index> regions,
-                                                    RemovalExtent extent, FaceRemovalReport& report) {
+                                                    RemovalExtent extent, FaceRemovalReport& report,
+                                                    unsigned threads) {
   const MapData<2>& stored = map.stored();
   const StoredGraph& stored_graph = map.stored_graph();
   const Surface<2>& target = map.target();
   const Index nt = map.domain().element_count();
   const NamedByElement named = group_by_element(stored, regions);
   const StoredGraphOffsets offsets(stored, stored_graph);
+  // Four pieces per thread, for balance: the derivations differ in cost with the elements' sizes.
+  const std::size_t piece_count = 4 * resolve_thread_count(threads);
+  auto piece_size = [&](std::size_t n) { return std::max<std::size_t>(1, (n + piece_count - 1) / piece_count); };
 
   // The graphs of the elements that lose regions, before anything changes (a damaged element
   // leaves the map to the full-array path).
-  GraphDerivationScratch scratch;
-  std::vector<ElementGraph> changed;
-  changed.reserve(named.element.size());
-  for (Index t : named.element) {
-    const auto kept = std::lower_bound(stored_graph.element.begin(), stored_graph.element.end(), t);
-    if (kept != stored_graph.element.end() && *kept == t) {
-      changed.push_back(stored_element_graph(stored_graph, offsets, static_cast<std::size_t>(kept - stored_graph.element.begin())));
-    } else if (std::optional<ElementGraph> g = derived_element_graph(stored, target, t, scratch)) {
-      changed.push_back(std::move(*g));
-    } else {
-      return std::nullopt;
+  std::vector<ElementGraph> changed(named.element.size());
+  std::atomic<bool> underived{false};
+  parallel_for_pieces_of_size(changed.size(), piece_size(changed.size()), threads, [&](std::size_t, std::size_t begin, std::size_t end) {
+    GraphDerivationScratch scratch;
+    for (std::size_t i = begin; i < end && !underived.load(std::memory_order_relaxed); ++i) {
+      const Index t = named.element[i];
+      const auto kept = std::lower_bound(stored_graph.element.begin(), stored_graph.element.end(), t);
+      if (kept != stored_graph.element.end() && *kept == t) {
+        changed[i] = stored_element_graph(stored_graph, offsets, static_cast<std::size_t>(kept - stored_graph.element.begin()));
+      } else if (std::optional<ElementGraph> g = derived_element_graph(stored, target, t, scratch)) {
+        changed[i] = std::move(*g);
+      } else {
+        underived.store(true, std::memory_order_relaxed);
+      }
     }
-  }
+  });
+  if (underived.load()) return std::nullopt;
 
   std::vector<char> removed(static_cast<std::size_t>(map.region_count()), 0);
   for (std::size_t i = 0; i < changed.size(); ++i) {
@@ -221,41 +249,53 @@ std::optional<PlMap<2>> remove_faces_in_stored_form(PlMap<2>& map, std::span<con
   for (Index t : named.element) old_region_begin.push_back(stored.region_begin[t]);
 
   std::shared_ptr<const Surface<2>> domain = map.domain_ptr(), target_ptr = map.target_ptr();
-  // (two named variables, not a structured binding: the lambda below captures m, which
-  // clang before C++20's capture rule for bindings refuses)
   std::pair<MapData<2>, StoredGraph> released = std::move(map).release_stored_form();
-  MapData<2>& m = released.first;
+  const MapData<2>& m = released.first;
   const StoredGraph& old_graph = released.second;
   std::vector<Index> renumbered;
-  report.removed_regions = static_cast<Index>(removed.size()) - compact_regions(m, nt, removed, renumbered);
+  report.removed_regions = static_cast<Index>(removed.size()) - compact_regions(released.first, nt, removed, renumbered);
 
   // The new stored graph, in element order: the changed elements and the elements that stored
-  // their graph before, each kept where the derivation from its (remaining) regions differs,
-  // as the constructor from full arrays would decide.
-  StoredGraph graph;
-  auto keep_if_underived = [&](ElementGraph&& g) {
-    const std::optional<ElementGraph> derived = derived_element_graph(m, *target_ptr, g.element, scratch);
-    if (!derived || *derived != g) append(g, graph);
+  // their graph before, each kept where the derivation from its (remaining) regions differs, as
+  // the constructor from full arrays would decide. The candidates are listed in element order,
+  // decided in pieces on all threads, and the pieces' graphs joined in order.
+  struct Candidate {
+    bool changed;       // changed[index], or element `index` of the old stored graph
+    std::size_t index;
   };
-  std::size_t c = 0, s = 0;
-  while (c < changed.size() || s < old_graph.element.size()) {
+  std::vector<Candidate> candidates;
+  candidates.reserve(changed.size() + old_graph.element.size());
+  for (std::size_t c = 0, s = 0; c < changed.size() || s < old_graph.element.size();) {
     const Index tc = c < changed.size() ? changed[c].element : nt;
     const Index ts = s < old_graph.element.size() ? old_graph.element[s] : nt;
     if (tc <= ts) {
-      renumber_regions(removed, renumbered, old_region_begin[c], changed[c]);
-      keep_if_underived(std::move(changed[c]));
-      ++c;
+      candidates.push_back({true, c++});
       if (ts == tc) ++s;  // its stored graph was the one changed
     } else {
-      // no region of it goes, so only the region numbers shift
-      ElementGraph g = stored_element_graph(old_graph, offsets, s);
-      for (auto& across : g.region_neighbors)
-        for (Index& q : across) q = q == invalid_index ? invalid_index : renumbered[static_cast<std::size_t>(q)];
-      keep_if_underived(std::move(g));
-      ++s;
+      candidates.push_back({false, s++});
     }
   }
-  return PlMap<2>(std::move(domain), std::move(target_ptr), std::move(m), std::move(graph));
+  const std::size_t size = piece_size(candidates.size());
+  std::vector<StoredGraph> kept((candidates.size() + size - 1) / size);
+  parallel_for_pieces_of_size(candidates.size(), size, threads, [&](std::size_t k, std::size_t begin, std::size_t end) {
+    GraphDerivationScratch scratch;
+    for (std::size_t i = begin; i < end; ++i) {
+      ElementGraph g;
+      if (candidates[i].changed) {
+        g = std::move(changed[candidates[i].index]);
+        renumber_regions(removed, renumbered, old_region_begin[candidates[i].index], g);
+      } else {
+        // no region of it goes, so only the region numbers shift
+        g = stored_element_graph(old_graph, offsets, candidates[i].index);
+        for (auto& across : g.region_neighbors)
+          for (Index& q : across) q = q == invalid_index ? invalid_index : renumbered[static_cast<std::size_t>(q)];
+      }
+      const std::optional<ElementGraph> derived = derived_element_graph(m, *target_ptr, g.element, scratch);
+      if (!derived || *derived != g) append(g, kept[k]);
+    }
+  });
+  StoredGraph graph = join_in_order(kept);
+  return PlMap<2>(std::move(domain), std::move(target_ptr), std::move(released.first), std::move(graph));
 }
 
 }  // namespace plmap::detail

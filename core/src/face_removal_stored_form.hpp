@@ -23,9 +23,11 @@ namespace plmap::detail {
 /// the named regions (face_removal_rules.hpp; indices already checked to be in range), built from
 /// its stored form; `map` is consumed. Nothing (and `map` untouched) where an element that loses
 /// regions has regions that do not give its graph back and no stored graph (a damaged map): the
-/// caller then takes the full-array path.
+/// caller then takes the full-array path. The graphs are derived and compared on up to `threads`
+/// threads, in pieces of elements joined in element order: the same map for every count.
 std::optional<PlMap<2>> remove_faces_in_stored_form(PlMap<2>& map, std::span<const Index> regions,
-                                                    RemovalExtent extent, FaceRemovalReport& report);
+                                                    RemovalExtent extent, FaceRemovalReport& report,
+                                                    unsigned threads);
 
 /// Drops the removed regions from m's region arrays in place, keeping the order of the rest,
 /// and renumbers the region neighbours (when m holds them) and start regions; renumbered[r] is

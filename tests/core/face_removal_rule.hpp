@@ -57,6 +57,7 @@ PlMap<d> expect_rule_holds(const PlMap<d>& map, const std::vector<Index>& named,
   // which regions go: the report of removed regions fixes the count, the in-place result's
   // region targets and corners fix which (the kept ones stay in order)
   PlMap<d> copy = map;
+  PlMap<d> copy_for_threads = map;  // copied before map.data() derives the graph of every element
   FaceRemovalReport report;
   PlMap<d> smaller = removal == Removal::faces ? remove_faces(std::move(copy), std::span<const Index>(named), &report)
                                                : remove_regions(std::move(copy), std::span<const Index>(named), &report);
@@ -91,6 +92,12 @@ PlMap<d> expect_rule_holds(const PlMap<d>& map, const std::vector<Index>& named,
     const PlMap<2> from_full(smaller.domain_ptr(), smaller.target_ptr(), MapData<2>(s));
     EXPECT_EQ(smaller.stored_graph(), from_full.stored_graph());
     EXPECT_EQ(smaller.elements_with_stored_graph(), from_full.elements_with_stored_graph());
+    // Decided in pieces on several threads, the same map: the pieces' graphs joined in order.
+    const PlMap<2> on_threads = removal == Removal::faces
+                                    ? remove_faces(std::move(copy_for_threads), std::span<const Index>(named), nullptr, 3)
+                                    : remove_regions(std::move(copy_for_threads), std::span<const Index>(named), nullptr, 3);
+    EXPECT_EQ(on_threads.stored_graph(), smaller.stored_graph());
+    EXPECT_EQ(on_threads.data(), s);
   }
   if (removed_out) *removed_out = removed;
   return smaller;

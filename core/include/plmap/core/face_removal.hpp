@@ -43,30 +43,35 @@ struct FaceRemovalReport {
 };
 
 /// The map without the faces that contain the given regions (any order, repeats allowed).
-/// Throws InvalidMapError if a region index is out of range.
+/// Throws InvalidMapError if a region index is out of range. `threads`: up to that many threads
+/// (0: all the process may use) re-decide which elements keep a stored graph; the map is the same
+/// for every count.
 template <int d>
   requires SurfaceDimension<d>
-PlMap<d> remove_faces(const PlMap<d>& map, std::span<const Index> regions, FaceRemovalReport* report = nullptr);
+PlMap<d> remove_faces(const PlMap<d>& map, std::span<const Index> regions, FaceRemovalReport* report = nullptr,
+                      unsigned threads = 1);
 
 /// The same, reusing the map's arrays: the cost is one pass over the regions and (if entries
 /// leave) the neighbour lists, and no copy (a sheet selection on a million-node map removes a
 /// few dozen regions).
 template <int d>
   requires SurfaceDimension<d>
-PlMap<d> remove_faces(PlMap<d>&& map, std::span<const Index> regions, FaceRemovalReport* report = nullptr);
+PlMap<d> remove_faces(PlMap<d>&& map, std::span<const Index> regions, FaceRemovalReport* report = nullptr,
+                      unsigned threads = 1);
 
 /// The map without the named regions (any order, repeats allowed), except where a part of a face
 /// lies strictly inside its element: then without that face (see above). Reuses the map's arrays
 /// as remove_faces(PlMap&&) does. Throws InvalidMapError if a region index is out of range.
 template <int d>
   requires SurfaceDimension<d>
-PlMap<d> remove_regions(PlMap<d>&& map, std::span<const Index> regions, FaceRemovalReport* report = nullptr);
+PlMap<d> remove_regions(PlMap<d>&& map, std::span<const Index> regions, FaceRemovalReport* report = nullptr,
+                        unsigned threads = 1);
 
-extern template PlMap<1> remove_faces<1>(const PlMap<1>&, std::span<const Index>, FaceRemovalReport*);
-extern template PlMap<2> remove_faces<2>(const PlMap<2>&, std::span<const Index>, FaceRemovalReport*);
-extern template PlMap<1> remove_faces<1>(PlMap<1>&&, std::span<const Index>, FaceRemovalReport*);
-extern template PlMap<2> remove_faces<2>(PlMap<2>&&, std::span<const Index>, FaceRemovalReport*);
-extern template PlMap<1> remove_regions<1>(PlMap<1>&&, std::span<const Index>, FaceRemovalReport*);
-extern template PlMap<2> remove_regions<2>(PlMap<2>&&, std::span<const Index>, FaceRemovalReport*);
+extern template PlMap<1> remove_faces<1>(const PlMap<1>&, std::span<const Index>, FaceRemovalReport*, unsigned);
+extern template PlMap<2> remove_faces<2>(const PlMap<2>&, std::span<const Index>, FaceRemovalReport*, unsigned);
+extern template PlMap<1> remove_faces<1>(PlMap<1>&&, std::span<const Index>, FaceRemovalReport*, unsigned);
+extern template PlMap<2> remove_faces<2>(PlMap<2>&&, std::span<const Index>, FaceRemovalReport*, unsigned);
+extern template PlMap<1> remove_regions<1>(PlMap<1>&&, std::span<const Index>, FaceRemovalReport*, unsigned);
+extern template PlMap<2> remove_regions<2>(PlMap<2>&&, std::span<const Index>, FaceRemovalReport*, unsigned);
 
 }  // namespace plmap
