@@ -414,6 +414,19 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
 }
 
 void trim_part(const AssemblyCursor& at, MapData<2>& part) {
+  // the element and node arrays too: a part whose tail another thread took was sized for more
+  // elements than it closed (finalize_triangles.cpp, ClosingPass)
+  part.node_begin.resize(at.elements + 1);
+  part.region_begin.resize(at.elements + 1);
+  part.start_region.resize(at.elements);
+  part.edge_node_begin.resize(3 * at.elements + 1);
+  part.node_position.resize(at.nodes);
+  part.node_type.resize(at.nodes);
+  part.node_location.resize(at.nodes);
+  part.node_image_element.resize(at.nodes);
+  part.node_image_local.resize(at.nodes);
+  part.node_target.resize(at.nodes);
+  if (at.omitted_weights != nullptr) at.omitted_weights->resize(at.nodes);
   part.neighbor_begin.resize(at.graph_nodes + 1);
   part.neighbor.resize(at.entries);
   part.neighbor_edge_kind.resize(at.entries);

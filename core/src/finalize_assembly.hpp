@@ -95,7 +95,8 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
 void keep_or_drop_graph_of_element(std::size_t nodes, std::size_t first_entry, std::size_t first_edge_node,
                                    std::size_t first_graph_region, MapData<2>& part, AssemblyCursor& at);
 
-/// Cuts the arrays sized ahead back to what was written.
+/// Cuts the arrays sized ahead back to what was written (the element and node arrays too: a
+/// part may close fewer elements than it was sized for).
 void trim_part(const AssemblyCursor& at, MapData<2>& part);
 
 /// The joined map's hand-over to PlMap in its stored form (PlMap's second constructor): the

@@ -19,7 +19,9 @@
 #include <malloc.h>
 #endif
 
+#include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <exception>
 #include <span>
 #include <vector>
@@ -41,18 +43,25 @@ class ClosingPass {
       : in_(in), where_(where), threads_(threads), blocks_(block_count(in.s1.element_count(), threads)), reuse_(reuse) {}
 
   /// Closes and assembles every element with the given orientation. Returns the elements that
-  /// could not be closed, in element order. Without drop_conflicting_edges it stops a block at
-  /// its first failure (finalize then throws).
+  /// could not be closed, in element order. Without drop_conflicting_edges it stops a part at its
+  /// first failure (finalize then throws).
+  ///
+  /// Each thread starts with one block of elements (block_starts: about equal work) and writes it
+  /// into a part of its own. A thread whose block is done takes the back half of what is left of
+  /// the part with the most elements left, as a new part (work stealing): the two virtual CPUs of
+  /// the machines we measure on differ in speed by up to a third, and with fixed halves the faster
+  /// one waited for the slower. The parts are joined in element order, and what each element
+  /// writes depends on nothing but the element, so the map is the same however the elements were
+  /// split.
   ElementFailures run(int orientation) {
     const std::vector<Index> first = block_starts();
-    const bool drop = in_.options.drop_conflicting_edges;
     workspaces_.clear();
     workspaces_.resize(blocks_);
     for (ClosureWorkspace& w : workspaces_) w.corner_maps_wanted = !deferred_region_maps();
-    parts_.assign(blocks_, MapData<2>{});
-    graph_elements_.assign(blocks_, {});
-    face_counts_.assign(blocks_, FaceCounts{});
-    std::vector<ElementFailures> failures(blocks_);
+    // room for every part a thread may take; a part takes half of the largest range left, so a
+    // few per thread suffice
+    const std::size_t capacity = blocks_ == 1 ? 1 : 16 * static_cast<std::size_t>(blocks_);
+    std::vector<Part> parts(capacity);
     // The first block's part becomes the joined map (join_parts): it takes room for all blocks.
     std::vector<PartBounds> bounds(blocks_);
     parallel_for_pieces(blocks_, blocks_, threads_, [&](std::size_t k, std::size_t, std::size_t) {
@@ -60,48 +69,43 @@ class ClosingPass {
     });
     PartBounds whole;
     for (const PartBounds& b : bounds) whole += b;
-    omitted_weights_.assign(deferred_region_maps() ? blocks_ : 0, {});
-    // After a failure in any block every part is discarded (finalize drops what failed and runs
-    // the pass again, or throws): from then on every block only collects the failures, with
+    for (unsigned k = 0; k < blocks_; ++k) parts[k].start(first[k], first[k + 1]);
+    std::atomic<std::size_t> part_count{blocks_};
+    // After a failure in any part every part is discarded (finalize drops what failed and runs
+    // the pass again, or throws): from then on every part only collects the failures, with
     // close_graph, which throws exactly where close_element does. (A block that went on
     // assembling after another block's failure took as long as a whole pass: on the femur pair
     // with two threads, the first block failed early and waited for the second.)
     std::atomic<bool> failed_somewhere{false};
     parallel_for_pieces(blocks_, blocks_, threads_, [&](std::size_t k, std::size_t, std::size_t) {
-      const Index begin = first[k], end = first[k + 1];
-      AssemblyCursor cursor;
-      if (deferred_region_maps()) cursor.omitted_weights = &omitted_weights_[k];
-      size_part(bounds[k], k == 0 ? whole : bounds[k], parts_[k], cursor);
-      for (Index t = begin; t < end; ++t) {
-        try {
-          const bool assembling = !failed_somewhere.load(std::memory_order_relaxed);
-          if (reuse_ != nullptr && reuse_->reuses(t)) {  // copied, not closed (finalize_reuse.hpp)
-            if (assembling) reuse_->copy_element(in_, where_, t, parts_[k], cursor);
-            continue;
-          }
-          if (assembling) {
-            close_element(in_, where_, t, workspaces_[k], orientation);
-            assemble_element(in_, workspaces_[k], orientation, parts_[k], cursor);
-          } else {
-            close_graph(in_, where_, t, workspaces_[k]);
-          }
-        } catch (...) {
-          failures[k].emplace_back(t, std::current_exception());
-          failed_somewhere.store(true, std::memory_order_relaxed);
-          if (!drop) return;  // finalize throws: the part and its count are not used
-        }
+      Part* part = &parts[k];
+      PartBounds own = bounds[k];
+      while (part != nullptr) {
+        if (!close_part(*part, own, k == 0 && part == &parts[0] ? whole : own, workspaces_[k], orientation,
+                        failed_somewhere))
+          return;  // finalize throws: no more parts
+        part = steal(parts, part_count, own);
       }
-      face_counts_[k] = {cursor.reversed_faces, cursor.unmapped_faces, cursor.left_out, std::move(cursor.split_targets),
-                         std::move(cursor.outside_split_regions), static_cast<Index>(cursor.regions)};
-      trim_part(cursor, parts_[k]);
-      for (Index& t : cursor.graph_elements) t += begin;  // numbered in the block
-      graph_elements_[k] = std::move(cursor.graph_elements);
     });
+    // the parts in element order (a part taken from another lies after it)
+    std::vector<Part*> used;
+    for (std::size_t i = 0; i < std::min(part_count.load(), capacity); ++i)
+      if (parts[i].begin != invalid_index) used.push_back(&parts[i]);
+    std::sort(used.begin(), used.end(), [](const Part* a, const Part* b) { return a->begin < b->begin; });
+    parts_.clear();
+    face_counts_.clear();
+    graph_elements_.clear();
+    omitted_weights_.clear();
     ElementFailures failed;
-    for (auto& list : failures) failed.insert(failed.end(), list.begin(), list.end());
+    for (Part* p : used) {
+      parts_.push_back(std::move(p->data));
+      face_counts_.push_back(std::move(p->counts));
+      graph_elements_.push_back(std::move(p->graph_elements));
+      if (deferred_region_maps()) omitted_weights_.push_back(std::move(p->omitted_weights));
+      failed.insert(failed.end(), p->failures.begin(), p->failures.end());
+    }
     return failed;
   }
-
   /// The given elements (sorted) that cannot be closed, in element order; nothing is assembled.
   ElementFailures failures_among(std::span<const Index> elements) {
     if (workspaces_.size() < blocks_) workspaces_.resize(blocks_);
@@ -179,6 +183,116 @@ class ClosingPass {
   void release_workspaces() { std::vector<ClosureWorkspace>().swap(workspaces_); }
 
  private:
+  /// A range of elements closed by one thread into a part of the map of its own.
+  struct Part {
+    Index begin = invalid_index;  // invalid_index: not used
+    /// (next element to close, end of the range), 32 bits each, in one word: the owner takes the
+    /// next element and a thief cuts the end with one compare-and-swap each
+    std::atomic<std::uint64_t> range{0};
+    MapData<2> data;
+    FaceCounts counts;
+    std::vector<Index> graph_elements;  // numbered from begin
+    std::vector<double> omitted_weights;
+    ElementFailures failures;
+
+    static std::uint64_t pack(Index next, Index end) {
+      return static_cast<std::uint64_t>(static_cast<std::uint32_t>(next)) << 32 | static_cast<std::uint32_t>(end);
+    }
+    static Index next_of(std::uint64_t r) { return static_cast<Index>(r >> 32); }
+    static Index end_of(std::uint64_t r) { return static_cast<Index>(r & 0xffffffffu); }
+    void start(Index from, Index to) {
+      begin = from;
+      range.store(pack(from, to), std::memory_order_release);
+    }
+    /// The next element of the range, or invalid_index when none is left.
+    Index take_next() {
+      std::uint64_t r = range.load(std::memory_order_acquire);
+      while (next_of(r) < end_of(r))
+        if (range.compare_exchange_weak(r, pack(next_of(r) + 1, end_of(r)), std::memory_order_acq_rel)) return next_of(r);
+      return invalid_index;
+    }
+    /// Ends the range at the next element (after a failure that stops the pass).
+    void stop() {
+      std::uint64_t r = range.load(std::memory_order_acquire);
+      while (next_of(r) < end_of(r) && !range.compare_exchange_weak(r, pack(next_of(r), next_of(r)), std::memory_order_acq_rel)) {
+      }
+    }
+  };
+
+  /// Closes and assembles the elements of `part` as they are taken, into its data, sized by
+  /// `own` with the capacity of `room`. False after a failure that ends the pass (without
+  /// drop_conflicting_edges).
+  bool close_part(Part& part, const PartBounds& own, const PartBounds& room, ClosureWorkspace& w, int orientation,
+                  std::atomic<bool>& failed_somewhere) {
+    const bool drop = in_.options.drop_conflicting_edges;
+    AssemblyCursor cursor;
+    if (deferred_region_maps()) cursor.omitted_weights = &part.omitted_weights;
+    size_part(own, room, part.data, cursor);
+    bool go_on = true;
+    for (Index t = part.take_next(); t != invalid_index; t = part.take_next()) {
+      try {
+        const bool assembling = !failed_somewhere.load(std::memory_order_relaxed);
+        if (reuse_ != nullptr && reuse_->reuses(t)) {  // copied, not closed (finalize_reuse.hpp)
+          if (assembling) reuse_->copy_element(in_, where_, t, part.data, cursor);
+          continue;
+        }
+        if (assembling) {
+          close_element(in_, where_, t, w, orientation);
+          assemble_element(in_, w, orientation, part.data, cursor);
+        } else {
+          close_graph(in_, where_, t, w);
+        }
+      } catch (...) {
+        part.failures.emplace_back(t, std::current_exception());
+        failed_somewhere.store(true, std::memory_order_relaxed);
+        if (!drop) {  // finalize throws: the part and its count are not used
+          part.stop();
+          go_on = false;
+          break;
+        }
+      }
+    }
+    part.counts = {cursor.reversed_faces, cursor.unmapped_faces, cursor.left_out, std::move(cursor.split_targets),
+                   std::move(cursor.outside_split_regions), static_cast<Index>(cursor.regions)};
+    trim_part(cursor, part.data);
+    for (Index& t : cursor.graph_elements) t += part.begin;  // numbered in the part
+    part.graph_elements = std::move(cursor.graph_elements);
+    return go_on;
+  }
+
+  /// A new part with the back half of the range left to the part with the most elements left
+  /// (its bounds in `own`), or null when no part has enough left to be worth splitting, or no
+  /// room is left for another part.
+  Part* steal(std::vector<Part>& parts, std::atomic<std::size_t>& part_count, PartBounds& own) {
+    // below this many elements the split costs more (bounds, sizing, a part to join) than it saves
+    constexpr Index least_taken = 16;
+    // the slot first: a range cut from its owner must have a part to go to
+    const std::size_t slot = part_count.fetch_add(1, std::memory_order_acq_rel);
+    if (slot >= parts.size()) return nullptr;
+    for (;;) {
+      Part* victim = nullptr;
+      std::uint64_t seen = 0;
+      const std::size_t count = std::min(part_count.load(std::memory_order_acquire), parts.size());
+      for (std::size_t i = 0; i < count; ++i) {
+        const std::uint64_t r = parts[i].range.load(std::memory_order_acquire);
+        const Index left = Part::end_of(r) - Part::next_of(r);
+        if (left >= 2 * least_taken && (victim == nullptr || left > Part::end_of(seen) - Part::next_of(seen))) {
+          victim = &parts[i];
+          seen = r;
+        }
+      }
+      if (victim == nullptr) return nullptr;  // the slot stays unused
+      const Index next = Part::next_of(seen), end = Part::end_of(seen);
+      const Index middle = next + (end - next) / 2;
+      if (victim->range.compare_exchange_strong(seen, Part::pack(next, middle), std::memory_order_acq_rel)) {
+        own = part_bounds(in_, where_, middle, end);
+        parts[slot].start(middle, end);
+        return &parts[slot];
+      }
+      // the owner took an element meanwhile, or another thief cut the range: look again
+    }
+  }
+
   /// One block per thread, and at least 64 elements per block. (More blocks than threads would
   /// balance by taking turns, but the smaller parts fall under malloc's mmap threshold, and the
   /// memory they give back after the join stays in the process: 170 MiB more peak on the 200k
