@@ -115,10 +115,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   j["folded_faces"] = r.folded_faces;
   j["unbacked_regions"] = r.unbacked_regions;
   if constexpr (d == 2)  // the measure of S1 outside D, by why: with covered_measure, S1's measure
-    j["left_out_measure"] = {{"outside", r.left_out.outside},   {"reversed", r.left_out.reversed},
-                             {"unmapped", r.left_out.unmapped}, {"enclosed", r.left_out.enclosed},
-                             {"folded", r.left_out.folded},     {"unbacked", r.left_out.unbacked},
-                             {"occluded", r.left_out.occluded}};
+    for (const auto& [name, measure] : r.left_out.fields()) j["left_out_measure"][name] = r.left_out.*measure;
   j["rim_nodes"] = r.rim_nodes;
   j["rim_edges"] = r.rim_edges;
   Json listed = Json::array();

@@ -59,9 +59,7 @@ ProjectionResult<d> in_user_units(ProjectionResult<d> r, const std::shared_ptr<c
   for (auto& failure : r.report.edges_not_inserted)
     for (int i = 0; i <= d; ++i) failure.domain_point(i) = std::ldexp(failure.domain_point(i), -exponent);
   auto& left_out = r.report.left_out;
-  for (double* measure : {&left_out.outside, &left_out.reversed, &left_out.unmapped, &left_out.enclosed,
-                          &left_out.folded, &left_out.unbacked, &left_out.occluded})
-    *measure = std::ldexp(*measure, -d * exponent);
+  for (const auto& [name, measure] : left_out.fields()) left_out.*measure = std::ldexp(left_out.*measure, -d * exponent);
   ProjectionMeasures m;
   m.domain = s1->measure();
   m.target = s2->measure();

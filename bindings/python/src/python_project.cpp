@@ -76,6 +76,10 @@ nlohmann::json report_json(const ProjectionResult<d>& result) {
   j["occluded_faces"] = r.occluded_faces;
   j["folded_faces"] = r.folded_faces;
   j["unbacked_regions"] = r.unbacked_regions;
+  if constexpr (d == 2)  // the measure of S1 outside D, by why: with covered_measure, S1's measure
+    for (const auto& [name, measure] : r.left_out.fields()) j["left_out_measure"][name] = r.left_out.*measure;
+  j["rim_nodes"] = r.rim_nodes;
+  j["rim_edges"] = r.rim_edges;
   nlohmann::json missing = nlohmann::json::array();
   for (const EdgeNotInserted<d>& e : r.edges_not_inserted) {
     std::vector<double> point(e.domain_point.data(), e.domain_point.data() + d + 1);

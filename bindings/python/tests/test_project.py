@@ -31,6 +31,18 @@ def test_regions_of_overlapping_grids_sum_to_the_overlap_area():
     assert m.check()["ok"]
 
 
+def test_the_report_says_why_the_rest_of_s1_is_outside_d():
+    # S1 is the unit square, S2 covers [0.3, 1] x [0, 0.85] of it: the rest of S1 (1 - 0.595) has
+    # no ray hit, and is reported as outside D's reach; with what D covers, S1's measure
+    s1, s2 = overlapping_grids()
+    report = plmap.project(s1, s2).report
+    left_out = report["left_out_measure"]
+    assert set(left_out) == {"outside", "reversed", "unmapped", "enclosed", "folded", "unbacked", "occluded"}
+    assert left_out["outside"] == pytest.approx(1.0 - 0.7 * 0.85, rel=1e-12)
+    assert report["covered_measure"] + sum(left_out.values()) == pytest.approx(1.0, rel=1e-12)
+    assert report["rim_nodes"] == 0 and report["rim_edges"] == 0
+
+
 def test_region_arrays_have_documented_shapes_and_parents():
     s1, s2 = overlapping_grids()
     r = plmap.project(s1, s2).regions()

@@ -5,8 +5,10 @@
 
 #include <plmap/core/pl_map.hpp>
 
+#include <array>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace plmap {
@@ -135,6 +137,26 @@ struct ProjectionReport {
     double folded = 0.0;    ///< the regions left out as folded (folded_faces), cleared elements included
     double unbacked = 0.0;  ///< the unbacked regions themselves (unbacked_regions)
     double occluded = 0.0;  ///< the regions left out as occluded (occluded_faces), cleared elements included
+
+    /// Every measure above with its name (the key of `plmap project --json`'s left_out_measure),
+    /// for the code that goes over all of them (the JSON of the CLI and of Python, the scaling
+    /// back to the user's units, the checks that they add up): a new reason is one member and
+    /// one entry here.
+    static constexpr std::array<std::pair<const char*, double MeasureLeftOut::*>, 7> fields() {
+      return {{{"outside", &MeasureLeftOut::outside},
+               {"reversed", &MeasureLeftOut::reversed},
+               {"unmapped", &MeasureLeftOut::unmapped},
+               {"enclosed", &MeasureLeftOut::enclosed},
+               {"folded", &MeasureLeftOut::folded},
+               {"unbacked", &MeasureLeftOut::unbacked},
+               {"occluded", &MeasureLeftOut::occluded}}};
+    }
+    /// Their sum: with ProjectionMeasures::covered_domain, S1's measure.
+    double sum() const {
+      double total = 0.0;
+      for (const auto& [name, measure] : fields()) total += this->*measure;
+      return total;
+    }
   };
   MeasureLeftOut left_out;
   /// d = 2, end_on_rim: nodes and edges of the rim of D where S2 leaves the band of admissible
