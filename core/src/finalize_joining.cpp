@@ -3,6 +3,7 @@
 #include "finalize_joining.hpp"
 
 #include <plmap/core/errors.hpp>
+#include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 
 #include <algorithm>
@@ -21,6 +22,14 @@ Offsets offsets_of(const std::vector<MapData<2>>& parts, Count count) {
   Offsets at(parts.size() + 1, 0);
   for (std::size_t k = 0; k < parts.size(); ++k) at[k + 1] = at[k] + count(parts[k]);
   return at;
+}
+
+/// Resizes v to n, its new pages backed in one call where its room is reserved already (the
+/// first part's is: size_part): one system call instead of a page fault per page.
+template <class Vector>
+void grow_backed(Vector& v, std::size_t n) {
+  if (n > v.size() && n <= v.capacity()) back_pages(v.data() + v.size(), (n - v.size()) * sizeof(v[0]));
+  v.resize(n);
 }
 
 /// Joins the parts into one map, an array at a time. The first part's arrays become the joined
@@ -43,7 +52,7 @@ class PartJoiner {
     jobs_.push_back({appended, [this, field, &at, shift] {
                        auto& out = m_.*field;
                        out = std::move(parts_[0].*field);
-                       out.resize(at[parts_.size()]);
+                       grow_backed(out, at[parts_.size()]);
                        for (std::size_t k = 1; k < parts_.size(); ++k) {
                          auto& in = parts_[k].*field;
                          for (std::size_t i = 0; i < in.size(); ++i) out[at[k] + i] = shift(k, in[i]);
@@ -59,7 +68,7 @@ class PartJoiner {
     jobs_.push_back({appended, [this, field, &at, &values] {
                        auto& out = m_.*field;
                        out = std::move(parts_[0].*field);  // [0, at[1]]: the first part's, unshifted
-                       out.resize(at[parts_.size()] + 1);
+                       grow_backed(out, at[parts_.size()] + 1);
                        for (std::size_t k = 1; k < parts_.size(); ++k) {
                          auto& in = parts_[k].*field;
                          for (std::size_t i = 0; i + 1 < in.size(); ++i) out[at[k] + i + 1] = in[i + 1] + static_cast<Index>(values[k]);
