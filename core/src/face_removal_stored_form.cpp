@@ -249,6 +249,8 @@ std::optional<PlMap<2>> remove_faces_in_stored_form(PlMap<2>& map, std::span<con
   for (Index t : named.element) old_region_begin.push_back(stored.region_begin[t]);
 
   std::shared_ptr<const Surface<2>> domain = map.domain_ptr(), target_ptr = map.target_ptr();
+  // (two named references, not a structured binding: the lambda below captures m, which clang
+  // before C++20's capture rule for bindings refuses)
   std::pair<MapData<2>, StoredGraph> released = std::move(map).release_stored_form();
   const MapData<2>& m = released.first;
   const StoredGraph& old_graph = released.second;

@@ -106,6 +106,7 @@ class ClosingPass {
     }
     return failed;
   }
+
   /// The given elements (sorted) that cannot be closed, in element order; nothing is assembled.
   ElementFailures failures_among(std::span<const Index> elements) {
     if (workspaces_.size() < blocks_) workspaces_.resize(blocks_);
