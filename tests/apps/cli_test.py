@@ -241,6 +241,14 @@ def project_surfaces():
     expect(close(j["covered_target_measure"], j["target_measure"], 1e-9), j)
     expect(j["edges_not_inserted"] == 0, j)
     run("check", "projection.plmap")
+    # without negative distances the hill's part below the flat grid is out of reach: what D
+    # leaves out is reported by why, and with what it covers adds up to S1's measure
+    j = run_json("project", flat, "hill.off", "-o", "above.plmap", "--json")
+    left_out = j["left_out_measure"]
+    expect(set(left_out) == {"outside", "reversed", "unmapped", "enclosed", "folded", "unbacked", "occluded"},
+           left_out)
+    expect(j["covered_measure"] < j["domain_measure"], j)
+    expect(close(j["covered_measure"] + sum(left_out.values()), j["domain_measure"], 1e-9), j)
     # a surface projected onto itself is the identity: one region per element
     ident = run_json("project", flat, flat, "-o", "self.plmap", "--json")
     info = run_json("info", flat, "--json")
