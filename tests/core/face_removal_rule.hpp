@@ -57,7 +57,7 @@ PlMap<d> expect_rule_holds(const PlMap<d>& map, const std::vector<Index>& named,
   // which regions go: the report of removed regions fixes the count, the in-place result's
   // region targets and corners fix which (the kept ones stay in order)
   PlMap<d> copy = map;
-  PlMap<d> copy_for_threads = map;  // copied before map.data() derives the graph of every element
+  PlMap<d> copy_for_threads = map;  // removed on three threads below (d = 2)
   FaceRemovalReport report;
   PlMap<d> smaller = removal == Removal::faces ? remove_faces(std::move(copy), std::span<const Index>(named), &report)
                                                : remove_regions(std::move(copy), std::span<const Index>(named), &report);
