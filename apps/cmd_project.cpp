@@ -9,6 +9,7 @@
 #include "surface_pair.hpp"
 
 #include <plmap/construct/project.hpp>
+#include <plmap/construct/projection_report_json.hpp>
 #include <plmap/core/errors.hpp>
 #include <plmap/core/io/map_file.hpp>
 #include <plmap/core/regions.hpp>
@@ -94,54 +95,10 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   }
   Json j;
   j["map"] = o.output;
-  j["dimension"] = d;
-  j["domain_measure"] = result.measures.domain;
-  j["target_measure"] = result.measures.target;
-  j["covered_measure"] = result.measures.covered_domain;
-  j["covered_target_measure"] = result.measures.covered_target;
-  j["regions"] = result.map.region_count();
-  j["nodes"] = result.map.node_count();
-  j["vertex_preimages"] = r.vertex_preimages;
-  j["vertices_found_by_ray_hits"] = r.vertices_found_by_ray_hits;
-  j["ghost_nodes"] = r.ghost_nodes;
-  j["edges_inserted"] = r.edges_inserted;
-  j["edges_partly_inserted"] = r.edges_partly_inserted;
-  j["edges_outside"] = r.edges_outside;
-  j["edges_not_inserted"] = r.edges_not_inserted.size();
-  j["reversed_faces"] = r.reversed_faces;
+  j.update(projection_report_json(result, o.max_listed));
   if (s2_crossings) j["target_self_intersecting_pairs"] = *s2_crossings;
-  j["unmapped_faces"] = r.unmapped_faces;
-  j["occluded_faces"] = r.occluded_faces;
-  j["folded_faces"] = r.folded_faces;
-  j["unbacked_regions"] = r.unbacked_regions;
-  if constexpr (d == 2)  // the measure of S1 outside D, by why: with covered_measure, S1's measure
-    for (const auto& [name, measure] : r.left_out.fields()) j["left_out_measure"][name] = r.left_out.*measure;
-  j["rim_nodes"] = r.rim_nodes;
-  j["rim_edges"] = r.rim_edges;
-  Json listed = Json::array();
-  for (std::size_t i = 0; i < std::min(o.max_listed, r.edges_not_inserted.size()); ++i) {
-    const auto& e = r.edges_not_inserted[i];
-    listed.push_back({{"target_edge", e.target_edge},
-                      {"reason", std::string(to_string(e.reason))},
-                      {"domain_element", e.domain_element},
-                      {"domain_point", json_vector(e.domain_point)},
-                      {"target_parameter", e.target_parameter},
-                      {"detail", e.detail}});
-  }
-  j["edges_not_inserted_list"] = listed;
-  j["renumbered"] = {{"S1", r.renumbered_domain}, {"S2", r.renumbered_target}};
   j["solver"] = o.solver;
-  j["solver_calls"] = r.solver_calls;
-  j["solver_failures"] = r.solver_failures;
   j["threads"] = resolved_threads(o.threads);
-  j["seconds"] = r.seconds.total;
-  j["seconds_by_phase"] = {{"setup", r.seconds.setup},
-                           {"vertex_preimages", r.seconds.vertex_preimages},
-                           {"ghost_nodes", r.seconds.ghost_nodes},
-                           {"edge_walks", r.seconds.edge_walks},
-                           {"insertion", r.seconds.insertion},
-                           {"finalize", r.seconds.finalize},
-                           {"renumbering", r.seconds.renumbering}};
   print_result(j, o.json);
   release_at_exit(std::move(result));
   return exit_code::success;

@@ -357,8 +357,9 @@ void bind_map(py::module_& m) {
         return visit_map(pm, [](const auto& map) { return map.node_count(); });
       })
       .def_readonly("report", &PyMap::report,
-                    "What plmap.project reported (counts, edges not inserted and why, seconds), as "
-                    "a dict; None for a loaded map")
+                    "What plmap.project reported, as a dict with the keys and values of `plmap project "
+                    "--json` (counts, left_out_measure, every S2 edge not inserted and why in "
+                    "edges_not_inserted_list, seconds and seconds_by_phase); None for a loaded map")
       .def("save", [](const PyMap& pm, const std::filesystem::path& path) {
         py::gil_scoped_release unlocked;
         visit_map(pm, [&](const auto& map) { save_map(path, map); });

@@ -6,8 +6,8 @@
 #include "python_surface.hpp"
 
 #include <plmap/construct/project.hpp>
+#include <plmap/construct/projection_report_json.hpp>
 
-#include <nlohmann/json.hpp>
 #include <pybind11/numpy.h>
 
 #include <optional>
@@ -58,54 +58,6 @@ const KeywordFields<ProjectCall>& projection_fields() {
 }
 
 template <int d>
-nlohmann::json report_json(const ProjectionResult<d>& result) {
-  const ProjectionReport<d>& r = result.report;
-  nlohmann::json j;
-  j["domain_measure"] = result.measures.domain;
-  j["target_measure"] = result.measures.target;
-  j["covered_measure"] = result.measures.covered_domain;
-  j["covered_target_measure"] = result.measures.covered_target;
-  j["vertex_preimages"] = r.vertex_preimages;
-  j["vertex_conflicts"] = r.vertex_conflicts;
-  j["ghost_nodes"] = r.ghost_nodes;
-  j["edges_inserted"] = r.edges_inserted;
-  j["edges_partly_inserted"] = r.edges_partly_inserted;
-  j["edges_outside"] = r.edges_outside;
-  j["reversed_faces"] = r.reversed_faces;
-  j["unmapped_faces"] = r.unmapped_faces;
-  j["occluded_faces"] = r.occluded_faces;
-  j["folded_faces"] = r.folded_faces;
-  j["unbacked_regions"] = r.unbacked_regions;
-  if constexpr (d == 2)  // the measure of S1 outside D, by why: with covered_measure, S1's measure
-    for (const auto& [name, measure] : r.left_out.fields()) j["left_out_measure"][name] = r.left_out.*measure;
-  j["rim_nodes"] = r.rim_nodes;
-  j["rim_edges"] = r.rim_edges;
-  nlohmann::json missing = nlohmann::json::array();
-  for (const EdgeNotInserted<d>& e : r.edges_not_inserted) {
-    std::vector<double> point(e.domain_point.data(), e.domain_point.data() + d + 1);
-    missing.push_back({{"target_edge", e.target_edge},
-                       {"reason", std::string(to_string(e.reason))},
-                       {"domain_element", e.domain_element},
-                       {"domain_point", point},
-                       {"target_parameter", e.target_parameter},
-                       {"detail", e.detail}});
-  }
-  j["edges_not_inserted"] = missing;
-  j["solver_calls"] = r.solver_calls;
-  j["solver_failures"] = r.solver_failures;
-  j["seconds"] = {{"setup", r.seconds.setup},
-                  {"vertex_preimages", r.seconds.vertex_preimages},
-                  {"ghost_nodes", r.seconds.ghost_nodes},
-                  {"edge_walks", r.seconds.edge_walks},
-                  {"insertion", r.seconds.insertion},
-                  {"finalize", r.seconds.finalize},
-                  {"renumbering", r.seconds.renumbering},
-                  {"total", r.seconds.total}};
-  j["renumbered"] = {{"s1", r.renumbered_domain}, {"s2", r.renumbered_target}};
-  return j;
-}
-
-template <int d>
 PyMap project_surfaces(const PySurface& s1, const PySurface& s2, ProjectCall call) {
   ProjectionOptions& options = call.options;
   if (call.directions) {
@@ -123,8 +75,9 @@ PyMap project_surfaces(const PySurface& s1, const PySurface& s2, ProjectCall cal
     result.emplace(project<d>(s1.get<d>(), s2.get<d>(), options));
   }
   PyMap out;
+  // the report first: it counts the map's regions and nodes
+  out.report = py::module_::import("json").attr("loads")(projection_report_json(*result).dump());
   out.map = std::make_shared<const PlMap<d>>(std::move(result->map));
-  out.report = py::module_::import("json").attr("loads")(report_json(*result).dump());
   return out;
 }
 

@@ -1,6 +1,7 @@
 """plmap.project: normal projection from Python, its keyword options, and the regions it gives on
 generated planar grids and curves (where the answer is known in closed form)."""
 
+import json
 import subprocess
 
 import numpy as np
@@ -86,9 +87,9 @@ def test_options_reach_the_projection():
     assert far.report["covered_measure"] == 0
     assert plmap.project(s1, lifted, max_distance=0.6).report["covered_measure"] == pytest.approx(1.0, rel=1e-12)
     # grids come in rows: renumbered only when asked, with the same coverage
-    assert plmap.project(s1, lifted).report["renumbered"] == {"s1": False, "s2": False}
+    assert plmap.project(s1, lifted).report["renumbered"] == {"S1": False, "S2": False}
     both = plmap.project(s1, lifted, renumbering="always")
-    assert both.report["renumbered"] == {"s1": True, "s2": True}
+    assert both.report["renumbered"] == {"S1": True, "S2": True}
     assert both.report["covered_measure"] == pytest.approx(1.0, rel=1e-12)
 
 
@@ -134,11 +135,21 @@ def test_same_map_as_the_command_line(work_dir):
     s2 = plmap.Surface(*grid(5, 4, -0.2, 0.1, 0.9, 1.2, height=lambda x, y: 0.2 * x * y - 0.1))
     s1.save(work_dir / "s1.off")
     s2.save(work_dir / "s2.off")
-    subprocess.run([cli, "project", str(work_dir / "s1.off"), str(work_dir / "s2.off"),
-                    "--allow-negative", "--max-distance", "0.3", "-o", str(work_dir / "cli.plmap")],
-                   check=True, capture_output=True)
+    run = subprocess.run([cli, "project", str(work_dir / "s1.off"), str(work_dir / "s2.off"),
+                          "--allow-negative", "--max-distance", "0.3", "-o", str(work_dir / "cli.plmap"),
+                          "--max-listed", "1000000", "--json"],
+                         check=True, capture_output=True, text=True)
     m = plmap.project(work_dir / "s1.off", str(work_dir / "s2.off"), allow_negative_distance=True,
                       max_distance=0.3)
     m.save(work_dir / "python.plmap")
     assert m.region_count > 0
     assert (work_dir / "python.plmap").read_bytes() == (work_dir / "cli.plmap").read_bytes()
+    # and the same report, key for key: what only the command line knows aside, and the seconds
+    cli_report = json.loads(run.stdout)
+    for key in ("map", "solver", "threads", "target_self_intersecting_pairs"):
+        cli_report.pop(key, None)
+    timed = ("seconds", "seconds_by_phase")
+    assert set(cli_report) == set(m.report)
+    assert {k: v for k, v in cli_report.items() if k not in timed} == \
+        {k: v for k, v in m.report.items() if k not in timed}
+    assert m.report["edges_not_inserted"] == len(m.report["edges_not_inserted_list"])
