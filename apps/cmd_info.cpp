@@ -2,9 +2,9 @@
 
 #include "cli_common.hpp"
 #include "progress_bar.hpp"
-#include "summaries.hpp"
 
 #include <plmap/core/io/map_file.hpp>
+#include <plmap/verify/facts_json.hpp>
 #include <plmap/verify/self_intersections.hpp>
 
 namespace plmap::cli {
@@ -25,12 +25,12 @@ int run_info(const InfoOptions& o) {
   j["file"] = o.file;
   if (looks_like_map_file(o.file)) {
     j["kind"] = "map";
-    std::visit([&](const auto& map) { j.update(map_summary(map, o.quality)); }, load_map_showing_progress(o.file, o.progress));
+    std::visit([&](const auto& map) { j.update(map_facts_json(map, o.quality)); }, load_map_showing_progress(o.file, o.progress));
   } else {
     j["kind"] = "surface";
     std::visit(
         [&](const auto& surface) {
-          j.update(surface_summary(surface));
+          j.update(surface_facts_json(surface));
           // (not for the surfaces inside a map: the test costs about a quarter of a projection)
           j["self_intersecting_pairs"] = self_intersections(surface).size();
         },

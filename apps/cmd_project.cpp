@@ -5,7 +5,6 @@
 #include "directions_file.hpp"
 #include "progress_bar.hpp"
 #include "release_at_exit.hpp"
-#include "summaries.hpp"
 #include "surface_pair.hpp"
 
 #include <plmap/construct/project.hpp>
@@ -14,6 +13,7 @@
 #include <plmap/core/io/map_file.hpp>
 #include <plmap/core/regions.hpp>
 #include <plmap/solvers/solver_kind.hpp>
+#include <plmap/verify/facts_json.hpp>
 #include <plmap/verify/self_intersections.hpp>
 
 #include <fmt/format.h>

@@ -11,6 +11,7 @@
 #include <plmap/core/regions.hpp>
 #include <plmap/strategies/point_locator_registry.hpp>
 #include <plmap/verify/check.hpp>
+#include <plmap/verify/facts_json.hpp>
 #include <plmap/verify/quality.hpp>
 #include <plmap/verify/report_json.hpp>
 
@@ -276,32 +277,11 @@ py::array_t<double> region_kappa(const PlMap<d>& map) {
 }
 
 template <int d>
-nlohmann::json surface_facts(const Surface<d>& s) {
-  return {{"vertices", s.vertex_count()}, {"elements", s.element_count()}, {"measure", s.measure()}};
-}
-
-template <int d>
-py::object map_summary(const PlMap<d>& map, bool quality) {
-  nlohmann::json j;
+py::object map_facts(const PlMap<d>& map, bool quality) {
+  nlohmann::ordered_json j;
   {
     py::gil_scoped_release unlocked;
-    j["dimension"] = d;
-    j["domain"] = surface_facts(map.domain());
-    j["target"] = surface_facts(map.target());
-    j["nodes"] = map.node_count();
-    nlohmann::json by_type;
-    for (int t = 0; t < node_type_count; ++t) by_type[std::string(to_string(static_cast<NodeType>(t)))] = 0;
-    for (NodeType t : map.stored().node_type) by_type[std::string(to_string(t))] = by_type[std::string(to_string(t))].get<long long>() + 1;
-    j["nodes_by_type"] = by_type;
-    j["regions"] = map.region_count();
-    const CoveredMeasure covered = covered_measure(map);
-    j["covered_measure"] = covered.domain;
-    j["covered_target_measure"] = covered.target;
-    j["orientation"] = map.stored().orientation;
-    j["memory_bytes"] = map.memory_bytes();
-    // how the map was made (projection records its acceptance rules), if its maker said
-    if (!map.provenance().empty()) j["provenance"] = map.provenance();
-    if (quality) j["quality"] = to_json(compute_quality(map));
+    j = map_facts_json(map, quality);
   }
   return json_to_python(j);
 }
@@ -404,11 +384,12 @@ void bind_map(py::module_& m) {
       }, "The condition number of every region's linear piece, (r,) float64 (inf where a region "
          "is degenerate).")
       .def("info", [](const PyMap& pm, bool quality) {
-        return visit_map(pm, [&](const auto& map) { return map_summary(map, quality); });
+        return visit_map(pm, [&](const auto& map) { return map_facts(map, quality); });
       }, py::kw_only(), py::arg("quality") = true,
-         "Counts (surfaces, nodes by type, regions), covered measures, orientation, memory, the "
+         "What `plmap info MAP --json` reports, as a dict (one function writes both): orientation, "
+         "both surfaces' facts, nodes (total and by type), regions, coverage, memory, the "
          "provenance if the map has one (project() records its acceptance rules there) and "
-         "(with quality=True) the distribution of kappa, as a dict.")
+         "(with quality=True) the distribution of kappa.")
       .def("__repr__", [](const PyMap& pm) {
         return visit_map(pm, [&](const auto& map) {
           return "<plmap.Map d=" + std::to_string(pm.dimension()) + ", " +

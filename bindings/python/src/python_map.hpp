@@ -33,8 +33,10 @@ decltype(auto) visit_map(const PyMap& m, F&& f) {
   return std::visit([&](const auto& ptr) -> decltype(auto) { return f(*ptr); }, m.map);
 }
 
-/// A JSON value as the Python object json.loads makes of it (dicts, lists, numbers, str).
-inline py::object json_to_python(const nlohmann::json& j) {
+/// A JSON value as the Python object json.loads makes of it (dicts, lists, numbers, str; an
+/// ordered_json's objects keep their order).
+template <class Json>
+py::object json_to_python(const Json& j) {
   return py::module_::import("json").attr("loads")(j.dump());
 }
 

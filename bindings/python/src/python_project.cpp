@@ -76,7 +76,7 @@ PyMap project_surfaces(const PySurface& s1, const PySurface& s2, ProjectCall cal
   }
   PyMap out;
   // the report first: it counts the map's regions and nodes
-  out.report = py::module_::import("json").attr("loads")(projection_report_json(*result).dump());
+  out.report = json_to_python(projection_report_json(*result));
   out.map = std::make_shared<const PlMap<d>>(std::move(result->map));
   return out;
 }

@@ -1,5 +1,7 @@
 """plmap.Map: files, the invariant report, evaluation (vectorised, threaded), kappa and info."""
 
+import json
+import subprocess
 import sys
 import threading
 import time
@@ -8,7 +10,7 @@ import numpy as np
 import pytest
 
 import plmap
-from conftest import grid, polyline, random_local_points
+from conftest import built_program, grid, polyline, random_local_points
 
 SLOPE = np.array([0.1, 0.2])
 
@@ -140,9 +142,23 @@ def test_info_counts_agree_with_the_arrays(tilted):
     assert info["domain"]["elements"] == s1.element_count
     assert info["target"]["vertices"] == s2.vertex_count
     assert info["regions"] == m.region_count == len(m.regions()["domain_measure"])
-    assert sum(info["nodes_by_type"].values()) == info["nodes"] == m.node_count
-    assert info["covered_measure"] == pytest.approx(1.0, rel=1e-12)
+    assert sum(info["nodes"]["by_type"].values()) == info["nodes"]["total"] == m.node_count
+    assert info["coverage"]["domain_measure"] == pytest.approx(1.0, rel=1e-12)
+    assert info["coverage"]["domain_fraction"] == pytest.approx(1.0, rel=1e-12)
     assert "quality" not in m.info(quality=False)
+
+
+def test_info_is_what_the_command_line_reports(tilted, work_dir):
+    # one function writes both: the same keys in the same order, the same values
+    cli = built_program("PLMAP_CLI")
+    _, _, m = tilted
+    m.save(work_dir / "m.plmapb")
+    run = subprocess.run([cli, "info", str(work_dir / "m.plmapb"), "--json"], check=True, capture_output=True,
+                         text=True)
+    from_cli = json.loads(run.stdout)
+    assert (from_cli.pop("file"), from_cli.pop("kind")) == (str(work_dir / "m.plmapb"), "map")
+    assert list(from_cli) == list(m.info())
+    assert from_cli == m.info()
 
 
 def test_check_returns_the_report_and_takes_verify_options():

@@ -1,6 +1,6 @@
-#include "summaries.hpp"
+// The facts `plmap info` and Python's Map.info() report (plmap/verify/facts_json.hpp).
 
-#include "cli_common.hpp"
+#include <plmap/verify/facts_json.hpp>
 
 #include <plmap/core/regions.hpp>
 #include <plmap/verify/quality.hpp>
@@ -10,9 +10,19 @@
 #include <numeric>
 #include <vector>
 
-namespace plmap::cli {
+namespace plmap {
 
 namespace {
+
+using Json = nlohmann::ordered_json;
+
+/// JSON array of a fixed-size Eigen vector.
+template <class Vector>
+Json json_vector(const Vector& v) {
+  Json a = Json::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(v(i));
+  return a;
+}
 
 /// Number of edge-connected fans of triangles around vertex v (d = 2). A manifold vertex has
 /// exactly one; two sheets touching at a vertex give two.
@@ -55,7 +65,7 @@ Index coincident_vertex_count(const Surface<d>& s) {
 }
 
 template <int d>
-Json surface_summary(const Surface<d>& s) {
+Json surface_facts_json(const Surface<d>& s) {
   Json j;
   j["dimension"] = d;
   j["vertices"] = s.vertex_count();
@@ -97,12 +107,12 @@ Json surface_summary(const Surface<d>& s) {
 }
 
 template <int d>
-Json map_summary(const PlMap<d>& map, bool with_quality) {
+Json map_facts_json(const PlMap<d>& map, bool with_quality) {
   Json j;
   j["dimension"] = d;
   j["orientation"] = map.stored().orientation;
-  j["domain"] = surface_summary(map.domain());
-  j["target"] = surface_summary(map.target());
+  j["domain"] = surface_facts_json(map.domain());
+  j["target"] = surface_facts_json(map.target());
   Json by_type;
   std::array<Index, node_type_count> counts{};
   for (const NodeType t : map.stored().node_type) ++counts[static_cast<std::size_t>(t)];
@@ -125,9 +135,9 @@ Json map_summary(const PlMap<d>& map, bool with_quality) {
 
 template Index coincident_vertex_count<1>(const Surface<1>&);
 template Index coincident_vertex_count<2>(const Surface<2>&);
-template Json surface_summary<1>(const Surface<1>&);
-template Json surface_summary<2>(const Surface<2>&);
-template Json map_summary<1>(const PlMap<1>&, bool);
-template Json map_summary<2>(const PlMap<2>&, bool);
+template Json surface_facts_json<1>(const Surface<1>&);
+template Json surface_facts_json<2>(const Surface<2>&);
+template Json map_facts_json<1>(const PlMap<1>&, bool);
+template Json map_facts_json<2>(const PlMap<2>&, bool);
 
-}  // namespace plmap::cli
+}  // namespace plmap
