@@ -23,6 +23,7 @@
 #include "rim_geometry.hpp"
 
 #include <plmap/core/errors.hpp>
+#include <plmap/core/parallel_ranges.hpp>
 #include <plmap/core/snapping.hpp>
 
 #include <algorithm>
@@ -289,26 +290,37 @@ void ProjectionInsertion<d>::seed_rim_at_straddling_edges(std::vector<RimPair>& 
       const double mu = outside_mu(v);
       return std::isnan(mu) ? 2 : (mu < 0.0 ? -1 : 1);
     };
-    for (Index edge = 0; edge < s1.edge_count(); ++edge) {
-      const auto ev = s1.edge_vertices(edge);
-      if (side(ev[0]) == side(ev[1])) continue;
-      const double length = (s1.vertex(ev[1]) - s1.vertex(ev[0])).norm();
-      for (int level = 0; level < ctx_.rim_level_count(); ++level) {
-        const double mu = ctx_.rim_level(level).mu;
-        // A hit outside the band far from this bound lies on another sheet of S2 (the far side
-        // of a body, another body): the level set there is no boundary of D, whose points take
-        // the nearer hit. Across one S1 edge a sheet's distance moves by about its length.
-        if (std::abs(hit_mu(ev[0]) - mu) > length || std::abs(hit_mu(ev[1]) - mu) > length) continue;
-        const WorldPoint<2> p0 = s1.vertex(ev[0]) + mu * ctx_.vertex_directions[ev[0]];
-        const WorldPoint<2> p1 = s1.vertex(ev[1]) + mu * ctx_.vertex_directions[ev[1]];
-        const double reach = 0.5 * (p1 - p0).norm() + 1.01 * ctx_.s2_index->radius;
-        for (const Index a : ctx_.s2_index->within(0.5 * (p0 + p1), reach)) {
-          const std::optional<Pierce> p = segment_through_triangle(p0, p1, corners_of(s2, a));
-          if (!p || !strictly_inside(p->barycentric, rim_margin)) continue;
-          for (const auto& inc : s1.edge_elements(edge)) pending.push_back({inc.element, a, level});
+    // Each S1 edge is searched on its own: the edges go in pieces to all threads, and the pieces'
+    // pairs are appended in edge order, so the tracing (and the map) is the same for every
+    // thread count.
+    const auto n = static_cast<std::size_t>(s1.edge_count());
+    const std::size_t pieces_per_thread = 4;
+    const std::size_t size = std::max<std::size_t>(1024, (n + pieces_per_thread * ctx_.threads - 1) /
+                                                              (pieces_per_thread * ctx_.threads));
+    std::vector<std::vector<RimPair>> found((n + size - 1) / size);
+    parallel_for_pieces_of_size(n, size, ctx_.threads, [&](std::size_t piece, std::size_t begin, std::size_t end) {
+      for (auto edge = static_cast<Index>(begin); edge < static_cast<Index>(end); ++edge) {
+        const auto ev = s1.edge_vertices(edge);
+        if (side(ev[0]) == side(ev[1])) continue;
+        const double length = (s1.vertex(ev[1]) - s1.vertex(ev[0])).norm();
+        for (int level = 0; level < ctx_.rim_level_count(); ++level) {
+          const double mu = ctx_.rim_level(level).mu;
+          // A hit outside the band far from this bound lies on another sheet of S2 (the far side
+          // of a body, another body): the level set there is no boundary of D, whose points take
+          // the nearer hit. Across one S1 edge a sheet's distance moves by about its length.
+          if (std::abs(hit_mu(ev[0]) - mu) > length || std::abs(hit_mu(ev[1]) - mu) > length) continue;
+          const WorldPoint<2> p0 = s1.vertex(ev[0]) + mu * ctx_.vertex_directions[ev[0]];
+          const WorldPoint<2> p1 = s1.vertex(ev[1]) + mu * ctx_.vertex_directions[ev[1]];
+          const double reach = 0.5 * (p1 - p0).norm() + 1.01 * ctx_.s2_index->radius;
+          for (const Index a : ctx_.s2_index->within(0.5 * (p0 + p1), reach)) {
+            const std::optional<Pierce> p = segment_through_triangle(p0, p1, corners_of(s2, a));
+            if (!p || !strictly_inside(p->barycentric, rim_margin)) continue;
+            for (const auto& inc : s1.edge_elements(edge)) found[piece].push_back({inc.element, a, level});
+          }
         }
       }
-    }
+    });
+    for (const std::vector<RimPair>& pairs : found) pending.insert(pending.end(), pairs.begin(), pairs.end());
   }
 }
 
