@@ -3,6 +3,7 @@
 // themselves (EditableMap plans and applies them), and the hand-over to MapBuilder.
 
 #include <plmap/construct/simplify.hpp>
+#include "simplified_map_report.hpp"
 #include "simplify_option_checks.hpp"
 #include "simplify_ranking_estimate.hpp"
 
@@ -761,12 +762,7 @@ SimplifyResult simplify(std::shared_ptr<const Surface<2>> fine, SimplifyOptions 
   PlMap<2> map = std::move(*traced);
   report_progress(options.progress, "finalize", 1, 1);
   report.seconds_finalize = seconds_since(finalize_start);
-  report.elements_after = map.domain().element_count();
-  report.vertices_after = map.domain().vertex_count();
-  for (Index n = 0; n < map.node_count(); ++n)
-    report.hausdorff_error = std::max(report.hausdorff_error, (map.node_domain_world(n) - map.node_target_world(n)).norm());
-  const double diagonal = (s.bounding_box_max() - s.bounding_box_min()).norm();
-  report.hausdorff_error_relative = diagonal > 0.0 ? report.hausdorff_error / diagonal : 0.0;
+  detail::report_simplified_map(map, s, report);
   report.seconds_total = seconds_since(start);
   return {std::move(map), std::move(report)};
 }

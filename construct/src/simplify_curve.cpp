@@ -5,6 +5,7 @@
 // neighbours are found by walking S2.
 
 #include <plmap/construct/simplify_curve.hpp>
+#include "simplified_map_report.hpp"
 #include "simplify_option_checks.hpp"
 
 #include <plmap/core/errors.hpp>
@@ -297,12 +298,7 @@ CurveSimplifyResult simplify_curve(std::shared_ptr<const Surface<1>> fine, Simpl
   for (Index e = 0; e < s.element_count(); ++e) builder.add_edge(e);
   PlMap<1> map = std::move(builder).finalize();
   report.seconds_finalize = seconds_since(finalize_start);
-  report.elements_after = map.domain().element_count();
-  report.vertices_after = map.domain().vertex_count();
-  for (Index n = 0; n < map.node_count(); ++n)
-    report.hausdorff_error = std::max(report.hausdorff_error, (map.node_domain_world(n) - map.node_target_world(n)).norm());
-  const double diagonal = (s.bounding_box_max() - s.bounding_box_min()).norm();
-  report.hausdorff_error_relative = diagonal > 0.0 ? report.hausdorff_error / diagonal : 0.0;
+  detail::report_simplified_map(map, s, report);
   report.seconds_total = seconds_since(start);
   return {std::move(map), std::move(report)};
 }

@@ -86,6 +86,28 @@ LocalPoint<2> local_on_edge(int k, double u) {
   }
 }
 
+/// Where each vertex of S1 lies in S1 itself: at its corner of its first element, or nowhere
+/// for an isolated vertex (which stays an isolated vertex of the refinement).
+template <int d>
+std::vector<DomainLocation<d>> locations_of_vertices(const Surface<d>& s1) {
+  std::vector<DomainLocation<d>> out;
+  out.reserve(static_cast<std::size_t>(s1.vertex_count()));
+  for (Index v = 0; v < s1.vertex_count(); ++v) {
+    DomainLocation<d> loc;
+    loc.kind = DomainLocation<d>::Kind::vertex;
+    loc.index = v;
+    if (s1.vertex_elements(v).empty()) {
+      loc.kind = DomainLocation<d>::Kind::isolated;
+      loc.point = no_preimage<d>();
+    } else {
+      const Index t = s1.vertex_elements(v).front();
+      loc.point = {t, reference_corner<d>(s1.local_corner(t, v))};
+    }
+    out.push_back(loc);
+  }
+  return out;
+}
+
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<Index, Kernel>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase>;
@@ -94,19 +116,7 @@ using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
 Refinement<2> refine_triangles(const Surface<2>& s1, const RefinementOptions& options, Rng& rng) {
   Refinement<2> out;
   std::vector<WorldPoint<2>> vertices = s1.vertices();
-  for (Index v = 0; v < s1.vertex_count(); ++v) {
-    DomainLocation<2> loc;
-    loc.kind = DomainLocation<2>::Kind::vertex;
-    loc.index = v;
-    if (s1.vertex_elements(v).empty()) {  // isolated: stays an isolated vertex of the refinement
-      loc.kind = DomainLocation<2>::Kind::isolated;
-      loc.point = no_preimage<2>();
-    } else {
-      const Index t = s1.vertex_elements(v).front();
-      loc.point = {t, reference_corner<2>(s1.local_corner(t, v))};
-    }
-    out.vertex_location.push_back(loc);
-  }
+  out.vertex_location = locations_of_vertices(s1);
 
   // Points on edges: created once per S1 edge, so all triangles of the edge share them.
   std::vector<std::vector<double>> edge_parameters(s1.edge_count());
@@ -179,19 +189,7 @@ Refinement<2> refine_triangles(const Surface<2>& s1, const RefinementOptions& op
 Refinement<1> refine_segments(const Surface<1>& s1, const RefinementOptions& options, Rng& rng) {
   Refinement<1> out;
   std::vector<WorldPoint<1>> vertices = s1.vertices();
-  for (Index v = 0; v < s1.vertex_count(); ++v) {
-    DomainLocation<1> loc;
-    loc.kind = DomainLocation<1>::Kind::vertex;
-    loc.index = v;
-    if (s1.vertex_elements(v).empty()) {  // isolated: stays an isolated vertex of the refinement
-      loc.kind = DomainLocation<1>::Kind::isolated;
-      loc.point = no_preimage<1>();
-    } else {
-      const Index t = s1.vertex_elements(v).front();
-      loc.point = {t, reference_corner<1>(s1.local_corner(t, v))};
-    }
-    out.vertex_location.push_back(loc);
-  }
+  out.vertex_location = locations_of_vertices(s1);
   std::vector<ElementCorners<1>> elements;
   for (Index t = 0; t < s1.element_count(); ++t) {
     Index previous = s1.element(t)[0];
