@@ -18,7 +18,10 @@
 // the map y folds back. Multiplied by (N.nu)^2, J is a polynomial of degree 3 in u (the focal
 // polynomial is quadratic in sigma with coefficients linear in u, and sigma_A is a ratio of two
 // linear functions), so along a straight segment of t it is a cubic in the segment's parameter:
-// `fold_on_segment` finds its roots from four samples, exactly up to rounding.
+// `fold_on_segment` finds its roots from four samples, exactly up to rounding. `fold_on_target_line`
+// finds where the preimage of an S2 edge's line meets the fold curve, and `fold_segment` the two
+// ends of the fold curve's piece over one (element, S2 triangle) pair, as `rim_segment` does for
+// a level set of the ray distance.
 
 #include <plmap/core/types.hpp>
 #include <plmap/solvers/focal_points.hpp>
@@ -209,6 +212,106 @@ inline std::optional<FoldOnLine> fold_on_target_line(const ElementOntoPlane& pro
     if (!u.allFinite()) return std::nullopt;
   }
   return std::nullopt;
+}
+
+/// One end of the piece of the fold curve that an S1 element and an S2 triangle share (the
+/// counterpart of a rim segment's end, projection_rim.cpp): where the fold curve crosses side
+/// `side` of the S1 element with its image inside the S2 triangle (on_target_edge false: `local`
+/// is the image's local point on the S2 triangle), or where the preimage of side `side` of the
+/// S2 triangle meets the fold curve inside the element (on_target_edge true: `local` is the
+/// point on the element). Sides are local: side k runs from corner k to corner k + 1 (mod 3), and
+/// `parameter` is measured along it from corner k.
+struct FoldEnd {
+  bool on_target_edge = false;
+  int side = 0;
+  double parameter = 0.0;
+  LocalPoint<2> local = LocalPoint<2>::Zero();
+};
+
+namespace fold_detail {
+
+inline LocalPoint<2> corner_of_reference(int k) {
+  return k == 0 ? LocalPoint<2>(0, 0) : (k == 1 ? LocalPoint<2>(1, 0) : LocalPoint<2>(0, 1));
+}
+
+/// The barycentric coordinates of x in `triangle`, from the plane's normal (x in its plane).
+inline std::array<double, 3> barycentric_in(const std::array<WorldPoint<2>, 3>& triangle, const WorldPoint<2>& x) {
+  const WorldPoint<2> n = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]);
+  const double nn = n.squaredNorm();
+  return {n.dot((triangle[1] - x).cross(triangle[2] - x)) / nn, n.dot((triangle[2] - x).cross(triangle[0] - x)) / nn,
+          n.dot((triangle[0] - x).cross(triangle[1] - x)) / nn};
+}
+
+inline bool strictly_inside(const std::array<double, 3>& b, double margin) {
+  return b[0] > margin && b[1] > margin && b[2] > margin;
+}
+
+}  // namespace fold_detail
+
+/// The ends of the piece of the fold curve in which S1 element t (as `projection`) and S2
+/// `triangle` (in the projection's plane) meet: exactly two, each strictly inside its side and
+/// triangle (by `margin` in barycentric coordinates and side parameters), or none (they do not
+/// meet, or the curve enters and leaves more than once, or touches a corner). The ends on the
+/// S2 triangle's sides are found by Newton's method (fold_on_target_line) from points of the fold
+/// curve on 12 rows and 12 columns of the element and on its sides.
+inline int fold_segment(const ElementOntoPlane& projection, const std::array<WorldPoint<2>, 3>& triangle,
+                        std::array<FoldEnd, 2>& ends, double margin = 1e-9) {
+  using fold_detail::barycentric_in;
+  using fold_detail::corner_of_reference;
+  using fold_detail::strictly_inside;
+  int count = 0;
+  auto add = [&](const FoldEnd& end) {
+    if (count < 2) ends[count] = end;
+    ++count;
+  };
+  // where the fold curve crosses the element's sides, with its image inside the triangle
+  for (int k = 0; k < 3; ++k) {
+    const LocalPoint<2> a = corner_of_reference(k), b = corner_of_reference((k + 1) % 3);
+    for (double s : fold_on_segment(projection, a, b)) {
+      if (!(s > margin && s < 1.0 - margin)) return 0;  // at a corner of the element: degenerate
+      const std::optional<WorldPoint<2>> y = projection.image(a + s * (b - a));
+      if (!y) continue;
+      const std::array<double, 3> bary = barycentric_in(triangle, *y);
+      if (!strictly_inside(bary, -margin)) continue;
+      if (!strictly_inside(bary, margin)) return 0;  // on a side of the triangle: degenerate
+      add({false, k, s, LocalPoint<2>(bary[1], bary[2])});
+    }
+  }
+  // where the preimages of the triangle's sides meet the fold curve inside the element: Newton
+  // from points of the fold curve (its crossings of 12 rows, 12 columns and the sides of the
+  // element). Seeds on the curve itself: a grid of cells tested for sign changes of both
+  // equations missed the side whose preimage touches the fold's turning point (the image of the
+  // fold is where the map turns back, so a side's preimage is tangent to the row there)
+  constexpr int lines = 12;
+  std::vector<LocalPoint<2>> seeds;
+  auto add_seeds = [&](const LocalPoint<2>& a, const LocalPoint<2>& b) {
+    for (double s : fold_on_segment(projection, a, b)) seeds.push_back(a + s * (b - a));
+  };
+  for (int i = 0; i < lines; ++i) {
+    const double c = (i + 0.5) / lines;
+    add_seeds(LocalPoint<2>(0, c), LocalPoint<2>(1 - c, c));
+    add_seeds(LocalPoint<2>(c, 0), LocalPoint<2>(c, 1 - c));
+  }
+  for (int k = 0; k < 3; ++k) add_seeds(corner_of_reference(k), corner_of_reference((k + 1) % 3));
+  for (int k = 0; k < 3; ++k) {
+    const WorldPoint<2>& q0 = triangle[k];
+    const WorldPoint<2>& q1 = triangle[(k + 1) % 3];
+    std::vector<LocalPoint<2>> found;
+    for (const LocalPoint<2>& seed : seeds) {
+      const std::optional<FoldOnLine> hit = fold_on_target_line(projection, q0, q1, seed);
+      if (!hit) continue;
+      const std::array<double, 3> bary{1.0 - hit->local(0) - hit->local(1), hit->local(0), hit->local(1)};
+      if (!strictly_inside(bary, -margin) || !(hit->eta >= -margin && hit->eta <= 1.0 + margin)) continue;
+      if (!strictly_inside(bary, margin) || !(hit->eta > margin && hit->eta < 1.0 - margin)) return 0;
+      // the same point from another seed (Newton stops within about 1e-10 of it)
+      bool seen = false;
+      for (const LocalPoint<2>& f : found) seen = seen || (f - hit->local).norm() < 1e-7;
+      if (seen) continue;
+      found.push_back(hit->local);
+      add({true, k, hit->eta, hit->local});
+    }
+  }
+  return count == 2 ? 2 : 0;
 }
 
 }  // namespace plmap::projection

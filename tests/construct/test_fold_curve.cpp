@@ -165,3 +165,103 @@ RC_GTEST_PROP(FoldCurve, TheFoldOnAnS2LineIsWhereTheClosedFormSays, ()) {
   RC_ASSERT(std::abs(fold->local(1) - c) < 1e-9);
   RC_ASSERT(std::abs(fold->eta - shear.x_star * (1.0 + shear.h * shear.alpha / (1.0 + shear.beta * shear.x_star))) < 1e-9);
 }
+
+TEST(FoldCurve, TheFoldSegmentEndsOnTheS2TrianglesSidesWhereTheClosedFormSays) {
+  // x* = 0.4 (alpha from (1 + beta x*)^2 = -h alpha with beta = 1, h = 1): the fold's image is
+  // the plane's line X = X* = x* (1 + h alpha / (1 + beta x*)), y in [0, 1 - x*]. The triangle's
+  // sides 0 (P0 -> P1) and 2 (P2 -> P0) cross that line at y = 0.125 and y = 0.38; their
+  // preimages meet the fold at (x*, 0.125) and (x*, 0.38)
+  const double x_star = 0.4, beta = 1.0, h = 1.0;
+  const double alpha = -(1 + beta * x_star) * (1 + beta * x_star) / h;
+  const double big_x = x_star * (1 + h * alpha / (1 + beta * x_star));
+  const ElementOntoPlane p = sheared_rays(alpha, beta, h);
+  const std::array<WorldPoint<2>, 3> triangle{WorldPoint<2>(big_x - 0.2, 0.1, h), WorldPoint<2>(big_x + 0.2, 0.15, h),
+                                              WorldPoint<2>(big_x + 0.05, 0.45, h)};
+  std::array<FoldEnd, 2> ends;
+  ASSERT_EQ(fold_segment(p, triangle, ends), 2);
+  if (ends[0].side > ends[1].side) std::swap(ends[0], ends[1]);
+  EXPECT_TRUE(ends[0].on_target_edge && ends[1].on_target_edge);
+  EXPECT_EQ(ends[0].side, 0);
+  EXPECT_EQ(ends[1].side, 2);
+  EXPECT_NEAR(ends[0].local(0), x_star, 1e-9);
+  EXPECT_NEAR(ends[0].local(1), 0.125, 1e-9);
+  EXPECT_NEAR(ends[0].parameter, 0.5, 1e-9);  // X* is half-way along side 0 in x
+  EXPECT_NEAR(ends[1].local(0), x_star, 1e-9);
+  EXPECT_NEAR(ends[1].local(1), 0.38, 1e-9);
+  EXPECT_NEAR(ends[1].parameter, 0.2, 1e-9);
+}
+
+TEST(FoldCurve, TheFoldSegmentEndsOnTheElementsSidesInsideALargeTriangle) {
+  // the same fold under a triangle that holds its whole image: it crosses the element's side 0
+  // (y = 0) at x* and side 1 (from (1, 0) to (0, 1)) at parameter 1 - x*
+  const double x_star = 0.4, beta = 1.0, h = 1.0;
+  const double alpha = -(1 + beta * x_star) * (1 + beta * x_star) / h;
+  const ElementOntoPlane p = sheared_rays(alpha, beta, h);
+  const std::array<WorldPoint<2>, 3> triangle{WorldPoint<2>(-5, -5, h), WorldPoint<2>(5, -5, h), WorldPoint<2>(0, 5, h)};
+  std::array<FoldEnd, 2> ends;
+  ASSERT_EQ(fold_segment(p, triangle, ends), 2);
+  if (ends[0].side > ends[1].side) std::swap(ends[0], ends[1]);
+  EXPECT_FALSE(ends[0].on_target_edge || ends[1].on_target_edge);
+  EXPECT_EQ(ends[0].side, 0);
+  EXPECT_NEAR(ends[0].parameter, x_star, 1e-12);
+  EXPECT_EQ(ends[1].side, 1);
+  EXPECT_NEAR(ends[1].parameter, 1 - x_star, 1e-12);
+  // a triangle away from the fold's image shares no fold with the element
+  const std::array<WorldPoint<2>, 3> away{WorldPoint<2>(3, 3, h), WorldPoint<2>(4, 3, h), WorldPoint<2>(3, 4, h)};
+  EXPECT_EQ(fold_segment(p, away, ends), 0);
+}
+
+RC_GTEST_PROP(FoldCurve, FoldSegmentEndsLieOnTheFoldAndOnTheSidesTheyName, ()) {
+  // the posed sheared rays under a random triangle of the plane near the fold's image: every
+  // end found lies on the fold (x = x* in the element) and on the side it names
+  const PosedShear shear = PosedShear::random(0.2, 0.5);
+  const double big_x = shear.x_star * (1 + shear.h * shear.alpha / (1 + shear.beta * shear.x_star));
+  auto plane_point = [&] {
+    return WorldPoint<2>(big_x + 0.6 * (unit() - 0.5), 0.8 * unit() - 0.1, shear.h);
+  };
+  const std::array<WorldPoint<2>, 3> flat{plane_point(), plane_point(), plane_point()};
+  RC_PRE((flat[1] - flat[0]).cross(flat[2] - flat[0]).norm() > 1e-3);
+  const std::array<WorldPoint<2>, 3> triangle{shear.place(flat[0]), shear.place(flat[1]), shear.place(flat[2])};
+  const ElementOntoPlane p = shear.projection();
+  std::array<FoldEnd, 2> ends;
+  const int count = fold_segment(p, triangle, ends);
+  RC_CLASSIFY(count == 2, "the fold crosses the triangle");
+  // independently: the fold's image is the segment x = X*, y in [0, 1 - x*] of the flat plane;
+  // where a clear stretch of it lies inside the triangle, the two ends must be found
+  double low = 0.0, high = 1.0 - shear.x_star;
+  bool clear = true;
+  {
+    // clip the segment's y range by each side's half-plane (the side that holds the third corner)
+    for (int k = 0; k < 3; ++k) {
+      const WorldPoint<2>&a = flat[k], &b = flat[(k + 1) % 3], &c = flat[(k + 2) % 3];
+      clear = clear && std::abs(a.x() - big_x) > 1e-6;
+      auto side = [&](double y) { return (b.x() - a.x()) * (y - a.y()) - (b.y() - a.y()) * (big_x - a.x()); };
+      const double sc = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+      // side(y) is linear in y: side(y) = s0 + s1 y
+      const double s0 = side(0.0), s1 = side(1.0) - s0;
+      if (s1 == 0.0) {
+        if (s0 * sc <= 0.0) high = low - 1.0;
+        continue;
+      }
+      const double root = -s0 / s1;
+      if ((s1 > 0.0) == (sc > 0.0)) low = std::max(low, root);  // inside for y above the root
+      else high = std::min(high, root);
+    }
+  }
+  if (clear && high - low > 1e-3 && low > 1e-6 && high < 1.0 - shear.x_star - 1e-6) RC_ASSERT(count == 2);
+  for (int i = 0; i < count; ++i) {
+    const FoldEnd& end = ends[static_cast<std::size_t>(i)];
+    const auto side_point = [&](const std::array<LocalPoint<2>, 3>& c) {
+      return c[end.side] + end.parameter * (c[(end.side + 1) % 3] - c[end.side]);
+    };
+    const std::array<LocalPoint<2>, 3> reference{LocalPoint<2>(0, 0), LocalPoint<2>(1, 0), LocalPoint<2>(0, 1)};
+    const LocalPoint<2> u = end.on_target_edge ? end.local : side_point(reference);
+    RC_ASSERT(std::abs(u(0) - shear.x_star) < 1e-9);
+    if (end.on_target_edge) {
+      // the image of u is the point of the triangle's side at the parameter
+      const WorldPoint<2> expected =
+          triangle[end.side] + end.parameter * (triangle[(end.side + 1) % 3] - triangle[end.side]);
+      RC_ASSERT((*p.image(u) - expected).norm() < 1e-8);
+    }
+  }
+}
