@@ -150,6 +150,12 @@ void ProjectionInsertion<d>::release_used_points() {
   release(used_first_);
   release(used_parameters_);
   release(crossed_vertex_);
+  // the rim's bookkeeping: its nodes and edges are in the builder
+  for (auto& m : rim_inside_) release(m);
+  release(rim_on_edge_);
+  release(rim_seeds_);
+  for (auto& m : rim_pairs_done_) release(m);
+  release(unwalked_);
 }
 
 template <int d>

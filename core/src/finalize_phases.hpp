@@ -32,8 +32,4 @@ struct AssembledMap {
 };
 AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, const ElementReuse* reuse = nullptr);
 
-/// Gives the memory freed into malloc's heap back to the system (glibc's malloc_trim; elsewhere
-/// nothing): freed blocks in the middle of the heap stay resident until they are used again.
-void give_freed_heap_back();
-
 }  // namespace plmap::detail

@@ -13,11 +13,8 @@
 #include "finalize_reuse.hpp"
 #include "map_arrays.hpp"
 
+#include <plmap/core/freed_heap.hpp>
 #include <plmap/core/parallel_ranges.hpp>
-
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 
 #include <algorithm>
 #include <atomic>
@@ -341,17 +338,6 @@ class ClosingPass {
 
 }  // namespace
 
-/// The closing pass first-touches the whole map while the builder is still alive: that is the
-/// peak of a projection. What the callers freed before it (the projection's plans, the buckets'
-/// cursors, the sample's workspace) stays with malloc, scattered over the heap, where the map's
-/// large arrays (mmap'ed) cannot use it: glibc gives it back to the system (2.3 MiB of the 200k
-/// plane pair's peak, 2.7 MiB of the armadillo pair's).
-void give_freed_heap_back() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
-}
-
 namespace {
 
 /// The orientation guess: the vote of up to 64 elements spread over S1.
@@ -392,6 +378,11 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   // on by all elements: the pass assembles with a guess (the vote of a sample of elements, or
   // the orientation given in the options) and runs again in the rare case the full vote differs.
   const int guess = in.options.orientation != 0 ? in.options.orientation : sampled_orientation(in, where);
+  // The closing pass first-touches the whole map while the builder is still alive: that is the
+  // peak of a projection. What the callers freed before it (the projection's plans, the buckets'
+  // cursors, the sample's workspace) stays with malloc, scattered over the heap, where the map's
+  // large arrays (mmap'ed) cannot use it (2.3 MiB of the 200k plane pair's peak, 2.7 MiB of the
+  // armadillo pair's).
   give_freed_heap_back();
   ClosingPass pass(in, where, in.options.threads, reuse);
   // A failure in the full pass makes every later element's graph be closed once more for

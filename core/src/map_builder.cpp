@@ -11,6 +11,7 @@
 #include "map_builder_impl.hpp"
 
 #include <plmap/core/errors.hpp>
+#include <plmap/core/freed_heap.hpp>
 #include <plmap/core/map_builder.hpp>
 #include <plmap/core/snapping.hpp>
 
@@ -314,7 +315,7 @@ PlMap<d> MapBuilder<d>::finalize(FinalizeReport* report) && {
     // projection's fold test and sheet selection) would otherwise stand on top of it (on the femur
     // pair 1.8 MiB, as much as the sheet selection adds).
     impl.reset();
-    detail::give_freed_heap_back();
+    give_freed_heap_back();
     return map;
   }
 }
