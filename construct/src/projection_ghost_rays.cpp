@@ -79,6 +79,40 @@ class GhostRays {
     const int count = nearest_seeds(*ctx_.s2_index, nearest, seed_point, ctx_.seed_count, seeds);
     std::optional<SurfacePoint<d>> best;
     double best_rank = std::numeric_limits<double>::infinity();
+    // The ray against S2 element t: a hit inside t that is admissible and nearer than the best
+    // so far becomes the best. Returns the corner opposite the side to walk across towards the
+    // ray's point, or -1 once the ray's point lies in t (or the ray runs parallel to t).
+    auto test_element = [&](Index t) -> int {
+      // origin + mu direction = c0 + sum_i y_i (c_{i+1} - c0): linear in (y, mu)
+      Eigen::Matrix<double, d + 1, d + 1> a;
+      double scale = 0.0;
+      for (int i = 0; i < d; ++i) {
+        a.col(i) = ctx_.s2.corner(t, i + 1) - ctx_.s2.corner(t, 0);
+        scale = std::max(scale, a.col(i).norm());
+      }
+      a.col(d) = -direction;
+      const double det = a.determinant();
+      if (!(std::abs(det) > 1e-12 * integer_power(scale, d))) return -1;  // ray parallel to the element
+      const Eigen::Matrix<double, d + 1, 1> x = solve_with_partial_pivoting<d + 1>(a, origin - ctx_.s2.corner(t, 0));
+      const LocalPoint<d> y = x.template head<d>();
+      const Barycentric<d> b = barycentric_from_local<d>(y);
+      int worst = 0;
+      for (int k = 1; k <= d; ++k)
+        if (b(k) < b(worst)) worst = k;
+      if (b(worst) < -ctx_.options.search_limits.inside_tolerance) return worst;
+      const double mu = x(d);
+      WorldPoint<d> target_normal = ctx_.s2.element_normal(t);
+      if (!ctx_.distance_ok(mu, scale) && std::isnan(outside_band_)) outside_band_ = static_cast<float>(mu);
+      if (ctx_.distance_ok(mu, scale) && ctx_.normal_ok(direction, target_normal) && ctx_.rank(mu) < best_rank &&
+          ctx_.ghost_ray_unfolded(v, mu)) {
+        best_rank = ctx_.rank(mu);
+        hit_mu = mu;
+        Barycentric<d> bc = b.cwiseMax(0.0);
+        bc /= bc.sum();
+        best = SurfacePoint<d>{t, local_from_barycentric<d>(bc)};
+      }
+      return -1;
+    };
     std::array<Index, 64> visited;
     int nvisited = 0;
     for (int s = 0; s < count; ++s) {
@@ -86,37 +120,26 @@ class GhostRays {
       for (int step = 0; step < ctx_.options.search_limits.seed_walk_steps && t != invalid_index; ++step) {
         if (std::find(visited.begin(), visited.begin() + nvisited, t) != visited.begin() + nvisited) break;
         if (nvisited < 64) visited[nvisited++] = t;
-        // origin + mu direction = c0 + sum_i y_i (c_{i+1} - c0): linear in (y, mu)
-        Eigen::Matrix<double, d + 1, d + 1> a;
-        double scale = 0.0;
-        for (int i = 0; i < d; ++i) {
-          a.col(i) = ctx_.s2.corner(t, i + 1) - ctx_.s2.corner(t, 0);
-          scale = std::max(scale, a.col(i).norm());
-        }
-        a.col(d) = -direction;
-        const double det = a.determinant();
-        if (!(std::abs(det) > 1e-12 * integer_power(scale, d))) break;  // ray parallel to the element
-        const Eigen::Matrix<double, d + 1, 1> x = solve_with_partial_pivoting<d + 1>(a, origin - ctx_.s2.corner(t, 0));
-        const LocalPoint<d> y = x.template head<d>();
-        const Barycentric<d> b = barycentric_from_local<d>(y);
-        int worst = 0;
-        for (int k = 1; k <= d; ++k)
-          if (b(k) < b(worst)) worst = k;
-        if (b(worst) >= -ctx_.options.search_limits.inside_tolerance) {
-          const double mu = x(d);
-          WorldPoint<d> target_normal = ctx_.s2.element_normal(t);
-          if (!ctx_.distance_ok(mu, scale) && std::isnan(outside_band_)) outside_band_ = static_cast<float>(mu);
-          if (ctx_.distance_ok(mu, scale) && ctx_.normal_ok(direction, target_normal) && ctx_.rank(mu) < best_rank &&
-              ctx_.ghost_ray_unfolded(v, mu)) {
-            best_rank = ctx_.rank(mu);
-            hit_mu = mu;
-            Barycentric<d> bc = b.cwiseMax(0.0);
-            bc /= bc.sum();
-            best = SurfacePoint<d>{t, local_from_barycentric<d>(bc)};
-          }
-          break;
-        }
-        t = element_across(ctx_.s2, t, worst);
+        const int across = test_element(t);
+        if (across < 0) break;
+        t = element_across(ctx_.s2, t, across);
+      }
+    }
+    // On a curve, a branch of S2 that passes right by v can hold a nearer hit while every seed
+    // lies on another branch: a long segment of v's own branch has its centroid far off, and the
+    // walks from the seeds stay on their branch (ProjectProperties.RemeshedPolylines…, seed 52:
+    // the hit taken 0.11 away on another branch, its own segment's at 0). Where the hit found is
+    // farther along the ray than the nearest seed's centroid is from v, every segment whose
+    // centroid lies within that reach (plus S2's largest centroid-to-corner distance) is tested.
+    // On the concentric circles the hit is never farther than the nearest centroid.
+    if constexpr (d == 1) {
+      if (best && count > 0 && seed_point == origin) {
+        double nearest_centroid = std::numeric_limits<double>::infinity();
+        for (int s = 0; s < count; ++s)
+          nearest_centroid = std::min(nearest_centroid, (ctx_.s2_index->cloud.points[seeds[s]] - origin).norm());
+        const double reach = ctx_.rank(hit_mu) * direction.norm();
+        if (reach > nearest_centroid)
+          for (const Index t : ctx_.s2_index->within(origin, reach + ctx_.s2_index->radius)) test_element(t);
       }
     }
     return best;
