@@ -21,7 +21,7 @@
 namespace {
 
 /// Resident memory of this process in MiB (Linux), or a negative number where it cannot be read.
-double resident_mib() {
+[[maybe_unused]] double resident_mib() {
   std::ifstream statm("/proc/self/statm");
   long size = 0, resident = -1;
   statm >> size >> resident;
