@@ -23,6 +23,8 @@
 // ends of the fold curve's piece over one (element, S2 triangle) pair, as `rim_segment` does for
 // a level set of the ray distance.
 
+#include "rim_geometry.hpp"
+
 #include <plmap/core/types.hpp>
 #include <plmap/solvers/focal_points.hpp>
 
@@ -228,26 +230,6 @@ struct FoldEnd {
   LocalPoint<2> local = LocalPoint<2>::Zero();
 };
 
-namespace fold_detail {
-
-inline LocalPoint<2> corner_of_reference(int k) {
-  return k == 0 ? LocalPoint<2>(0, 0) : (k == 1 ? LocalPoint<2>(1, 0) : LocalPoint<2>(0, 1));
-}
-
-/// The barycentric coordinates of x in `triangle`, from the plane's normal (x in its plane).
-inline std::array<double, 3> barycentric_in(const std::array<WorldPoint<2>, 3>& triangle, const WorldPoint<2>& x) {
-  const WorldPoint<2> n = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]);
-  const double nn = n.squaredNorm();
-  return {n.dot((triangle[1] - x).cross(triangle[2] - x)) / nn, n.dot((triangle[2] - x).cross(triangle[0] - x)) / nn,
-          n.dot((triangle[0] - x).cross(triangle[1] - x)) / nn};
-}
-
-inline bool strictly_inside(const std::array<double, 3>& b, double margin) {
-  return b[0] > margin && b[1] > margin && b[2] > margin;
-}
-
-}  // namespace fold_detail
-
 /// The ends of the piece of the fold curve in which S1 element t (as `projection`) and S2
 /// `triangle` (in the projection's plane) meet: exactly two, each strictly inside its side and
 /// triangle (by `margin` in barycentric coordinates and side parameters), or none (they do not
@@ -256,9 +238,8 @@ inline bool strictly_inside(const std::array<double, 3>& b, double margin) {
 /// curve on 12 rows and 12 columns of the element and on its sides.
 inline int fold_segment(const ElementOntoPlane& projection, const std::array<WorldPoint<2>, 3>& triangle,
                         std::array<FoldEnd, 2>& ends, double margin = 1e-9) {
-  using fold_detail::barycentric_in;
-  using fold_detail::corner_of_reference;
-  using fold_detail::strictly_inside;
+  const WorldPoint<2> normal = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]);
+  const double normal_squared = normal.squaredNorm();
   int count = 0;
   auto add = [&](const FoldEnd& end) {
     if (count < 2) ends[count] = end;
@@ -266,12 +247,12 @@ inline int fold_segment(const ElementOntoPlane& projection, const std::array<Wor
   };
   // where the fold curve crosses the element's sides, with its image inside the triangle
   for (int k = 0; k < 3; ++k) {
-    const LocalPoint<2> a = corner_of_reference(k), b = corner_of_reference((k + 1) % 3);
+    const LocalPoint<2> a = reference_corner<2>(k), b = reference_corner<2>((k + 1) % 3);
     for (double s : fold_on_segment(projection, a, b)) {
       if (!(s > margin && s < 1.0 - margin)) return 0;  // at a corner of the element: degenerate
       const std::optional<WorldPoint<2>> y = projection.image(a + s * (b - a));
       if (!y) continue;
-      const std::array<double, 3> bary = barycentric_in(triangle, *y);
+      const std::array<double, 3> bary = barycentric_in_plane(triangle, normal, normal_squared, *y);
       if (!strictly_inside(bary, -margin)) continue;
       if (!strictly_inside(bary, margin)) return 0;  // on a side of the triangle: degenerate
       add({false, k, s, LocalPoint<2>(bary[1], bary[2])});
@@ -292,7 +273,7 @@ inline int fold_segment(const ElementOntoPlane& projection, const std::array<Wor
     add_seeds(LocalPoint<2>(0, c), LocalPoint<2>(1 - c, c));
     add_seeds(LocalPoint<2>(c, 0), LocalPoint<2>(c, 1 - c));
   }
-  for (int k = 0; k < 3; ++k) add_seeds(corner_of_reference(k), corner_of_reference((k + 1) % 3));
+  for (int k = 0; k < 3; ++k) add_seeds(reference_corner<2>(k), reference_corner<2>((k + 1) % 3));
   for (int k = 0; k < 3; ++k) {
     const WorldPoint<2>& q0 = triangle[k];
     const WorldPoint<2>& q1 = triangle[(k + 1) % 3];

@@ -23,6 +23,15 @@ struct Pierce {
   std::array<double, 3> barycentric{};
 };
 
+/// The barycentric coordinates on triangle `tri` of a point x in its plane, from the triangle's
+/// normal n = (tri[1] - tri[0]) x (tri[2] - tri[0]) and its squared norm nn.
+inline std::array<double, 3> barycentric_in_plane(const std::array<WorldPoint<2>, 3>& tri, const WorldPoint<2>& n,
+                                                  double nn, const WorldPoint<2>& x) {
+  const double b0 = n.dot((tri[1] - x).cross(tri[2] - x)) / nn;
+  const double b1 = n.dot((tri[2] - x).cross(tri[0] - x)) / nn;
+  return {b0, b1, 1.0 - b0 - b1};
+}
+
 /// The pierce of segment p0 -> p1 through the plane of triangle `tri`, if the segment reaches
 /// that plane and is not (nearly) parallel to it.
 inline std::optional<Pierce> segment_through_triangle(const WorldPoint<2>& p0, const WorldPoint<2>& p1,
@@ -36,10 +45,7 @@ inline std::optional<Pierce> segment_through_triangle(const WorldPoint<2>& p0, c
   Pierce p;
   p.s = n.dot(tri[0] - p0) / denominator;
   if (!(p.s >= 0.0 && p.s <= 1.0)) return std::nullopt;
-  const WorldPoint<2> x = p0 + p.s * along;
-  p.barycentric[0] = n.dot((tri[1] - x).cross(tri[2] - x)) / nn;
-  p.barycentric[1] = n.dot((tri[2] - x).cross(tri[0] - x)) / nn;
-  p.barycentric[2] = 1.0 - p.barycentric[0] - p.barycentric[1];
+  p.barycentric = barycentric_in_plane(tri, n, nn, p0 + p.s * along);
   return p;
 }
 
