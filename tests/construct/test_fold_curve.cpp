@@ -251,11 +251,8 @@ RC_GTEST_PROP(FoldCurve, FoldSegmentEndsLieOnTheFoldAndOnTheSidesTheyName, ()) {
   if (clear && high - low > 1e-3 && low > 1e-6 && high < 1.0 - shear.x_star - 1e-6) RC_ASSERT(count == 2);
   for (int i = 0; i < count; ++i) {
     const FoldEnd& end = ends[static_cast<std::size_t>(i)];
-    const auto side_point = [&](const std::array<LocalPoint<2>, 3>& c) {
-      return c[end.side] + end.parameter * (c[(end.side + 1) % 3] - c[end.side]);
-    };
-    const std::array<LocalPoint<2>, 3> reference{LocalPoint<2>(0, 0), LocalPoint<2>(1, 0), LocalPoint<2>(0, 1)};
-    const LocalPoint<2> u = end.on_target_edge ? end.local : side_point(reference);
+    const LocalPoint<2> a = reference_corner<2>(end.side), b = reference_corner<2>((end.side + 1) % 3);
+    const LocalPoint<2> u = end.on_target_edge ? end.local : LocalPoint<2>(a + end.parameter * (b - a));
     RC_ASSERT(std::abs(u(0) - shear.x_star) < 1e-9);
     if (end.on_target_edge) {
       // the image of u is the point of the triangle's side at the parameter

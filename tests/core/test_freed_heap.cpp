@@ -8,6 +8,8 @@
 #include <memory>
 #include <vector>
 
+#include <unistd.h>
+
 // AddressSanitizer brings its own malloc (GCC says so by __SANITIZE_ADDRESS__, clang by
 // __has_feature)
 #if defined(__SANITIZE_ADDRESS__)
@@ -25,7 +27,8 @@ namespace {
   std::ifstream statm("/proc/self/statm");
   long size = 0, resident = -1;
   statm >> size >> resident;
-  return resident < 0 ? -1.0 : double(resident) * 4096.0 / 1048576.0;
+  const long page = sysconf(_SC_PAGESIZE);  // statm counts pages, which are not 4 KiB everywhere
+  return resident < 0 || page <= 0 ? -1.0 : double(resident) * double(page) / 1048576.0;
 }
 
 }  // namespace
