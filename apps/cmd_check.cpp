@@ -133,7 +133,8 @@ std::string ray_summary(const Json& j) {
       "    outside D for a reason: nearer sheet {:.3g}, S1 in between {:.3g}, S2 seen twice {:.3g}, S2 crossing "
       "itself {:.3g}, past a focal point {:.3g}, just inside S2's boundary {:.3g}\n"
       "    defects: farther sheet {:.3g}, next to a fold {:.3g}, not covered {:.3g}\n"
-      "  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, past a focal point {:.3g}, unexplained {:.3g}; rejected by "
+      "  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, past a focal point {:.3g}, a region across a fold {:.3g}, "
+      "unexplained {:.3g}; rejected by "
       "this check's rules: "
       "behind S1 {:.3g}, beyond the distance limit {:.3g}, against the normal check {:.3g})\n"
       "{}"
@@ -148,6 +149,7 @@ std::string ray_summary(const Json& j) {
       f("target_seen_twice"), f("target_crosses_itself"), f("past_focal_point"), f("inside_target_boundary"),
       f("farther_sheet"), f("next_to_fold"), f("not_covered"),
       j["extra"]["fraction"].get<double>(), j["extra"]["by_reason"]["beyond_target_boundary"]["fraction"].get<double>(), x("past_focal_point"),
+      x("folded_region"),
       j["extra"]["by_reason"]["unexplained"]["fraction"].get<double>(), x("behind_domain"),
       x("beyond_distance_limit"), x("against_normal_check"), rules_hint, e["median"].get<double>(),
       e["p99"].get<double>(), e["max"].get<double>(), e["fraction_above_one"].get<double>(), a("nearer_sheet"),

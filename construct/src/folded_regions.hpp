@@ -6,7 +6,8 @@
 /// (walk_acceptance.hpp); in the other elements at that vertex the same ray passes a focal point
 /// of their own direction field. No walk enters those elements, but a face there can still close
 /// from the ghost node and the pieces that end on the element's edges, and its region would then
-/// map points whose rays are folded (area that the ray check finds extra). Such a region has a
+/// map points whose rays are folded (area that the ray check finds extra, as `folded_region`:
+/// verify/ray_check.hpp judges the region's corners by the same rule). Such a region has a
 /// corner whose ray, from the node's point to its image, passes a focal point of the element:
 /// those regions are found here and left out of D (remove_regions, core/face_removal.hpp).
 

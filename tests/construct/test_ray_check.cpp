@@ -1,11 +1,13 @@
 // The ray check (verify/ray_check.hpp) on projection maps whose answer is known: complete maps
 // of planes, spheres and circles give no missed and no extra area and a small image error; a map
-// projected with a distance limit that the check does not share is missing the area beyond it.
+// projected with a distance limit that the check does not share is missing the area beyond it;
+// a hand-built map across a point focus is a defect, not the interpolation at a fold.
 #include "projection_fixtures.hpp"
 
 #include <plmap/construct/direction_field.hpp>
 #include <plmap/construct/project.hpp>
 #include <plmap/core/errors.hpp>
+#include <plmap/core/map_builder.hpp>
 #include <plmap/verify/ray_check.hpp>
 
 #include <gtest/gtest.h>
@@ -205,4 +207,59 @@ TEST(RayCheck, TheAnswerDoesNotDependOnTheScale) {
     EXPECT_EQ(circles.missed + circles.extra, 0u) << scale;
     EXPECT_EQ(circles.in_domain_with_hit, circles.samples) << scale;
   }
+}
+
+namespace {
+
+/// S1: a 4 x 4 grid on the square [-0.5, 0.5]^2 at z = 0 whose directions all point at the
+/// focus (0, 0, 1) (not normalised: the interpolated field points at it too, so every ray of S1
+/// passes the focus at distance 1, a point focus). S2: one large triangle in the plane z = h. The
+/// map is built by hand from the rays' hits at the S1 vertices, as a projection would without
+/// its fold test: between parallel planes the central projection is affine, so Xi(x) lies on
+/// x's ray everywhere, before the focus (h < 1) or past it (h > 1).
+struct PointFocusPair {
+  PlMap<2> map;
+  RayCheckOptions<2> rays;
+};
+
+PointFocusPair point_focus_pair(double h) {
+  auto s1 = grid(4, 4, -0.5, 0.5, -0.5, 0.5, 0.0);
+  const WorldPoint<2> focus(0, 0, 1);
+  auto s2 = std::make_shared<const Surface<2>>(std::vector<WorldPoint<2>>{{-2, -2, h}, {4, -2, h}, {-2, 4, h}},
+                                               std::vector<ElementCorners<2>>{{0, 1, 2}});
+  std::vector<WorldPoint<2>> directions;
+  MapBuilder<2> b(s1, s2);
+  for (Index v = 0; v < s1->vertex_count(); ++v) {
+    const WorldPoint<2> nu = focus - s1->vertex(v);
+    directions.push_back(nu);
+    const WorldPoint<2> hit = s1->vertex(v) + h * nu;  // the ray reaches z = h at distance h
+    b.add_ghost_node(v, {0, LocalPoint<2>((hit.x() + 2) / 6, (hit.y() + 2) / 6)});
+  }
+  for (Index e = 0; e < 3; ++e) b.add_edge_outside_domain(e);  // S2's edges lie beyond S1's images
+  PointFocusPair p{std::move(b).finalize(), {}};
+  p.rays.directions = directions;  // as they are: normalised, they would not all meet at the focus
+  p.rays.samples = 4000;
+  return p;
+}
+
+}  // namespace
+
+TEST(RayCheck, ARegionAcrossAFoldIsADefectNotTheInterpolation) {
+  // Past the focus every ray of S1, the regions' corners' included, is folded: the map covers
+  // S2 through a fold of the projection. The check must not call that a sliver past the fold
+  // curve (past_focal_point), whose premise is that the region's corners are unfolded.
+  const PointFocusPair past = point_focus_pair(2.0);
+  ASSERT_EQ(past.map.region_count(), 32);
+  const auto r = check_against_rays(past.map, past.rays);
+  EXPECT_EQ(r.in_domain_with_hit, 0u);
+  EXPECT_EQ(r.extra, r.samples);
+  EXPECT_EQ(r.extra_by_reason[static_cast<std::size_t>(ExtraReason::folded_region)], r.extra);
+  EXPECT_EQ(r.extra_defects(), r.extra);
+  // Before the focus the same construction is the projection itself: nothing extra, no error.
+  const PointFocusPair before = point_focus_pair(0.5);
+  const auto q = check_against_rays(before.map, before.rays);
+  EXPECT_EQ(q.extra, 0u);
+  EXPECT_EQ(q.missed, 0u);
+  EXPECT_EQ(q.in_domain_with_hit, q.samples);
+  EXPECT_LT(q.error_max, 1e-9);
 }

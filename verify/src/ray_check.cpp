@@ -42,6 +42,7 @@ std::string_view to_string(ExtraReason reason) {
     case ExtraReason::beyond_distance_limit: return "beyond_distance_limit";
     case ExtraReason::against_normal_check: return "against_normal_check";
     case ExtraReason::past_focal_point: return "past_focal_point";
+    case ExtraReason::folded_region: return "folded_region";
   }
   return "unknown";
 }
@@ -312,14 +313,37 @@ class RayChecker {
       if (o_.normal_check == RayNormalCheck::facing ? !(c < 0.0) : !(c > 0.0))
         return ExtraReason::against_normal_check;
     }
-    if (passes_focal_point_in(t, nu, mu)) return ExtraReason::past_focal_point;
+    // Past a focal point: the interpolation at a fold only if the region's corners are unfolded.
+    const auto at_fold = [&] {
+      return has_folded_corner(t, e.region) ? ExtraReason::folded_region : ExtraReason::past_focal_point;
+    };
+    if (passes_focal_point_in(t, nu, mu)) return at_fold();
     // Xi(x) is the interpolation of the ray's hit, a little off the ray: where S2 crosses the
     // focal surface, Xi(x) can lie just before the focal point while the ray's own hit lies just
     // past it. The hit, not the foot of Xi(x) on the ray, decides.
     if (const auto past = cast(t, x, nu, FocalRule::ignore);
         past && (past->point - lifted<d>(e.world)).norm() <= 0.5 * edge && passes_focal_point_in(t, nu, past->mu))
-      return ExtraReason::past_focal_point;
+      return at_fold();
     return ExtraReason::unexplained;
+  }
+
+  /// Whether the ray of a corner of region r (on element t), from the corner's point along the
+  /// element's field to the corner's image, passes a focal point of the element.
+  bool has_folded_corner(Index t, Index r) const {
+    const auto& m = map_.stored();
+    for (const Index n : m.region_corners[r]) {
+      const LocalPoint<d>& xi = m.node_position[n];
+      const auto corners = s1_.element(t);
+      WorldPoint<d> nu = o_.directions[corners[0]];
+      for (int i = 0; i < d; ++i) nu += xi(i) * (o_.directions[corners[i + 1]] - o_.directions[corners[0]]);
+      const double nn = nu.squaredNorm();
+      if (!(nn > 0.0)) continue;
+      const SurfacePoint<d> image = m.node_image(n);
+      const WorldPoint<d> y = s2_.world_position(image.element, image.local);
+      const double mu = (y - s1_.world_position(t, xi)).dot(nu) / nn;
+      if (passes_focal_point_in(t, nu, mu)) return true;
+    }
+    return false;
   }
 
   /// The admissible hit with the smallest mu (|mu| with negative distances), if any.
@@ -610,7 +634,7 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
   nlohmann::json extra_by_reason = nlohmann::json::object();
   for (ExtraReason reason : {ExtraReason::beyond_target_boundary, ExtraReason::unexplained, ExtraReason::behind_domain,
                              ExtraReason::beyond_distance_limit, ExtraReason::against_normal_check,
-                             ExtraReason::past_focal_point}) {
+                             ExtraReason::past_focal_point, ExtraReason::folded_region}) {
     const std::size_t n = r.extra_by_reason[static_cast<std::size_t>(reason)];
     extra_by_reason[std::string(to_string(reason))] = {{"samples", n}, {"fraction", r.fraction(n)}};
   }

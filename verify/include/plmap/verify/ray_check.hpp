@@ -143,10 +143,17 @@ enum class ExtraReason {
   /// MissedReason::past_focal_point). Not a defect; Xi(x) is within half an edge of the ray.
   /// Where S2 crosses the focal surface, Xi(x) (off the ray by the interpolation error) can lie
   /// just before the focal point while the ray's own hit lies just past it: then that hit, if it
-  /// is within half an edge of Xi(x), decides.
+  /// is within half an edge of Xi(x), decides. Only where every corner of x's region is
+  /// unfolded (see folded_region).
   past_focal_point,
+  /// As past_focal_point, but the ray of a corner of x's region, from the corner's point to its
+  /// image along the element's field, passes a focal point too: the region is not cut by the
+  /// fold curve near its edge but lies across it, so the map interpolates over a fold of the
+  /// projection (a projection that kept the regions its own fold test names, folded_regions.hpp,
+  /// shows this). A defect.
+  folded_region,
 };
-constexpr std::size_t extra_reason_count = 6;
+constexpr std::size_t extra_reason_count = 7;
 std::string_view to_string(ExtraReason reason);
 
 /// One sample listed in the report.
