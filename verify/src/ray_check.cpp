@@ -194,8 +194,7 @@ class RayChecker {
  private:
   void sample(Index t, const LocalPoint<d>& xi, RayCheckReport<d>& report, std::vector<double>& errors) {
     const WorldPoint<d> x = s1_.world_position(t, xi);
-    WorldPoint<d> nu = o_.directions[s1_.element(t)[0]];
-    for (int i = 0; i < d; ++i) nu += xi(i) * (o_.directions[s1_.element(t)[i + 1]] - o_.directions[s1_.element(t)[0]]);
+    const WorldPoint<d> nu = direction_at(t, xi);
     const std::optional<Hit> hit = cast(t, x, nu);
     const Index region = region_containing(t, xi);
     if (region != invalid_index && hit) {
@@ -327,15 +326,22 @@ class RayChecker {
     return ExtraReason::unexplained;
   }
 
+  /// The direction field at local point xi of element t: the corners' directions interpolated
+  /// linearly (not normalised), as the projection's rays take it.
+  WorldPoint<d> direction_at(Index t, const LocalPoint<d>& xi) const {
+    const auto corners = s1_.element(t);
+    WorldPoint<d> nu = o_.directions[corners[0]];
+    for (int i = 0; i < d; ++i) nu += xi(i) * (o_.directions[corners[i + 1]] - o_.directions[corners[0]]);
+    return nu;
+  }
+
   /// Whether the ray of a corner of region r (on element t), from the corner's point along the
   /// element's field to the corner's image, passes a focal point of the element.
   bool has_folded_corner(Index t, Index r) const {
     const auto& m = map_.stored();
     for (const Index n : m.region_corners[r]) {
       const LocalPoint<d>& xi = m.node_position[n];
-      const auto corners = s1_.element(t);
-      WorldPoint<d> nu = o_.directions[corners[0]];
-      for (int i = 0; i < d; ++i) nu += xi(i) * (o_.directions[corners[i + 1]] - o_.directions[corners[0]]);
+      const WorldPoint<d> nu = direction_at(t, xi);
       const double nn = nu.squaredNorm();
       if (!(nn > 0.0)) continue;
       const SurfacePoint<d> image = m.node_image(n);
