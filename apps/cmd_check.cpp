@@ -131,8 +131,8 @@ std::string ray_summary(const Json& j) {
       "  rules from the {}: distance limit {}{}, {}, normal check {}, directions {}\n"
       "  missed {:.3g} of S1, defects {:.3g}\n"
       "    outside D for a reason: nearer sheet {:.3g}, S1 in between {:.3g}, S2 seen twice {:.3g}, S2 crossing "
-      "itself {:.3g}, past a focal point {:.3g}, just inside S2's boundary {:.3g}\n"
-      "    defects: farther sheet {:.3g}, next to a fold {:.3g}, not covered {:.3g}\n"
+      "itself {:.3g}, just inside S2's boundary {:.3g}\n"
+      "    defects: farther sheet {:.3g}, in a folding element {:.3g}, next to a fold {:.3g}, not covered {:.3g}\n"
       "  extra {:.3g} of S1 (beyond S2's boundary {:.3g}, past a focal point {:.3g}, a region across a fold {:.3g}, "
       "unexplained {:.3g}; rejected by "
       "this check's rules: "
@@ -146,8 +146,8 @@ std::string ray_summary(const Json& j) {
       rules["normal_check"].get<std::string>(), rules["directions"].get<std::string>(),
       j["missed"]["fraction"].get<double>(),
       j["missed"]["defect_fraction"].get<double>(), f("nearer_sheet"), f("domain_in_between"),
-      f("target_seen_twice"), f("target_crosses_itself"), f("past_focal_point"), f("inside_target_boundary"),
-      f("farther_sheet"), f("next_to_fold"), f("not_covered"),
+      f("target_seen_twice"), f("target_crosses_itself"), f("inside_target_boundary"),
+      f("farther_sheet"), f("in_folding_element"), f("next_to_fold"), f("not_covered"),
       j["extra"]["fraction"].get<double>(), j["extra"]["by_reason"]["beyond_target_boundary"]["fraction"].get<double>(), x("past_focal_point"),
       x("folded_region"),
       j["extra"]["by_reason"]["unexplained"]["fraction"].get<double>(), x("behind_domain"),

@@ -30,7 +30,7 @@ r = c["against_rays"]; m = r["missed"]; e = r["image_error_relative_to_edge"]
 by = {k: v["fraction"] for k, v in m["by_reason"].items()}
 print(f"| {name} | {p['covered_measure'] / p['domain_measure']:.4f} | {p['edges_not_inserted']} | "
       f"{m['fraction']:.2e} | {by['nearer_sheet']:.2e} | {by['domain_in_between']:.2e} | {by['target_seen_twice']:.2e} | {by['target_crosses_itself']:.2e} | "
-      f"{by['past_focal_point']:.2e} | {m['defect_fraction']:.2e} | {by['farther_sheet']:.2e} | {by['next_to_fold']:.2e} | "
+      f"{m['defect_fraction']:.2e} | {by['farther_sheet']:.2e} | {by['in_folding_element']:.2e} | {by['next_to_fold']:.2e} | "
       f"{by['not_covered']:.2e} | {r['extra']['fraction']:.2e} | {r['extra']['defect_fraction']:.2e} | {e['median']:.1e} | {e['p99']:.1e} | {e['max']:.1e} | "
       f"{c['violation_count']} |")
 lo = p.get("left_out_measure")
@@ -44,7 +44,7 @@ PY
 }
 
 rm -f "$out/left_out.md"
-echo "| pair | covered / S1 | edges not inserted | missed | nearer sheet | S1 in between | S2 seen twice | S2 crosses itself | past focal point | defects | farther sheet | next to fold | not covered | extra | extra defects | error median | p99 | max | violations |"
+echo "| pair | covered / S1 | edges not inserted | missed | nearer sheet | S1 in between | S2 seen twice | S2 crosses itself | defects | farther sheet | in folding element | next to fold | not covered | extra | extra defects | error median | p99 | max | violations |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 run_pair femur --case femur --femur "$out/meshes/femur.off"
 run_pair bones --case femur --femur "$out/meshes/bones.off"

@@ -15,13 +15,13 @@ def check_against_rays_reasons():
                  expect_code=1)
     missed = j["against_rays"]["missed"]
     reasons = ["nearer_sheet", "farther_sheet", "not_covered", "domain_in_between", "target_seen_twice",
-               "target_crosses_itself", "past_focal_point", "next_to_fold", "inside_target_boundary"]
+               "target_crosses_itself", "in_folding_element", "next_to_fold", "inside_target_boundary"]
     expect_keys(missed["by_reason"], reasons, "missed.by_reason")
     expect(sum(missed["by_reason"][r]["samples"] for r in reasons) == missed["samples"], missed)
-    defects = sum(missed["by_reason"][r]["samples"] for r in ["farther_sheet", "not_covered", "next_to_fold"])
+    defects = sum(missed["by_reason"][r]["samples"] for r in ["farther_sheet", "not_covered", "in_folding_element", "next_to_fold"])
     expect(abs(missed["defect_fraction"] - defects / 2000) < 1e-12, missed)
     expect(missed["samples"] > 1000 and missed["by_reason"]["not_covered"]["samples"] == missed["samples"], missed)
     out, _, _ = run("check", "reasons.plmap", "--against-rays", 500, "--allow-negative", "--no-recorded-rules",
                     expect_code=1)
-    expect("outside D for a reason: nearer sheet 0, S1 in between 0, S2 seen twice 0, S2 crossing itself 0, past a focal point 0, just inside S2's boundary 0" in out, out)
-    expect("defects: farther sheet 0, next to a fold 0, not covered" in out, out)
+    expect("outside D for a reason: nearer sheet 0, S1 in between 0, S2 seen twice 0, S2 crossing itself 0, just inside S2's boundary 0" in out, out)
+    expect("defects: farther sheet 0, in a folding element 0, next to a fold 0, not covered" in out, out)

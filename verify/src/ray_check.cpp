@@ -27,7 +27,7 @@ std::string_view to_string(MissedReason reason) {
     case MissedReason::domain_in_between: return "domain_in_between";
     case MissedReason::target_seen_twice: return "target_seen_twice";
     case MissedReason::target_crosses_itself: return "target_crosses_itself";
-    case MissedReason::past_focal_point: return "past_focal_point";
+    case MissedReason::in_folding_element: return "in_folding_element";
     case MissedReason::next_to_fold: return "next_to_fold";
     case MissedReason::inside_target_boundary: return "inside_target_boundary";
   }
@@ -473,13 +473,14 @@ class RayChecker {
     return y && (*y - x).norm() <= mean_edge_length(s1_, t);
   }
 
-  /// Why a sample that no region covers must stay outside D, if a reason is found
-  /// (MissedReason's last three, tried in that order); else not_covered.
+  /// Why a sample that no region covers lies outside D: a stated reason (domain_in_between,
+  /// target_seen_twice, target_crosses_itself), else the defect class that says where it lies
+  /// (in_folding_element, next_to_fold), tried in that order; else not_covered.
   MissedReason explain_not_covered(Index t, const WorldPoint<d>& x, const WorldPoint<d>& nu, const Hit& hit) const {
     if (domain_between(lifted<d>(x), hit.point)) return MissedReason::domain_in_between;
     if (target_seen_again(lifted<d>(nu), hit)) return MissedReason::target_seen_twice;
     if (target_crosses_itself_near(hit)) return MissedReason::target_crosses_itself;
-    if (folds_within(t, hit.mu)) return MissedReason::past_focal_point;
+    if (folds_within(t, hit.mu)) return MissedReason::in_folding_element;
     if (fold_next_to(t, hit.mu)) return MissedReason::next_to_fold;
     return MissedReason::not_covered;
   }
@@ -624,7 +625,7 @@ nlohmann::json to_json(const RayCheckReport<d>& r) {
   nlohmann::json by_reason = nlohmann::json::object();
   for (MissedReason reason : {MissedReason::nearer_sheet, MissedReason::farther_sheet, MissedReason::not_covered,
                               MissedReason::domain_in_between, MissedReason::target_seen_twice,
-                              MissedReason::target_crosses_itself, MissedReason::past_focal_point,
+                              MissedReason::target_crosses_itself, MissedReason::in_folding_element,
                               MissedReason::next_to_fold, MissedReason::inside_target_boundary}) {
     const std::size_t n = r.missed_by_reason[static_cast<std::size_t>(reason)];
     by_reason[std::string(to_string(reason))] = {{"samples", n}, {"fraction", r.fraction(n)}};

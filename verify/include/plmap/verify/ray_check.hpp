@@ -66,8 +66,8 @@ struct RayCheckOptions {
 /// Why a sample whose ray hits S2 lies outside D. The first three say what covers the hit on
 /// S2; a sample that no region covers is then put in the first of the later classes that applies
 /// (in the order listed); not_covered is what none of them explains. nearer_sheet,
-/// domain_in_between, target_seen_twice, target_crosses_itself, past_focal_point and
-/// inside_target_boundary are outside D for a stated reason; farther_sheet, not_covered and
+/// domain_in_between, target_seen_twice, target_crosses_itself and inside_target_boundary are
+/// outside D for a stated reason; farther_sheet, not_covered, in_folding_element and
 /// next_to_fold are defects of the construction.
 enum class MissedReason {
   /// The hit lies in the image of a region whose preimage is nearer to it along the ray's
@@ -94,12 +94,16 @@ enum class MissedReason {
   /// continuous there, and D, bounded by S1 edges and preimages of S2 edges, ends beside it.
   target_crosses_itself,
   /// Not covered, and the projection folds in x's S1 element: the ray from one of its corners
-  /// passes a focal point before the hit's distance. The preimages of the S2 edges that reach
-  /// the fold end there, and D, bounded by S1 edges and S2-edge preimages, cannot follow the
-  /// fold line through the element.
-  past_focal_point,
+  /// passes a focal point before the hit's distance (x's own ray does not: its hit is
+  /// admissible). The walks of the S2 edges that reach the fold stop at their last crossing of
+  /// an S1 edge, so the unfolded part of the element between those crossings and the fold curve
+  /// stays out of D. A defect: the data model can end D inside an element (rim nodes and rim
+  /// edges, as on the rim where S2 passes behind S1), the projection does not do it at folds.
+  /// (Until 2026-12-07 this class was named past_focal_point and counted as outside D for a
+  /// stated reason.)
+  in_folding_element,
   /// Not covered, x's element does not fold, but one sharing a vertex with it does (the test of
-  /// past_focal_point): the construction lost the fold-free elements around a fold. A defect.
+  /// in_folding_element): the construction lost the fold-free elements around a fold. A defect.
   next_to_fold,
   /// The hit lies on an S2 element at S2's boundary, in the image of a region whose preimage
   /// lies within one edge length of x: x lies just outside D's boundary there, the
@@ -140,7 +144,7 @@ enum class ExtraReason {
   /// the projection's acceptance rules) excludes. The projection judges folds at the nodes: a
   /// region is the linear interpolation between nodes whose own rays are unfolded, and the fold
   /// curve of the field may cut a sliver off it (the interpolation at a fold, the counterpart of
-  /// MissedReason::past_focal_point). Not a defect; Xi(x) is within half an edge of the ray.
+  /// MissedReason::in_folding_element, the unfolded part of the element that D leaves out). Not a defect; Xi(x) is within half an edge of the ray.
   /// Where S2 crosses the focal surface, Xi(x) (off the ray by the interpolation error) can lie
   /// just before the focal point while the ray's own hit lies just past it: then that hit, if it
   /// is within half an edge of Xi(x), decides. Only where every corner of x's region is
@@ -204,12 +208,13 @@ struct RayCheckReport {
   std::vector<RaySample<d>> in_domain_defect_examples;
 
   double fraction(std::size_t count) const { return samples ? double(count) / double(samples) : 0.0; }
-  /// Missed samples that are not outside D for a stated reason: farther_sheet, not_covered and
-  /// next_to_fold (inside_target_boundary is the interpolation error, as beyond_target_boundary
-  /// for the extra samples).
+  /// Missed samples that are not outside D for a stated reason: farther_sheet, not_covered,
+  /// in_folding_element and next_to_fold (inside_target_boundary is the interpolation error, as
+  /// beyond_target_boundary for the extra samples).
   std::size_t missed_defects() const {
     return missed_by_reason[static_cast<std::size_t>(MissedReason::farther_sheet)] +
            missed_by_reason[static_cast<std::size_t>(MissedReason::not_covered)] +
+           missed_by_reason[static_cast<std::size_t>(MissedReason::in_folding_element)] +
            missed_by_reason[static_cast<std::size_t>(MissedReason::next_to_fold)];
   }
   /// Extra samples not explained by the interpolation at S2's boundary or at a fold.
