@@ -53,6 +53,8 @@ void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part, 
     array.reserve(capacity);
     advise_huge_pages(array.data(), array.capacity() * sizeof(array[0]));
   };
+  // (with BuilderOptions::spare_room, the node and region arrays take room to grow as well)
+  const auto spare = [&](std::size_t n) { return with_spare_room(n, at.spare_room); };
   auto sized = [&](auto& array, std::size_t size, std::size_t capacity) {
     reserved(array, std::max(size, capacity));
     back_pages(array.data(), size * sizeof(array[0]));  // written in full next: backed in one call
@@ -62,12 +64,12 @@ void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part, 
   sized(part.region_begin, own.elements + 1, room.elements + 1);
   sized(part.start_region, own.elements, room.elements);
   sized(part.edge_node_begin, 3 * own.elements + 1, 3 * room.elements + 1);
-  sized(part.node_position, own.nodes, room.nodes);
-  sized(part.node_type, own.nodes, room.nodes);
-  sized(part.node_location, own.nodes, room.nodes);
-  sized(part.node_image_element, own.nodes, room.nodes);
-  sized(part.node_image_local, own.nodes, room.nodes);
-  sized(part.node_target, own.nodes, room.nodes);
+  sized(part.node_position, own.nodes, spare(room.nodes));
+  sized(part.node_type, own.nodes, spare(room.nodes));
+  sized(part.node_location, own.nodes, spare(room.nodes));
+  sized(part.node_image_element, own.nodes, spare(room.nodes));
+  sized(part.node_image_local, own.nodes, spare(room.nodes));
+  sized(part.node_target, own.nodes, spare(room.nodes));
   // Neighbour entries and regions are bounded, not known: reserved (their slack stays
   // untouched, so it costs no resident memory) and sized as they are written. So are the
   // neighbour ends and the edge nodes: only the elements that keep their graph write them
@@ -76,13 +78,13 @@ void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part, 
   reserved(part.edge_node, std::max(own.on_edges, room.on_edges));
   reserved(part.neighbor, 2 * std::max(own.sides, room.sides));
   reserved(part.neighbor_edge_kind, 2 * std::max(own.sides, room.sides));
-  reserved(part.region_corners, std::max(own.triangles, room.triangles));
+  reserved(part.region_corners, spare(std::max(own.triangles, room.triangles)));
   reserved(part.region_neighbors, std::max(own.triangles, room.triangles));
-  reserved(part.region_target, std::max(own.triangles, room.triangles));
+  reserved(part.region_target, spare(std::max(own.triangles, room.triangles)));
   if (at.omitted_weights != nullptr)
     sized(*at.omitted_weights, own.nodes, room.nodes);
   else
-    reserved(part.region_map, std::max(own.triangles, room.triangles));
+    reserved(part.region_map, spare(std::max(own.triangles, room.triangles)));
 }
 
 FinalizeReport::MeasureLeftOut AssemblyCursor::LeftOutTally::measures(double s1_measure) const {

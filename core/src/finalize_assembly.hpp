@@ -30,6 +30,7 @@ namespace plmap::detail {
 /// Where the next element's values go in its block's part, and what the block counted.
 struct AssemblyCursor {
   std::size_t elements = 0, nodes = 0, entries = 0, edge_nodes = 0, regions = 0;
+  double spare_room = 0.0;  // BuilderOptions::spare_room: extra capacity of node and region arrays
   std::size_t graph_regions = 0;  // region_neighbors written: regions of elements with neighbour entries
   std::size_t graph_nodes = 0;    // neighbor_begin written (after its leading 0): nodes of those elements
   std::vector<Index> graph_elements;  // those elements, numbered in the block

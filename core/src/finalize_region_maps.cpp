@@ -1,6 +1,7 @@
 // finalize(), phase 5: the regions' affine maps (finalize_region_maps.hpp).
 
 #include "finalize_region_maps.hpp"
+#include "map_arrays.hpp"
 
 #include <plmap/core/affine_through.hpp>
 #include <plmap/core/errors.hpp>
@@ -39,11 +40,12 @@ double omitted_image_weight(const Support<2>& s) {
   return 0.0;
 }
 
-void write_region_maps(const Surface<2>& s2, const std::vector<double>& omitted, MapData<2>& m, unsigned threads) {
+void write_region_maps(const Surface<2>& s2, const std::vector<double>& omitted, MapData<2>& m, unsigned threads,
+                       double spare_room) {
   if (omitted.size() != m.node_position.size() || !m.region_map.empty())
     throw BuilderError("internal: region maps deferred without one omitted weight per node");
   const std::size_t regions = m.region_target.size();
-  m.region_map.reserve(regions);
+  m.region_map.reserve(with_spare_room(regions, spare_room));
   advise_huge_pages(m.region_map.data(), regions * sizeof(m.region_map[0]));  // before the first write
   m.region_map.resize(regions);
   // The array is first-touched here, in a tight loop of stores, one page fault per 85 regions

@@ -27,6 +27,7 @@ double omitted_image_weight(const Support<2>& s);
 
 /// Writes m.region_map (empty before) from the regions' corners, targets and the nodes' images,
 /// with `omitted` holding omitted_image_weight per node of m; on up to `threads` threads.
-void write_region_maps(const Surface<2>& s2, const std::vector<double>& omitted, MapData<2>& m, unsigned threads);
+void write_region_maps(const Surface<2>& s2, const std::vector<double>& omitted, MapData<2>& m, unsigned threads,
+                       double spare_room = 0.0);
 
 }  // namespace plmap::detail

@@ -224,6 +224,7 @@ class ClosingPass {
                   std::atomic<bool>& failed_somewhere) {
     const bool drop = in_.options.drop_conflicting_edges;
     AssemblyCursor cursor;
+    cursor.spare_room = in_.options.spare_room;
     if (deferred_region_maps()) cursor.omitted_weights = &part.omitted_weights;
     size_part(own, room, part.data, cursor);
     bool go_on = true;
@@ -441,10 +442,11 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   // The arrays sized by bounds are final now: their slack goes before the region maps are written
   // (shrink_stored_form), not after, and so do the originals the copies leave in the heap (on the
   // femur pair 1.3 MiB, 86k regions of a 92k bound, was on top of the region maps).
-  shrink_stored_form(m, pass.threads());
+  shrink_stored_form(m, pass.threads(), in.options.spare_room);
   give_freed_heap_back();
   assembled.graph_elements = pass.graph_elements();
-  if (pass.deferred_region_maps()) write_region_maps(in.s2, pass.joined_omitted_weights(), m, pass.threads());
+  if (pass.deferred_region_maps())
+    write_region_maps(in.s2, pass.joined_omitted_weights(), m, pass.threads(), in.options.spare_room);
   return assembled;
 }
 

@@ -23,12 +23,19 @@ void size_node_arrays(MapData<d>& m, std::size_t nodes) {
   m.neighbor_begin.resize(nodes + 1);
 }
 
-/// v.shrink_to_fit(), with the copy's pages backed in one call (reserve_for_writing) instead of
-/// faulting in one by one as it is written.
+/// n entries and the spare room beyond them that BuilderOptions::spare_room asks for.
+inline std::size_t with_spare_room(std::size_t n, double spare_room) {
+  return spare_room > 0.0 ? n + static_cast<std::size_t>(spare_room * static_cast<double>(n)) + 1024 : n;
+}
+
+/// v.shrink_to_fit() (down to `capacity` entries, at least its size), with the copy's pages
+/// backed in one call (reserve_for_writing) instead of faulting in one by one as it is written;
+/// the room beyond the size is not touched.
 template <class Vector>
-void shrink_array(Vector& v) {
+void shrink_array(Vector& v, std::size_t capacity = 0) {
   Vector copy;
-  reserve_for_writing(copy, v.size());
+  reserve_on_huge_pages(copy, std::max(capacity, v.size()));
+  back_pages(copy.data(), v.size() * sizeof(v[0]));
   copy.assign(v.begin(), v.end());
   v.swap(copy);
 }
@@ -57,13 +64,18 @@ void shrink_to_fit(MapData<d>& m) {
 /// original, and the original stays resident in malloc's heap after it is freed. The arrays are
 /// copied on up to `threads` threads, one array per task: on one thread the copies took a
 /// serial stretch of a two-thread projection (about 3 ms on the femur pair).
-inline void shrink_stored_form(MapData<2>& m, unsigned threads = 1) {
+inline void shrink_stored_form(MapData<2>& m, unsigned threads = 1, double spare_room = 0.0) {
   std::vector<std::function<void()>> copies;
-  auto add = [&](auto&... v) {
-    ((v.capacity() - v.size() > v.size() / 16 ? copies.push_back([&v] { shrink_array(v); }) : void()), ...);
+  // the node and region arrays keep the spare room (BuilderOptions::spare_room)
+  auto add = [&](double spare, auto&... v) {
+    ((v.capacity() - v.size() > v.size() / 16
+          ? copies.push_back([&v, spare] { shrink_array(v, with_spare_room(v.size(), spare)); })
+          : void()),
+     ...);
   };
-  add(m.node_begin, m.node_position, m.node_type, m.node_location, m.node_image_element, m.node_image_local,
-      m.node_target, m.region_begin, m.region_corners, m.region_target, m.region_map, m.start_region);
+  add(0.0, m.node_begin, m.region_begin, m.start_region);
+  add(spare_room, m.node_position, m.node_type, m.node_location, m.node_image_element, m.node_image_local,
+      m.node_target, m.region_corners, m.region_target, m.region_map);
   parallel_for_pieces_of_size(copies.size(), 1, threads, [&](std::size_t k, std::size_t, std::size_t) { copies[k](); });
 }
 

@@ -5,6 +5,8 @@
 #include <plmap/core/regions.hpp>
 #include <plmap/core/scaled_geometry.hpp>
 
+#include "segment_splice.hpp"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -128,12 +130,16 @@ void element_terms(const PlMap<d>& map, Index t, ImageMeasureTerms& terms) {
   terms.element_domain[static_cast<std::size_t>(t)] = domain_part(map, t);
 }
 
-/// The sums over the terms, in the order of the one-thread loop; the S2 elements' measures are
-/// computed (in parallel) where `terms.target_measure` does not hold them yet.
+/// The sums over the terms, in the order of the one-thread loop. (The S2 elements' measures are
+/// computed again each time, in that loop, as image_measures' one-thread path does: a cache of
+/// them, one double per S2 element, was kept with the terms until 2026-12-07, and on the femur
+/// pair it stood on the projection's peak after a region clip, 0.4 MiB; recomputing them costs a
+/// cross product per S2 element with images, about a millisecond on the 200k planes.)
 template <int d>
-ImageMeasures sum_terms(const PlMap<d>& map, unsigned threads, ImageMeasureTerms& terms) {
+ImageMeasures sum_terms(const PlMap<d>& map, unsigned threads, const ImageMeasureTerms& terms) {
   const auto& m = map.stored();
-  const Index n1 = map.domain().element_count(), n2 = map.target().element_count();
+  const Surface<d>& s2 = map.target();
+  const Index n1 = map.domain().element_count(), n2 = s2.element_count();
   ImageMeasures out;
   assign_on_huge_pages(out.per_target, static_cast<std::size_t>(n2), 0.0, threads);
   for (Index t = 0; t < n1; ++t) {
@@ -142,17 +148,9 @@ ImageMeasures sum_terms(const PlMap<d>& map, unsigned threads, ImageMeasureTerms
       out.per_target[static_cast<std::size_t>(m.region_target[r])] += terms.region_target[static_cast<std::size_t>(r)];
     out.covered.domain += terms.element_domain[static_cast<std::size_t>(t)];
   }
-  // A removal only takes regions away, so every S2 element with images had them before and has
-  // its measure already; a first call computes them.
-  if (terms.target_measure.empty()) assign_on_huge_pages(terms.target_measure, static_cast<std::size_t>(n2), 0.0, threads);
-  parallel_for_chunks(static_cast<std::size_t>(n2), 4096, threads, [&](std::size_t begin, std::size_t end) {
-    for (auto t2 = static_cast<Index>(begin); t2 < static_cast<Index>(end); ++t2)
-      if (out.per_target[static_cast<std::size_t>(t2)] != 0.0 && terms.target_measure[static_cast<std::size_t>(t2)] == 0.0)
-        terms.target_measure[static_cast<std::size_t>(t2)] = map.target().element_measure(t2);
-  });
   for (Index t2 = 0; t2 < n2; ++t2)
     if (out.per_target[static_cast<std::size_t>(t2)] != 0.0)
-      out.covered.target += out.per_target[static_cast<std::size_t>(t2)] * terms.target_measure[static_cast<std::size_t>(t2)];
+      out.covered.target += out.per_target[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
   return out;
 }
 
@@ -162,10 +160,16 @@ template <int d>
 ImageMeasures image_measures(const PlMap<d>& map, unsigned threads, ImageMeasureTerms& terms) {
   const Index n1 = map.domain().element_count();
   terms.region_begin = map.stored().region_begin;
-  // per region and per element of large surfaces: on huge pages (huge_page_allocator.hpp)
-  assign_on_huge_pages(terms.region_target, static_cast<std::size_t>(map.region_count()), 0.0, threads);
+  // per region and per element of large surfaces: on huge pages (huge_page_allocator.hpp); the
+  // regions' terms with room for a change that adds regions (image_measures_after_change: 2 %
+  // and 1,024 more, address space only) so that it needs no second block
+  const auto regions = static_cast<std::size_t>(map.region_count());
+  if (terms.region_target.capacity() < regions + regions / 50 + 1024) {
+    std::vector<double>().swap(terms.region_target);
+    terms.region_target.reserve(regions + regions / 50 + 1024);
+  }
+  assign_on_huge_pages(terms.region_target, regions, 0.0, threads);
   assign_on_huge_pages(terms.element_domain, static_cast<std::size_t>(n1), 0.0, threads);
-  terms.target_measure.clear();
   parallel_for_chunks(static_cast<std::size_t>(n1), 1024, threads, [&](std::size_t begin, std::size_t end) {
     for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) element_terms(map, t, terms);
   });
@@ -191,6 +195,21 @@ ImageMeasures image_measures_after_removal(const PlMap<d>& smaller, unsigned thr
   });
   terms.region_begin = smaller.stored().region_begin;
   return sum_terms(smaller, threads, terms);
+}
+
+ImageMeasures image_measures_after_change(const PlMap<2>& changed_map, std::span<const Index> changed, unsigned threads,
+                                          ImageMeasureTerms& terms) {
+  const Index n1 = changed_map.domain().element_count();
+  std::vector<char> is_changed(static_cast<std::size_t>(n1), 0);
+  for (Index t : changed) is_changed[static_cast<std::size_t>(t)] = 1;
+  detail::splice_segments(
+      terms.region_target, terms.region_begin, changed_map.stored().region_begin, is_changed,
+      [](Index, double value) { return value; }, [](Index, double*) {});
+  parallel_for_chunks(changed.size(), 64, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) element_terms(changed_map, changed[i], terms);
+  });
+  terms.region_begin = changed_map.stored().region_begin;
+  return sum_terms(changed_map, threads, terms);
 }
 
 template <int d>

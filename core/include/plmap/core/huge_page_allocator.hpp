@@ -41,6 +41,19 @@ inline void advise_huge_pages([[maybe_unused]] const void* p, [[maybe_unused]] s
 #endif
 }
 
+/// Marks the whole pages inside [p, p + bytes) for small pages (Linux: MADV_NOHUGEPAGE; a hint,
+/// a no-op elsewhere): for a little memory about to be written first in room marked for huge
+/// pages, where a first write would otherwise make a whole huge page resident. Pages already
+/// resident stay as they are.
+inline void advise_small_pages([[maybe_unused]] const void* p, [[maybe_unused]] std::size_t bytes) noexcept {
+#if defined(__linux__) && defined(MADV_NOHUGEPAGE)
+  const std::uintptr_t page = static_cast<std::uintptr_t>(std::max(4096L, sysconf(_SC_PAGESIZE)));
+  const auto begin = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t first = (begin + page - 1) & ~(page - 1), last = (begin + bytes + page - 1) & ~(page - 1);
+  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_NOHUGEPAGE);
+#endif
+}
+
 /// Reserves room for n elements in vector v and marks it for huge pages before anything is
 /// written there (a no-op for the part already written, and for small vectors).
 template <class Vector>

@@ -64,6 +64,12 @@ struct BuilderOptions {
   /// must check the elements listed in FinalizeReport::split_targets (the projection compares
   /// them with keep_nearer_sheet, which is why it sets this only then).
   bool split_unmapped_faces = false;
+  /// d = 2: room the finished map's node and region arrays keep beyond their sizes, as a
+  /// fraction of them (plus 1,024 entries): address space only, never written, so it costs no
+  /// resident memory (PlMap::memory_bytes, which counts capacity, shows it). An operation that
+  /// then adds nodes and regions in place (clip_regions, core/region_clipping.hpp) needs no second
+  /// copy of the arrays, which would raise the peak by the largest of them. 0 (default): none.
+  double spare_room = 0.0;
 };
 
 /// What finalize() had to leave out.

@@ -5,6 +5,7 @@
 
 #include <plmap/core/pl_map.hpp>
 
+#include <span>
 #include <vector>
 
 namespace plmap {
@@ -62,7 +63,6 @@ struct ImageMeasureTerms {
   std::vector<Index> region_begin;     ///< the map's, per S1 element: which elements lost regions
   std::vector<double> region_target;   ///< per region, d! times its image's local measure
   std::vector<double> element_domain;  ///< per S1 element with regions, its regions' measure
-  std::vector<double> target_measure;  ///< per S2 element with images, its measure (else 0)
 };
 
 /// image_measures, keeping its terms in `terms`.
@@ -74,5 +74,12 @@ ImageMeasures image_measures(const PlMap<d>& map, unsigned threads, ImageMeasure
 /// image_measures, so the result is the same to the last bit. `terms` becomes smaller's.
 template <int d>
 ImageMeasures image_measures_after_removal(const PlMap<d>& smaller, unsigned threads, ImageMeasureTerms& terms);
+
+/// image_measures of `changed_map`, a triangle map that `terms`' map became by changing the
+/// regions of the S1 elements `changed` (sorted) only (clip_regions, region_clipping.hpp): their
+/// terms are computed again, every other element's are moved to its new regions. `terms`
+/// becomes changed_map's.
+ImageMeasures image_measures_after_change(const PlMap<2>& changed_map, std::span<const Index> changed, unsigned threads,
+                                          ImageMeasureTerms& terms);
 
 }  // namespace plmap

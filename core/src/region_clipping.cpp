@@ -1,0 +1,724 @@
+// clip_regions (region_clipping.hpp): regions cut along lines, the part beyond leaving D.
+//
+// The map's stored arrays are rebuilt once: the elements that change (those of the clipped
+// regions, and those across an S1 edge where a cut ends on it) are re-made from their old nodes,
+// regions and graph (stored, or derived from their regions: element_graph.hpp) plus the new
+// nodes; every other element is copied with its indices shifted. Nothing is derived for the
+// unchanged elements: a changed element keeps its new graph in the stored graph where its
+// regions do not give it back, the other elements keep what they stored.
+
+#include <plmap/core/errors.hpp>
+#include <plmap/core/freed_heap.hpp>
+#include <plmap/core/region_clipping.hpp>
+
+#include "element_graph.hpp"
+#include "segment_splice.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace plmap {
+
+namespace {
+
+/// A cut closer than this (as a fraction of the side) to a corner passes through the corner.
+constexpr double corner_snap = 1e-6;
+/// Two cuts of one side closer than this (fraction of the side) share their node.
+constexpr double same_point = 1e-9;
+/// An image within this of an S2 edge (in barycentric coordinates) is put on it.
+constexpr double on_target_edge = 1e-9;
+
+using Side = std::pair<Index, Index>;  // old node indices of one element, smaller first
+
+Side side_of(Index a, Index b) { return a < b ? Side{a, b} : Side{b, a}; }
+
+/// A node the cuts add to one element.
+struct NewNode {
+  Side side;       // the old side it lies on
+  double s = 0.0;  // from side.first to side.second
+  LocalPoint<2> position = LocalPoint<2>::Zero();
+  SurfacePoint<2> image;
+  Index target = invalid_index;  // the S2 edge its image lies on, if the side is the preimage of one
+  std::int8_t location = -1;     // local edge of the element (a rim_on_edge node), or -1 inside
+};
+
+/// What happens to one clipped region.
+struct Cut {
+  std::array<double, 3> f{};            // the line's value at the corners (after snapping)
+  std::array<int, 3> own{-1, -1, -1};   // the new node where the line crosses side i (corner i to i+1)
+  bool removed = false;
+};
+
+/// The changes to one element.
+struct ElementEdit {
+  std::vector<NewNode> nodes;
+  std::map<Side, std::vector<int>> on_side;  // new nodes per old side
+  std::map<Index, Cut> cuts;                 // per clipped region
+
+  /// The node at parameter s of `side` (from side.first), made if none is that close.
+  int node_at(const Side& side, double s, const NewNode& made) {
+    auto& list = on_side[side];
+    for (int i : list)
+      if (std::abs(nodes[static_cast<std::size_t>(i)].s - s) <= same_point) return i;
+    nodes.push_back(made);
+    nodes.back().side = side;
+    nodes.back().s = s;
+    list.push_back(static_cast<int>(nodes.size()) - 1);
+    return list.back();
+  }
+};
+
+/// Bit k set when old node n lies on local edge k of its element.
+std::uint8_t element_edges_through(const MapData<2>& m, Index n) {
+  const int k = m.node_location[n];
+  if (is_at_corner(m.node_type[n])) return static_cast<std::uint8_t>((1u << k) | (1u << ((k + 2) % 3)));
+  if (is_on_edge(m.node_type[n])) return static_cast<std::uint8_t>(1u << k);
+  return 0;
+}
+
+/// The local edge both nodes lie on, or -1.
+int common_local_edge(const MapData<2>& m, Index a, Index b) {
+  const std::uint8_t both = element_edges_through(m, a) & element_edges_through(m, b);
+  for (int k = 0; k < 3; ++k)
+    if (both & (1u << k)) return k;
+  return -1;
+}
+
+/// An element's graph before the cuts, with where each node's list starts.
+struct OldGraph {
+  detail::ElementGraph graph;
+  std::vector<Index> begin;  // per node of the element + 1
+  Index first_node = 0;
+
+  /// The kind of the graph edge a-b (nodes of this element), if it is one.
+  std::optional<GraphEdgeKind> kind(Index a, Index b) const {
+    const Index e = graph.entry(begin, a - first_node, b);
+    if (e == invalid_index) return std::nullopt;
+    return graph.kind[static_cast<std::size_t>(e)];
+  }
+  /// The nodes on local edge k, from corner k to corner k + 1.
+  std::span<const Index> edge_nodes(int k) const {
+    std::size_t at = 0;
+    for (int i = 0; i < k; ++i) at += static_cast<std::size_t>(graph.edge_node_count[static_cast<std::size_t>(i)]);
+    return {graph.edge_node.data() + at, static_cast<std::size_t>(graph.edge_node_count[static_cast<std::size_t>(k)])};
+  }
+};
+
+/// The old graph of an element the cuts change, taken when it is re-made (not kept: on the
+/// femur pair all of them at once were half a MiB of the projection's peak).
+class OldGraphs {
+ public:
+  explicit OldGraphs(const PlMap<2>& map) : map_(map), offsets_(map.stored(), map.stored_graph()) {}
+
+  OldGraph of(Index t) {
+    OldGraph g;
+    const std::ptrdiff_t kept = detail::StoredGraphOffsets::find(map_.stored_graph(), t);
+    if (kept >= 0) {
+      g.graph = detail::stored_element_graph(map_.stored_graph(), offsets_, static_cast<std::size_t>(kept));
+    } else if (std::optional<detail::ElementGraph> derived = detail::derived_element_graph(map_.stored(), map_.target(), t, scratch_)) {
+      g.graph = std::move(*derived);
+    } else {
+      throw InvalidMapError(fmt::format("clip_regions: the regions of element {} do not give its graph", t));
+    }
+    g.begin = detail::list_begins(g.graph);
+    g.first_node = map_.nodes_begin(t);
+    return g;
+  }
+  /// Whether element t stored its graph.
+  bool stored(Index t) const { return detail::StoredGraphOffsets::find(map_.stored_graph(), t) >= 0; }
+  const detail::StoredGraphOffsets& offsets() const { return offsets_; }
+
+ private:
+  const PlMap<2>& map_;
+  detail::StoredGraphOffsets offsets_;
+  detail::GraphDerivationScratch scratch_;
+};
+
+/// Barycentric coordinate i of a local point of a triangle: (1 - x - y, x, y).
+double barycentric(const LocalPoint<2>& y, int i) { return i == 0 ? 1.0 - y.x() - y.y() : y(i - 1); }
+
+/// The local point with barycentric coordinate i set to zero exactly (the others rescaled).
+LocalPoint<2> onto_edge_opposite(const LocalPoint<2>& y, int i) {
+  if (i == 1) return {0.0, y.y()};
+  if (i == 2) return {y.x(), 0.0};
+  const double sum = y.x() + y.y();
+  return sum > 0.0 ? LocalPoint<2>(y.x() / sum, y.y() / sum) : LocalPoint<2>(0.5, 0.5);
+}
+
+/// The image of a point of side a-b of region r (corners' images by the region's affine map):
+/// on the S2 edge that both ends' images lie on, if they lie on one (the side is then the
+/// preimage of a piece of it, and the new node splits that piece).
+void image_on_side(const PlMap<2>& map, Index r, Index a, Index b, NewNode& node) {
+  const MapData<2>& m = map.stored();
+  const Index t2 = m.region_target[r];
+  LocalPoint<2> y = apply<2>(m.region_map[r], node.position);
+  {
+    const LocalPoint<2> ya = apply<2>(m.region_map[r], m.node_position[a]);
+    const LocalPoint<2> yb = apply<2>(m.region_map[r], m.node_position[b]);
+    for (int i = 0; i < 3; ++i)
+      if (std::abs(barycentric(ya, i)) <= on_target_edge && std::abs(barycentric(yb, i)) <= on_target_edge) {
+        y = onto_edge_opposite(y, i);
+        // barycentric coordinate i vanishes on the local edge joining corners i + 1 and i + 2,
+        // which is local edge (i + 1) mod 3
+        node.target = map.target().element_edge(t2, (i + 1) % 3);
+        break;
+      }
+  }
+  node.image = {t2, y};
+}
+
+/// Parameter along local edge k of the reference triangle, from corner k to corner k + 1.
+double along_local_edge(const LocalPoint<2>& p, int k) { return k == 0 ? p.x() : (k == 1 ? p.y() : 1.0 - p.y()); }
+
+/// The copies, in element `other`, of the nodes a and b of element t that lie on the S1 edge
+/// they share with it (matched by world position), or nothing.
+std::optional<Side> copies_in(const PlMap<2>& map, Index t, Index a, Index b, Index other, int other_edge) {
+  const Surface<2>& s1 = map.domain();
+  const MapData<2>& m = map.stored();
+  const WorldPoint<2> wa = s1.world_position(t, m.node_position[a]), wb = s1.world_position(t, m.node_position[b]);
+  const double tolerance = 1e-9 * (wb - wa).norm() + 1e-300;
+  Index ca = invalid_index, cb = invalid_index;
+  for (Index n = map.nodes_begin(other); n < map.nodes_end(other); ++n) {
+    const int k = m.node_location[n];
+    const bool on_edge = is_at_corner(m.node_type[n]) ? (k == other_edge || k == (other_edge + 1) % 3)
+                                                       : is_on_edge(m.node_type[n]) && k == other_edge;
+    if (!on_edge) continue;
+    const WorldPoint<2> w = s1.world_position(other, m.node_position[n]);
+    if ((w - wa).norm() <= tolerance) ca = n;
+    if ((w - wb).norm() <= tolerance) cb = n;
+  }
+  if (ca == invalid_index || cb == invalid_index || ca == cb) return std::nullopt;
+  return Side{ca, cb};  // in the order of a, b
+}
+
+/// The polygon of old region r of element edit e: its corners, with the new nodes on its sides
+/// in between. Entries >= 0 are old node indices; new node i is -(i + 1).
+std::vector<Index> polygon_of(const MapData<2>& m, Index r, const ElementEdit& e) {
+  std::vector<Index> polygon;
+  const auto& c = m.region_corners[r];
+  for (int i = 0; i < 3; ++i) {
+    polygon.push_back(c[i]);
+    const Side side = side_of(c[i], c[(i + 1) % 3]);
+    const auto found = e.on_side.find(side);
+    if (found == e.on_side.end()) continue;
+    std::vector<int> list = found->second;
+    const bool forward = side.first == c[i];
+    std::sort(list.begin(), list.end(), [&](int x, int y) {
+      const double sx = e.nodes[static_cast<std::size_t>(x)].s, sy = e.nodes[static_cast<std::size_t>(y)].s;
+      return forward ? sx < sy : sx > sy;
+    });
+    for (int i_new : list) polygon.push_back(-(i_new + 1));
+  }
+  return polygon;
+}
+
+/// The cuts: where each line crosses its region's sides (new nodes per element, made once per
+/// point of a side), their copies in the elements across S1 edges, and what becomes of each
+/// named region. Counts clipped and removed regions in `rep`.
+std::map<Index, ElementEdit> plan_cuts(const PlMap<2>& map, std::span<const RegionClip> clips, RegionClipReport& rep) {
+  const Surface<2>& s1 = map.domain();
+  const MapData<2>& m = map.stored();
+  const Index nr = map.region_count();
+  std::map<Index, ElementEdit> edits;
+  {
+    std::vector<char> named(static_cast<std::size_t>(nr), 0);
+    for (const RegionClip& clip : clips) {
+      if (clip.region < 0 || clip.region >= nr)
+        throw InvalidMapError(fmt::format("clip_regions: region {} does not exist (the map has {})", clip.region, nr));
+      if (named[static_cast<std::size_t>(clip.region)]++)
+        throw InvalidMapError(fmt::format("clip_regions: region {} is named twice", clip.region));
+      if (!(clip.normal.norm() > 0.0) || !std::isfinite(clip.offset))
+        throw InvalidMapError(fmt::format("clip_regions: the line of region {} has no direction", clip.region));
+    }
+  }
+  for (const RegionClip& clip : clips) {
+    const Index r = clip.region;
+    const auto& c = m.region_corners[r];
+    const Index t = map.node_element(c[0]);
+    Cut cut;
+    for (int i = 0; i < 3; ++i) cut.f[i] = clip.normal.dot(m.node_position[c[i]]) + clip.offset;
+    // a crossing next to a corner passes through it
+    for (int i = 0; i < 3; ++i) {
+      double& fa = cut.f[i];
+      double& fb = cut.f[(i + 1) % 3];
+      if (!(fa * fb < 0.0)) continue;
+      const double s = fa / (fa - fb);
+      if (s < corner_snap) fa = 0.0;
+      else if (s > 1.0 - corner_snap) fb = 0.0;
+    }
+    const bool kept = std::any_of(cut.f.begin(), cut.f.end(), [](double f) { return f > 0.0; });
+    const bool beyond = std::any_of(cut.f.begin(), cut.f.end(), [](double f) { return f < 0.0; });
+    if (!beyond) continue;  // nothing leaves
+    ElementEdit& edit = edits[t];
+    if (!kept) {
+      cut.removed = true;
+      edit.cuts[r] = cut;
+      ++rep.removed_regions;
+      continue;
+    }
+    // The crossings, and where one lies on the element's boundary, the copies of its side's
+    // ends in the elements across (found first: a cut whose copies are missing is not made,
+    // and the region leaves whole).
+    struct Crossing {
+      int side;
+      double s;  // from corner side to corner side + 1
+      int local_edge;
+      std::vector<std::pair<Index, Side>> copies;  // element across, the side's ends there
+    };
+    std::vector<Crossing> crossings;
+    bool copies_found = true;
+    for (int i = 0; i < 3; ++i) {
+      const double fa = cut.f[i], fb = cut.f[(i + 1) % 3];
+      if (!(fa * fb < 0.0)) continue;
+      Crossing x{i, fa / (fa - fb), common_local_edge(m, c[i], c[(i + 1) % 3]), {}};
+      if (x.local_edge >= 0) {
+        const Index e = s1.element_edge(t, x.local_edge);
+        for (const EdgeIncidence& inc : s1.edge_elements(e)) {
+          if (inc.element == t) continue;
+          const std::optional<Side> there = copies_in(map, t, c[i], c[(i + 1) % 3], inc.element, inc.local_edge);
+          if (!there) {
+            copies_found = false;
+            break;
+          }
+          x.copies.emplace_back(inc.element, *there);
+        }
+      }
+      crossings.push_back(std::move(x));
+    }
+    if (!copies_found || crossings.size() != 2) {
+      cut.removed = true;
+      edit.cuts[r] = cut;
+      ++rep.removed_regions;
+      continue;
+    }
+    for (const Crossing& x : crossings) {
+      const Index a = c[x.side], b = c[(x.side + 1) % 3];
+      const Side side = side_of(a, b);
+      const double s = side.first == a ? x.s : 1.0 - x.s;
+      NewNode made;
+      made.position = m.node_position[side.first] + s * (m.node_position[side.second] - m.node_position[side.first]);
+      made.location = static_cast<std::int8_t>(x.local_edge);
+      image_on_side(map, r, a, b, made);
+      const int own = edit.node_at(side, s, made);
+      cut.own[x.side] = own;
+      const NewNode& here = edit.nodes[static_cast<std::size_t>(own)];
+      for (const auto& [other, ends] : x.copies) {
+        // ends are the copies of a and b, in that order
+        const Side there = side_of(ends.first, ends.second);
+        const double s_there = there.first == ends.first ? x.s : 1.0 - x.s;
+        NewNode copy = here;
+        copy.position =
+            m.node_position[there.first] + s_there * (m.node_position[there.second] - m.node_position[there.first]);
+        copy.location = -1;
+        for (int k = 0; k < 3; ++k)
+          if (s1.element_edge(other, k) == s1.element_edge(t, x.local_edge)) copy.location = static_cast<std::int8_t>(k);
+        edits[other].node_at(there, s_there, copy);
+      }
+    }
+    edit.cuts[r] = cut;
+    ++rep.clipped_regions;
+  }
+
+  return edits;
+}
+
+// (what is kept per element until the arrays are rewritten; the old nodes stay in the arrays,
+// moved with them, so only the new ones are kept here)
+struct MadeElement {
+  Index old_nodes = 0;
+  std::vector<LocalPoint<2>> position;  // of all nodes while the element is made, then of the new
+  std::vector<NodeType> type;
+  std::vector<std::int8_t> location;
+  std::vector<SurfacePoint<2>> image;  // of the new nodes
+  std::vector<Index> target;           // of the new nodes
+  std::vector<Index> neighbor_count;   // per node
+  std::vector<std::pair<Index, GraphEdgeKind>> neighbors;  // element-local indices, node by node
+  std::array<std::vector<Index>, 3> edge_nodes;            // element-local
+  std::vector<std::array<Index, 3>> corners;                            // element-local
+  std::vector<std::array<Index, 3>> across;                             // element-local regions
+  std::vector<Index> region_target;
+  std::vector<AffineMap<2>> region_map;
+};
+
+/// Element t re-made with the cuts' nodes: its old nodes and the new ones, its regions cut and
+/// split (ear by ear, each polygon convex), its graph (old edges split at the new nodes, closure
+/// edges of the parts that left dropped, neighbours counter-clockwise) and edge arrays.
+MadeElement make_element(const PlMap<2>& map, Index t, const ElementEdit& edit, OldGraphs& graphs, RegionClipReport& rep) {
+  const MapData<2>& m = map.stored();
+  MadeElement out;
+  const OldGraph old_graph = graphs.of(t);
+  const Index first = map.nodes_begin(t), old_count = map.nodes_end(t) - first;
+  out.old_nodes = old_count;
+  for (Index n = first; n < map.nodes_end(t); ++n) {
+    out.position.push_back(m.node_position[n]);
+    out.type.push_back(m.node_type[n]);
+    out.location.push_back(m.node_location[n]);
+  }
+  for (const NewNode& node : edit.nodes) {
+    out.position.push_back(node.position);
+    out.type.push_back(node.location >= 0 ? NodeType::rim_on_edge : NodeType::rim_inside);
+    out.location.push_back(node.location);
+    out.image.push_back(node.image);
+    out.target.push_back(node.target);
+  }
+  rep.new_nodes += static_cast<Index>(edit.nodes.size());
+  const auto local = [&](Index entry) { return entry >= 0 ? entry - first : old_count - entry - 1; };
+  // graph edges of the re-made element, element-local, smaller first
+  std::map<Side, GraphEdgeKind> edges;
+  std::map<Side, char> region_side;       // sides of the new regions
+  std::map<Side, char> old_region_sides;  // sides of the old regions (old indices)
+  for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) {
+    const auto& c = m.region_corners[r];
+    for (int i = 0; i < 3; ++i) old_region_sides[side_of(c[i], c[(i + 1) % 3])] = 1;
+  }
+  for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) {
+    const auto found = edit.cuts.find(r);
+    if (found != edit.cuts.end() && found->second.removed) continue;
+    const auto& c = m.region_corners[r];
+    std::vector<Index> polygon = polygon_of(m, r, edit);
+    const bool split = polygon.size() > 3;
+    // the kind of each polygon side: that of the old side it lies on
+    std::vector<GraphEdgeKind> kinds;  // of the side that starts at each vertex
+    {
+      int corner = -1;
+      for (Index v : polygon) {
+        if (v >= 0) ++corner;
+        kinds.push_back(old_graph.kind(c[corner], c[(corner + 1) % 3]).value_or(GraphEdgeKind::closure));
+      }
+    }
+    if (found != edit.cuts.end()) {
+      // keep what lies on the kept side: corners with f >= 0, the line's own two nodes, and the
+      // nodes of other cuts on the kept part of the sides; the side between the own nodes is
+      // the new rim (a closure edge)
+      const Cut& cut = found->second;
+      std::vector<Index> kept;
+      std::vector<GraphEdgeKind> kept_kinds;
+      int corner = -1;
+      for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const Index v = polygon[i];
+        bool keep;
+        if (v >= 0) {
+          ++corner;
+          keep = cut.f[corner] >= 0.0;
+        } else {
+          const int id = static_cast<int>(-v - 1);
+          const bool own = id == cut.own[0] || id == cut.own[1] || id == cut.own[2];
+          // the line's value there, interpolated along the side from the corners' (snapped)
+          // values, so that a node of another cut is judged as the corners are
+          const NewNode& node = edit.nodes[static_cast<std::size_t>(id)];
+          const int ia = static_cast<int>(std::find(c.begin(), c.end(), node.side.first) - c.begin());
+          const int ib = static_cast<int>(std::find(c.begin(), c.end(), node.side.second) - c.begin());
+          const double f = (1.0 - node.s) * cut.f[ia] + node.s * cut.f[ib];
+          keep = own || f >= 0.0;
+        }
+        if (!keep) continue;
+        kept.push_back(v);
+        kept_kinds.push_back(kinds[i]);
+      }
+      // the side that leaves the first own node kept runs along the line: a closure edge
+      for (std::size_t i = 0; i < kept.size(); ++i) {
+        const Index v = kept[i], w = kept[(i + 1) % kept.size()];
+        auto own_id = [&](Index x) {
+          if (x >= 0) return false;
+          const int id = static_cast<int>(-x - 1);
+          return id == cut.own[0] || id == cut.own[1] || id == cut.own[2];
+        };
+        if (own_id(v) && own_id(w)) kept_kinds[i] = GraphEdgeKind::closure;
+      }
+      polygon = kept;
+      kinds = kept_kinds;
+    } else if (split) {
+      ++rep.split_regions;
+    }
+    // the polygon is convex: ears at its strictly convex vertices
+    std::vector<Index> ring(polygon.size());
+    for (std::size_t i = 0; i < polygon.size(); ++i) ring[i] = local(polygon[i]);
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Side s = side_of(ring[i], ring[(i + 1) % ring.size()]);
+      edges[s] = kinds[i];
+    }
+    const auto at = [&](Index v) { return out.position[static_cast<std::size_t>(v)]; };
+    while (ring.size() >= 3) {
+      bool cut_ear = false;
+      for (std::size_t i = 0; i < ring.size() && !cut_ear; ++i) {
+        const Index a = ring[(i + ring.size() - 1) % ring.size()], b = ring[i], cc = ring[(i + 1) % ring.size()];
+        const LocalPoint<2> u = at(b) - at(a), w = at(cc) - at(a);
+        const double area = u.x() * w.y() - u.y() * w.x();
+        if (!(area > 1e-12 * u.norm() * w.norm())) continue;
+        // nor may another vertex lie on the new side a-cc (the polygon has vertices in the
+        // middle of its sides): that would be a corner of no triangle on that side
+        const bool through_vertex = std::any_of(ring.begin(), ring.end(), [&](Index v) {
+          if (v == a || v == b || v == cc) return false;
+          const LocalPoint<2> x = at(v) - at(a);
+          const double across = w.x() * x.y() - w.y() * x.x(), along = w.dot(x);
+          return std::abs(across) <= 1e-12 * w.norm() * x.norm() && along > 0.0 && along < w.squaredNorm();
+        });
+        if (through_vertex) continue;
+        out.corners.push_back({a, b, cc});
+        out.region_target.push_back(m.region_target[r]);
+        out.region_map.push_back(m.region_map[r]);
+        for (const Side& s : {side_of(a, b), side_of(b, cc), side_of(cc, a)}) {
+          region_side[s] = 1;
+          edges.emplace(s, GraphEdgeKind::closure);  // a diagonal, if not a polygon side
+        }
+        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
+        cut_ear = true;
+      }
+      if (!cut_ear) break;  // what is left is flat
+    }
+  }
+  // old graph edges: split at the new nodes on them; the pieces that border no new region stay
+  // if they are pieces of S2 edges, or if the old edge bordered no region either
+  for (Index n = first; n < map.nodes_end(t); ++n)
+    for (Index i = old_graph.begin[static_cast<std::size_t>(n - first)]; i < old_graph.begin[static_cast<std::size_t>(n - first) + 1]; ++i) {
+      const Index q = old_graph.graph.neighbor[static_cast<std::size_t>(i)];
+      const GraphEdgeKind old_kind = old_graph.graph.kind[static_cast<std::size_t>(i)];
+      if (q < n) continue;
+      const Side old = {n, q};
+      std::vector<std::pair<double, Index>> chain{{0.0, n - first}, {1.0, q - first}};
+      if (const auto found = edit.on_side.find(old); found != edit.on_side.end())
+        for (int id : found->second)
+          chain.emplace_back(edit.nodes[static_cast<std::size_t>(id)].s, old_count + id);
+      std::sort(chain.begin(), chain.end());
+      const bool bordered = old_region_sides.contains(old);
+      for (std::size_t k = 0; k + 1 < chain.size(); ++k) {
+        const Side piece = side_of(chain[k].second, chain[k + 1].second);
+        if (region_side.contains(piece)) continue;
+        if (old_kind == GraphEdgeKind::target_edge || !bordered) edges[piece] = old_kind;
+        else edges.erase(piece);
+      }
+    }
+  // neighbour lists, counter-clockwise: from the element's boundary for a node on it, else from
+  // the smallest neighbour
+  const auto total = static_cast<Index>(out.position.size());
+  std::vector<std::vector<std::pair<Index, GraphEdgeKind>>> neighbors(static_cast<std::size_t>(total));
+  for (const auto& [s, kind] : edges) {
+    neighbors[static_cast<std::size_t>(s.first)].emplace_back(s.second, kind);
+    neighbors[static_cast<std::size_t>(s.second)].emplace_back(s.first, kind);
+  }
+  static const std::array<LocalPoint<2>, 3> corner_at = {LocalPoint<2>(0, 0), LocalPoint<2>(1, 0), LocalPoint<2>(0, 1)};
+  for (Index v = 0; v < total; ++v) {
+    auto& list = neighbors[static_cast<std::size_t>(v)];
+    const LocalPoint<2> p = out.position[static_cast<std::size_t>(v)];
+    std::optional<LocalPoint<2>> start;
+    const NodeType type = out.type[static_cast<std::size_t>(v)];
+    const int k = out.location[static_cast<std::size_t>(v)];
+    if (is_at_corner(type) || is_on_edge(type)) start = corner_at[(k + 1) % 3] - corner_at[k];
+    const auto angle = [&](Index q) {
+      const LocalPoint<2> d = out.position[static_cast<std::size_t>(q)] - p;
+      const LocalPoint<2> s0 = start.value_or(LocalPoint<2>(1.0, 0.0));
+      double a = std::atan2(s0.x() * d.y() - s0.y() * d.x(), s0.dot(d));
+      if (a < 0.0) a += 2.0 * std::numbers::pi;
+      if (start && a > 2.0 * std::numbers::pi - 1e-9) a = 0.0;
+      return a;
+    };
+    std::sort(list.begin(), list.end(), [&](const auto& x, const auto& y) { return angle(x.first) < angle(y.first); });
+    if (!start && !list.empty()) {
+      const auto smallest = std::min_element(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      std::rotate(list.begin(), smallest, list.end());
+    }
+  }
+  for (const auto& list : neighbors) {
+    out.neighbor_count.push_back(static_cast<Index>(list.size()));
+    out.neighbors.insert(out.neighbors.end(), list.begin(), list.end());
+  }
+  // nodes on the local edges, from corner k to corner k + 1
+  for (int k = 0; k < 3; ++k) {
+    auto& list = out.edge_nodes[static_cast<std::size_t>(k)];
+    for (Index n : old_graph.edge_nodes(k)) list.push_back(n - first);
+    for (std::size_t i = 0; i < edit.nodes.size(); ++i)
+      if (edit.nodes[i].location == k) list.push_back(old_count + static_cast<Index>(i));
+    std::stable_sort(list.begin(), list.end(), [&](Index x, Index y) {
+      return along_local_edge(out.position[static_cast<std::size_t>(x)], k) <
+             along_local_edge(out.position[static_cast<std::size_t>(y)], k);
+    });
+  }
+  // regions across each side
+  out.across.assign(out.corners.size(), {invalid_index, invalid_index, invalid_index});
+  std::map<Side, std::pair<Index, int>> first_with;
+  for (std::size_t r = 0; r < out.corners.size(); ++r)
+    for (int i = 0; i < 3; ++i) {
+      const Side s = side_of(out.corners[r][(i + 1) % 3], out.corners[r][(i + 2) % 3]);
+      const auto [it, fresh] = first_with.try_emplace(s, static_cast<Index>(r), i);
+      if (fresh) continue;
+      out.across[r][i] = it->second.first;
+      out.across[static_cast<std::size_t>(it->second.first)][it->second.second] = static_cast<Index>(r);
+    }
+  // the old nodes' values stay in the arrays: only the new nodes' are kept
+  const auto old_part = static_cast<std::ptrdiff_t>(old_count);
+  out.position.erase(out.position.begin(), out.position.begin() + old_part);
+  out.type.erase(out.type.begin(), out.type.begin() + old_part);
+  out.location.erase(out.location.begin(), out.location.begin() + old_part);
+  return out;
+}
+
+/// The map with the made elements in place of the old ones: each array's per-element segments
+/// move by what the changed elements before them gained or lost, and the changed elements'
+/// segments are written from what was made (a copy of the arrays would double the map's memory
+/// for a moment: on the femur pair of the projection peers that became the run's peak, 28 MiB
+/// against 12); then the stored graph.
+PlMap<2> rewrite(PlMap<2>&& map, std::map<Index, MadeElement>& made) {
+  const Index nt = map.domain().element_count();
+  std::shared_ptr<const Surface<2>> domain = map.domain_ptr(), target = map.target_ptr();
+  const MapProvenance provenance = map.provenance();
+  const detail::StoredGraphOffsets old_offsets(map.stored(), map.stored_graph());
+  auto [n, old_stored] = std::move(map).release_stored_form();
+  const std::vector<Index> old_node_begin = n.node_begin, old_region_begin = n.region_begin;
+  std::vector<char> is_changed(static_cast<std::size_t>(nt), 0);
+  for (const auto& [t, e] : made) is_changed[static_cast<std::size_t>(t)] = 1;
+  for (Index t = 0, node_shift = 0, region_shift = 0; t < nt; ++t) {
+    const auto it = made.find(t);
+    if (it != made.end()) {
+      node_shift += static_cast<Index>(it->second.position.size());  // the new nodes
+      region_shift += static_cast<Index>(it->second.corners.size()) - (old_region_begin[t + 1] - old_region_begin[t]);
+    }
+    n.node_begin[t + 1] = old_node_begin[t + 1] + node_shift;
+    n.region_begin[t + 1] = old_region_begin[t + 1] + region_shift;
+  }
+  const auto node_shift_of = [&](Index t) { return n.node_begin[t] - old_node_begin[t]; };
+  const auto same = [](Index, const auto& value) { return value; };
+  // a changed element keeps its old nodes first: they move with the array, the new ones follow
+  const auto kept_nodes = [&](Index t) { return is_changed[static_cast<std::size_t>(t)] ? made.at(t).old_nodes : Index{0}; };
+  const auto write_nodes = [&](auto& array, auto made_value) {
+    detail::splice_segments(
+        array, old_node_begin, n.node_begin, is_changed, same,
+        [&](Index t, auto* out) {
+          const MadeElement& e = made.at(t);
+          for (std::size_t v = 0; v < e.position.size(); ++v) out[static_cast<std::size_t>(e.old_nodes) + v] = made_value(e, v);
+        },
+        kept_nodes);
+  };
+  write_nodes(n.node_position, [](const MadeElement& e, std::size_t v) { return e.position[v]; });
+  write_nodes(n.node_type, [](const MadeElement& e, std::size_t v) { return e.type[v]; });
+  write_nodes(n.node_location, [](const MadeElement& e, std::size_t v) { return e.location[v]; });
+  write_nodes(n.node_image_element, [](const MadeElement& e, std::size_t v) { return e.image[v].element; });
+  write_nodes(n.node_image_local, [](const MadeElement& e, std::size_t v) { return e.image[v].local; });
+  write_nodes(n.node_target, [](const MadeElement& e, std::size_t v) { return e.target[v]; });
+  detail::splice_segments(
+      n.region_corners, old_region_begin, n.region_begin, is_changed,
+      [&](Index t, std::array<Index, 3> c) {
+        for (Index& x : c) x += node_shift_of(t);
+        return c;
+      },
+      [&](Index t, std::array<Index, 3>* out) {
+        const MadeElement& e = made.at(t);
+        for (std::size_t r = 0; r < e.corners.size(); ++r)
+          for (int i = 0; i < 3; ++i) out[r][i] = e.corners[r][i] + n.node_begin[t];
+      });
+  detail::splice_segments(n.region_target, old_region_begin, n.region_begin, is_changed, same, [&](Index t, Index* out) {
+    const MadeElement& e = made.at(t);
+    std::copy(e.region_target.begin(), e.region_target.end(), out);
+  });
+  detail::splice_segments(n.region_map, old_region_begin, n.region_begin, is_changed, same, [&](Index t, AffineMap<2>* out) {
+    const MadeElement& e = made.at(t);
+    std::copy(e.region_map.begin(), e.region_map.end(), out);
+  });
+  // what the arrays took is freed now, for the graphs to reuse (only the graphs' parts are read
+  // below)
+  for (auto& [t, e] : made) {
+    std::vector<LocalPoint<2>>().swap(e.position);
+    std::vector<NodeType>().swap(e.type);
+    std::vector<std::int8_t>().swap(e.location);
+    std::vector<SurfacePoint<2>>().swap(e.image);
+    std::vector<Index>().swap(e.target);
+    std::vector<std::array<Index, 3>>().swap(e.corners);
+    std::vector<Index>().swap(e.region_target);
+    std::vector<AffineMap<2>>().swap(e.region_map);
+  }
+  for (Index t = 0; t < nt; ++t) {
+    Index& start = n.start_region[t];
+    if (is_changed[static_cast<std::size_t>(t)])
+      start = n.region_begin[t] < n.region_begin[t + 1] ? n.region_begin[t] : invalid_index;
+    else if (start != invalid_index)
+      start += n.region_begin[t] - old_region_begin[t];
+  }
+
+  // The stored graph, in element order: a changed element's new graph where its regions do not
+  // give it back, and the graphs the other elements stored, their indices shifted.
+  StoredGraph graph;
+  detail::GraphDerivationScratch scratch;
+  auto changed = made.begin();
+  for (std::size_t s = 0; changed != made.end() || s < old_stored.element.size();) {
+    const Index tc = changed != made.end() ? changed->first : nt;
+    const Index ts = s < old_stored.element.size() ? old_stored.element[s] : nt;
+    if (tc <= ts) {
+      const Index t = tc;
+      const MadeElement& e = changed->second;
+      const Index node_base = n.node_begin[t], region_base = n.region_begin[t];
+      detail::ElementGraph g;
+      g.element = t;
+      g.neighbor_count = e.neighbor_count;
+      for (const auto& [q, kind] : e.neighbors) {
+        g.neighbor.push_back(q + node_base);
+        g.kind.push_back(kind);
+      }
+      for (const auto& list : e.edge_nodes) {
+        g.edge_node_count.push_back(static_cast<Index>(list.size()));
+        for (Index v : list) g.edge_node.push_back(v + node_base);
+      }
+      for (std::array<Index, 3> a : e.across) {
+        for (Index& x : a) x = x == invalid_index ? invalid_index : x + region_base;
+        g.region_neighbors.push_back(a);
+      }
+      const std::optional<detail::ElementGraph> derived = detail::derived_element_graph(n, *target, t, scratch);
+      if (!derived || *derived != g) detail::append(g, graph);
+      ++changed;
+      if (ts == tc) ++s;  // its old stored graph is replaced
+    } else {
+      detail::ElementGraph g = detail::stored_element_graph(old_stored, old_offsets, s);
+      const Index node_shift = n.node_begin[ts] - old_node_begin[ts], region_shift = n.region_begin[ts] - old_region_begin[ts];
+      for (Index& q : g.neighbor) q += node_shift;
+      for (Index& q : g.edge_node) q += node_shift;
+      for (auto& a : g.region_neighbors)
+        for (Index& x : a) x = x == invalid_index ? invalid_index : x + region_shift;
+      detail::append(g, graph);
+      ++s;
+    }
+  }
+  PlMap<2> out(std::move(domain), std::move(target), std::move(n), std::move(graph));
+  out.set_provenance(provenance);
+  return out;
+}
+
+PlMap<2> clip(PlMap<2>&& map, std::span<const RegionClip> clips, RegionClipReport* report) {
+  RegionClipReport rep;
+  std::map<Index, ElementEdit> edits = plan_cuts(map, clips, rep);
+  std::map<Index, MadeElement> made;
+  {
+    OldGraphs graphs(map);
+    // (each element's edit is freed once the element is made: memory the next ones reuse)
+    while (!edits.empty()) {
+      auto taken = edits.extract(edits.begin());
+      made.emplace(taken.key(), make_element(map, taken.key(), taken.mapped(), graphs, rep));
+    }
+  }
+  for (const auto& [t, e] : made) rep.changed_elements.push_back(t);
+  if (report) *report = rep;
+  if (made.empty()) return std::move(map);
+  return rewrite(std::move(map), made);
+}
+
+}  // namespace
+
+PlMap<2> clip_regions(PlMap<2>&& map, std::span<const RegionClip> clips, RegionClipReport* report) {
+  PlMap<2> out = clip(std::move(map), clips, report);
+  // The cut's working data (the old graphs, the made elements, the old stored graph) are freed
+  // into malloc's heap by now, where they would stay resident under what the caller allocates
+  // next (as after a face removal, face_removal.hpp). Given back.
+  give_freed_heap_back();
+  return out;
+}
+
+PlMap<2> clip_regions(const PlMap<2>& map, std::span<const RegionClip> clips, RegionClipReport* report) {
+  return clip_regions(PlMap<2>(map), clips, report);
+}
+
+}  // namespace plmap
