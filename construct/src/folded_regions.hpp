@@ -12,6 +12,7 @@
 /// those regions are found here and left out of D (remove_regions, core/face_removal.hpp).
 
 #include <plmap/core/pl_map.hpp>
+#include <plmap/core/region_clipping.hpp>
 
 #include <span>
 #include <vector>
@@ -26,6 +27,23 @@ template <int d>
   requires SurfaceDimension<d>
 std::vector<Index> regions_with_folded_corners(const PlMap<d>& map, std::span<const WorldPoint<d>> directions,
                                                std::span<const double> focal_free_reach, unsigned threads);
+
+/// How the regions with a folded corner (those of regions_with_folded_corners, d = 2) leave D:
+/// a region with an unfolded corner is cut along the fold (clip_regions, core/region_clipping.hpp)
+/// and keeps the part on its unfolded corners' side. The fold is found on each side from an
+/// unfolded corner to a folded one, by bisection with the same test applied to the region's
+/// own Xi there, and the cut runs through the last unfolded points, moved back by a hundredth of
+/// their sides (so the new nodes are unfolded with a margin). The fold curve is not straight: the
+/// part kept may still reach a sliver past it, which the ray check counts as the interpolation
+/// at a fold (past_focal_point), not as a region across one. Regions whose corners are all
+/// folded, or on which no cut is found, leave whole (`whole`, sorted). `elements` (sorted), if
+/// not empty, restricts the search to those S1 elements.
+struct FoldCuts {
+  std::vector<Index> whole;
+  std::vector<RegionClip> clips;
+};
+FoldCuts fold_cuts(const PlMap<2>& map, std::span<const WorldPoint<2>> directions,
+                   std::span<const double> focal_free_reach, unsigned threads, std::span<const Index> elements = {});
 
 extern template std::vector<Index> regions_with_folded_corners<1>(const PlMap<1>&, std::span<const WorldPoint<1>>,
                                                                   std::span<const double>, unsigned);

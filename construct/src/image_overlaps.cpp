@@ -103,18 +103,35 @@ struct ElementsPerTarget {
 };
 
 /// Calls f(t, t2) once for every S1 element t in [begin, end) and S2 element t2 that t has a
-/// region on. The regions of one element are consecutive, so one stamp per S2 element (the last
-/// S1 element seen on it) finds the repeats.
+/// region on, in the order of t's regions. The regions of one element are consecutive, so its
+/// repeats are found among its own targets (`seen`); an element with many regions (a coarse S1
+/// over a fine S2) uses a stamp per S2 element instead (`last_seen`, sized on first need: one
+/// index per S2 element and piece was a quarter of the sheet selection's memory on the femur
+/// pair, where elements hold a few regions each).
 template <int d, class F>
-void for_each_element_and_target(const PlMap<d>& map, Index begin, Index end, std::vector<Index>& last_seen, F&& f) {
+void for_each_element_and_target(const PlMap<d>& map, Index begin, Index end, std::vector<Index>& seen,
+                                 std::vector<Index>& last_seen, F&& f) {
+  constexpr Index few = 32;
   const auto& target = map.stored().region_target;
-  std::fill(last_seen.begin(), last_seen.end(), invalid_index);
-  for (Index t = begin; t < end; ++t)
-    for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r)
+  std::fill(last_seen.begin(), last_seen.end(), invalid_index);  // (stamps of an earlier call)
+  for (Index t = begin; t < end; ++t) {
+    const Index first = map.regions_begin(t), last = map.regions_end(t);
+    if (last - first <= few) {
+      seen.clear();
+      for (Index r = first; r < last; ++r)
+        if (const Index t2 = target[r]; std::find(seen.begin(), seen.end(), t2) == seen.end()) {
+          seen.push_back(t2);
+          f(t, t2);
+        }
+      continue;
+    }
+    if (last_seen.empty()) last_seen.assign(static_cast<std::size_t>(map.target().element_count()), invalid_index);
+    for (Index r = first; r < last; ++r)
       if (const Index t2 = target[r]; last_seen[t2] != t) {
         last_seen[t2] = t;
         f(t, t2);
       }
+  }
 }
 
 /// The lists by a counting sort over contiguous pieces of S1 elements, on all threads: each piece
@@ -125,15 +142,30 @@ ElementsPerTarget elements_per_target(const PlMap<d>& map, unsigned threads) {
   const Index n2 = map.target().element_count(), nt = map.domain().element_count();
   const std::size_t pieces = std::min<std::size_t>(resolve_thread_count(threads), static_cast<std::size_t>(std::max<Index>(1, nt / 4096)));
   const std::size_t size = (static_cast<std::size_t>(nt) + pieces - 1) / pieces;
+  ElementsPerTarget lists;
+  std::vector<std::vector<Index>> seen(pieces), last_seen(pieces);
+  if (pieces == 1) {
+    // One piece (one thread, or a small S1): the counts go into `first` itself, one place on,
+    // whose prefix sums are then each list's end; writing each list from its start moves that
+    // start to the next list's, so `first` is shifted back after. (A separate array of write
+    // positions, one index per S2 element, is saved: on the femur pair part of the projection's
+    // peak memory.)
+    assign_on_huge_pages(lists.first, static_cast<std::size_t>(n2) + 1, 0);
+    for_each_element_and_target(map, 0, nt, seen[0], last_seen[0], [&](Index, Index t2) { ++lists.first[t2 + 1]; });
+    for (Index t2 = 0; t2 < n2; ++t2) lists.first[t2 + 1] += lists.first[t2];
+    assign_on_huge_pages(lists.elements, static_cast<std::size_t>(lists.first[n2]), invalid_index);
+    for_each_element_and_target(map, 0, nt, seen[0], last_seen[0], [&](Index t, Index t2) { lists.elements[lists.first[t2]++] = t; });
+    for (Index t2 = n2; t2 > 0; --t2) lists.first[t2] = lists.first[t2 - 1];
+    lists.first[0] = 0;
+    return lists;
+  }
   // each piece's arrays made (first touched) by the thread that counts it
-  std::vector<std::vector<Index>> at(pieces), last_seen(pieces);
+  std::vector<std::vector<Index>> at(pieces);
   parallel_for_pieces_of_size(static_cast<std::size_t>(nt), size, threads, [&](std::size_t k, std::size_t begin, std::size_t end) {
     assign_on_huge_pages(at[k], static_cast<std::size_t>(n2), 0);  // pages backed in one call
-    assign_on_huge_pages(last_seen[k], static_cast<std::size_t>(n2), invalid_index);
-    for_each_element_and_target(map, static_cast<Index>(begin), static_cast<Index>(end), last_seen[k],
+    for_each_element_and_target(map, static_cast<Index>(begin), static_cast<Index>(end), seen[k], last_seen[k],
                                 [&](Index, Index t2) { ++at[k][t2]; });
   });
-  ElementsPerTarget lists;
   assign_on_huge_pages(lists.first, static_cast<std::size_t>(n2) + 1, 0);
   for (Index t2 = 0; t2 < n2; ++t2) {  // counts become where each piece writes
     Index next = lists.first[t2];
@@ -143,7 +175,7 @@ ElementsPerTarget elements_per_target(const PlMap<d>& map, unsigned threads) {
   }
   assign_on_huge_pages(lists.elements, static_cast<std::size_t>(lists.first[n2]), invalid_index);
   parallel_for_pieces_of_size(static_cast<std::size_t>(nt), size, threads, [&](std::size_t k, std::size_t begin, std::size_t end) {
-    for_each_element_and_target(map, static_cast<Index>(begin), static_cast<Index>(end), last_seen[k],
+    for_each_element_and_target(map, static_cast<Index>(begin), static_cast<Index>(end), seen[k], last_seen[k],
                                 [&](Index t, Index t2) { lists.elements[at[k][t2]++] = t; });
   });
   return lists;

@@ -78,6 +78,9 @@ MapBuilder<d> builder_for(const ProjectionContext<d>& ctx) {
   // map into one; their images are compared with the rest by the sheet selection, without which
   // they could overlap it (BuilderOptions::split_unmapped_faces).
   options.split_unmapped_faces = ctx.options.keep_nearer_sheet;
+  // room for the cuts of regions across a fold (clip_regions, after finalize): about 1 % more
+  // nodes and regions on the femur pair; untouched unless used (BuilderOptions::spare_room)
+  if constexpr (d == 2) options.spare_room = 0.02;
   return MapBuilder<d>(ctx.s1_shared, ctx.s2_shared, options);
 }
 
@@ -217,8 +220,8 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   report.seconds.insertion += seconds_since(t0);
   // what the projection no longer needs, freed before finalize (which has the memory peak);
   // the directions and focal-free distances are kept for the fold test of the finished regions
-  const std::vector<WorldPoint<d>> directions = std::move(ctx.vertex_directions);
-  const std::vector<double> focal_free_reach = std::move(ctx.focal_free_reach);
+  std::vector<WorldPoint<d>> directions = std::move(ctx.vertex_directions);
+  std::vector<double> focal_free_reach = std::move(ctx.focal_free_reach);
   ctx.release_search_data();
   state.release();
   insertion.release_used_points();
@@ -236,16 +239,38 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
   ImageMeasures images = image_measures(map, ctx.threads, terms);
   // faces closed on an element where the ray of a ghost node accepted from another element at
   // its vertex is folded (folded_regions.hpp), and regions split off faces at a corner without a
-  // node that the rays do not back (split_region_rays.hpp): one removal for both
-  std::vector<Index> folded = regions_with_folded_corners<d>(map, directions, focal_free_reach, ctx.threads);
+  // node that the rays do not back (split_region_rays.hpp): one removal for both. A region with
+  // a folded and an unfolded corner is cut along the fold instead (d = 2), after the removal.
+  std::vector<Index> folded;
+  std::vector<RegionClip> fold_clips;
+  if constexpr (d == 2) {
+    FoldCuts cuts = fold_cuts(map, directions, focal_free_reach, ctx.threads);
+    folded = std::move(cuts.whole);
+    fold_clips = std::move(cuts.clips);
+    if (!options.cut_folded_regions) {  // every region with a folded corner leaves whole
+      for (const RegionClip& clip : fold_clips) folded.push_back(clip.region);
+      std::sort(folded.begin(), folded.end());
+      fold_clips.clear();
+    }
+  } else {
+    folded = regions_with_folded_corners<d>(map, directions, focal_free_reach, ctx.threads);
+  }
   std::vector<Index> unbacked;
   if constexpr (d == 2) {
     const std::vector<Index> off =
         split_regions_off_their_rays(map, directions, focal_free_reach, dropped.regions_split_off_outside_faces, ctx.threads);
     std::set_difference(off.begin(), off.end(), folded.begin(), folded.end(), std::back_inserter(unbacked));
   }
+  // the elements to cut, in the map's element numbers (which a removal keeps); an unbacked region
+  // leaves whole, cut or not
+  std::vector<Index> cut_elements;
+  for (const RegionClip& clip : fold_clips)
+    if (!std::binary_search(unbacked.begin(), unbacked.end(), clip.region))
+      cut_elements.push_back(map.node_element(map.stored().region_corners[clip.region][0]));
+  cut_elements.erase(std::unique(cut_elements.begin(), cut_elements.end()), cut_elements.end());
+  const double before_folded = images.covered.domain;
+  double unbacked_measure = 0.0;
   if (!folded.empty() || !unbacked.empty()) {
-    double unbacked_measure = 0.0;
     for (Index r : unbacked) unbacked_measure += remote_intersection(map, r).domain_measure();
     std::vector<Index> named;
     std::set_union(folded.begin(), folded.end(), unbacked.begin(), unbacked.end(), std::back_inserter(named));
@@ -254,11 +279,35 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
     report.folded_faces = removal.removed_faces;
     report.unbacked_regions = static_cast<Index>(unbacked.size());
     report.folded_regions = removal.removed_regions - report.unbacked_regions;
-    const double before = images.covered.domain;
     images = image_measures_after_removal(map, ctx.threads, terms);
-    report.left_out.unbacked = unbacked_measure;
-    report.left_out.folded = std::max(0.0, before - images.covered.domain - unbacked_measure);
   }
+  if constexpr (d == 2)
+    if (!cut_elements.empty()) {
+      // the removal renumbered the regions: the cuts are found again on the elements concerned
+      // (and if that names regions to leave whole, which a removal can make, again after those)
+      FoldCuts cuts = fold_cuts(map, directions, focal_free_reach, ctx.threads, cut_elements);
+      for (int round = 0; !cuts.whole.empty(); ++round) {
+        FaceRemovalReport removal;
+        map = remove_regions(std::move(map), std::span<const Index>(cuts.whole), &removal, ctx.threads);
+        report.folded_faces += removal.removed_faces;
+        report.folded_regions += removal.removed_regions;
+        images = image_measures_after_removal(map, ctx.threads, terms);
+        cuts = fold_cuts(map, directions, focal_free_reach, ctx.threads, cut_elements);
+        if (round == 3) cuts.whole.clear();  // (never seen: what is left is cut where it can be)
+      }
+      RegionClipReport clipping;
+      map = clip_regions(std::move(map), std::span<const RegionClip>(cuts.clips), &clipping);
+      report.folded_regions_cut = clipping.clipped_regions;
+      report.folded_regions += clipping.removed_regions;
+      images = {};  // (its block is reused by the new measures instead of standing beside them)
+      images = image_measures_after_change(map, std::span<const Index>(clipping.changed_elements), ctx.threads, terms);
+    }
+  report.left_out.unbacked = unbacked_measure;
+  report.left_out.folded = std::max(0.0, before_folded - images.covered.domain - unbacked_measure);
+  // the fold tests are done: their blocks are reused by the sheet selection, which has the peak
+  // memory of the projection's end (on the femur pair about 0.5 MiB of it)
+  std::vector<WorldPoint<d>>().swap(directions);
+  std::vector<double>().swap(focal_free_reach);
   if (options.keep_nearer_sheet) {
     const double before = images.covered.domain;
     keep_nearer_sheet(map, images, terms, ctx.threads, report, std::span<const Index>(dropped.split_targets));

@@ -32,6 +32,7 @@ nlohmann::ordered_json projection_report_json(const ProjectionResult<d>& result,
   j["unmapped_faces"] = r.unmapped_faces;
   j["occluded_faces"] = r.occluded_faces;
   j["folded_faces"] = r.folded_faces;
+  j["folded_regions_cut"] = r.folded_regions_cut;
   j["unbacked_regions"] = r.unbacked_regions;
   if constexpr (d == 2)  // the measure of S1 outside D, by why: with covered_measure, S1's measure
     for (const auto& [name, measure] : r.left_out.fields()) j["left_out_measure"][std::string(name)] = r.left_out.*measure;

@@ -83,6 +83,7 @@ void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, ImageMeasureTerms& 
   map = remove_regions(std::move(map), std::span<const Index>(farther), &removal, threads);
   report.occluded_faces = removal.removed_faces;
   report.occluded_regions = removal.removed_regions;
+  images = {};  // (its block is reused by the new measures instead of standing beside them)
   images = image_measures_after_removal(map, threads, terms);
 }
 

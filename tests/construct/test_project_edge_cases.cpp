@@ -569,3 +569,20 @@ TEST(ProjectEdgeCases, TargetLargerOrSmallerThanDomainGiveValidMaps) {
   expect_sound(c2, *longer);
   EXPECT_NEAR(c2.measures.covered_domain, 0.2, 1e-12);
 }
+
+TEST(ProjectEdgeCases, CoarseDomainOverAFineTarget) {
+  // A coarse S1 (a 3 x 3 grid of squares, 18 triangles) under a fine, jittered S2 (a 40 x 40 grid
+  // reaching beyond it): each S1 element holds a hundred regions and more (the sheet selection
+  // lists the S1 elements of each S2 element by another path for such elements,
+  // image_overlaps.cpp). The map is valid, covers S1, and is the same for one and two threads.
+  auto s1 = grid(3, 3, 0, 1, 0, 1, 0.0);
+  auto s2 = grid(40, 40, -0.1, 1.1, -0.1, 1.1, 0.2, true, 0.2);
+  ProjectionOptions one, two;
+  two.threads = 2;
+  const auto r1 = project<2>(s1, s2, one);
+  const auto r2 = project<2>(s1, s2, two);
+  EXPECT_EQ(verify_violations(r1.map), "");
+  EXPECT_EQ(r1.map.data(), r2.map.data());
+  EXPECT_GT(r1.map.region_count(), 18 * 100);
+  EXPECT_NEAR(r1.measures.covered_domain / r1.measures.domain, 1.0, 1e-9);
+}

@@ -38,3 +38,46 @@ TEST(ProjectFoldGhosts, AValleyCreaseCostsOnlyItsOwnColumns) {
   EXPECT_EQ(rays.extra, 0u);
   EXPECT_NEAR(rays.fraction(rays.in_domain_with_hit), 2.0 / 3.0, 0.02);
 }
+
+TEST(ProjectFoldGhosts, AnElementThatFoldsInPartKeepsItsUnfoldedPart) {
+  // A valley z = k(y) |x - 0.5| with k from 1/4 to 1 along the crease, of 4 x 10 cells, and S2 a
+  // plane at height h above all of it. The crease columns' rays meet at about (cell width)(k +
+  // 1/k) above the crease (RayCheckReasons.FoldsAtAValleyCrease): beyond S2 where k is small,
+  // before it where k is near 1, so the crease elements between fold in part. Their regions with
+  // a folded and an unfolded corner are cut along the fold (folded_regions.hpp, clip_regions)
+  // instead of leaving whole (ProjectionOptions::cut_folded_regions = false, the comparison).
+  // Against rays, the cut keeps what it claims (no point of D whose ray passes a focal point, but
+  // for the sliver a straight cut leaves beside the curved fold: past_focal_point), and D grows
+  // by what the cut keeps, all of which the rays back.
+  for (const double h : {0.26, 0.3}) {
+    SCOPED_TRACE(h);
+    auto s1 = transformed<2>(*grid(4, 10, 0.3, 0.7, 0, 1, 0.0), [](const WorldPoint<2>& p) {
+      return WorldPoint<2>(p.x(), p.y(), (0.25 + 0.75 * p.y()) * std::abs(p.x() - 0.5));
+    });
+    auto s2 = grid(40, 13, -1, 2, -0.2, 1.2, h, true);
+    ProjectionOptions whole;
+    whole.cut_folded_regions = false;
+    const auto cut = project<2>(s1, s2);
+    const auto removed = project<2>(s1, s2, whole);
+    EXPECT_EQ(verify_violations(cut.map), "");
+    EXPECT_GT(cut.report.folded_regions_cut, 0);
+    EXPECT_EQ(removed.report.folded_regions_cut, 0);
+    EXPECT_GT(removed.report.folded_regions, 0);
+    RayCheckOptions<2> o;
+    o.directions = averaged_vertex_normals(*s1);
+    o.samples = 20000;
+    const auto rays_cut = check_against_rays(cut.map, o), rays_removed = check_against_rays(removed.map, o);
+    const auto extra = [](const RayCheckReport<2>& r, ExtraReason reason) {
+      return r.extra_by_reason[static_cast<std::size_t>(reason)];
+    };
+    EXPECT_EQ(rays_cut.extra_defects(), 0u);
+    EXPECT_EQ(extra(rays_cut, ExtraReason::folded_region), 0u);
+    EXPECT_LE(rays_cut.fraction(extra(rays_cut, ExtraReason::past_focal_point)), 1e-3);
+    // D grows, and by area the rays find (in D with a hit)
+    const double gained = (cut.measures.covered_domain - removed.measures.covered_domain) / cut.measures.domain;
+    EXPECT_GT(gained, 1e-3);
+    EXPECT_NEAR(rays_cut.fraction(rays_cut.in_domain_with_hit) - rays_removed.fraction(rays_removed.in_domain_with_hit),
+                gained, 3e-3);
+    EXPECT_LT(rays_cut.missed_defects(), rays_removed.missed_defects());
+  }
+}

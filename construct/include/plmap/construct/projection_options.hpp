@@ -137,6 +137,12 @@ struct ProjectionOptions {
   /// is left out of D (ProjectionReport::occluded_faces), as a vertex preimage keeps the nearest
   /// solution. With false such maps are returned as they are, and fail verify's coverage check.
   bool keep_nearer_sheet = true;
+  /// d = 2: a region whose corners' rays pass a focal point of their element before their images
+  /// (the projection folds there) is left out of D. With true (default), one that also has an
+  /// unfolded corner is cut along the fold instead and keeps its unfolded part
+  /// (ProjectionReport::folded_regions_cut; construct/src/folded_regions.hpp). false leaves every
+  /// such region out whole, as plmap did before 2026-12-07 (to compare the two).
+  bool cut_folded_regions = true;
   /// d = 2: where S2 leaves the band of admissible distances, D ends on the curve where the
   /// rays' distance to S2 reaches the band's bound, inside the S1 elements it crosses, instead of
   /// at the last S1 edge an S2 edge's preimage crosses before it: mu = 0 where S2 passes behind

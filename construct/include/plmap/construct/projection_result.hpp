@@ -116,6 +116,10 @@ struct ProjectionReport {
   /// cleared elements included).
   Index folded_faces = 0;
   Index folded_regions = 0;
+  /// d = 2: regions with a folded and an unfolded corner, cut along the fold: the part on the
+  /// unfolded side stays in D (construct/src/folded_regions.hpp, core/region_clipping.hpp); not
+  /// counted in folded_regions.
+  Index folded_regions_cut = 0;
   /// d = 2: regions that finalize split off a face at an S1 corner without a node and that the
   /// rays do not back: at one of their sample points the ray meets the plane of their S2 element
   /// more than half an edge from Xi there (at S2's silhouette along the rays, or at a fold). They
