@@ -112,7 +112,11 @@ FoldCuts fold_cuts(const PlMap<2>& map, std::span<const WorldPoint<2>> direction
   const Surface<2>& s1 = map.domain();
   const Surface<2>& s2 = map.target();
   FoldCuts cuts;
-  for (const auto& [r, mask] : folded_corners(map, directions, focal_free_reach, threads, elements)) {
+  for (const auto& folded : folded_corners(map, directions, focal_free_reach, threads, elements)) {
+    // (named, not a structured binding: the lambdas below capture r, which clang before C++20's
+    // capture rule for bindings refuses)
+    const Index r = folded.first;
+    const unsigned mask = folded.second;
     if (mask == 7u) {
       cuts.whole.push_back(r);
       continue;

@@ -570,7 +570,11 @@ PlMap<2> rewrite(PlMap<2>&& map, std::map<Index, MadeElement>& made) {
   std::shared_ptr<const Surface<2>> domain = map.domain_ptr(), target = map.target_ptr();
   const MapProvenance provenance = map.provenance();
   const detail::StoredGraphOffsets old_offsets(map.stored(), map.stored_graph());
-  auto [n, old_stored] = std::move(map).release_stored_form();
+  // (named references, not a structured binding: the lambdas below capture n, which clang before
+  // C++20's capture rule for bindings refuses)
+  std::pair<MapData<2>, StoredGraph> released = std::move(map).release_stored_form();
+  MapData<2>& n = released.first;
+  const StoredGraph& old_stored = released.second;
   const std::vector<Index> old_node_begin = n.node_begin, old_region_begin = n.region_begin;
   std::vector<char> is_changed(static_cast<std::size_t>(nt), 0);
   for (const auto& [t, e] : made) is_changed[static_cast<std::size_t>(t)] = 1;
