@@ -7,6 +7,8 @@
 #include <plmap/core/surface.hpp>
 #include <plmap/verify/check.hpp>
 
+#include "../verify_violations.hpp"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -136,18 +138,6 @@ std::vector<double> constant_directions(const Surface<d>& s1, const WorldPoint<d
   for (Index v = 0; v < s1.vertex_count(); ++v)
     for (int k = 0; k <= d; ++k) out.push_back(direction(k));
   return out;
-}
-
-/// Every violation of every check of plmap::verify, one a line; empty when the map is valid.
-template <int d>
-std::string verify_violations(const PlMap<d>& map) {
-  const VerificationReport report = verify(map);
-  if (report.ok()) return {};
-  std::ostringstream why;
-  for (const auto& check : report.checks)
-    for (const auto& v : check.violations)
-      why << check.name << "/" << v.rule << " element " << v.element << ": " << v.message << "\n";
-  return why.str().empty() ? std::string("verify failed without a listed violation") : why.str();
 }
 
 /// The edges a projection could not insert, one a line (reason, place, detail).

@@ -11,21 +11,14 @@
 
 #include <gtest/gtest.h>
 
+#include "../verify_violations.hpp"
+
 #include <algorithm>
 
 using namespace plmap;
+using plmap::test::verify_violations;
 
 namespace {
-
-template <int d>
-std::string violations(const PlMap<d>& map) {
-  const VerificationReport report = verify(map);
-  if (report.ok()) return {};
-  std::string text;
-  for (const auto& check : report.checks)
-    for (const auto& v : check.violations) text += check.name + "/" + v.rule + ": " + v.message + "\n";
-  return text.empty() ? std::string("verify failed without a listed violation") : text;
-}
 
 template <int d>
 Index graph_edge_entries(const PlMap<d>& map) {
@@ -39,7 +32,7 @@ TEST(FaceRemoval, AFaceOnTheElementBoundaryLeavesTheRestOfTheElement) {
   // 3 x 3 subdivision of each of two triangles: every sub-triangle is a face of one region.
   const auto sm = generators::subdivision_map(generators::two_triangles(), 3, 0.1, 7);
   const PlMap<2>& map = *sm.map;
-  ASSERT_EQ(violations(map), "");
+  ASSERT_EQ(verify_violations(map), "");
   // region 0 is the sub-triangle at corner 0 of element 0: two of its sides lie on the boundary
   const Index removed = 0;
   const double removed_area = remote_intersection(map, removed).domain_measure();
@@ -53,7 +46,7 @@ TEST(FaceRemoval, AFaceOnTheElementBoundaryLeavesTheRestOfTheElement) {
   EXPECT_EQ(graph_edge_entries(smaller), graph_edge_entries(map));  // S2 edges stay
   EXPECT_EQ(smaller.data().edge_node, map.data().edge_node);
   EXPECT_NEAR(covered_measure(smaller).domain, covered_measure(map).domain - removed_area, 1e-14);
-  EXPECT_EQ(violations(smaller), "");
+  EXPECT_EQ(verify_violations(smaller), "");
 }
 
 TEST(FaceRemoval, AFaceStrictlyInsideItsElementTakesTheWholeElement) {
@@ -81,7 +74,7 @@ TEST(FaceRemoval, AFaceStrictlyInsideItsElementTakesTheWholeElement) {
   EXPECT_EQ(smaller.regions_begin(0), smaller.regions_end(0));
   EXPECT_EQ(smaller.data().start_region[0], invalid_index);
   EXPECT_EQ(smaller.regions_end(1) - smaller.regions_begin(1), map.regions_end(1) - map.regions_begin(1));
-  EXPECT_EQ(violations(smaller), "");
+  EXPECT_EQ(verify_violations(smaller), "");
 }
 
 namespace {
@@ -118,7 +111,7 @@ Index closure_entries(const PlMap<2>& m) {
 
 TEST(FaceRemoval, AFaceOfSeveralRegionsGoesWhole) {
   const PlMap<2> map = quadrilateral_and_triangle_map();
-  ASSERT_EQ(violations(map), "");
+  ASSERT_EQ(verify_violations(map), "");
   ASSERT_EQ(map.region_count(), 3);
   Index in_quad = invalid_index;
   for (Index r = 0; r < map.region_count(); ++r)
@@ -135,7 +128,7 @@ TEST(FaceRemoval, AFaceOfSeveralRegionsGoesWhole) {
   // Gone with it: the closure edge across the quadrilateral and its three pieces of the element
   // boundary (boundary pieces are closure edges too), each listed at both ends.
   EXPECT_EQ(closure_entries(smaller), closure_entries(map) - 8);
-  EXPECT_EQ(violations(smaller), "");
+  EXPECT_EQ(verify_violations(smaller), "");
 }
 
 TEST(RegionRemoval, ARegionOfAFaceOnTheElementBoundaryGoesAlone) {
@@ -168,7 +161,7 @@ TEST(RegionRemoval, ARegionOfAFaceOnTheElementBoundaryGoesAlone) {
     const auto around = smaller.neighbors(diagonal[0]);
     EXPECT_NE(std::find(around.begin(), around.end(), diagonal[1]), around.end()) << "the diagonal went";
     EXPECT_LT(closure_entries(smaller), closure_entries(map));  // the named region's boundary pieces
-    EXPECT_EQ(violations(smaller), "");
+    EXPECT_EQ(verify_violations(smaller), "");
   }
   FaceRemovalReport report;
   const PlMap<2> both = remove_regions(PlMap<2>(map), std::span<const Index>(quad), &report);
@@ -188,7 +181,7 @@ TEST(FaceRemoval, CurvesLoseTheRegionAndItsGraphEdge) {
   EXPECT_EQ(report.removed_regions, 2);
   EXPECT_EQ(smaller.region_count(), map.region_count() - 2);
   EXPECT_EQ(smaller.data().neighbor.size(), map.data().neighbor.size() - 4);  // two links, both ways
-  EXPECT_EQ(violations(smaller), "");
+  EXPECT_EQ(verify_violations(smaller), "");
 }
 
 TEST(FaceRemoval, NothingNamedChangesNothingAndABadIndexIsAnError) {

@@ -16,6 +16,8 @@
 
 #include <gtest/gtest.h>
 
+#include "../verify_violations.hpp"
+
 #include <algorithm>
 #include <filesystem>
 #include <memory>
@@ -24,6 +26,7 @@
 #include <unistd.h>
 
 using namespace plmap;
+using plmap::test::verify_violations;
 
 namespace {
 
@@ -34,15 +37,6 @@ std::shared_ptr<const Surface<2>> make_square(std::vector<ElementCorners<2>> ele
 
 int count_type(const PlMap<2>& m, NodeType t) {
   return static_cast<int>(std::count(m.data().node_type.begin(), m.data().node_type.end(), t));
-}
-
-std::string violations(const PlMap<2>& map) {
-  const VerificationReport report = verify(map);
-  if (report.ok()) return {};
-  std::string text;
-  for (const auto& check : report.checks)
-    for (const auto& v : check.violations) text += check.name + "/" + v.rule + ": " + v.message + "\n";
-  return text.empty() ? std::string("verify failed without a listed violation") : text;
 }
 
 /// The point (x, y) of the unit square as a point of S1 (elements (0, 1, 2) below the diagonal,
@@ -110,7 +104,7 @@ std::unique_ptr<RimMap> rim_map_dropping_conflicts() {
 TEST(MapBuilderRim, DEndsOnTheRimInsideTheElements) {
   RimMap r;
   const PlMap<2> map = r.build();
-  ASSERT_EQ(violations(map), "");
+  ASSERT_EQ(verify_violations(map), "");
   // the rim crosses S1 edges 0-1, 0-2 (twice: one copy per element) and 2-3, and ends S2 edge
   // 1-3 inside element 0
   EXPECT_EQ(count_type(map, NodeType::rim_on_edge), 4);
@@ -142,7 +136,7 @@ TEST(MapBuilderRim, TheRimSurvivesBothFileFormats) {
     std::filesystem::remove(path);
     EXPECT_EQ(back.data().node_type, map.data().node_type) << name;
     EXPECT_EQ(count_type(back, NodeType::rim_inside), 1) << name;
-    EXPECT_EQ(violations(back), "") << name;
+    EXPECT_EQ(verify_violations(back), "") << name;
     EXPECT_NEAR(covered_measure(back).domain, 0.6, 1e-14) << name;
   }
 }
@@ -154,7 +148,7 @@ TEST(MapBuilderRim, WithoutTheRimEdgesNoRegionReachesPastTheEndOfThePiece) {
   RimMap r;
   r.enter_nodes_and_pieces();
   const PlMap<2> map = std::move(r.builder).finalize();
-  EXPECT_EQ(violations(map), "");
+  EXPECT_EQ(verify_violations(map), "");
   EXPECT_LT(covered_measure(map).domain, 0.6 - 0.05);
 }
 
@@ -194,7 +188,7 @@ TEST(MapBuilderRim, OnlyTheRimEdgesThatCrossSomethingAreDropped) {
   r.builder.add_rim_edge(a, b);
   FinalizeReport report;
   const PlMap<2> map = std::move(r.builder).finalize(&report);
-  ASSERT_EQ(violations(map), "");
+  ASSERT_EQ(verify_violations(map), "");
   EXPECT_TRUE(report.dropped_edges.empty());  // no S2 edge's stretch went
   EXPECT_NEAR(covered_measure(map).domain, 0.6, 1e-14);
   DeepestRegion<2> locator;
@@ -220,7 +214,7 @@ TEST(MapBuilderRim, RimNodesGoWithTheirDroppedRimEdges) {
   r.builder.add_rim_edge(a, b);
   FinalizeReport report;
   const PlMap<2> map = std::move(r.builder).finalize(&report);
-  ASSERT_EQ(violations(map), "");
+  ASSERT_EQ(verify_violations(map), "");
   EXPECT_TRUE(report.dropped_edges.empty());
   EXPECT_EQ(count_type(map, NodeType::rim_inside), 1);  // the end of S2 edge 1-3's piece only
   EXPECT_NEAR(covered_measure(map).domain, 0.6, 1e-14);
@@ -249,7 +243,7 @@ TEST(MapBuilderRim, PiecesEndingAtARimNodeLeftWithoutRimEndAtTheirLastCrossing) 
   }
   FinalizeReport report;
   const PlMap<2> map = std::move(r.builder).finalize(&report);
-  ASSERT_EQ(violations(map), "");
+  ASSERT_EQ(verify_violations(map), "");
   EXPECT_EQ(count_type(map, NodeType::rim_inside), 0);
   EXPECT_NEAR(covered_measure(map).domain, 0.42, 1e-14);
   DeepestRegion<2> locator;

@@ -12,22 +12,16 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "../verify_violations.hpp"
+
 #include <optional>
 #include <random>
 #include <vector>
 
 using namespace plmap;
+using plmap::test::verify_violations;
 
 namespace {
-
-std::string violations(const PlMap<2>& map) {
-  const VerificationReport report = verify(map);
-  if (report.ok()) return {};
-  std::string text;
-  for (const auto& check : report.checks)
-    for (const auto& v : check.violations) text += check.name + "/" + v.rule + ": " + v.message + "\n";
-  return text.empty() ? std::string("verify failed without a listed violation") : text;
-}
 
 /// Xi at local point xi of element t, found by testing every region of t (no point locator).
 std::optional<WorldPoint<2>> xi_at(const PlMap<2>& map, Index t, const LocalPoint<2>& xi) {
@@ -84,7 +78,7 @@ RegionClip line_through(const PlMap<2>& map, Index r, const Eigen::Vector3d& w, 
 TEST(RegionClipping, ACutRegionKeepsItsSideWithXiUnchangedAndTheRestLeaves) {
   const auto sm = generators::subdivision_map(generators::two_triangles(), 3, 0.1, 7);
   const PlMap<2>& map = *sm.map;
-  ASSERT_EQ(violations(map), "");
+  ASSERT_EQ(verify_violations(map), "");
   // region 0 lies at corner 0 of element 0: the line cuts it into a triangle and a quadrilateral
   const Index r = 0;
   const RegionClip clip = line_through(map, r, {0.3, 0.4, 0.3}, LocalPoint<2>(1.0, 0.35));
@@ -100,7 +94,7 @@ TEST(RegionClipping, ACutRegionKeepsItsSideWithXiUnchangedAndTheRestLeaves) {
   EXPECT_EQ(report.new_nodes, 2);
   EXPECT_EQ(clipped.node_count(), map.node_count() + 2);
   EXPECT_NEAR(covered_measure(clipped).domain, covered_measure(map).domain - (1.0 - fraction) * area, 1e-14);
-  EXPECT_EQ(violations(clipped), "");
+  EXPECT_EQ(verify_violations(clipped), "");
   // Xi on a grid of points of the old region: unchanged on the kept side, undefined beyond
   const Index t = 0;
   int kept = 0, gone = 0;
@@ -169,7 +163,7 @@ TEST(RegionClipping, ACutEndingOnASharedS1EdgeSplitsTheRegionAcrossIt) {
               covered_measure(map).domain -
                   (1.0 - kept_area(tri, clip.normal, clip.offset) / local_area(tri)) * remote_intersection(map, r).domain_measure(),
               1e-14);
-  EXPECT_EQ(violations(clipped), "");
+  EXPECT_EQ(verify_violations(clipped), "");
 }
 
 TEST(RegionClipping, ALineOutsideTheRegionChangesNothingAndOneBeyondItRemovesIt) {
@@ -245,6 +239,6 @@ TEST(RegionClipping, RandomCutsOfManyRegionsKeepAValidMapAndExactlyTheirKeptPart
     std::string lines;
     for (const RegionClip& c : clips)
       lines += fmt::format(" region {} normal ({}, {}) offset {};", c.region, c.normal.x(), c.normal.y(), c.offset);
-    ASSERT_EQ(violations(clipped), "") << "round " << round << ":" << lines;
+    ASSERT_EQ(verify_violations(clipped), "") << "round " << round << ":" << lines;
   }
 }
