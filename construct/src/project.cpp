@@ -304,8 +304,8 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
     }
   report.left_out.unbacked = unbacked_measure;
   report.left_out.folded = std::max(0.0, before_folded - images.covered.domain - unbacked_measure);
-  // the fold tests are done: their blocks are reused by the sheet selection, which has the peak
-  // memory of the projection's end (on the femur pair about 0.5 MiB of it)
+  // the fold tests are done: their blocks (a direction per S1 vertex, a distance per element) are
+  // reused by the sheet selection, where the end of the projection has its peak memory
   std::vector<WorldPoint<d>>().swap(directions);
   std::vector<double>().swap(focal_free_reach);
   if (options.keep_nearer_sheet) {
