@@ -132,9 +132,6 @@ class OldGraphs {
     g.first_node = map_.nodes_begin(t);
     return g;
   }
-  /// Whether element t stored its graph.
-  bool stored(Index t) const { return detail::StoredGraphOffsets::find(map_.stored_graph(), t) >= 0; }
-  const detail::StoredGraphOffsets& offsets() const { return offsets_; }
 
  private:
   const PlMap<2>& map_;
