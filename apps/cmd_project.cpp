@@ -30,7 +30,7 @@ namespace {
 struct ProjectCommand {
   std::string s1, s2, output, directions_file, solver = "newton", normal_check = "none", renumber = "auto";
   double max_distance = std::numeric_limits<double>::infinity();
-  bool relative_distance = false, allow_negative = false, json = false, no_rim = false;
+  bool relative_distance = false, allow_negative = false, json = false, no_rim = false, no_fold_rim = false;
   unsigned threads = 0;
   int dimension = 0;
   std::size_t max_listed = 20;
@@ -61,6 +61,7 @@ int run(const ProjectCommand& o, Surface<d>&& s1_surface, Surface<d>&& s2_surfac
   options.max_distance_is_relative = o.relative_distance;
   options.allow_negative_distance = o.allow_negative;
   options.end_on_rim = !o.no_rim;
+  options.fold_rim = !o.no_fold_rim;
   options.normal_check = normal_check_named(o.normal_check);
   options.threads = o.threads;
   options.renumbering = renumbering_from(o.renumber);
@@ -145,6 +146,10 @@ void register_project(CLI::App& app, Action& action) {
   cmd->add_flag("--no-rim", o->no_rim,
                 "Where S2 passes behind S1 or beyond --max-distance, end D at the last S1 edge a walk crosses "
                 "instead of on the curve where the distance reaches that bound (the behaviour before rim nodes)");
+  cmd->add_flag("--no-fold-rim", o->no_fold_rim,
+                "Where a walk stops at a fold, end its piece at the last S1 edge it crosses and start the piece "
+                "beyond the fold at its first, instead of joining both sheets on one curve (the behaviour before "
+                "2026-12-07)");
   cmd->add_flag("--allow-negative", o->allow_negative,
                 "Also accept images behind S1 (penetrating contact), down to -max-distance");
   cmd->add_option("--normal-check", o->normal_check,

@@ -16,6 +16,7 @@
 #include "folded_regions.hpp"
 #include "projection_context.hpp"
 #include "projection_edge_walks.hpp"
+#include "projection_fold_rim.hpp"
 #include "projection_ghost_rays.hpp"
 #include "projection_insertion.hpp"
 #include "projection_sheet_selection.hpp"
@@ -214,6 +215,14 @@ ProjectionResult<d> run_projection(std::shared_ptr<const Surface<d>> s1, std::sh
       plan_rim_walks(ctx, state, solver, std::span<const RimStart<d>>(starts), buffer, edges, planned);
       insertion.insert_rim_walks(edges, planned, buffer, report);
       insertion.insert_rim(report);
+    }
+  }
+  // where the sheets on both sides of a fold meet: the rim between their meeting points
+  if constexpr (d == 2) {
+    if (options.fold_rim) {
+      const std::vector<FoldRimPath> paths =
+          trace_fold_rims(ctx, solver, std::span<const FoldRimNode>(insertion.fold_rim_points()));
+      insertion.insert_fold_rims(std::span<const FoldRimPath>(paths), report);
     }
   }
   insertion.declare_edges_without_pieces_outside();

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 namespace plmap::projection {
 
@@ -93,6 +94,36 @@ class EdgeCrossings {
     c.lambda = std::clamp(c.lambda, 0.0, 1.0);
     c.valid = true;
     return c;
+  }
+
+  /// Eq. (3) on S1 element t: the local point of t, strictly inside it (by `margin` in
+  /// barycentric coordinates), whose ray reaches world point q within the distance limit and
+  /// before any focal point of t's field, and the distance along that ray; nullopt if there is
+  /// none.
+  struct ElementPreimage {
+    LocalPoint<d> local;
+    double mu;
+  };
+  std::optional<ElementPreimage> unfolded_preimage_in(Index t, const WorldPoint<d>& q, double margin, long long& calls,
+                                                     long long& failures) const {
+    VertexProjectionSystem<d> sys;
+    for (int k = 0; k <= d; ++k) {
+      sys.corners[k] = ctx_.s1.corner(t, k);
+      sys.directions[k] = ctx_.vertex_directions[ctx_.s1.element(t)[k]];
+    }
+    sys.target = q;
+    ++calls;
+    const auto r = solver_.solve(sys, sys.initial_guess());
+    if (!r.converged) {
+      ++failures;
+      return std::nullopt;
+    }
+    const LocalPoint<d> xi = r.x.template head<d>();
+    const double mu = r.x(d);
+    if (!(barycentric_from_local<d>(xi).minCoeff() > margin) || !ctx_.distance_ok(mu, sys.scale()) ||
+        !ctx_.unfolded_in(t, xi, mu))
+      return std::nullopt;
+    return ElementPreimage{xi, mu};
   }
 
   /// For d = 1: the ray from S1 vertex w meets the line of the S2 segment (qa, qb).

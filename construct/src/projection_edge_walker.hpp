@@ -55,6 +55,9 @@ struct WalkResult {
   /// A walk that stopped because its S2 edge leaves the band of distances (end_on_rim): where the edge
   /// reaches the band's bound beyond the stop, its parameter measured in the walk's direction.
   std::optional<RimPoint<d>> rim;
+  /// A walk that stopped at a fold: the element ahead of the stop in which the crossings were
+  /// folded (the stop's sheet goes on in it up to the fold).
+  Index fold_element = invalid_index;
 };
 
 /// The walks along the preimages of S2 edges.
@@ -102,6 +105,7 @@ class EdgeWalker {
           }
       }
       bool solver_failed = false, beyond_limit = false, folded = false;
+      Index folded_in = invalid_index;
       double best_eta = std::numeric_limits<double>::infinity(), best_mu = 0.0;
       Place<d> best_place;
       Crossing<d> best_crossing{};
@@ -152,6 +156,7 @@ class EdgeWalker {
           // beyond a focal point the continuation belongs to a folded sheet of the projection
           if (!ctx_.unfolded_in_at(t, place, c.mu)) {
             folded = true;
+            if (folded_in == invalid_index) folded_in = t;
             continue;
           }
           element_eta = c.eta;
@@ -196,6 +201,7 @@ class EdgeWalker {
                    : solver_failed ? EdgeFailureReason::solver_failure
                    : beyond_limit  ? EdgeFailureReason::distance_limit
                                    : EdgeFailureReason::discontinuity;
+        if (folded) w.fold_element = folded_in;
         if (w.reason == EdgeFailureReason::distance_limit && ctx_.ends_on_rim())
           w.rim = rim_ahead(cand, eta, qa, qb, unfolded_here);
         return w;
@@ -325,6 +331,8 @@ class EdgeWalker {
     /// Where the preimages of the edge's first and second vertex were inserted, if they were.
     const std::optional<Place<d>>& first;
     const std::optional<Place<d>>& second;
+    /// The first of the edge's pieces in the plan buffer.
+    std::size_t pieces_begin = 0;
     bool reached_second = false;
     bool first_walk_failed = false;
     /// The entry whose walk reached the second vertex, if that was no walk from the first vertex:
@@ -371,6 +379,7 @@ class EdgeWalker {
     plan.failures_begin = static_cast<std::uint32_t>(buffer.failures.size());
     const auto tv = ctx_.target_edge_vertices(e);
     EdgeProgress progress(state_.target_place[tv[0]], state_.target_place[tv[1]]);
+    progress.pieces_begin = buffer.pieces.size();
     if (progress.first) walk_from_first_vertex(e, progress, buffer);
     walk_from_boundary_entries(e, progress, buffer);
     // The second vertex has a preimage that no walk reached: the edge enters S1 across its boundary
@@ -389,6 +398,8 @@ class EdgeWalker {
         !ctx_.on_boundary(*progress.second))
       buffer.failures.push_back(failure(e, EdgeFailureReason::endpoint_without_preimage, *progress.second, 1.0,
                                         fmt::format("the S2 vertex {} has no preimage", tv[0])));
+    if constexpr (d == 2)
+      if (ctx_.options.fold_rim) meet_across_gaps(e, progress.pieces_begin, progress.first, buffer);
     plan.pieces_end = static_cast<std::uint32_t>(buffer.pieces.size());
     plan.failures_end = static_cast<std::uint32_t>(buffer.failures.size());
     // No piece and nothing wrong: the edge lies outside D (it may touch S1's boundary at an
@@ -519,6 +530,217 @@ class EdgeWalker {
     return rim_reentry(ctx_, *stopped.rim, ctx_.s2.vertex(tv[0]), ctx_.s2.vertex(tv[1]), before);
   }
 
+  /// The point at parameter eta of S2 edge e, if both a sheet through one of the `near` elements
+  /// and another through one of the `far` elements reach it: strictly inside the element,
+  /// unfolded, within the band and not behind a nearer sheet; the two preimages (the first such
+  /// near element, then the first such far element other than it).
+  std::optional<std::pair<RimPoint<d>, RimPoint<d>>> meeting_at(Index e, double eta, std::span<const Index> near,
+                                                                std::span<const Index> far, long long& calls,
+                                                                long long& failures) const
+    requires(d == 2)
+  {
+    constexpr double inside = 1e-6;  // a rim node strictly inside its element, not snapped to a side
+    const auto tv = ctx_.target_edge_vertices(e);
+    const WorldPoint<d> q = ctx_.s2.vertex(tv[0]) + eta * (ctx_.s2.vertex(tv[1]) - ctx_.s2.vertex(tv[0]));
+    auto seen_from = [&](Index t) -> std::optional<RimPoint<d>> {
+      const auto p = crossings_.unfolded_preimage_in(t, q, inside, calls, failures);
+      if (!p) return std::nullopt;
+      Place<d> place;
+      place.kind = PlaceKind::element;
+      place.index = t;
+      place.local = p->local;
+      if (crossing_hidden_by_nearer_sheet(ctx_, state_, place, p->mu)) return std::nullopt;
+      return RimPoint<d>{t, p->local, eta, fold_rim_level};
+    };
+    for (Index a : near) {
+      const std::optional<RimPoint<d>> near_point = seen_from(a);
+      if (!near_point) continue;
+      for (Index b : far)
+        if (b != a && within_two_rings(a, b))
+          if (const std::optional<RimPoint<d>> far_point = seen_from(b)) return std::pair{*near_point, *far_point};
+      return std::nullopt;
+    }
+    return std::nullopt;
+  }
+
+  /// Whether S1 element b shares a vertex with a or with an element that shares one with a: the
+  /// sheets on both sides of a fold are joined through the folded band, a few elements wide;
+  /// two sheets farther apart (two bodies, one hidden behind the other) do not meet.
+  bool within_two_rings(Index a, Index b) const {
+    const auto& of_b = ctx_.s1.element(b);
+    auto shares_vertex_with_b = [&](Index t) {
+      for (Index v : ctx_.s1.element(t))
+        if (std::find(of_b.begin(), of_b.end(), v) != of_b.end()) return true;
+      return false;
+    };
+    for (Index v : ctx_.s1.element(a))
+      for (Index t : ctx_.s1.vertex_elements(v))
+        if (shares_vertex_with_b(t)) return true;
+    return false;
+  }
+
+  /// The S1 elements at the stretch of a piece's preimage between crossings i and i + 1 (the
+  /// element both their S1 edges bound), or at the single crossing's S1 edge if there is no i + 1.
+  std::vector<Index> elements_between(const EdgeCrossing& a, const EdgeCrossing* b) const {
+    std::vector<Index> out;
+    for (const auto& incidence : ctx_.s1.edge_elements(a.domain_edge)) {
+      const Index t = incidence.element;
+      if (!b || ctx_.s1.element_edge(t, 0) == b->domain_edge || ctx_.s1.element_edge(t, 1) == b->domain_edge ||
+          ctx_.s1.element_edge(t, 2) == b->domain_edge)
+        out.push_back(t);
+    }
+    return out;
+  }
+
+  /// The S1 elements at crossing a's S1 edge that are among `of`.
+  std::vector<Index> elements_between(const EdgeCrossing& a, const std::vector<Index>& of) const {
+    std::vector<Index> out;
+    for (const auto& incidence : ctx_.s1.edge_elements(a.domain_edge))
+      if (std::find(of.begin(), of.end(), incidence.element) != of.end()) out.push_back(incidence.element);
+    return out;
+  }
+
+  /// Where a piece starts, if not at a crossing: the edge parameter and the S1 elements at that
+  /// node (none for a piece that starts at a crossing: its stretch before its first crossing is
+  /// not its own).
+  struct PieceOrigin {
+    double eta = 0.0;
+    std::vector<Index> elements;
+  };
+  PieceOrigin origin_of(const typename PlanBuffer<d>::Piece& p, const PlanBuffer<d>& buffer,
+                        const std::optional<Place<d>>& first_vertex) const {
+    PieceOrigin o;
+    if (p.starts_at == PieceStart::first_vertex && first_vertex) {
+      ctx_.elements_of(*first_vertex, o.elements);
+    } else if (p.starts_at == PieceStart::rim_node) {
+      o.eta = buffer.rim_points[p.start_rim].eta;
+      o.elements.push_back(buffer.rim_points[p.start_rim].element);
+    }
+    return o;
+  }
+
+  /// Where two pieces of S2 edge e leave a gap between them, the one before ending at its last
+  /// crossing and the one after starting at its first (a fold crossed by walks from both ends, or
+  /// a fold exit whose sheet holds the edge farther back than the exit's element), both pieces
+  /// now meet at a point of the gap that the sheets of both reach (meeting_at): tried at a half,
+  /// a quarter and three quarters of the gap, then a quarter, a half and three quarters of the
+  /// way back from the gap along the piece before it (without its last crossing), then of the
+  /// way on along the piece after it (without its first).
+  void meet_across_gaps(Index e, std::size_t first_piece, const std::optional<Place<d>>& first_vertex,
+                        PlanBuffer<d>& buffer) const
+    requires(d == 2)
+  {
+    auto& pieces = buffer.pieces;
+    auto& crossings = buffer.crossings;
+    if (pieces.size() < first_piece + 2) return;
+    using Piece = typename PlanBuffer<d>::Piece;
+    auto start_eta = [&](const Piece& p) {
+      return p.starts_at == PieceStart::first_vertex     ? 0.0
+             : p.starts_at == PieceStart::first_crossing ? crossings[p.begin].target_parameter
+                                                         : buffer.rim_points[p.start_rim].eta;
+    };
+    std::vector<std::size_t> order;
+    for (std::size_t i = first_piece; i < pieces.size(); ++i) order.push_back(i);
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t x, std::size_t y) { return start_eta(pieces[x]) < start_eta(pieces[y]); });
+    const double slack = ctx_.options.search_limits.piece_parameter_slack;
+    long long calls = 0, failures = 0;
+    for (std::size_t k = 0; k + 1 < order.size(); ++k) {
+      Piece& p = pieces[order[k]];
+      Piece& q = pieces[order[k + 1]];
+      if (p.ends_at != PieceEnd::last_crossing || q.starts_at != PieceStart::first_crossing || p.end == p.begin ||
+          q.end == q.begin)
+        continue;
+      const EdgeCrossing& p_last = crossings[p.end - 1];
+      const EdgeCrossing& q_first = crossings[q.begin];
+      const double a = p_last.target_parameter, b = q_first.target_parameter;
+      if (!(b > a + slack)) continue;
+      const std::vector<Index> after_p = elements_between(p_last, nullptr);
+      const std::vector<Index> before_q = elements_between(q_first, nullptr);
+      std::optional<std::pair<RimPoint<d>, RimPoint<d>>> met;
+      bool drop_p_last = false, drop_q_first = false;
+      for (const double f : {0.5, 0.25, 0.75})
+        if (!met) met = meeting_at(e, a + f * (b - a), after_p, before_q, calls, failures);
+      // back along p (to its crossing before, or its start node), or on along q (to its second
+      // crossing)
+      if (!met && (p.end - p.begin >= 2 || p.starts_at != PieceStart::first_crossing)) {
+        const bool single = p.end - p.begin < 2;
+        const PieceOrigin origin = single ? origin_of(p, buffer, first_vertex) : PieceOrigin{};
+        const double before = single ? origin.eta : crossings[p.end - 2].target_parameter;
+        const std::vector<Index> behind =
+            single ? elements_between(p_last, origin.elements) : elements_between(p_last, &crossings[p.end - 2]);
+        for (const double g : {0.25, 0.5, 0.75})
+          if (!met) met = meeting_at(e, a - g * (a - before), behind, before_q, calls, failures);
+        drop_p_last = met.has_value();
+      }
+      if (!met && q.end - q.begin >= 2) {
+        const double after = crossings[q.begin + 1].target_parameter;
+        const std::vector<Index> ahead = elements_between(q_first, &crossings[q.begin + 1]);
+        for (const double g : {0.25, 0.5, 0.75})
+          if (!met) met = meeting_at(e, b + g * (after - b), after_p, ahead, calls, failures);
+        drop_q_first = met.has_value();
+      }
+      if (!met) continue;
+      if (drop_p_last) --p.end;
+      if (drop_q_first) ++q.begin;
+      p.ends_at = PieceEnd::rim_node;
+      p.end_rim = keep_rim(buffer, met->first, false);
+      q.starts_at = PieceStart::rim_node;
+      q.start_rim = keep_rim(buffer, met->second, false);
+    }
+    ctx_.solver_calls += calls;
+    ctx_.solver_failures += failures;
+  }
+
+  /// Where the stop's sheet and the sheet beyond a fold meet on S2 edge e (projection_fold_rim.hpp):
+  /// a point of the edge that both reach unfolded, its preimage on each, and how many of the
+  /// stopped piece's crossings lie before it.
+  struct FoldMeeting {
+    RimPoint<d> near, far;
+    std::size_t kept_crossings = 0;
+  };
+  /// The walk `stopped` ended at a fold after the crossings `piece` of the last piece, and `exit`
+  /// is where the edge comes out over the sheet beyond it. Tried, in this order: a half and a
+  /// quarter of the way from the stop to the exit, inside the element ahead of the stop where the
+  /// crossings were folded (stopped.fold_element); a quarter, a half and three quarters of the
+  /// way back to the crossing before the stop, inside the element between the two (where the
+  /// fold lies on the stop's S1 edge itself, or just beyond). The preimage on the sheet beyond is
+  /// looked for in the elements at the exit and those sharing a vertex with them.
+  std::optional<FoldMeeting> fold_meeting(Index e, const WalkResult<d>& stopped, const FoldExit& exit,
+                                          std::span<const Crossing<d>> piece, const PieceOrigin& start,
+                                          long long& calls, long long& failures) const
+    requires(d == 2)
+  {
+    if (stopped.rim || piece.empty()) return std::nullopt;
+    const std::size_t n = piece.size();
+    // the sheet beyond: the elements at the exit, then those sharing a vertex with them
+    std::vector<Index> beyond;
+    for (const auto& incidence : ctx_.s1.edge_elements(exit.place.index)) beyond.push_back(incidence.element);
+    const std::size_t ring0 = beyond.size();
+    for (std::size_t k = 0; k < ring0; ++k)
+      for (Index v : ctx_.s1.element(beyond[k]))
+        for (Index t : ctx_.s1.vertex_elements(v))
+          if (std::find(beyond.begin(), beyond.end(), t) == beyond.end()) beyond.push_back(t);
+    auto meet = [&](double eta, Index near_element, std::size_t kept) -> std::optional<FoldMeeting> {
+      const auto points = meeting_at(e, eta, std::span<const Index>(&near_element, 1), std::span<const Index>(beyond),
+                                     calls, failures);
+      if (!points) return std::nullopt;
+      return FoldMeeting{points->first, points->second, kept};
+    };
+    if (stopped.fold_element != invalid_index)
+      for (const double f : {0.5, 0.25})
+        if (auto m = meet(stopped.eta + f * (exit.crossing.eta - stopped.eta), stopped.fold_element, n)) return m;
+    // behind the stop: the element between the last two crossings, or between the piece's start
+    // and its only crossing
+    const double eta_before = n >= 2 ? piece[n - 2].target_parameter : start.eta;
+    const std::vector<Index> behind = n >= 2 ? elements_between(piece[n - 1], &piece[n - 2])
+                                             : elements_between(piece[n - 1], start.elements);
+    for (const double g : {0.25, 0.5, 0.75})
+      for (Index t : behind)
+        if (auto m = meet(stopped.eta - g * (stopped.eta - eta_before), t, n - 1)) return m;
+    return std::nullopt;
+  }
+
   /// After the walk `stopped` from the first vertex or a boundary entry of S2 edge e ended at a
   /// fold (or another restartable place): new pieces from where the edge's preimage comes out
   /// of it, each walked on towards the second vertex, up to search_limits.fold_exits times while
@@ -537,9 +759,40 @@ class EdgeWalker {
           find_rim_reentry(e, stopped, exit ? exit->crossing.eta : 1.0, WalkDirection::from_first_vertex);
       if (!exit && !reentry) break;
       auto& crossings = buffer.crossings;
+      // The stop's sheet and the one beyond the fold both reach a stretch of the edge (a fold
+      // maps three sheets onto it: before, folded, beyond): where the stop's piece ended at its
+      // last crossing, it now ends at a point of that stretch, and the walk beyond starts at the
+      // same point on the other sheet; the rim traced through such points
+      // (projection_fold_rim.hpp) lets the faces on both sides close.
+      std::optional<FoldMeeting> meeting;
+      if (exit && !reentry && ctx_.options.fold_rim && stopped.reason == EdgeFailureReason::fold &&
+          buffer.pieces.size() > progress.pieces_begin) {
+        auto& last = buffer.pieces.back();
+        if (last.ends_at == PieceEnd::last_crossing && last.end == crossings.size() && last.end > last.begin &&
+            crossings[last.end - 1].target_parameter == stopped.eta) {
+          meeting = fold_meeting(e, stopped, *exit,
+                                 std::span<const Crossing<d>>(crossings.data() + last.begin, last.end - last.begin),
+                                 origin_of(last, buffer, progress.first), calls, failures);
+          if (meeting) {
+            // (a crossing taken off stays in the buffer, unused)
+            last.end = static_cast<std::uint32_t>(last.begin + meeting->kept_crossings);
+            last.ends_at = PieceEnd::rim_node;
+            last.end_rim = keep_rim(buffer, meeting->near, false);
+          }
+        }
+      }
       const std::size_t begin = crossings.size();
       std::uint32_t start_rim = PlanBuffer<d>::no_rim;
-      if (reentry) {
+      if (meeting) {
+        start_rim = keep_rim(buffer, meeting->far, false);
+        Place<d> inside;
+        inside.kind = PlaceKind::element;
+        inside.index = meeting->far.element;
+        inside.local = meeting->far.local;
+        stopped = walk(e, inside, meeting->far.eta, progress.second, WalkDirection::from_first_vertex, buffer);
+        // one rim node per S1 element and S2 edge, as after a reentry (below)
+        if (stopped.rim && stopped.rim->element == meeting->far.element) stopped.rim.reset();
+      } else if (reentry) {
         start_rim = keep_rim(buffer, *reentry, false);
         Place<d> inside;
         inside.kind = PlaceKind::element;
@@ -554,12 +807,13 @@ class EdgeWalker {
         stopped = walk(e, exit->place, exit->crossing.eta, progress.second, WalkDirection::from_first_vertex, buffer);
       }
       const bool reached = stopped.end == WalkEnd::reached;
-      if (stopped.crossing_count == 0 && !reached && !(reentry && stopped.rim)) {
+      const bool from_rim_node = reentry || meeting;
+      if (stopped.crossing_count == 0 && !reached && !(from_rim_node && stopped.rim)) {
         crossings.resize(begin);
-        if (reentry) buffer.rim_points.pop_back();
+        if (from_rim_node) buffer.rim_points.pop_back();
         break;
       }
-      const PieceStart starts_at = reentry ? PieceStart::rim_node : PieceStart::first_crossing;
+      const PieceStart starts_at = from_rim_node ? PieceStart::rim_node : PieceStart::first_crossing;
       if (!reached && stopped.rim)
         add_piece(buffer, begin, starts_at, PieceEnd::rim_node, keep_rim(buffer, *stopped.rim, false), start_rim);
       else

@@ -25,7 +25,8 @@ namespace plmap::projection {
 /// or beyond the distance limit) and a walk along its preimage that stopped there ends: a point
 /// inside S1 element `element`, whose ray meets the edge at the bound ProjectionContext::
 /// rim_level(level), and the edge parameter there (0 at the edge's smaller-index vertex). The
-/// piece ends at a rim node there (end_on_rim).
+/// piece ends at a rim node there (end_on_rim). With level fold_rim_level: a point inside the
+/// element where a sheet of the projection meets the sheet beyond a fold on the edge.
 template <int d>
 struct RimPoint {
   Index element = invalid_index;
@@ -33,6 +34,10 @@ struct RimPoint {
   double eta = 0.0;
   int level = 0;
 };
+
+/// RimPoint::level of a point where the sheets before and beyond a fold meet on an S2 edge
+/// (projection_fold_rim.hpp), not on a bound of the band.
+inline constexpr int fold_rim_level = 2;
 
 /// A point where the rim crosses S2 edge `target_edge` that no walk reached (ProjectionInsertion::
 /// take_unwalked_rim_crossings): a walk starts there into the band (plan_rim_walks).

@@ -247,6 +247,45 @@ void ProjectionInsertion<d>::add_used_parameter(Index edge, double t, Index owne
   *link = entry;
 }
 
+/// Enters one piece of S2 edge e (its rim nodes made already, invalid_index where the builder
+/// refused one: the piece then starts at its first crossing or ends at its last one there, as
+/// before rim nodes). Returns 2 if it is the whole edge, 1 for a piece, 0 if nothing was entered
+/// (a refusal is appended to `rejected`).
+template <int d>
+int ProjectionInsertion<d>::insert_piece(Index e, std::span<const Crossing<d>> crossings, PieceStart starts_at,
+                                         PieceEnd ends_at, PieceRimNodes rims,
+                                         std::vector<EdgeNotInserted<d>>& rejected) {
+  const bool refused = (starts_at == PieceStart::rim_node && rims.start == invalid_index) ||
+                       (ends_at == PieceEnd::rim_node && rims.end == invalid_index);
+  if (refused) {
+    if (starts_at == PieceStart::rim_node && rims.start == invalid_index) starts_at = PieceStart::first_crossing;
+    if (ends_at == PieceEnd::rim_node && rims.end == invalid_index) ends_at = PieceEnd::last_crossing;
+    if (crossings.size() + (starts_at != PieceStart::first_crossing) + (ends_at != PieceEnd::last_crossing) < 2)
+      return 0;
+  }
+  try {
+    int added = 1;
+    if (starts_at == PieceStart::first_vertex && ends_at == PieceEnd::second_vertex) {
+      builder_.add_edge(e, crossings);
+      added = 2;
+    } else {
+      if constexpr (d == 2)
+        builder_.add_edge_piece(e, crossings, starts_at, ends_at, rims);
+      else
+        builder_.add_edge_piece(e, crossings, starts_at, ends_at);
+    }
+    mark_used_points(crossings, e);
+    return added;
+  } catch (const BuilderError& error) {
+    EdgeNotInserted<d> f;
+    f.target_edge = e;
+    f.reason = EdgeFailureReason::builder_rejected;
+    f.detail = error.what();
+    rejected.push_back(std::move(f));
+  }
+  return 0;
+}
+
 /// Feeds the planned pieces of S2 edge e to the builder and reports what was left out. Returns
 /// inserted_whole if the edge was inserted whole, or'ed with the number of pieces inserted.
 template <int d>
@@ -273,44 +312,30 @@ std::uint32_t ProjectionInsertion<d>::insert_planned_edge(Index e, const Planned
       rejected.push_back(std::move(f));
       continue;
     }
-    PieceStart starts_at = piece.starts_at;
-    PieceEnd ends_at = piece.ends_at;
-    PieceRimNodes rims;
     auto rim_node_of = [&](std::uint32_t rim) {
       if (rim == PlanBuffer<d>::no_rim) return invalid_index;
       const RimPoint<d>& point = buffer.rim_points[rim];
+      if (point.level == fold_rim_level) return fold_rim_node(point, e);
       return rim_node_inside(point.element, e, point.level, point.local, point.eta);
     };
-    if (starts_at == PieceStart::rim_node) rims.start = rim_node_of(piece.start_rim);
-    if (ends_at == PieceEnd::rim_node) rims.end = rim_node_of(piece.end_rim);
-    // the builder refused a rim node: the piece starts at its first crossing or ends at its
-    // last one there, as before rim nodes
-    const bool refused = (starts_at == PieceStart::rim_node && rims.start == invalid_index) ||
-                         (ends_at == PieceEnd::rim_node && rims.end == invalid_index);
-    if (refused) {
-      if (starts_at == PieceStart::rim_node && rims.start == invalid_index) starts_at = PieceStart::first_crossing;
-      if (ends_at == PieceEnd::rim_node && rims.end == invalid_index) ends_at = PieceEnd::last_crossing;
-      if (crossings.size() + (starts_at != PieceStart::first_crossing) + (ends_at != PieceEnd::last_crossing) < 2)
-        continue;
-    }
-    try {
-      if (starts_at == PieceStart::first_vertex && ends_at == PieceEnd::second_vertex) {
-        builder_.add_edge(e, crossings);
-        whole = true;
-      } else {
-        if constexpr (d == 2)
-          builder_.add_edge_piece(e, crossings, starts_at, ends_at, rims);
-        else
-          builder_.add_edge_piece(e, crossings, starts_at, ends_at);
-        ++pieces;
-      }
-      mark_used_points(crossings, e);
-    } catch (const BuilderError& error) {
-      EdgeNotInserted<d> f;
-      f.target_edge = e;
-      f.reason = EdgeFailureReason::builder_rejected;
-      f.detail = error.what();
-      rejected.push_back(std::move(f));
+    PieceRimNodes rims;
+    if (piece.starts_at == PieceStart::rim_node) rims.start = rim_node_of(piece.start_rim);
+    if (piece.ends_at == PieceEnd::rim_node) rims.end = rim_node_of(piece.end_rim);
+    const int added = insert_piece(e, crossings, piece.starts_at, piece.ends_at, rims, rejected);
+    whole |= added == 2;
+    if (added == 1) ++pieces;
+    if constexpr (d == 2) {
+      if (added == 0) continue;
+      // the piece stands: its nodes where it meets the sheet beyond a fold are where the fold rim
+      // runs (insert_fold_rims)
+      auto note_fold_point = [&](Index node, std::uint32_t rim, bool toward_first) {
+        if (node == invalid_index || rim == PlanBuffer<d>::no_rim) return;
+        const RimPoint<d>& point = buffer.rim_points[rim];
+        if (point.level == fold_rim_level)
+          fold_points_.push_back({e, node, point.element, point.local, point.eta, toward_first});
+      };
+      if (piece.starts_at == PieceStart::rim_node) note_fold_point(rims.start, piece.start_rim, false);
+      if (piece.ends_at == PieceEnd::rim_node) note_fold_point(rims.end, piece.end_rim, true);
     }
   }
   // An edge of which no stretch could be inserted (its walks fail at once from both ends)

@@ -7,6 +7,7 @@
 
 #include "projection_context.hpp"
 #include "projection_edge_walks.hpp"
+#include "projection_fold_rim.hpp"
 
 #include <plmap/construct/projection_result.hpp>
 #include <plmap/core/huge_page_allocator.hpp>
@@ -61,6 +62,14 @@ class ProjectionInsertion {
   /// nodes.
   void insert_rim_walks(std::span<const Index> edges, const std::vector<PlannedEdge>& planned,
                         PlanBuffer<d>& buffer, ProjectionReport<d>& report);
+
+  /// d = 2, fold_rim: the nodes where inserted pieces end or start at a point where the sheets
+  /// on both sides of a fold meet (projection_fold_rim.hpp), in insertion order.
+  const std::vector<FoldRimNode>& fold_rim_points() const { return fold_points_; }
+  /// Enters the traced preimages of the fold rim between those nodes (trace_fold_rims) as rim
+  /// nodes on the S1 edges they cross and rim edges between them; a path of which a node or an
+  /// edge is refused ends there.
+  void insert_fold_rims(std::span<const FoldRimPath> paths, ProjectionReport<d>& report);
 
   /// Declares the S2 edges that no walk gave a piece outside D (MapBuilder::
   /// add_edge_outside_domain); with a rim this waits until the rim walks are done.
@@ -143,6 +152,16 @@ class ProjectionInsertion {
   /// Rim crossings of S2 edges without a piece, found by the tracing (take_unwalked_rim_crossings).
   std::vector<RimStart<d>> unwalked_;
   Index rim_nodes_made_ = 0;
+  /// The node where a piece meets the sheet beyond a fold (RimPoint::level fold_rim_level), made
+  /// for each piece; invalid_index if the builder refuses it.
+  Index fold_rim_node(const RimPoint<d>& point, Index e);
+  /// A rim edge of the fold rim; false if the builder refuses it.
+  bool add_fold_rim_edge(Index a, Index b, ProjectionReport<d>& report);
+  /// The fold_rim nodes of the pieces inserted so far (fold_rim_points).
+  std::vector<FoldRimNode> fold_points_;
+  /// Enters one piece of S2 edge e (projection_insertion.cpp says what it returns).
+  int insert_piece(Index e, std::span<const Crossing<d>> crossings, PieceStart starts_at, PieceEnd ends_at,
+                   PieceRimNodes rims, std::vector<EdgeNotInserted<d>>& rejected);
 
   /// In the per-edge count of what was inserted: the edge was inserted whole.
   static constexpr std::uint32_t inserted_whole = 1u << 31;

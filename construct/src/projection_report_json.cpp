@@ -38,6 +38,8 @@ nlohmann::ordered_json projection_report_json(const ProjectionResult<d>& result,
     for (const auto& [name, measure] : r.left_out.fields()) j["left_out_measure"][std::string(name)] = r.left_out.*measure;
   j["rim_nodes"] = r.rim_nodes;
   j["rim_edges"] = r.rim_edges;
+  j["fold_rim_nodes"] = r.fold_rim_nodes;
+  j["fold_rim_edges"] = r.fold_rim_edges;
   nlohmann::ordered_json listed = nlohmann::ordered_json::array();
   const std::size_t count = std::min(max_listed_edges, r.edges_not_inserted.size());
   for (std::size_t i = 0; i < count; ++i) {

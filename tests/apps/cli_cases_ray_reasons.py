@@ -25,3 +25,18 @@ def check_against_rays_reasons():
                     expect_code=1)
     expect("outside D for a reason: nearer sheet 0, S1 in between 0, S2 seen twice 0, S2 crossing itself 0, just inside S2's boundary 0" in out, out)
     expect("defects: farther sheet 0, in a folding element 0, next to a fold 0, not covered" in out, out)
+
+
+@case
+def project_fold_rim_switch():
+    # `plmap project --no-fold-rim` (ProjectionOptions::fold_rim = false): the report's fold rim
+    # counts are 0 with it, and present without it; on a single sheet without folds the two maps
+    # cover the same measure.
+    flat = grid("foldrim_flat.off", cells=6, jitter=0.1, seed=5)
+    run("generate", "delaunay", "--points", 40, "--lift", "--seed", 9, "-o", "foldrim_hill.off")
+    met = run_json("project", flat, "foldrim_hill.off", "-o", "foldrim_met.plmap", "--allow-negative", "--json")
+    apart = run_json("project", flat, "foldrim_hill.off", "-o", "foldrim_apart.plmap", "--allow-negative",
+                     "--no-fold-rim", "--json")
+    expect_keys(met, ["fold_rim_nodes", "fold_rim_edges"], "project --json")
+    expect(apart["fold_rim_nodes"] == 0 and apart["fold_rim_edges"] == 0, apart)
+    expect(met["covered_measure"] == apart["covered_measure"], (met["covered_measure"], apart["covered_measure"]))

@@ -152,6 +152,13 @@ struct ProjectionOptions {
   /// as rim edges (MapBuilder::add_rim_node, add_rim_edge). false: D ends at the last crossing,
   /// as before.
   bool end_on_rim = true;
+  /// d = 2: where a walk stops at a fold and the S2 edge comes out over an unfolded sheet beyond
+  /// it, the sheet before the fold and the one beyond meet at one point of the edge that both
+  /// reach, and the preimages of the segments joining such points across an S2 triangle are
+  /// traced on both sheets as rim edges, so that the faces on both sides close
+  /// (construct/src/projection_fold_rim.hpp). false: the piece before the fold ends at its last
+  /// crossing and the one beyond starts at its first, as before 2026-12-07.
+  bool fold_rim = true;
   /// Told the phase ("rays from S1 vertices", "S2 vertex preimages", "S2 edges", "finalize")
   /// at its start and end, and every 4096 edges in "S2 edges"; called from the calling thread
   /// only. Optional; a callback that throws cancels the projection.

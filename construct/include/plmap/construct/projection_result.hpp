@@ -168,6 +168,10 @@ struct ProjectionReport {
   /// ghost nodes the rim passes are not counted).
   Index rim_nodes = 0;
   Index rim_edges = 0;
+  /// d = 2, fold_rim: where the sheets on both sides of a fold meet, the points on S2 edges
+  /// (fold_rim_nodes: a node on each sheet) and the rim edges traced between them (fold_rim_edges).
+  Index fold_rim_nodes = 0;
+  Index fold_rim_edges = 0;
   std::vector<EdgeNotInserted<d>> edges_not_inserted;
   /// Whether the projection worked on a copy of S1 (S2) renumbered in spatial order
   /// (ProjectionOptions::renumbering). Every number in the map and this report is the caller's.
