@@ -705,24 +705,46 @@ class EdgeWalker {
   /// crossings were folded (stopped.fold_element); a quarter, a half and three quarters of the
   /// way back to the crossing before the stop, inside the element between the two (where the
   /// fold lies on the stop's S1 edge itself, or just beyond). The preimage on the sheet beyond is
-  /// looked for in the elements at the exit and those sharing a vertex with them.
+  /// looked for in the element where a walk back from the exit along that sheet holds that point
+  /// of the edge. (The ring of elements around the exit, tried first, made 12 % more meeting
+  /// nodes on the femur pair but no fewer defects, for twice the added solver calls.)
   std::optional<FoldMeeting> fold_meeting(Index e, const WalkResult<d>& stopped, const FoldExit& exit,
-                                          std::span<const Crossing<d>> piece, const PieceOrigin& start,
-                                          long long& calls, long long& failures) const
+                                          std::vector<Crossing<d>> piece, const PieceOrigin& start,
+                                          PlanBuffer<d>& buffer, long long& calls, long long& failures) const
     requires(d == 2)
   {
+    // (`piece` is a copy: the walk below appends to the buffer it came from)
     if (stopped.rim || piece.empty()) return std::nullopt;
     const std::size_t n = piece.size();
-    // the sheet beyond: the elements at the exit, then those sharing a vertex with them
-    std::vector<Index> beyond;
-    for (const auto& incidence : ctx_.s1.edge_elements(exit.place.index)) beyond.push_back(incidence.element);
-    const std::size_t ring0 = beyond.size();
-    for (std::size_t k = 0; k < ring0; ++k)
-      for (Index v : ctx_.s1.element(beyond[k]))
-        for (Index t : ctx_.s1.vertex_elements(v))
-          if (std::find(beyond.begin(), beyond.end(), t) == beyond.end()) beyond.push_back(t);
+    // The sheet beyond, walked back from the exit towards the stop (its crossings are taken off
+    // the buffer again): the element of each stretch between two of its crossings, and beyond
+    // the last one the element where that walk met the sheet's own fold.
+    struct Stretch {
+      double low, high;  // edge parameters, from the first vertex
+      Index element;
+    };
+    std::vector<Stretch> beyond;
+    {
+      const std::size_t mark = buffer.crossings.size();
+      const WalkResult<d> back =
+          walk(e, exit.place, 1.0 - exit.crossing.eta, std::nullopt, WalkDirection::from_second_vertex, buffer);
+      EdgeCrossing previous{exit.place.index, exit.crossing.lambda, exit.crossing.eta};
+      double high = exit.crossing.eta;
+      for (std::size_t i = mark; i < buffer.crossings.size(); ++i) {
+        const EdgeCrossing& c = buffer.crossings[i];
+        const double low = 1.0 - c.target_parameter;
+        for (Index t : elements_between(previous, &c)) beyond.push_back({low, high, t});
+        previous = c;
+        high = low;
+      }
+      if (back.fold_element != invalid_index) beyond.push_back({-1.0, high, back.fold_element});
+      buffer.crossings.resize(mark);
+    }
     auto meet = [&](double eta, Index near_element, std::size_t kept) -> std::optional<FoldMeeting> {
-      const auto points = meeting_at(e, eta, std::span<const Index>(&near_element, 1), std::span<const Index>(beyond),
+      std::vector<Index> far;
+      for (const Stretch& stretch : beyond)
+        if (eta >= stretch.low && eta <= stretch.high) far.push_back(stretch.element);
+      const auto points = meeting_at(e, eta, std::span<const Index>(&near_element, 1), std::span<const Index>(far),
                                      calls, failures);
       if (!points) return std::nullopt;
       return FoldMeeting{points->first, points->second, kept};
@@ -771,8 +793,8 @@ class EdgeWalker {
         if (last.ends_at == PieceEnd::last_crossing && last.end == crossings.size() && last.end > last.begin &&
             crossings[last.end - 1].target_parameter == stopped.eta) {
           meeting = fold_meeting(e, stopped, *exit,
-                                 std::span<const Crossing<d>>(crossings.data() + last.begin, last.end - last.begin),
-                                 origin_of(last, buffer, progress.first), calls, failures);
+                                 std::vector<Crossing<d>>(crossings.begin() + last.begin, crossings.begin() + last.end),
+                                 origin_of(last, buffer, progress.first), buffer, calls, failures);
           if (meeting) {
             // (a crossing taken off stays in the buffer, unused)
             last.end = static_cast<std::uint32_t>(last.begin + meeting->kept_crossings);
