@@ -5,13 +5,12 @@
 
 #include "projection_edge_walks.hpp"
 
-#include "fold_reentry.hpp"
 #include "nearer_sheet.hpp"
+#include "projection_edge_crossings.hpp"
+#include "projection_fold_exits.hpp"
+#include "projection_fold_meetings.hpp"
 #include "rim_geometry.hpp"
 #include "rim_reentry.hpp"
-#include "seen_indices.hpp"
-#include "segment_reach.hpp"
-#include "projection_edge_crossings.hpp"
 #include "walk_acceptance.hpp"
 
 #include <plmap/core/parallel_ranges.hpp>
@@ -317,7 +316,7 @@ class EdgeWalker {
       crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
     crossings.push_back(exit.crossing);
     add_piece(buffer, begin, from_rim ? PieceStart::rim_node : PieceStart::first_crossing, PieceEnd::last_crossing,
-              PlanBuffer<d>::no_rim, from_rim ? keep_rim(buffer, *w.rim, true) : PlanBuffer<d>::no_rim);
+              PlanBuffer<d>::no_rim, from_rim ? buffer.keep_rim(*w.rim, true) : PlanBuffer<d>::no_rim);
     if constexpr (d == 2) {
       if (at_fold) walk_back_after_folds(e, w, covered_until, buffer);
     }
@@ -363,13 +362,6 @@ class EdgeWalker {
     return kept;
   }
 
-  /// Keeps a walk's rim point for a piece, its parameter measured from the edge's first vertex
-  /// (`backwards`: the walk ran from the second vertex); returns its index.
-  static std::uint32_t keep_rim(PlanBuffer<d>& buffer, RimPoint<d> rim, bool backwards) {
-    if (backwards) rim.eta = 1.0 - rim.eta;
-    buffer.rim_points.push_back(rim);
-    return static_cast<std::uint32_t>(buffer.rim_points.size() - 1);
-  }
 
   /// Walks along S2 edge e and appends its pieces (and what could not be walked) to `buffer`.
   PlannedEdge plan_edge(Index e, unsigned worker, PlanBuffer<d>& buffer) const {
@@ -399,7 +391,8 @@ class EdgeWalker {
       buffer.failures.push_back(failure(e, EdgeFailureReason::endpoint_without_preimage, *progress.second, 1.0,
                                         fmt::format("the S2 vertex {} has no preimage", tv[0])));
     if constexpr (d == 2)
-      if (ctx_.options.fold_rim) meet_across_gaps(e, progress.pieces_begin, progress.first, buffer);
+      if (ctx_.options.fold_rim)
+        FoldMeetings<Solver>(ctx_, state_, crossings_).meet_across_gaps(e, progress.pieces_begin, progress.first, buffer);
     plan.pieces_end = static_cast<std::uint32_t>(buffer.pieces.size());
     plan.failures_end = static_cast<std::uint32_t>(buffer.failures.size());
     // No piece and nothing wrong: the edge lies outside D (it may touch S1's boundary at an
@@ -419,7 +412,7 @@ class EdgeWalker {
       // from the failure, and only the faces around its far end stay outside D.
       buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
       if (w.rim)  // the edge leaves the band (e.g. passes behind S1): the piece ends on the rim
-        add_piece(buffer, begin, PieceStart::first_vertex, PieceEnd::rim_node, keep_rim(buffer, *w.rim, false));
+        add_piece(buffer, begin, PieceStart::first_vertex, PieceEnd::rim_node, buffer.keep_rim(*w.rim, false));
       else if (w.crossing_count > 0)
         add_piece(buffer, begin, PieceStart::first_vertex, PieceEnd::last_crossing);
       else
@@ -438,84 +431,16 @@ class EdgeWalker {
     }
   }
 
-  /// Where the preimage of S2 edge e comes out of the fold at which the walk `stopped` ended
-  /// (fold_reentry.hpp): the nearest unfolded crossing in (stopped.eta, before) along the walk's
-  /// `direction`, inside an S1 edge, as the walks solve it; its parameters are measured in that
-  /// direction. Searched in the S1 elements within search_limits.fold_exit_reach rings around
-  /// the stop (see below).
-  struct FoldExit {
-    Place<d> place;
-    CrossingCandidate crossing;
-  };
+  /// find_fold_exit (projection_fold_exits.hpp) for the walk `stopped` along S2 edge e, in its
+  /// `direction`; parameters measured in that direction.
   std::optional<FoldExit> find_fold_exit(Index e, const WalkResult<d>& stopped, double before, WalkDirection direction,
                                          long long& calls, long long& failures) const
     requires(d == 2)
   {
-    const auto& limits = ctx_.options.search_limits;
     auto tv = ctx_.target_edge_vertices(e);
     if (direction == WalkDirection::from_second_vertex) std::swap(tv[0], tv[1]);
-    const WorldPoint<d> qa = ctx_.s2.vertex(tv[0]), qb = ctx_.s2.vertex(tv[1]);
-    std::vector<Index> ring, next_ring, ring_edges, at_exit;
-    SeenIndices seen_elements, seen_edges;
-    std::vector<FoldExitCandidate> exits;
-    // the rest of the edge, where an exit may lie (nearest_fold_exit keeps none elsewhere)
-    const SegmentReach<d> rest(ctx_, qa + stopped.eta * (qb - qa), qa + before * (qb - qa));
-    auto solve = [&](Index edge) -> std::optional<FoldExitCandidate> {
-      // the closed-form root of eq. (4)'s quadratic, without the solver: dozens of S1 edges
-      // are tried per search, and only the one chosen is solved (below)
-      const auto ev = ctx_.s1.edge_vertices(edge);
-      const WorldPoint<d>& p0 = ctx_.s1.vertex(ev[0]);
-      const WorldPoint<d>& p1 = ctx_.s1.vertex(ev[1]);
-      if (rest.out_of_reach(0.5 * (p0 + p1), 0.5 * (p1 - p0).norm())) return std::nullopt;
-      EdgeCrossingSystem sys;
-      sys.edge = {p0, p1};
-      sys.directions = {ctx_.vertex_directions[ev[0]], ctx_.vertex_directions[ev[1]]};
-      sys.target = {qa, qb};
-      const auto root = sys.root_on_the_edges();
-      if (!root || !ctx_.distance_ok((*root)(1), sys.scale())) return std::nullopt;
-      return FoldExitCandidate{edge, std::clamp((*root)(0), 0.0, 1.0), (*root)(2), (*root)(1)};
-    };
-    auto accept = [&](const FoldExitCandidate& c) {
-      // inside the S1 edge (an S1 vertex is a ghost node's or vertex preimage's place), and
-      // unfolded in an element at it, as the walks judge a crossing
-      const Place<d> at = ctx_.edge_place(c.domain_edge, c.lambda);
-      if (at.kind != PlaceKind::edge) return false;
-      ctx_.elements_of(at, at_exit);
-      return unfolded_in_some_element(at_exit, [&](Index t) { return ctx_.unfolded_in_at(t, at, c.mu); });
-    };
-    // A fold band is a few elements wide: the exit is looked for ring by ring around the stop
-    // (ring 0: the elements at it; ring r + 1: the elements sharing a vertex with ring r, not
-    // seen yet; one element size per ring), up to fold_exit_reach rings, and the first ring whose S1 edges give an exit ends the search. A
-    // crossing in a nearer ring is, but for a preimage that doubles back, also the nearer one
-    // along the S2 edge, and most stops have their exit in the first two rings: far fewer
-    // edges are solved than by a search of every element within the reach.
-    std::vector<Index> candidates;
-    ctx_.elements_of(stopped.stop, candidates);
-    take_unseen_into(candidates, seen_elements, ring);
-    const int rings = static_cast<int>(std::ceil(limits.fold_exit_reach));
-    std::optional<FoldExitCandidate> exit;
-    for (int r = 0; r <= rings && !ring.empty(); ++r) {
-      candidates.clear();
-      for (Index t : ring)
-        for (int k = 0; k < 3; ++k) candidates.push_back(ctx_.s1.element_edge(t, k));
-      take_unseen_into(candidates, seen_edges, ring_edges);
-      exit = nearest_fold_exit(stopped.eta, before, limits.edge_parameter_slack, ring_edges, exits, solve, accept);
-      if (exit || r == rings) break;
-      candidates.clear();
-      for (Index t : ring)
-        for (Index v : ctx_.s1.element(t))
-          for (Index n : ctx_.s1.vertex_elements(v)) candidates.push_back(n);
-      take_unseen_into(candidates, seen_elements, next_ring);
-      std::swap(ring, next_ring);
-    }
-    if (!exit) return std::nullopt;
-    // the chosen crossing as the walks solve it
-    const CrossingCandidate c = crossings_.solve(exit->domain_edge, qa, qb, calls, failures);
-    const double slack = limits.edge_parameter_slack;
-    if (!c.valid || !(c.eta > stopped.eta + slack) || !(c.eta < before - slack)) return std::nullopt;
-    const Place<d> at = ctx_.edge_place(exit->domain_edge, c.lambda);
-    if (at.kind != PlaceKind::edge) return std::nullopt;
-    return FoldExit{at, c};
+    return projection::find_fold_exit(ctx_, crossings_, ctx_.s2.vertex(tv[0]), ctx_.s2.vertex(tv[1]), stopped.stop,
+                                      stopped.eta, before, calls, failures);
   }
 
   /// Where S2 edge e comes out in front of S1 again after the walk `stopped` ended on the rim,
@@ -528,239 +453,6 @@ class EdgeWalker {
     auto tv = ctx_.target_edge_vertices(e);
     if (direction == WalkDirection::from_second_vertex) std::swap(tv[0], tv[1]);
     return rim_reentry(ctx_, *stopped.rim, ctx_.s2.vertex(tv[0]), ctx_.s2.vertex(tv[1]), before);
-  }
-
-  /// The point at parameter eta of S2 edge e, if both a sheet through one of the `near` elements
-  /// and another through one of the `far` elements reach it: strictly inside the element,
-  /// unfolded, within the band and not behind a nearer sheet; the two preimages (the first such
-  /// near element, then the first such far element other than it).
-  std::optional<std::pair<RimPoint<d>, RimPoint<d>>> meeting_at(Index e, double eta, std::span<const Index> near,
-                                                                std::span<const Index> far, long long& calls,
-                                                                long long& failures) const
-    requires(d == 2)
-  {
-    constexpr double inside = 1e-6;  // a rim node strictly inside its element, not snapped to a side
-    const auto tv = ctx_.target_edge_vertices(e);
-    const WorldPoint<d> q = ctx_.s2.vertex(tv[0]) + eta * (ctx_.s2.vertex(tv[1]) - ctx_.s2.vertex(tv[0]));
-    auto seen_from = [&](Index t) -> std::optional<RimPoint<d>> {
-      const auto p = crossings_.unfolded_preimage_in(t, q, inside, calls, failures);
-      if (!p) return std::nullopt;
-      Place<d> place;
-      place.kind = PlaceKind::element;
-      place.index = t;
-      place.local = p->local;
-      if (crossing_hidden_by_nearer_sheet(ctx_, state_, place, p->mu)) return std::nullopt;
-      return RimPoint<d>{t, p->local, eta, fold_rim_level};
-    };
-    for (Index a : near) {
-      const std::optional<RimPoint<d>> near_point = seen_from(a);
-      if (!near_point) continue;
-      for (Index b : far)
-        if (b != a && within_two_rings(a, b))
-          if (const std::optional<RimPoint<d>> far_point = seen_from(b)) return std::pair{*near_point, *far_point};
-      return std::nullopt;
-    }
-    return std::nullopt;
-  }
-
-  /// Whether S1 element b shares a vertex with a or with an element that shares one with a: the
-  /// sheets on both sides of a fold are joined through the folded band, a few elements wide;
-  /// two sheets farther apart (two bodies, one hidden behind the other) do not meet.
-  bool within_two_rings(Index a, Index b) const {
-    const auto& of_b = ctx_.s1.element(b);
-    auto shares_vertex_with_b = [&](Index t) {
-      for (Index v : ctx_.s1.element(t))
-        if (std::find(of_b.begin(), of_b.end(), v) != of_b.end()) return true;
-      return false;
-    };
-    for (Index v : ctx_.s1.element(a))
-      for (Index t : ctx_.s1.vertex_elements(v))
-        if (shares_vertex_with_b(t)) return true;
-    return false;
-  }
-
-  /// The S1 elements at the stretch of a piece's preimage between crossings i and i + 1 (the
-  /// element both their S1 edges bound), or at the single crossing's S1 edge if there is no i + 1.
-  std::vector<Index> elements_between(const EdgeCrossing& a, const EdgeCrossing* b) const {
-    std::vector<Index> out;
-    for (const auto& incidence : ctx_.s1.edge_elements(a.domain_edge)) {
-      const Index t = incidence.element;
-      if (!b || ctx_.s1.element_edge(t, 0) == b->domain_edge || ctx_.s1.element_edge(t, 1) == b->domain_edge ||
-          ctx_.s1.element_edge(t, 2) == b->domain_edge)
-        out.push_back(t);
-    }
-    return out;
-  }
-
-  /// The S1 elements at crossing a's S1 edge that are among `of`.
-  std::vector<Index> elements_between(const EdgeCrossing& a, const std::vector<Index>& of) const {
-    std::vector<Index> out;
-    for (const auto& incidence : ctx_.s1.edge_elements(a.domain_edge))
-      if (std::find(of.begin(), of.end(), incidence.element) != of.end()) out.push_back(incidence.element);
-    return out;
-  }
-
-  /// Where a piece starts, if not at a crossing: the edge parameter and the S1 elements at that
-  /// node (none for a piece that starts at a crossing: its stretch before its first crossing is
-  /// not its own).
-  struct PieceOrigin {
-    double eta = 0.0;
-    std::vector<Index> elements;
-  };
-  PieceOrigin origin_of(const typename PlanBuffer<d>::Piece& p, const PlanBuffer<d>& buffer,
-                        const std::optional<Place<d>>& first_vertex) const {
-    PieceOrigin o;
-    if (p.starts_at == PieceStart::first_vertex && first_vertex) {
-      ctx_.elements_of(*first_vertex, o.elements);
-    } else if (p.starts_at == PieceStart::rim_node) {
-      o.eta = buffer.rim_points[p.start_rim].eta;
-      o.elements.push_back(buffer.rim_points[p.start_rim].element);
-    }
-    return o;
-  }
-
-  /// Where two pieces of S2 edge e leave a gap between them, the one before ending at its last
-  /// crossing and the one after starting at its first (a fold crossed by walks from both ends, or
-  /// a fold exit whose sheet holds the edge farther back than the exit's element), both pieces
-  /// now meet at a point of the gap that the sheets of both reach (meeting_at): tried at a half,
-  /// a quarter and three quarters of the gap, then a quarter, a half and three quarters of the
-  /// way back from the gap along the piece before it (without its last crossing), then of the
-  /// way on along the piece after it (without its first).
-  void meet_across_gaps(Index e, std::size_t first_piece, const std::optional<Place<d>>& first_vertex,
-                        PlanBuffer<d>& buffer) const
-    requires(d == 2)
-  {
-    auto& pieces = buffer.pieces;
-    auto& crossings = buffer.crossings;
-    if (pieces.size() < first_piece + 2) return;
-    using Piece = typename PlanBuffer<d>::Piece;
-    auto start_eta = [&](const Piece& p) {
-      return p.starts_at == PieceStart::first_vertex     ? 0.0
-             : p.starts_at == PieceStart::first_crossing ? crossings[p.begin].target_parameter
-                                                         : buffer.rim_points[p.start_rim].eta;
-    };
-    std::vector<std::size_t> order;
-    for (std::size_t i = first_piece; i < pieces.size(); ++i) order.push_back(i);
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t x, std::size_t y) { return start_eta(pieces[x]) < start_eta(pieces[y]); });
-    const double slack = ctx_.options.search_limits.piece_parameter_slack;
-    long long calls = 0, failures = 0;
-    for (std::size_t k = 0; k + 1 < order.size(); ++k) {
-      Piece& p = pieces[order[k]];
-      Piece& q = pieces[order[k + 1]];
-      if (p.ends_at != PieceEnd::last_crossing || q.starts_at != PieceStart::first_crossing || p.end == p.begin ||
-          q.end == q.begin)
-        continue;
-      const EdgeCrossing& p_last = crossings[p.end - 1];
-      const EdgeCrossing& q_first = crossings[q.begin];
-      const double a = p_last.target_parameter, b = q_first.target_parameter;
-      if (!(b > a + slack)) continue;
-      const std::vector<Index> after_p = elements_between(p_last, nullptr);
-      const std::vector<Index> before_q = elements_between(q_first, nullptr);
-      std::optional<std::pair<RimPoint<d>, RimPoint<d>>> met;
-      bool drop_p_last = false, drop_q_first = false;
-      for (const double f : {0.5, 0.25, 0.75})
-        if (!met) met = meeting_at(e, a + f * (b - a), after_p, before_q, calls, failures);
-      // back along p (to its crossing before, or its start node), or on along q (to its second
-      // crossing)
-      if (!met && (p.end - p.begin >= 2 || p.starts_at != PieceStart::first_crossing)) {
-        const bool single = p.end - p.begin < 2;
-        const PieceOrigin origin = single ? origin_of(p, buffer, first_vertex) : PieceOrigin{};
-        const double before = single ? origin.eta : crossings[p.end - 2].target_parameter;
-        const std::vector<Index> behind =
-            single ? elements_between(p_last, origin.elements) : elements_between(p_last, &crossings[p.end - 2]);
-        for (const double g : {0.25, 0.5, 0.75})
-          if (!met) met = meeting_at(e, a - g * (a - before), behind, before_q, calls, failures);
-        drop_p_last = met.has_value();
-      }
-      if (!met && q.end - q.begin >= 2) {
-        const double after = crossings[q.begin + 1].target_parameter;
-        const std::vector<Index> ahead = elements_between(q_first, &crossings[q.begin + 1]);
-        for (const double g : {0.25, 0.5, 0.75})
-          if (!met) met = meeting_at(e, b + g * (after - b), after_p, ahead, calls, failures);
-        drop_q_first = met.has_value();
-      }
-      if (!met) continue;
-      if (drop_p_last) --p.end;
-      if (drop_q_first) ++q.begin;
-      p.ends_at = PieceEnd::rim_node;
-      p.end_rim = keep_rim(buffer, met->first, false);
-      q.starts_at = PieceStart::rim_node;
-      q.start_rim = keep_rim(buffer, met->second, false);
-    }
-    ctx_.solver_calls += calls;
-    ctx_.solver_failures += failures;
-  }
-
-  /// Where the stop's sheet and the sheet beyond a fold meet on S2 edge e (projection_fold_rim.hpp):
-  /// a point of the edge that both reach unfolded, its preimage on each, and how many of the
-  /// stopped piece's crossings lie before it.
-  struct FoldMeeting {
-    RimPoint<d> near, far;
-    std::size_t kept_crossings = 0;
-  };
-  /// The walk `stopped` ended at a fold after the crossings `piece` of the last piece, and `exit`
-  /// is where the edge comes out over the sheet beyond it. Tried, in this order: a half and a
-  /// quarter of the way from the stop to the exit, inside the element ahead of the stop where the
-  /// crossings were folded (stopped.fold_element); a quarter, a half and three quarters of the
-  /// way back to the crossing before the stop, inside the element between the two (where the
-  /// fold lies on the stop's S1 edge itself, or just beyond). The preimage on the sheet beyond is
-  /// looked for in the element where a walk back from the exit along that sheet holds that point
-  /// of the edge. (The ring of elements around the exit, tried first, made 12 % more meeting
-  /// nodes on the femur pair but no fewer defects, for twice the added solver calls.)
-  std::optional<FoldMeeting> fold_meeting(Index e, const WalkResult<d>& stopped, const FoldExit& exit,
-                                          std::vector<Crossing<d>> piece, const PieceOrigin& start,
-                                          PlanBuffer<d>& buffer, long long& calls, long long& failures) const
-    requires(d == 2)
-  {
-    // (`piece` is a copy: the walk below appends to the buffer it came from)
-    if (stopped.rim || piece.empty()) return std::nullopt;
-    const std::size_t n = piece.size();
-    // The sheet beyond, walked back from the exit towards the stop (its crossings are taken off
-    // the buffer again): the element of each stretch between two of its crossings, and beyond
-    // the last one the element where that walk met the sheet's own fold.
-    struct Stretch {
-      double low, high;  // edge parameters, from the first vertex
-      Index element;
-    };
-    std::vector<Stretch> beyond;
-    {
-      const std::size_t mark = buffer.crossings.size();
-      const WalkResult<d> back =
-          walk(e, exit.place, 1.0 - exit.crossing.eta, std::nullopt, WalkDirection::from_second_vertex, buffer);
-      EdgeCrossing previous{exit.place.index, exit.crossing.lambda, exit.crossing.eta};
-      double high = exit.crossing.eta;
-      for (std::size_t i = mark; i < buffer.crossings.size(); ++i) {
-        const EdgeCrossing& c = buffer.crossings[i];
-        const double low = 1.0 - c.target_parameter;
-        for (Index t : elements_between(previous, &c)) beyond.push_back({low, high, t});
-        previous = c;
-        high = low;
-      }
-      if (back.fold_element != invalid_index) beyond.push_back({-1.0, high, back.fold_element});
-      buffer.crossings.resize(mark);
-    }
-    auto meet = [&](double eta, Index near_element, std::size_t kept) -> std::optional<FoldMeeting> {
-      std::vector<Index> far;
-      for (const Stretch& stretch : beyond)
-        if (eta >= stretch.low && eta <= stretch.high) far.push_back(stretch.element);
-      const auto points = meeting_at(e, eta, std::span<const Index>(&near_element, 1), std::span<const Index>(far),
-                                     calls, failures);
-      if (!points) return std::nullopt;
-      return FoldMeeting{points->first, points->second, kept};
-    };
-    if (stopped.fold_element != invalid_index)
-      for (const double f : {0.5, 0.25})
-        if (auto m = meet(stopped.eta + f * (exit.crossing.eta - stopped.eta), stopped.fold_element, n)) return m;
-    // behind the stop: the element between the last two crossings, or between the piece's start
-    // and its only crossing
-    const double eta_before = n >= 2 ? piece[n - 2].target_parameter : start.eta;
-    const std::vector<Index> behind = n >= 2 ? elements_between(piece[n - 1], &piece[n - 2])
-                                             : elements_between(piece[n - 1], start.elements);
-    for (const double g : {0.25, 0.5, 0.75})
-      for (Index t : behind)
-        if (auto m = meet(stopped.eta - g * (stopped.eta - eta_before), t, n - 1)) return m;
-    return std::nullopt;
   }
 
   /// After the walk `stopped` from the first vertex or a boundary entry of S2 edge e ended at a
@@ -786,44 +478,33 @@ class EdgeWalker {
       // last crossing, it now ends at a point of that stretch, and the walk beyond starts at the
       // same point on the other sheet; the rim traced through such points
       // (projection_fold_rim.hpp) lets the faces on both sides close.
-      std::optional<FoldMeeting> meeting;
-      if (exit && !reentry && ctx_.options.fold_rim && stopped.reason == EdgeFailureReason::fold &&
-          buffer.pieces.size() > progress.pieces_begin) {
-        auto& last = buffer.pieces.back();
-        if (last.ends_at == PieceEnd::last_crossing && last.end == crossings.size() && last.end > last.begin &&
-            crossings[last.end - 1].target_parameter == stopped.eta) {
-          meeting = fold_meeting(e, stopped, *exit,
-                                 std::vector<Crossing<d>>(crossings.begin() + last.begin, crossings.begin() + last.end),
-                                 origin_of(last, buffer, progress.first), buffer, calls, failures);
-          if (meeting) {
-            // (a crossing taken off stays in the buffer, unused)
-            last.end = static_cast<std::uint32_t>(last.begin + meeting->kept_crossings);
-            last.ends_at = PieceEnd::rim_node;
-            last.end_rim = keep_rim(buffer, meeting->near, false);
-          }
-        }
+      std::optional<RimPoint<d>> meeting;
+      if (exit && !reentry && ctx_.options.fold_rim && stopped.reason == EdgeFailureReason::fold && !stopped.rim) {
+        // the sheet beyond, walked back from the exit (FoldMeetings::fold_meeting)
+        auto walk_back = [&](const EdgeCrossing& from) {
+          return walk(e, ctx_.edge_place(from.domain_edge, from.domain_parameter), 1.0 - from.target_parameter,
+                      std::nullopt, WalkDirection::from_second_vertex, buffer)
+              .fold_element;
+        };
+        meeting = FoldMeetings<Solver>(ctx_, state_, crossings_)
+                      .meet_after_exit(e, stopped.eta, stopped.fold_element,
+                                       EdgeCrossing{exit->place.index, exit->crossing.lambda, exit->crossing.eta},
+                                       progress.pieces_begin, progress.first, buffer, walk_back, calls, failures);
       }
       const std::size_t begin = crossings.size();
       std::uint32_t start_rim = PlanBuffer<d>::no_rim;
-      if (meeting) {
-        start_rim = keep_rim(buffer, meeting->far, false);
+      // from a point inside an element: where the sheets meet, or where the edge comes out from
+      // behind S1
+      if (const std::optional<RimPoint<d>> from = meeting ? meeting : reentry) {
+        start_rim = buffer.keep_rim(*from, false);
         Place<d> inside;
         inside.kind = PlaceKind::element;
-        inside.index = meeting->far.element;
-        inside.local = meeting->far.local;
-        stopped = walk(e, inside, meeting->far.eta, progress.second, WalkDirection::from_first_vertex, buffer);
-        // one rim node per S1 element and S2 edge, as after a reentry (below)
-        if (stopped.rim && stopped.rim->element == meeting->far.element) stopped.rim.reset();
-      } else if (reentry) {
-        start_rim = keep_rim(buffer, *reentry, false);
-        Place<d> inside;
-        inside.kind = PlaceKind::element;
-        inside.index = reentry->element;
-        inside.local = reentry->local;
-        stopped = walk(e, inside, reentry->eta, progress.second, WalkDirection::from_first_vertex, buffer);
+        inside.index = from->element;
+        inside.local = from->local;
+        stopped = walk(e, inside, from->eta, progress.second, WalkDirection::from_first_vertex, buffer);
         // one rim node per S1 element and S2 edge: passing behind S1 again in the same element,
         // the piece ends at its last crossing
-        if (stopped.rim && stopped.rim->element == reentry->element) stopped.rim.reset();
+        if (stopped.rim && stopped.rim->element == from->element) stopped.rim.reset();
       } else {
         crossings.push_back(EdgeCrossing{exit->place.index, exit->crossing.lambda, exit->crossing.eta});
         stopped = walk(e, exit->place, exit->crossing.eta, progress.second, WalkDirection::from_first_vertex, buffer);
@@ -837,7 +518,7 @@ class EdgeWalker {
       }
       const PieceStart starts_at = from_rim_node ? PieceStart::rim_node : PieceStart::first_crossing;
       if (!reached && stopped.rim)
-        add_piece(buffer, begin, starts_at, PieceEnd::rim_node, keep_rim(buffer, *stopped.rim, false), start_rim);
+        add_piece(buffer, begin, starts_at, PieceEnd::rim_node, buffer.keep_rim(*stopped.rim, false), start_rim);
       else
         add_piece(buffer, begin, starts_at, reached ? PieceEnd::second_vertex : PieceEnd::last_crossing,
                   PlanBuffer<d>::no_rim, start_rim);
@@ -901,8 +582,8 @@ class EdgeWalker {
       std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(begin), crossings.end());
       for (std::size_t i = begin; i < crossings.size(); ++i)
         crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
-      const std::uint32_t end_rim = reentry ? keep_rim(buffer, *reentry, true) : PlanBuffer<d>::no_rim;
-      const std::uint32_t start_rim = from_rim ? keep_rim(buffer, *stopped.rim, true) : PlanBuffer<d>::no_rim;
+      const std::uint32_t end_rim = reentry ? buffer.keep_rim(*reentry, true) : PlanBuffer<d>::no_rim;
+      const std::uint32_t start_rim = from_rim ? buffer.keep_rim(*stopped.rim, true) : PlanBuffer<d>::no_rim;
       add_piece(buffer, begin, from_rim ? PieceStart::rim_node : PieceStart::first_crossing,
                 reentry ? PieceEnd::rim_node : PieceEnd::last_crossing, end_rim, start_rim);
       if (cut) break;
@@ -928,7 +609,7 @@ class EdgeWalker {
         if (w.crossing_count > 0) {  // partial insertion, as for the walk from the first vertex
           buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
           if (w.rim) {
-            add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::rim_node, keep_rim(buffer, *w.rim, false));
+            add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::rim_node, buffer.keep_rim(*w.rim, false));
             progress.covered_until = w.rim->eta;
           } else {
             add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::last_crossing);
@@ -938,7 +619,7 @@ class EdgeWalker {
         }
         if (w.rim) {  // right after the entry the edge passes behind S1: a piece from the entry to the rim
           buffer.failures.push_back(failure(e, w.reason, w.stop, w.eta));
-          add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::rim_node, keep_rim(buffer, *w.rim, false));
+          add_piece(buffer, begin, PieceStart::first_crossing, PieceEnd::rim_node, buffer.keep_rim(*w.rim, false));
           progress.covered_until = w.rim->eta;
           continue;
         }
@@ -990,7 +671,7 @@ class EdgeWalker {
       for (std::size_t i = begin; i < crossings.size(); ++i)
         crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
       add_piece(buffer, begin, PieceStart::rim_node, PieceEnd::second_vertex, PlanBuffer<d>::no_rim,
-                keep_rim(buffer, *w.rim, true));
+                buffer.keep_rim(*w.rim, true));
       progress.reached_second = true;
       if (!progress.first_walk_failed) buffer.failures.push_back(failure(e, w.reason, w.stop, 1.0 - w.eta));
       if constexpr (d == 2) walk_back_after_folds(e, w, progress.covered_until, buffer);

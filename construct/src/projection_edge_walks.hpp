@@ -68,6 +68,14 @@ struct PlanBuffer {
   /// scratch of the walks: the S1 elements at the current point and at the walk's end
   std::vector<Index> candidates, end_elements;
 
+  /// Keeps a walk's rim point for a piece, its parameter measured from the edge's first vertex
+  /// (`backwards`: the walk ran from the second vertex); returns its index.
+  std::uint32_t keep_rim(RimPoint<d> rim, bool backwards) {
+    if (backwards) rim.eta = 1.0 - rim.eta;
+    rim_points.push_back(rim);
+    return static_cast<std::uint32_t>(rim_points.size() - 1);
+  }
+
   void clear() {
     crossings.clear();
     pieces.clear();

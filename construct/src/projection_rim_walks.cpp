@@ -62,17 +62,17 @@ PlannedEdge plan_from_rim(const EdgeWalker<2, Solver>& walker, const ProjectionC
     if (forwards) {
       Walker::add_piece(buffer, begin, PieceStart::rim_node,
                 reached ? PieceEnd::second_vertex : (to_rim ? PieceEnd::rim_node : PieceEnd::last_crossing),
-                to_rim ? Walker::keep_rim(buffer, *w.rim, false) : PlanBuffer<d>::no_rim, Walker::keep_rim(buffer, rim, false));
+                to_rim ? buffer.keep_rim(*w.rim, false) : PlanBuffer<d>::no_rim, buffer.keep_rim(rim, false));
       walked.emplace_back(rim.eta, far_eta);
     } else {
       // measured from the first vertex again, in the edge's direction, ending at the start
       std::reverse(crossings.begin() + static_cast<std::ptrdiff_t>(begin), crossings.end());
       for (std::size_t i = begin; i < crossings.size(); ++i)
         crossings[i].target_parameter = 1.0 - crossings[i].target_parameter;
-      const std::uint32_t start_rim = to_rim ? Walker::keep_rim(buffer, *w.rim, true) : PlanBuffer<d>::no_rim;
+      const std::uint32_t start_rim = to_rim ? buffer.keep_rim(*w.rim, true) : PlanBuffer<d>::no_rim;
       Walker::add_piece(buffer, begin,
                 reached ? PieceStart::first_vertex : (to_rim ? PieceStart::rim_node : PieceStart::first_crossing),
-                PieceEnd::rim_node, Walker::keep_rim(buffer, rim, false), start_rim);
+                PieceEnd::rim_node, buffer.keep_rim(rim, false), start_rim);
       walked.emplace_back(1.0 - far_eta, rim.eta);
     }
   }

@@ -45,14 +45,32 @@ std::vector<Index> list_begins(const ElementGraph& g) {
   return begin;
 }
 
+namespace {
+
+/// Appends `from`'s entries to `to`.
+template <class T>
+void append_to(std::vector<T>& to, const std::vector<T>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
+
+/// Appends the per-node, per-side and per-region arrays of one or more element graphs (an
+/// ElementGraph or a StoredGraph: `kind` is the one's neighbor kinds, the other's
+/// neighbor_edge_kind) to `out`.
+template <class Graph>
+void append_graph_arrays(const Graph& g, const std::vector<GraphEdgeKind>& kind, StoredGraph& out) {
+  append_to(out.neighbor_count, g.neighbor_count);
+  append_to(out.neighbor, g.neighbor);
+  append_to(out.neighbor_edge_kind, kind);
+  append_to(out.edge_node_count, g.edge_node_count);
+  append_to(out.edge_node, g.edge_node);
+  append_to(out.region_neighbors, g.region_neighbors);
+}
+
+}  // namespace
+
 void append(const ElementGraph& g, StoredGraph& out) {
   out.element.push_back(g.element);
-  out.neighbor_count.insert(out.neighbor_count.end(), g.neighbor_count.begin(), g.neighbor_count.end());
-  out.neighbor.insert(out.neighbor.end(), g.neighbor.begin(), g.neighbor.end());
-  out.neighbor_edge_kind.insert(out.neighbor_edge_kind.end(), g.kind.begin(), g.kind.end());
-  out.edge_node_count.insert(out.edge_node_count.end(), g.edge_node_count.begin(), g.edge_node_count.end());
-  out.edge_node.insert(out.edge_node.end(), g.edge_node.begin(), g.edge_node.end());
-  out.region_neighbors.insert(out.region_neighbors.end(), g.region_neighbors.begin(), g.region_neighbors.end());
+  append_graph_arrays(g, g.kind, out);
 }
 
 StoredGraph join_in_order(std::vector<StoredGraph>& pieces) {
@@ -60,13 +78,8 @@ StoredGraph join_in_order(std::vector<StoredGraph>& pieces) {
   StoredGraph out = std::move(pieces[0]);
   for (std::size_t k = 1; k < pieces.size(); ++k) {
     const StoredGraph& p = pieces[k];
-    out.element.insert(out.element.end(), p.element.begin(), p.element.end());
-    out.neighbor_count.insert(out.neighbor_count.end(), p.neighbor_count.begin(), p.neighbor_count.end());
-    out.neighbor.insert(out.neighbor.end(), p.neighbor.begin(), p.neighbor.end());
-    out.neighbor_edge_kind.insert(out.neighbor_edge_kind.end(), p.neighbor_edge_kind.begin(), p.neighbor_edge_kind.end());
-    out.edge_node_count.insert(out.edge_node_count.end(), p.edge_node_count.begin(), p.edge_node_count.end());
-    out.edge_node.insert(out.edge_node.end(), p.edge_node.begin(), p.edge_node.end());
-    out.region_neighbors.insert(out.region_neighbors.end(), p.region_neighbors.begin(), p.region_neighbors.end());
+    append_to(out.element, p.element);
+    append_graph_arrays(p, p.neighbor_edge_kind, out);
   }
   return out;
 }
