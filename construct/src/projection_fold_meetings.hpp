@@ -62,8 +62,7 @@ class FoldMeetings {
   /// way back from the gap along the piece before it (without its last crossing), then of the
   /// way on along the piece after it (without its first).
   void meet_across_gaps(Index e, std::size_t first_piece, const std::optional<Place<2>>& first_vertex,
-                        PlanBuffer<2>& buffer) const
-  {
+                        PlanBuffer<2>& buffer) const {
     auto& pieces = buffer.pieces;
     auto& crossings = buffer.crossings;
     if (pieces.size() < first_piece + 2) return;
@@ -133,8 +132,7 @@ class FoldMeetings {
   /// near element, then the first such far element other than it).
   std::optional<std::pair<RimPoint<2>, RimPoint<2>>> meeting_at(Index e, double eta, std::span<const Index> near,
                                                                 std::span<const Index> far, long long& calls,
-                                                                long long& failures) const
-  {
+                                                                long long& failures) const {
     constexpr double inside = 1e-6;  // a rim node strictly inside its element, not snapped to a side
     const auto tv = ctx_.target_edge_vertices(e);
     const WorldPoint<2> q = ctx_.s2.vertex(tv[0]) + eta * (ctx_.s2.vertex(tv[1]) - ctx_.s2.vertex(tv[0]));
