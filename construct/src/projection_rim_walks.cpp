@@ -60,9 +60,13 @@ PlannedEdge plan_from_rim(const EdgeWalker<2, Solver>& walker, const ProjectionC
     }
     const double far_eta = reached ? 1.0 : (to_rim ? w.rim->eta : w.eta);  // in the walk's direction
     if (forwards) {
+      // kept one after the other: as two arguments of one call, their order (and so the rim
+      // points' indices) would be the compiler's choice
+      const std::uint32_t start_rim = buffer.keep_rim(rim, false);
+      const std::uint32_t end_rim = to_rim ? buffer.keep_rim(*w.rim, false) : PlanBuffer<d>::no_rim;
       Walker::add_piece(buffer, begin, PieceStart::rim_node,
                 reached ? PieceEnd::second_vertex : (to_rim ? PieceEnd::rim_node : PieceEnd::last_crossing),
-                to_rim ? buffer.keep_rim(*w.rim, false) : PlanBuffer<d>::no_rim, buffer.keep_rim(rim, false));
+                end_rim, start_rim);
       walked.emplace_back(rim.eta, far_eta);
     } else {
       // measured from the first vertex again, in the edge's direction, ending at the start
