@@ -221,16 +221,19 @@ class FoldMeetings {
     std::size_t kept_crossings = 0;
   };
   /// A walk along S2 edge e stopped at a fold (edge parameter stop_eta) after the crossings
-  /// `piece` of its piece, and `exit` is where the edge comes out over the sheet beyond it. Tried, in this order: a half and a
-  /// quarter of the way from the stop to the exit, inside the element ahead of the stop where the
-  /// crossings were folded (fold_element); a quarter, a half and three quarters of the
-  /// way back to the crossing before the stop, inside the element between the two (where the
-  /// fold lies on the stop's S1 edge itself, or just beyond). The preimage on the sheet beyond is
-  /// looked for in the element where a walk back from the exit along that sheet holds that point
-  /// of the edge (`walk_back(exit)` appends that walk's crossings to the buffer, parameters from
-  /// the second vertex, and returns the element where it met the sheet's own fold, or
-  /// invalid_index; they are taken off again). (The ring of elements around the exit, tried first, made 12 % more meeting
-  /// nodes on the femur pair but no fewer defects, for twice the added solver calls.)
+  /// `piece` of its piece, and `exit` is where the edge comes out over the sheet beyond it. Tried,
+  /// in this order: a half and a quarter of the way from the stop to the exit, inside the element
+  /// ahead of the stop where the crossings were folded (fold_element); a quarter, a half and
+  /// three quarters of the way back to the crossing before the stop, inside the element between
+  /// the two (where the fold lies on the stop's S1 edge itself, or just beyond); the same
+  /// fractions of the part of that last stretch that the sheet beyond holds too; and without a
+  /// fold_element, of the way from the stop to where the sheet beyond holds the edge, inside the
+  /// element across the stop's S1 edge. The preimage on the sheet beyond is looked for in the
+  /// element where a walk back from the exit along that sheet holds that point of the edge
+  /// (`walk_back(exit)` appends that walk's crossings to the buffer, parameters from the second
+  /// vertex, and returns the element where it met the sheet's own fold, or invalid_index; they
+  /// are taken off again). (The ring of elements around the exit, tried first, made 12 % more
+  /// meeting nodes on the femur pair but no fewer defects, for twice the added solver calls.)
   template <class WalkBack>
   std::optional<FoldMeeting> fold_meeting(Index e, double stop_eta, Index fold_element, const EdgeCrossing& exit,
                                           std::vector<EdgeCrossing> piece, const PieceOrigin& start,
@@ -282,6 +285,29 @@ class FoldMeetings {
     for (const double g : {0.25, 0.5, 0.75})
       for (Index t : behind)
         if (auto m = meet(stop_eta - g * (stop_eta - eta_before), t, n - 1)) return m;
+    // Where the two sheets' stretches overlap: the sheet beyond, walked back from the exit, holds
+    // the edge down to `covered_beyond`; if that lies inside the stop's last stretch, both reach
+    // the part of the stretch above it (a narrow zone, near a cusp of the fold, that the fixed
+    // fractions above miss).
+    double covered_beyond = exit.target_parameter;
+    for (const Stretch& stretch : beyond)
+      if (stretch.low >= 0.0) covered_beyond = std::min(covered_beyond, stretch.low);
+    if (covered_beyond < stop_eta) {
+      const double low = std::max(covered_beyond, eta_before);
+      for (const double g : {0.5, 0.25, 0.75})
+        for (Index t : behind)
+          if (auto m = meet(low + g * (stop_eta - low), t, n - 1)) return m;
+    }
+    // A walk that recorded no element ahead of its stop (it stopped where its own point was
+    // folded): the stop's sheet goes on into the element across the stop's S1 edge, up to its
+    // fold, between the stop and where the sheet beyond is known to hold the edge.
+    if (fold_element == invalid_index) {
+      const double high = covered_beyond > stop_eta ? covered_beyond : exit.target_parameter;
+      for (const double f : {0.5, 0.25, 0.75})
+        for (const auto& incidence : ctx_.s1.edge_elements(piece[n - 1].domain_edge))
+          if (std::find(behind.begin(), behind.end(), incidence.element) == behind.end())
+            if (auto m = meet(stop_eta + f * (high - stop_eta), incidence.element, n)) return m;
+    }
     return std::nullopt;
   }
 
