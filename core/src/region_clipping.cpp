@@ -345,16 +345,19 @@ struct MadeElement {
   std::vector<AffineMap<2>> region_map;
 };
 
-/// Element t re-made with the cuts' nodes: its old nodes and the new ones, its regions cut and
-/// split (ear by ear, each polygon convex), its graph (old edges split at the new nodes, closure
-/// edges of the parts that left dropped, neighbours counter-clockwise) and edge arrays.
-MadeElement make_element(const PlMap<2>& map, Index t, const ElementEdit& edit, OldGraphs& graphs, RegionClipReport& rep) {
+/// The graph edges of an element being re-made (element-local node indices, smaller first), with
+/// the sides of its new regions and of its old ones (old node indices).
+struct MadeEdges {
+  std::map<Side, GraphEdgeKind> kind;
+  std::map<Side, char> region_sides;
+  std::map<Side, char> old_region_sides;
+};
+
+/// The nodes of element t re-made: its old nodes, then the cuts' new ones.
+void gather_nodes(const PlMap<2>& map, Index t, const ElementEdit& edit, MadeElement& out) {
   const MapData<2>& m = map.stored();
-  MadeElement out;
-  const OldGraph old_graph = graphs.of(t);
-  const Index first = map.nodes_begin(t), old_count = map.nodes_end(t) - first;
-  out.old_nodes = old_count;
-  for (Index n = first; n < map.nodes_end(t); ++n) {
+  out.old_nodes = map.nodes_end(t) - map.nodes_begin(t);
+  for (Index n = map.nodes_begin(t); n < map.nodes_end(t); ++n) {
     out.position.push_back(m.node_position[n]);
     out.type.push_back(m.node_type[n]);
     out.location.push_back(m.node_location[n]);
@@ -366,114 +369,91 @@ MadeElement make_element(const PlMap<2>& map, Index t, const ElementEdit& edit, 
     out.image.push_back(node.image);
     out.target.push_back(node.target);
   }
-  rep.new_nodes += static_cast<Index>(edit.nodes.size());
-  const auto local = [&](Index entry) { return entry >= 0 ? entry - first : old_count - entry - 1; };
-  // graph edges of the re-made element, element-local, smaller first
-  std::map<Side, GraphEdgeKind> edges;
-  std::map<Side, char> region_side;       // sides of the new regions
-  std::map<Side, char> old_region_sides;  // sides of the old regions (old indices)
-  for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) {
-    const auto& c = m.region_corners[r];
-    for (int i = 0; i < 3; ++i) old_region_sides[side_of(c[i], c[(i + 1) % 3])] = 1;
+}
+
+/// What region r's polygon (its vertices as polygon_of gives them, `kinds` the kind of the side
+/// that starts at each) keeps of itself on the kept side of its cut: corners with f >= 0, the
+/// line's own nodes, and the nodes of other cuts on the kept part of the sides; the side between
+/// the own nodes is the new rim (a closure edge).
+void keep_cut_side(const MapData<2>& m, Index r, const ElementEdit& edit, const Cut& cut, std::vector<Index>& polygon,
+                   std::vector<GraphEdgeKind>& kinds) {
+  const auto& c = m.region_corners[r];
+  const auto own_id = [&](Index x) {
+    if (x >= 0) return false;
+    const int id = static_cast<int>(-x - 1);
+    return id == cut.own[0] || id == cut.own[1] || id == cut.own[2];
+  };
+  std::vector<Index> kept;
+  std::vector<GraphEdgeKind> kept_kinds;
+  int corner = -1;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Index v = polygon[i];
+    bool keep;
+    if (v >= 0) {
+      ++corner;
+      keep = cut.f[corner] >= 0.0;
+    } else {
+      // the line's value there, interpolated along the side from the corners' (snapped)
+      // values, so that a node of another cut is judged as the corners are
+      const NewNode& node = edit.nodes[static_cast<std::size_t>(-v - 1)];
+      const int ia = static_cast<int>(std::find(c.begin(), c.end(), node.side.first) - c.begin());
+      const int ib = static_cast<int>(std::find(c.begin(), c.end(), node.side.second) - c.begin());
+      const double f = (1.0 - node.s) * cut.f[ia] + node.s * cut.f[ib];
+      keep = own_id(v) || f >= 0.0;
+    }
+    if (!keep) continue;
+    kept.push_back(v);
+    kept_kinds.push_back(kinds[i]);
   }
-  for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) {
-    const auto found = edit.cuts.find(r);
-    if (found != edit.cuts.end() && found->second.removed) continue;
-    const auto& c = m.region_corners[r];
-    std::vector<Index> polygon = polygon_of(m, r, edit);
-    const bool split = polygon.size() > 3;
-    // the kind of each polygon side: that of the old side it lies on
-    std::vector<GraphEdgeKind> kinds;  // of the side that starts at each vertex
-    {
-      int corner = -1;
-      for (Index v : polygon) {
-        if (v >= 0) ++corner;
-        kinds.push_back(old_graph.kind(c[corner], c[(corner + 1) % 3]).value_or(GraphEdgeKind::closure));
+  // the side that leaves the first own node kept runs along the line: a closure edge
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    if (own_id(kept[i]) && own_id(kept[(i + 1) % kept.size()])) kept_kinds[i] = GraphEdgeKind::closure;
+  polygon = std::move(kept);
+  kinds = std::move(kept_kinds);
+}
+
+/// The convex polygon `ring` (element-local nodes, `kinds` of its sides) of old region r made
+/// into regions, ear by ear at its strictly convex vertices; its sides and diagonals become
+/// graph edges.
+void triangulate_polygon(const MapData<2>& m, Index r, std::vector<Index> ring, const std::vector<GraphEdgeKind>& kinds,
+                         MadeElement& out, MadeEdges& edges) {
+  for (std::size_t i = 0; i < ring.size(); ++i) edges.kind[side_of(ring[i], ring[(i + 1) % ring.size()])] = kinds[i];
+  const auto at = [&](Index v) { return out.position[static_cast<std::size_t>(v)]; };
+  while (ring.size() >= 3) {
+    bool cut_ear = false;
+    for (std::size_t i = 0; i < ring.size() && !cut_ear; ++i) {
+      const Index a = ring[(i + ring.size() - 1) % ring.size()], b = ring[i], cc = ring[(i + 1) % ring.size()];
+      const LocalPoint<2> u = at(b) - at(a), w = at(cc) - at(a);
+      const double area = u.x() * w.y() - u.y() * w.x();
+      if (!(area > 1e-12 * u.norm() * w.norm())) continue;
+      // nor may another vertex lie on the new side a-cc (the polygon has vertices in the
+      // middle of its sides): that would be a corner of no triangle on that side
+      const bool through_vertex = std::any_of(ring.begin(), ring.end(), [&](Index v) {
+        if (v == a || v == b || v == cc) return false;
+        const LocalPoint<2> x = at(v) - at(a);
+        const double across = w.x() * x.y() - w.y() * x.x(), along = w.dot(x);
+        return std::abs(across) <= 1e-12 * w.norm() * x.norm() && along > 0.0 && along < w.squaredNorm();
+      });
+      if (through_vertex) continue;
+      out.corners.push_back({a, b, cc});
+      out.region_target.push_back(m.region_target[r]);
+      out.region_map.push_back(m.region_map[r]);
+      for (const Side& s : {side_of(a, b), side_of(b, cc), side_of(cc, a)}) {
+        edges.region_sides[s] = 1;
+        edges.kind.emplace(s, GraphEdgeKind::closure);  // a diagonal, if not a polygon side
       }
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
+      cut_ear = true;
     }
-    if (found != edit.cuts.end()) {
-      // keep what lies on the kept side: corners with f >= 0, the line's own two nodes, and the
-      // nodes of other cuts on the kept part of the sides; the side between the own nodes is
-      // the new rim (a closure edge)
-      const Cut& cut = found->second;
-      std::vector<Index> kept;
-      std::vector<GraphEdgeKind> kept_kinds;
-      int corner = -1;
-      for (std::size_t i = 0; i < polygon.size(); ++i) {
-        const Index v = polygon[i];
-        bool keep;
-        if (v >= 0) {
-          ++corner;
-          keep = cut.f[corner] >= 0.0;
-        } else {
-          const int id = static_cast<int>(-v - 1);
-          const bool own = id == cut.own[0] || id == cut.own[1] || id == cut.own[2];
-          // the line's value there, interpolated along the side from the corners' (snapped)
-          // values, so that a node of another cut is judged as the corners are
-          const NewNode& node = edit.nodes[static_cast<std::size_t>(id)];
-          const int ia = static_cast<int>(std::find(c.begin(), c.end(), node.side.first) - c.begin());
-          const int ib = static_cast<int>(std::find(c.begin(), c.end(), node.side.second) - c.begin());
-          const double f = (1.0 - node.s) * cut.f[ia] + node.s * cut.f[ib];
-          keep = own || f >= 0.0;
-        }
-        if (!keep) continue;
-        kept.push_back(v);
-        kept_kinds.push_back(kinds[i]);
-      }
-      // the side that leaves the first own node kept runs along the line: a closure edge
-      for (std::size_t i = 0; i < kept.size(); ++i) {
-        const Index v = kept[i], w = kept[(i + 1) % kept.size()];
-        auto own_id = [&](Index x) {
-          if (x >= 0) return false;
-          const int id = static_cast<int>(-x - 1);
-          return id == cut.own[0] || id == cut.own[1] || id == cut.own[2];
-        };
-        if (own_id(v) && own_id(w)) kept_kinds[i] = GraphEdgeKind::closure;
-      }
-      polygon = kept;
-      kinds = kept_kinds;
-    } else if (split) {
-      ++rep.split_regions;
-    }
-    // the polygon is convex: ears at its strictly convex vertices
-    std::vector<Index> ring(polygon.size());
-    for (std::size_t i = 0; i < polygon.size(); ++i) ring[i] = local(polygon[i]);
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      const Side s = side_of(ring[i], ring[(i + 1) % ring.size()]);
-      edges[s] = kinds[i];
-    }
-    const auto at = [&](Index v) { return out.position[static_cast<std::size_t>(v)]; };
-    while (ring.size() >= 3) {
-      bool cut_ear = false;
-      for (std::size_t i = 0; i < ring.size() && !cut_ear; ++i) {
-        const Index a = ring[(i + ring.size() - 1) % ring.size()], b = ring[i], cc = ring[(i + 1) % ring.size()];
-        const LocalPoint<2> u = at(b) - at(a), w = at(cc) - at(a);
-        const double area = u.x() * w.y() - u.y() * w.x();
-        if (!(area > 1e-12 * u.norm() * w.norm())) continue;
-        // nor may another vertex lie on the new side a-cc (the polygon has vertices in the
-        // middle of its sides): that would be a corner of no triangle on that side
-        const bool through_vertex = std::any_of(ring.begin(), ring.end(), [&](Index v) {
-          if (v == a || v == b || v == cc) return false;
-          const LocalPoint<2> x = at(v) - at(a);
-          const double across = w.x() * x.y() - w.y() * x.x(), along = w.dot(x);
-          return std::abs(across) <= 1e-12 * w.norm() * x.norm() && along > 0.0 && along < w.squaredNorm();
-        });
-        if (through_vertex) continue;
-        out.corners.push_back({a, b, cc});
-        out.region_target.push_back(m.region_target[r]);
-        out.region_map.push_back(m.region_map[r]);
-        for (const Side& s : {side_of(a, b), side_of(b, cc), side_of(cc, a)}) {
-          region_side[s] = 1;
-          edges.emplace(s, GraphEdgeKind::closure);  // a diagonal, if not a polygon side
-        }
-        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
-        cut_ear = true;
-      }
-      if (!cut_ear) break;  // what is left is flat
-    }
+    if (!cut_ear) break;  // what is left is flat
   }
-  // old graph edges: split at the new nodes on them; the pieces that border no new region stay
-  // if they are pieces of S2 edges, or if the old edge bordered no region either
+}
+
+/// Element t's old graph edges split at the new nodes on them: the pieces that border no new
+/// region stay if they are pieces of S2 edges, or if the old edge bordered no region either.
+void split_old_edges(const PlMap<2>& map, Index t, const ElementEdit& edit, const OldGraph& old_graph,
+                     MadeEdges& edges) {
+  const Index first = map.nodes_begin(t), old_count = map.nodes_end(t) - first;
   for (Index n = first; n < map.nodes_end(t); ++n)
     for (Index i = old_graph.begin[static_cast<std::size_t>(n - first)]; i < old_graph.begin[static_cast<std::size_t>(n - first) + 1]; ++i) {
       const Index q = old_graph.graph.neighbor[static_cast<std::size_t>(i)];
@@ -485,16 +465,19 @@ MadeElement make_element(const PlMap<2>& map, Index t, const ElementEdit& edit, 
         for (int id : found->second)
           chain.emplace_back(edit.nodes[static_cast<std::size_t>(id)].s, old_count + id);
       std::sort(chain.begin(), chain.end());
-      const bool bordered = old_region_sides.contains(old);
+      const bool bordered = edges.old_region_sides.contains(old);
       for (std::size_t k = 0; k + 1 < chain.size(); ++k) {
         const Side piece = side_of(chain[k].second, chain[k + 1].second);
-        if (region_side.contains(piece)) continue;
-        if (old_kind == GraphEdgeKind::target_edge || !bordered) edges[piece] = old_kind;
-        else edges.erase(piece);
+        if (edges.region_sides.contains(piece)) continue;
+        if (old_kind == GraphEdgeKind::target_edge || !bordered) edges.kind[piece] = old_kind;
+        else edges.kind.erase(piece);
       }
     }
-  // neighbour lists, counter-clockwise: from the element's boundary for a node on it, else from
-  // the smallest neighbour
+}
+
+/// Every node's neighbours, counter-clockwise: from the element's boundary for a node on it,
+/// else from the smallest neighbour.
+void order_neighbors(const std::map<Side, GraphEdgeKind>& edges, MadeElement& out) {
   const auto total = static_cast<Index>(out.position.size());
   std::vector<std::vector<std::pair<Index, GraphEdgeKind>>> neighbors(static_cast<std::size_t>(total));
   for (const auto& [s, kind] : edges) {
@@ -527,18 +510,24 @@ MadeElement make_element(const PlMap<2>& map, Index t, const ElementEdit& edit, 
     out.neighbor_count.push_back(static_cast<Index>(list.size()));
     out.neighbors.insert(out.neighbors.end(), list.begin(), list.end());
   }
-  // nodes on the local edges, from corner k to corner k + 1
+}
+
+/// The nodes on each local edge k of the re-made element, from corner k to corner k + 1.
+void list_edge_nodes(const OldGraph& old_graph, const ElementEdit& edit, Index first, MadeElement& out) {
   for (int k = 0; k < 3; ++k) {
     auto& list = out.edge_nodes[static_cast<std::size_t>(k)];
     for (Index n : old_graph.edge_nodes(k)) list.push_back(n - first);
     for (std::size_t i = 0; i < edit.nodes.size(); ++i)
-      if (edit.nodes[i].location == k) list.push_back(old_count + static_cast<Index>(i));
+      if (edit.nodes[i].location == k) list.push_back(out.old_nodes + static_cast<Index>(i));
     std::stable_sort(list.begin(), list.end(), [&](Index x, Index y) {
       return along_local_edge(out.position[static_cast<std::size_t>(x)], k) <
              along_local_edge(out.position[static_cast<std::size_t>(y)], k);
     });
   }
-  // regions across each side
+}
+
+/// The region across each side of every new region (or invalid_index).
+void link_regions_across(MadeElement& out) {
   out.across.assign(out.corners.size(), {invalid_index, invalid_index, invalid_index});
   std::map<Side, std::pair<Index, int>> first_with;
   for (std::size_t r = 0; r < out.corners.size(); ++r)
@@ -549,8 +538,50 @@ MadeElement make_element(const PlMap<2>& map, Index t, const ElementEdit& edit, 
       out.across[r][i] = it->second.first;
       out.across[static_cast<std::size_t>(it->second.first)][it->second.second] = static_cast<Index>(r);
     }
+}
+
+/// Element t re-made with the cuts' nodes: its old nodes and the new ones, its regions cut and
+/// split (ear by ear, each polygon convex), its graph (old edges split at the new nodes, closure
+/// edges of the parts that left dropped, neighbours counter-clockwise) and edge arrays.
+MadeElement make_element(const PlMap<2>& map, Index t, const ElementEdit& edit, OldGraphs& graphs, RegionClipReport& rep) {
+  const MapData<2>& m = map.stored();
+  MadeElement out;
+  const OldGraph old_graph = graphs.of(t);
+  const Index first = map.nodes_begin(t);
+  gather_nodes(map, t, edit, out);
+  rep.new_nodes += static_cast<Index>(edit.nodes.size());
+  const auto local = [&](Index entry) { return entry >= 0 ? entry - first : out.old_nodes - entry - 1; };
+  MadeEdges edges;
+  for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) {
+    const auto& c = m.region_corners[r];
+    for (int i = 0; i < 3; ++i) edges.old_region_sides[side_of(c[i], c[(i + 1) % 3])] = 1;
+  }
+  for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) {
+    const auto found = edit.cuts.find(r);
+    if (found != edit.cuts.end() && found->second.removed) continue;
+    const auto& c = m.region_corners[r];
+    std::vector<Index> polygon = polygon_of(m, r, edit);
+    // the kind of each polygon side: that of the old side it lies on
+    std::vector<GraphEdgeKind> kinds;  // of the side that starts at each vertex
+    int corner = -1;
+    for (Index v : polygon) {
+      if (v >= 0) ++corner;
+      kinds.push_back(old_graph.kind(c[corner], c[(corner + 1) % 3]).value_or(GraphEdgeKind::closure));
+    }
+    if (found != edit.cuts.end())
+      keep_cut_side(m, r, edit, found->second, polygon, kinds);
+    else if (polygon.size() > 3)
+      ++rep.split_regions;
+    std::vector<Index> ring(polygon.size());
+    for (std::size_t i = 0; i < polygon.size(); ++i) ring[i] = local(polygon[i]);
+    triangulate_polygon(m, r, std::move(ring), kinds, out, edges);
+  }
+  split_old_edges(map, t, edit, old_graph, edges);
+  order_neighbors(edges.kind, out);
+  list_edge_nodes(old_graph, edit, first, out);
+  link_regions_across(out);
   // the old nodes' values stay in the arrays: only the new nodes' are kept
-  const auto old_part = static_cast<std::ptrdiff_t>(old_count);
+  const auto old_part = static_cast<std::ptrdiff_t>(out.old_nodes);
   out.position.erase(out.position.begin(), out.position.begin() + old_part);
   out.type.erase(out.type.begin(), out.type.begin() + old_part);
   out.location.erase(out.location.begin(), out.location.begin() + old_part);
