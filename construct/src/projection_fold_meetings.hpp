@@ -288,16 +288,14 @@ class FoldMeetings {
     // Where the two sheets' stretches overlap: the sheet beyond, walked back from the exit, holds
     // the edge down to `covered_beyond`; if that lies inside the stop's last stretch, both reach
     // the part of the stretch above it (a narrow zone, near a cusp of the fold, that the fixed
-    // fractions above miss).
+    // fractions above miss; below the stretch's start they would be the same points again).
     double covered_beyond = exit.target_parameter;
     for (const Stretch& stretch : beyond)
       if (stretch.low >= 0.0) covered_beyond = std::min(covered_beyond, stretch.low);
-    if (covered_beyond < stop_eta) {
-      const double low = std::max(covered_beyond, eta_before);
+    if (covered_beyond < stop_eta && covered_beyond > eta_before)
       for (const double g : {0.5, 0.25, 0.75})
         for (Index t : behind)
-          if (auto m = meet(low + g * (stop_eta - low), t, n - 1)) return m;
-    }
+          if (auto m = meet(covered_beyond + g * (stop_eta - covered_beyond), t, n - 1)) return m;
     // A walk that recorded no element ahead of its stop (it stopped where its own point was
     // folded): the stop's sheet goes on into the element across the stop's S1 edge, up to its
     // fold, between the stop and where the sheet beyond is known to hold the edge.
