@@ -21,6 +21,7 @@
 #include <plmap/core/snapping.hpp>
 #include <plmap/core/surface.hpp>
 #include <plmap/solvers/focal_points.hpp>
+#include <plmap/solvers/projection_systems.hpp>
 
 #include <algorithm>
 #include <array>
@@ -267,6 +268,17 @@ struct ProjectionContext {
   /// the direction field (solvers/focal_points.hpp): beyond one the projection is folded.
   bool unfolded_in(Index t, const LocalPoint<d>& xi, double mu) const {
     return std::abs(mu) <= focal_free_reach[t] || reaches_without_focal_point_in(t, xi, mu);
+  }
+
+  /// Eq. (3) on S1 element t for target point q: the element's corners and vertex directions.
+  VertexProjectionSystem<d> element_system(Index t, const WorldPoint<d>& q) const {
+    VertexProjectionSystem<d> sys;
+    for (int k = 0; k <= d; ++k) {
+      sys.corners[k] = s1.corner(t, k);
+      sys.directions[k] = vertex_directions[s1.element(t)[k]];
+    }
+    sys.target = q;
+    return sys;
   }
 
   /// The focal test itself, for distances beyond the element's focal-free distance.

@@ -106,12 +106,7 @@ class EdgeCrossings {
   };
   std::optional<ElementPreimage> unfolded_preimage_in(Index t, const WorldPoint<d>& q, double margin, long long& calls,
                                                      long long& failures) const {
-    VertexProjectionSystem<d> sys;
-    for (int k = 0; k <= d; ++k) {
-      sys.corners[k] = ctx_.s1.corner(t, k);
-      sys.directions[k] = ctx_.vertex_directions[ctx_.s1.element(t)[k]];
-    }
-    sys.target = q;
+    const VertexProjectionSystem<d> sys = ctx_.element_system(t, q);
     ++calls;
     const auto r = solver_.solve(sys, sys.initial_guess());
     if (!r.converged) {

@@ -12,7 +12,7 @@ template <int d>
 Index ProjectionInsertion<d>::fold_rim_node(const RimPoint<d>& point, Index e) {
   if constexpr (d == 2) {
     // (as rim_node_inside: not within rounding of the edge's ends)
-    if (!(point.eta > 1e-9 && point.eta < 1.0 - 1e-9)) return invalid_index;
+    if (!(point.eta > rim_margin && point.eta < 1.0 - rim_margin)) return invalid_index;
     try {
       const Index node = builder_.add_rim_node({point.element, point.local}, point_on_target_edge(e, point.eta));
       ++rim_nodes_made_;

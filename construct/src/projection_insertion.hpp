@@ -25,6 +25,11 @@
 
 namespace plmap::projection {
 
+/// Points of the rim closer than this (in barycentric coordinates or edge parameters) to the
+/// side of a triangle or the end of an edge are not made: they would coincide, after the
+/// builder's snapping, with a point of the neighbouring triangle's or edge's rim, or a node.
+inline constexpr double rim_margin = 1e-9;
+
 template <int d>
 class ProjectionInsertion {
  public:

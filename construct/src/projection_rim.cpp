@@ -35,11 +35,6 @@ namespace plmap::projection {
 
 namespace {
 
-/// Points of the rim closer than this (in barycentric coordinates or edge parameters) to the
-/// side of a triangle or the end of an edge are not made: they would coincide, after the
-/// builder's snapping, with a point of the neighbouring triangle's or edge's rim, or a node.
-constexpr double rim_margin = 1e-9;
-
 /// One end of the segment in which an S1 element and an S2 triangle meet.
 struct RimEnd {
   bool on_target_edge = false;  // true: an S2 edge pierces the S1 element; false: an S1 edge pierces the S2 triangle

@@ -296,12 +296,7 @@ class VertexPreimageSearch {
       for (int step = 0; step < ctx_.options.search_limits.seed_walk_steps && t != invalid_index; ++step) {
         if (solved.contains(t)) break;  // walked from here already
         solved.add(t);
-        VertexProjectionSystem<d> sys;
-        for (int k = 0; k <= d; ++k) {
-          sys.corners[k] = ctx_.s1.corner(t, k);
-          sys.directions[k] = ctx_.vertex_directions[ctx_.s1.element(t)[k]];
-        }
-        sys.target = target;
+        const VertexProjectionSystem<d> sys = ctx_.element_system(t, target);
         if (best && rootless_step_ends_walk(t, sys, solved)) break;
         ++calls;
         const auto r = solver_.solve(sys, sys.initial_guess());
