@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <type_traits>
 
 namespace plmap::detail {
@@ -81,8 +82,8 @@ void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part, 
   reserved(part.region_corners, spare(std::max(own.triangles, room.triangles)));
   reserved(part.region_neighbors, std::max(own.triangles, room.triangles));
   reserved(part.region_target, spare(std::max(own.triangles, room.triangles)));
-  if (at.omitted_weights != nullptr)
-    sized(*at.omitted_weights, own.nodes, room.nodes);
+  if (at.kept_omitted_weights != nullptr)
+    at.kept_omitted_weights->clear();
   else
     reserved(part.region_map, spare(std::max(own.triangles, room.triangles)));
 }
@@ -276,7 +277,9 @@ void write_nodes(const BuilderContents<2>& in, const ClosureWorkspace& w, bool t
     part.node_image_element[n] = bn.image.element;
     part.node_image_local[n] = support_local<2>(in.s2, bn.image, bn.image.element);
     part.node_target[n] = bn.kind == BuilderNodeKind::ghost ? invalid_index : bn.target;
-    if (at.omitted_weights != nullptr) (*at.omitted_weights)[n] = omitted_image_weight(bn.image);
+    if (at.kept_omitted_weights != nullptr)
+      if (const std::optional<double> w = omitted_weight_to_keep(bn.image, part.node_image_local[n]))
+        at.kept_omitted_weights->push_back({static_cast<Index>(n), *w});
     if (!tiled) visit_ring(w.closure, i, w.ring_start[i], [&](const RingEntry& entry) {
       if (entry.vertex >= ns || (!entry.graph && !is_region(entry.before) && !is_region(entry.after))) return;
       part.neighbor[at.entries] = base + entry.vertex;
@@ -346,7 +349,7 @@ void write_regions(const ClosureWorkspace& w, Index base, Index region_count, Ma
       if (comp.outside) at.outside_split_regions.push_back(static_cast<Index>(at.regions));
     }
     // judged with the face (a region's face has sign != 0); or written after the builder is freed
-    if (at.omitted_weights == nullptr) part.region_map[at.regions] = et.corner_maps[f];
+    if (at.kept_omitted_weights == nullptr) part.region_map[at.regions] = et.corner_maps[f];
     ++at.regions;
   }
   part.region_begin[at.elements + 1] = static_cast<Index>(at.regions);
@@ -387,7 +390,7 @@ void assemble_element(const BuilderContents<2>& in, const ClosureWorkspace& w, i
   make_room(part.region_corners, at.regions + nf);
   make_room(part.region_neighbors, at.graph_regions + nf);
   make_room(part.region_target, at.regions + nf);
-  if (at.omitted_weights == nullptr) make_room(part.region_map, at.regions + nf);
+  if (at.kept_omitted_weights == nullptr) make_room(part.region_map, at.regions + nf);
   const Index region_count = number_regions(in, w, orientation, at);
   const auto base = static_cast<Index>(at.nodes);
   // Tiled: every face of the closure is a region, so the graph follows from the regions. At a
@@ -428,7 +431,6 @@ void trim_part(const AssemblyCursor& at, MapData<2>& part) {
   part.node_image_element.resize(at.nodes);
   part.node_image_local.resize(at.nodes);
   part.node_target.resize(at.nodes);
-  if (at.omitted_weights != nullptr) at.omitted_weights->resize(at.nodes);
   part.neighbor_begin.resize(at.graph_nodes + 1);
   part.neighbor.resize(at.entries);
   part.neighbor_edge_kind.resize(at.entries);
@@ -436,7 +438,7 @@ void trim_part(const AssemblyCursor& at, MapData<2>& part) {
   part.region_corners.resize(at.regions);
   part.region_neighbors.resize(at.graph_regions);
   part.region_target.resize(at.regions);
-  if (at.omitted_weights == nullptr) part.region_map.resize(at.regions);
+  if (at.kept_omitted_weights == nullptr) part.region_map.resize(at.regions);
 }
 
 StoredGraph hand_over_stored_form(AssembledMap& assembled) {

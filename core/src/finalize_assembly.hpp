@@ -18,6 +18,7 @@
 #include "finalize_buckets.hpp"
 #include "finalize_closure.hpp"
 #include "finalize_phases.hpp"
+#include "finalize_region_maps.hpp"
 
 #include <plmap/core/pl_map.hpp>
 
@@ -57,10 +58,10 @@ struct AssemblyCursor {
   // those of the regions that come from faces at a corner without a node, numbered in the block
   // (FinalizeReport::regions_split_off_outside_faces)
   std::vector<Index> outside_split_regions;
-  /// Region maps deferred (finalize_region_maps.hpp): region_map is not written, and this holds
-  /// omitted_image_weight per node of the part instead (sized like the node arrays). Null:
-  /// region_map is written with the regions.
-  std::vector<double>* omitted_weights = nullptr;
+  /// Region maps deferred (finalize_region_maps.hpp): region_map is not written, and this
+  /// collects the part's kept omitted weights instead (by node of the part, in increasing order).
+  /// Null: region_map is written with the regions.
+  std::vector<KeptOmittedWeight>* kept_omitted_weights = nullptr;
 };
 
 /// What the part of a block of elements holds at most (nodes and edge entries exactly): a
@@ -81,7 +82,7 @@ PartBounds part_bounds(const BuilderContents<2>& in, const NodesAndSegmentsByPla
 /// capacity of `room` as well (address space only): the first block is given the whole map's
 /// bounds, so that joining (finalize_joining.hpp) keeps its arrays where they are and appends
 /// the other blocks, instead of copying and first-touching the whole map once more. With
-/// at.omitted_weights, region_map is left empty and the omitted weights are sized like the nodes.
+/// at.kept_omitted_weights, region_map is left empty (and the kept omitted weights start empty).
 void size_part(const PartBounds& own, const PartBounds& room, MapData<2>& part, const AssemblyCursor& at);
 
 /// Writes the element closed in w into the part at the cursor, which it advances.

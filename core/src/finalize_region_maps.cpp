@@ -9,25 +9,35 @@
 #include <plmap/core/parallel_first_touch.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 
+#include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 
 namespace plmap::detail {
 
 namespace {
 
+/// The omitted weight of node n (finalize_region_maps.hpp): kept, or 1 minus the stored two.
+double omitted_weight(std::span<const KeptOmittedWeight> kept, const LocalPoint<2>& local, Index n) {
+  const auto it = std::lower_bound(kept.begin(), kept.end(), n,
+                                   [](const KeptOmittedWeight& k, Index node) { return k.node < node; });
+  return it != kept.end() && it->node == n ? it->weight : 1.0 - local.sum();
+}
+
 /// Node n's image in the local coordinates of S2 element t (corners `to`), which contains it: the
 /// value support_local gives from the node's support. The support's vertices are corners of the
 /// image element e, and their weights are node_image_local's two values and the omitted one; a
 /// corner of t that is no corner of e carries no weight (+0.0, as support_local leaves it).
-LocalPoint<2> image_on(const Surface<2>& s2, const MapData<2>& m, const std::vector<double>& omitted, Index n, Index t,
-                       const ElementCorners<2>& to) {
+LocalPoint<2> image_on(const Surface<2>& s2, const MapData<2>& m, std::span<const KeptOmittedWeight> kept, Index n,
+                       Index t, const ElementCorners<2>& to) {
   const auto i = static_cast<std::size_t>(n);
   const Index e = m.node_image_element[i];
   const LocalPoint<2>& local = m.node_image_local[i];
   if (e == t) return local;
   const auto& from = s2.element(e);
   auto weight_of = [&](Index v) {
-    return v == from[0] ? omitted[i] : v == from[1] ? local(0) : v == from[2] ? local(1) : 0.0;
+    return v == from[0] ? omitted_weight(kept, local, n) : v == from[1] ? local(0) : v == from[2] ? local(1) : 0.0;
   };
   return LocalPoint<2>(weight_of(to[1]), weight_of(to[2]));
 }
@@ -40,10 +50,15 @@ double omitted_image_weight(const Support<2>& s) {
   return 0.0;
 }
 
-void write_region_maps(const Surface<2>& s2, const std::vector<double>& omitted, MapData<2>& m, unsigned threads,
+std::optional<double> omitted_weight_to_keep(const Support<2>& s, const LocalPoint<2>& stored) {
+  const double omitted = omitted_image_weight(s), derived = 1.0 - stored.sum();
+  if (std::bit_cast<std::uint64_t>(omitted) == std::bit_cast<std::uint64_t>(derived)) return std::nullopt;
+  return omitted;
+}
+
+void write_region_maps(const Surface<2>& s2, std::span<const KeptOmittedWeight> kept, MapData<2>& m, unsigned threads,
                        double spare_room) {
-  if (omitted.size() != m.node_position.size() || !m.region_map.empty())
-    throw BuilderError("internal: region maps deferred without one omitted weight per node");
+  if (!m.region_map.empty()) throw BuilderError("internal: region maps written twice");
   const std::size_t regions = m.region_target.size();
   m.region_map.reserve(with_spare_room(regions, spare_room));
   advise_huge_pages(m.region_map.data(), regions * sizeof(m.region_map[0]));  // before the first write
@@ -62,7 +77,7 @@ void write_region_maps(const Surface<2>& s2, const std::vector<double>& omitted,
       std::array<LocalPoint<2>, 3> from, to;
       for (int i = 0; i < 3; ++i) {
         from[i] = m.node_position[static_cast<std::size_t>(corners[i])];
-        to[i] = image_on(s2, m, omitted, corners[i], t, target_corners);
+        to[i] = image_on(s2, m, kept, corners[i], t, target_corners);
       }
       m.region_map[r] = affine_through<2>(from, to);
     }

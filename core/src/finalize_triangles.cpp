@@ -92,13 +92,17 @@ class ClosingPass {
     parts_.clear();
     face_counts_.clear();
     graph_elements_.clear();
-    omitted_weights_.clear();
+    kept_omitted_weights_.clear();
+    part_nodes_.clear();
     ElementFailures failed;
     for (Part* p : used) {
       parts_.push_back(std::move(p->data));
       face_counts_.push_back(std::move(p->counts));
       graph_elements_.push_back(std::move(p->graph_elements));
-      if (deferred_region_maps()) omitted_weights_.push_back(std::move(p->omitted_weights));
+      if (deferred_region_maps()) {
+        kept_omitted_weights_.push_back(std::move(p->kept_omitted_weights));
+        part_nodes_.push_back(parts_.back().node_type.size());
+      }
       failed.insert(failed.end(), p->failures.begin(), p->failures.end());
     }
     return failed;
@@ -164,16 +168,20 @@ class ClosingPass {
   /// Whether the assembly leaves region_map out (finalize_region_maps.hpp): not where elements
   /// are copied from a previous map, whose region maps are copied with them.
   bool deferred_region_maps() const { return reuse_ == nullptr; }
-  /// The omitted image weights of the last run, joined in the order of the parts' nodes (the
-  /// first part's array has room for all of them, as its map arrays do).
-  std::vector<double> joined_omitted_weights() {
-    if (omitted_weights_.empty()) return {};
-    std::vector<double> all = std::move(omitted_weights_[0]);
-    for (std::size_t k = 1; k < omitted_weights_.size(); ++k) {
-      all.insert(all.end(), omitted_weights_[k].begin(), omitted_weights_[k].end());
-      std::vector<double>().swap(omitted_weights_[k]);
+  /// The kept omitted weights of the last run (finalize_region_maps.hpp), joined in the order of
+  /// the parts, their nodes numbered as in the joined map.
+  std::vector<KeptOmittedWeight> joined_kept_omitted_weights() {
+    std::size_t total = 0, first_node = 0;
+    for (const auto& kept : kept_omitted_weights_) total += kept.size();
+    std::vector<KeptOmittedWeight> all;
+    all.reserve(total);
+    for (std::size_t k = 0; k < kept_omitted_weights_.size(); ++k) {
+      for (const KeptOmittedWeight& w : kept_omitted_weights_[k])
+        all.push_back({static_cast<Index>(first_node + static_cast<std::size_t>(w.node)), w.weight});
+      first_node += part_nodes_[k];
     }
-    omitted_weights_.clear();
+    kept_omitted_weights_.clear();
+    part_nodes_.clear();
     return all;
   }
   /// Frees the closure workspaces (slot_of_node alone has an entry per builder node) once the
@@ -190,7 +198,7 @@ class ClosingPass {
     MapData<2> data;
     FaceCounts counts;
     std::vector<Index> graph_elements;  // numbered from begin
-    std::vector<double> omitted_weights;
+    std::vector<KeptOmittedWeight> kept_omitted_weights;
     ElementFailures failures;
 
     static std::uint64_t pack(Index next, Index end) {
@@ -225,7 +233,7 @@ class ClosingPass {
     const bool drop = in_.options.drop_conflicting_edges;
     AssemblyCursor cursor;
     cursor.spare_room = in_.options.spare_room;
-    if (deferred_region_maps()) cursor.omitted_weights = &part.omitted_weights;
+    if (deferred_region_maps()) cursor.kept_omitted_weights = &part.kept_omitted_weights;
     size_part(own, room, part.data, cursor);
     bool go_on = true;
     for (Index t = part.take_next(); t != invalid_index; t = part.take_next()) {
@@ -333,7 +341,9 @@ class ClosingPass {
   std::vector<MapData<2>> parts_;
   std::vector<FaceCounts> face_counts_;  // per block
   std::vector<std::vector<Index>> graph_elements_;  // per block
-  std::vector<std::vector<double>> omitted_weights_;  // per block, with deferred region maps
+  // per part in element order, with deferred region maps: its kept omitted weights and node count
+  std::vector<std::vector<KeptOmittedWeight>> kept_omitted_weights_;
+  std::vector<std::size_t> part_nodes_;
   const ElementReuse* reuse_;
 };
 
@@ -446,7 +456,7 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   give_freed_heap_back();
   assembled.graph_elements = pass.graph_elements();
   if (pass.deferred_region_maps())
-    write_region_maps(in.s2, pass.joined_omitted_weights(), m, pass.threads(), in.options.spare_room);
+    write_region_maps(in.s2, pass.joined_kept_omitted_weights(), m, pass.threads(), in.options.spare_room);
   return assembled;
 }
 

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <optional>
 #include <vector>
 
 using namespace plmap;
@@ -84,4 +85,22 @@ TEST(BuilderSupports, MoveExactlyOntoAnotherElementThatContainsThem) {
   // a support with vertex 0 (not a corner of element 1) is not in element 1
   EXPECT_FALSE(support_in_element<2>(s2, support_on(0, {0, 1}, {0.5, 0.5}), 1));
   EXPECT_THROW(support_local<2>(s2, support_on(0, {0, 1}, {0.5, 0.5}), 1), BuilderError);
+}
+
+// The assembly keeps a node's omitted weight only where 1 minus its stored two does not give it
+// back bit for bit (finalize_region_maps.hpp): there it keeps the support's own.
+TEST(BuilderSupports, KeepTheOmittedWeightOnlyWhereTheStoredOnesDoNotGiveItBack) {
+  const Surface<2> s2 = two_triangles();
+  auto kept = [&](const Support<2>& s) { return omitted_weight_to_keep(s, support_local<2>(s2, s, s.element)); };
+  EXPECT_FALSE(kept(support_on(0, {0, 1}, {0.75, 0.25})).has_value());  // 1 - 0.25 is 0.75 exactly
+  EXPECT_FALSE(kept(support_on(0, {1, 2}, {0.3, 0.7})).has_value());    // no corner 0: +0.0 = 1 - (0.3 + 0.7)
+  EXPECT_FALSE(kept(support_on(0, {1}, {1.0})).has_value());             // at a vertex: +0.0
+  // 1 - 0.7 is 0.30000000000000004, not 0.3
+  const std::optional<double> edge = kept(support_on(0, {0, 2}, {0.3, 0.7}));
+  ASSERT_TRUE(edge.has_value());
+  EXPECT_EQ(*edge, 0.3);
+  // three weights that do not sum to 1 exactly
+  const std::optional<double> inside = kept(support_on(1, {2, 0, 1}, {0.1, 0.7000000000000001, 1.0 / 3.0}));
+  ASSERT_TRUE(inside.has_value());
+  EXPECT_EQ(*inside, 0.7000000000000001);
 }

@@ -1,5 +1,6 @@
-// The regions' affine maps that finalize() writes after the builder is freed, from one kept
-// weight per node (core/src/finalize_region_maps.hpp), against those finalize_reusing() writes
+// The regions' affine maps that finalize() writes after the builder is freed, from the nodes'
+// stored images and the omitted weights kept where 1 minus the stored two does not give them back
+// (core/src/finalize_region_maps.hpp; crossing 0.3 needs one), against those finalize_reusing() writes
 // with the regions from the closure's own corner images (reusing nothing, it closes every
 // element that way). The images of intersection nodes are re-expressed from their image element
 // onto the S2 element across their S2 edge; every rotation of the S2 elements' corners is tried,
