@@ -76,7 +76,7 @@ std::vector<bool> coincident_preimage_losers(const ProjectionContext<d>& ctx,
 }
 
 template <int d>
-void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, ImageMeasureTerms& terms, unsigned threads,
+void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, unsigned threads,
                        ProjectionReport<d>& report, std::span<const Index> split_targets) {
   const std::vector<Index> farther = farther_overlapping_regions(map, images, {}, threads, split_targets);
   // The search's working arrays (S1 elements by target, the regions on crowded targets) are
@@ -89,16 +89,16 @@ void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, ImageMeasureTerms& 
   report.occluded_faces = removal.removed_faces;
   report.occluded_regions = removal.removed_regions;
   images = {};  // (its block is reused by the new measures instead of standing beside them)
-  images = image_measures_after_removal(map, threads, terms);
+  images = image_measures(map, threads);
 }
 
 template std::vector<bool> coincident_preimage_losers<1>(const ProjectionContext<1>&,
                                                          const std::vector<std::optional<Place<1>>>&);
 template std::vector<bool> coincident_preimage_losers<2>(const ProjectionContext<2>&,
                                                          const std::vector<std::optional<Place<2>>>&);
-template void keep_nearer_sheet<1>(PlMap<1>&, ImageMeasures&, ImageMeasureTerms&, unsigned, ProjectionReport<1>&,
+template void keep_nearer_sheet<1>(PlMap<1>&, ImageMeasures&, unsigned, ProjectionReport<1>&,
                                    std::span<const Index>);
-template void keep_nearer_sheet<2>(PlMap<2>&, ImageMeasures&, ImageMeasureTerms&, unsigned, ProjectionReport<2>&,
+template void keep_nearer_sheet<2>(PlMap<2>&, ImageMeasures&, unsigned, ProjectionReport<2>&,
                                    std::span<const Index>);
 
 }  // namespace plmap::projection

@@ -33,11 +33,11 @@ std::vector<bool> coincident_preimage_losers(const ProjectionContext<d>& ctx,
 
 /// With ProjectionOptions::keep_nearer_sheet: removes the faces of the regions whose images
 /// overlap the image of a nearer region (core/face_removal.hpp), counts them in
-/// report.occluded_faces and occluded_regions, and recomputes `images` for the map left from
-/// `terms` (image_measures' terms of `map`: only the elements that lose regions are measured again).
+/// report.occluded_faces and occluded_regions, and recomputes `images` (image_measures of `map`)
+/// for the map left.
 /// The S2 elements in `split_targets` (FinalizeReport::split_targets) are always compared.
 template <int d>
-void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, ImageMeasureTerms& terms, unsigned threads,
+void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, unsigned threads,
                        ProjectionReport<d>& report, std::span<const Index> split_targets);
 
 }  // namespace plmap::projection

@@ -5,12 +5,12 @@
 #include <plmap/core/regions.hpp>
 #include <plmap/core/scaled_geometry.hpp>
 
-#include "segment_splice.hpp"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -96,7 +96,10 @@ double local_target_measure(const PlMap<d>& map, Index r) {
   std::array<LocalPoint<d>, d + 1> y;
   for (int i = 0; i <= d; ++i) {
     const Index n = m.region_corners[r][i];
-    y[i] = transfer_to_element(map.target(), m.node_image(n), target).value_or(apply<d>(m.region_map[r], m.node_position[n]));
+    // (the region's map only where the image is not on the target: value_or would read it for
+    // every corner, a third of an image measure's time)
+    const std::optional<LocalPoint<d>> moved = transfer_to_element(map.target(), m.node_image(n), target);
+    y[i] = moved ? *moved : apply<d>(m.region_map[r], m.node_position[n]);
   }
   return local_simplex_measure<d>(y);
 }
@@ -104,12 +107,16 @@ double local_target_measure(const PlMap<d>& map, Index r) {
 // Elements are affine, so a region's measure is its measure in local coordinates times its
 // element's, on either side: no world position of a corner is needed. Local measures are summed
 // per element first (S1: consecutive regions; S2: one running sum per S2 element) and scaled once.
-// With several threads, or when the terms are kept, everything but the sums over elements is
-// computed first, in parallel: the regions' target measures, each S1 element's scaled domain
-// measure and each S2 element's measure (element_measure is a scaled cross product, not a
-// lookup); then the sums run in the order and with the operations of one thread, so the result is
-// the same to the last bit.
+// With several threads, everything but the sums over elements is computed first, in parallel: the
+// regions' target measures and each S1 element's scaled domain measure; then the sums run in the
+// order and with the operations of one thread, so the result is the same to the last bit.
 namespace {
+
+/// The terms image_measures sums on several threads.
+struct ImageMeasureTerms {
+  std::vector<double> region_target;   ///< per region, d! times its image's local measure
+  std::vector<double> element_domain;  ///< per S1 element with regions, its regions' measure
+};
 
 template <int d>
 double domain_part(const PlMap<d>& map, Index t) {
@@ -130,11 +137,8 @@ void element_terms(const PlMap<d>& map, Index t, ImageMeasureTerms& terms) {
   terms.element_domain[static_cast<std::size_t>(t)] = domain_part(map, t);
 }
 
-/// The sums over the terms, in the order of the one-thread loop. (The S2 elements' measures are
-/// computed again each time, in that loop, as image_measures' one-thread path does: a cache of
-/// them, one double per S2 element, was kept with the terms until 2026-12-07, and on the femur
-/// pair it stood on the projection's peak after a region clip, 0.4 MiB; recomputing them costs a
-/// cross product per S2 element with images, about a millisecond on the 200k planes.)
+/// The sums over the terms, in the order of the one-thread loop (the S2 elements' measures, a
+/// scaled cross product each, in that loop as well).
 template <int d>
 ImageMeasures sum_terms(const PlMap<d>& map, unsigned threads, const ImageMeasureTerms& terms) {
   const auto& m = map.stored();
@@ -154,21 +158,13 @@ ImageMeasures sum_terms(const PlMap<d>& map, unsigned threads, const ImageMeasur
   return out;
 }
 
-}  // namespace
-
+/// image_measures on several threads: the terms in parallel, then their sums in order.
 template <int d>
-ImageMeasures image_measures(const PlMap<d>& map, unsigned threads, ImageMeasureTerms& terms) {
+ImageMeasures measured_on_threads(const PlMap<d>& map, unsigned threads) {
   const Index n1 = map.domain().element_count();
-  terms.region_begin = map.stored().region_begin;
-  // per region and per element of large surfaces: on huge pages (huge_page_allocator.hpp); the
-  // regions' terms with room for a change that adds regions (image_measures_after_change: 2 %
-  // and 1,024 more, address space only) so that it needs no second block
-  const auto regions = static_cast<std::size_t>(map.region_count());
-  if (terms.region_target.capacity() < regions + regions / 50 + 1024) {
-    std::vector<double>().swap(terms.region_target);
-    terms.region_target.reserve(regions + regions / 50 + 1024);
-  }
-  assign_on_huge_pages(terms.region_target, regions, 0.0, threads);
+  ImageMeasureTerms terms;
+  // per region and per element of large surfaces: on huge pages (huge_page_allocator.hpp)
+  assign_on_huge_pages(terms.region_target, static_cast<std::size_t>(map.region_count()), 0.0, threads);
   assign_on_huge_pages(terms.element_domain, static_cast<std::size_t>(n1), 0.0, threads);
   parallel_for_chunks(static_cast<std::size_t>(n1), 1024, threads, [&](std::size_t begin, std::size_t end) {
     for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t) element_terms(map, t, terms);
@@ -176,48 +172,11 @@ ImageMeasures image_measures(const PlMap<d>& map, unsigned threads, ImageMeasure
   return sum_terms(map, threads, terms);
 }
 
-template <int d>
-ImageMeasures image_measures_after_removal(const PlMap<d>& smaller, unsigned threads, ImageMeasureTerms& terms) {
-  const Index n1 = smaller.domain().element_count();
-  const std::vector<Index>& before = terms.region_begin;
-  // The regions keep their order, and an element that lost none keeps its terms: they move down
-  // to the element's new first region (never up, so in place, element by element in order).
-  for (Index t = 0; t < n1; ++t) {
-    const Index count = before[t + 1] - before[t];
-    if (count != smaller.regions_end(t) - smaller.regions_begin(t)) continue;
-    std::copy(terms.region_target.begin() + before[t], terms.region_target.begin() + before[t + 1],
-              terms.region_target.begin() + smaller.regions_begin(t));
-  }
-  terms.region_target.resize(static_cast<std::size_t>(smaller.region_count()));
-  parallel_for_chunks(static_cast<std::size_t>(n1), 1024, threads, [&](std::size_t begin, std::size_t end) {
-    for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t)
-      if (before[t + 1] - before[t] != smaller.regions_end(t) - smaller.regions_begin(t)) element_terms(smaller, t, terms);
-  });
-  terms.region_begin = smaller.stored().region_begin;
-  return sum_terms(smaller, threads, terms);
-}
-
-ImageMeasures image_measures_after_change(const PlMap<2>& changed_map, std::span<const Index> changed, unsigned threads,
-                                          ImageMeasureTerms& terms) {
-  const Index n1 = changed_map.domain().element_count();
-  std::vector<char> is_changed(static_cast<std::size_t>(n1), 0);
-  for (Index t : changed) is_changed[static_cast<std::size_t>(t)] = 1;
-  detail::splice_segments(
-      terms.region_target, terms.region_begin, changed_map.stored().region_begin, is_changed,
-      [](Index, double value) { return value; }, [](Index, double*) {});
-  parallel_for_chunks(changed.size(), 64, threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) element_terms(changed_map, changed[i], terms);
-  });
-  terms.region_begin = changed_map.stored().region_begin;
-  return sum_terms(changed_map, threads, terms);
-}
+}  // namespace
 
 template <int d>
 ImageMeasures image_measures(const PlMap<d>& map, unsigned threads) {
-  if (resolve_thread_count(threads) > 1) {
-    ImageMeasureTerms terms;
-    return image_measures(map, threads, terms);
-  }
+  if (resolve_thread_count(threads) > 1) return measured_on_threads(map, threads);
   const auto& m = map.stored();
   const Surface<d>& s2 = map.target();
   const Index n1 = map.domain().element_count(), n2 = s2.element_count();
@@ -236,6 +195,26 @@ ImageMeasures image_measures(const PlMap<d>& map, unsigned threads) {
 }
 
 template <int d>
+double covered_domain_measure(const PlMap<d>& map, unsigned threads) {
+  const Index n1 = map.domain().element_count();
+  double covered = 0.0;
+  if (resolve_thread_count(threads) <= 1) {
+    for (Index t = 0; t < n1; ++t)
+      if (map.regions_begin(t) != map.regions_end(t)) covered += domain_part(map, t);
+    return covered;
+  }
+  // the elements' parts in parallel, summed in element order as above
+  std::vector<double> part(static_cast<std::size_t>(n1), 0.0);
+  parallel_for_chunks(static_cast<std::size_t>(n1), 1024, threads, [&](std::size_t begin, std::size_t end) {
+    for (auto t = static_cast<Index>(begin); t < static_cast<Index>(end); ++t)
+      if (map.regions_begin(t) != map.regions_end(t)) part[static_cast<std::size_t>(t)] = domain_part(map, t);
+  });
+  for (Index t = 0; t < n1; ++t)
+    if (map.regions_begin(t) != map.regions_end(t)) covered += part[static_cast<std::size_t>(t)];
+  return covered;
+}
+
+template <int d>
 CoveredMeasure covered_measure(const PlMap<d>& map) {
   return image_measures(map).covered;
 }
@@ -250,9 +229,7 @@ template CoveredMeasure covered_measure(const PlMap<1>&);
 template CoveredMeasure covered_measure(const PlMap<2>&);
 template ImageMeasures image_measures(const PlMap<1>&, unsigned);
 template ImageMeasures image_measures(const PlMap<2>&, unsigned);
-template ImageMeasures image_measures(const PlMap<1>&, unsigned, ImageMeasureTerms&);
-template ImageMeasures image_measures(const PlMap<2>&, unsigned, ImageMeasureTerms&);
-template ImageMeasures image_measures_after_removal(const PlMap<1>&, unsigned, ImageMeasureTerms&);
-template ImageMeasures image_measures_after_removal(const PlMap<2>&, unsigned, ImageMeasureTerms&);
+template double covered_domain_measure(const PlMap<1>&, unsigned);
+template double covered_domain_measure(const PlMap<2>&, unsigned);
 
 }  // namespace plmap

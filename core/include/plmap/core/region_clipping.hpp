@@ -40,8 +40,7 @@ struct RegionClipReport {
   Index removed_regions = 0;  ///< regions wholly beyond their line
   Index split_regions = 0;    ///< other regions split at a new node on one of their sides
   Index new_nodes = 0;        ///< new nodes, copies on S1 edges counted once per element
-  /// The S1 elements whose nodes or regions changed (sorted): image_measures_after_change
-  /// (regions.hpp) measures them again.
+  /// The S1 elements whose nodes or regions changed (sorted).
   std::vector<Index> changed_elements;
 };
 

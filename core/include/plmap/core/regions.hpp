@@ -56,30 +56,9 @@ struct ImageMeasures {
 template <int d>
 ImageMeasures image_measures(const PlMap<d>& map, unsigned threads = 1);
 
-/// The terms image_measures sums, kept so that the measures of the map after a removal of faces
-/// (face_removal.hpp: regions go, every other region and every node stays as it was) can be
-/// summed again without computing the terms of the elements that kept all their regions.
-struct ImageMeasureTerms {
-  std::vector<Index> region_begin;     ///< the map's, per S1 element: which elements lost regions
-  std::vector<double> region_target;   ///< per region, d! times its image's local measure
-  std::vector<double> element_domain;  ///< per S1 element with regions, its regions' measure
-};
-
-/// image_measures, keeping its terms in `terms`.
+/// image_measures(map, threads).covered.domain to the last bit, without measuring the images (a
+/// fraction of the time: no image is moved onto its region's S2 element).
 template <int d>
-ImageMeasures image_measures(const PlMap<d>& map, unsigned threads, ImageMeasureTerms& terms);
-
-/// image_measures of `smaller`, a map that `terms`' map became by removing regions: only the
-/// elements that lost regions have their terms computed again, and the sums run as in
-/// image_measures, so the result is the same to the last bit. `terms` becomes smaller's.
-template <int d>
-ImageMeasures image_measures_after_removal(const PlMap<d>& smaller, unsigned threads, ImageMeasureTerms& terms);
-
-/// image_measures of `changed_map`, a triangle map that `terms`' map became by changing the
-/// regions of the S1 elements `changed` (sorted) only (clip_regions, region_clipping.hpp): their
-/// terms are computed again, every other element's are moved to its new regions. `terms`
-/// becomes changed_map's.
-ImageMeasures image_measures_after_change(const PlMap<2>& changed_map, std::span<const Index> changed, unsigned threads,
-                                          ImageMeasureTerms& terms);
+double covered_domain_measure(const PlMap<d>& map, unsigned threads = 1);
 
 }  // namespace plmap
