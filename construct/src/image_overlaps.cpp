@@ -3,7 +3,6 @@
 #include "image_overlaps.hpp"
 #include "element_set_connectivity.hpp"
 
-#include <plmap/core/element_transfer.hpp>
 #include <plmap/core/huge_page_allocator.hpp>
 #include <plmap/core/parallel_ranges.hpp>
 #include <plmap/core/parallel_sort.hpp>
@@ -32,17 +31,12 @@ struct Image {
   LocalPoint<d> low, high;                  // bounding box
 };
 
-/// The corners of a region's image in its S2 element's local coordinates: moved there exactly
-/// through shared S2 vertices and edges, as covered_measure and remote_intersection do.
+/// The corners of a region's image in its S2 element's local coordinates, as covered_measure and
+/// remote_intersection take them (corner_image_on_target).
 template <int d>
 std::array<LocalPoint<d>, d + 1> image_corners(const PlMap<d>& map, Index r) {
-  const auto& m = map.stored();
   std::array<LocalPoint<d>, d + 1> y;
-  for (int i = 0; i <= d; ++i) {
-    const Index n = m.region_corners[r][i];
-    y[i] = transfer_to_element(map.target(), m.node_image(n), m.region_target[r])
-               .value_or(apply<d>(m.region_map[r], m.node_position[n]));
-  }
+  for (int i = 0; i <= d; ++i) y[i] = corner_image_on_target(map, r, i);
   return y;
 }
 

@@ -29,10 +29,7 @@ RemoteIntersection<d> remote_intersection_on(const PlMap<d>& map, Index element,
   for (int i = 0; i <= d; ++i) {
     const Index n = m.region_corners[region][i];
     ri.domain_local[i] = m.node_position[n];
-    // The corner's image on the region's common S2 element, moved exactly through the shared
-    // vertices; the affine map would add rounding, which matters on sliver regions.
-    ri.target_local[i] = transfer_to_element(map.target(), m.node_image(n), ri.target_element)
-                             .value_or(apply<d>(m.region_map[region], ri.domain_local[i]));
+    ri.target_local[i] = corner_image_on_target(map, region, i);
     ri.domain_world[i] = map.domain().world_position(ri.domain_element, ri.domain_local[i]);
     ri.target_world[i] = map.target().world_position(ri.target_element, ri.target_local[i]);
   }
@@ -91,16 +88,8 @@ double local_domain_measure(const PlMap<d>& map, Index r) {
 /// corners moved onto that element exactly, as remote_intersection does).
 template <int d>
 double local_target_measure(const PlMap<d>& map, Index r) {
-  const auto& m = map.stored();
-  const Index target = m.region_target[r];
   std::array<LocalPoint<d>, d + 1> y;
-  for (int i = 0; i <= d; ++i) {
-    const Index n = m.region_corners[r][i];
-    // (the region's map only where the image is not on the target: value_or would read it for
-    // every corner, a third of an image measure's time)
-    const std::optional<LocalPoint<d>> moved = transfer_to_element(map.target(), m.node_image(n), target);
-    y[i] = moved ? *moved : apply<d>(m.region_map[r], m.node_position[n]);
-  }
+  for (int i = 0; i <= d; ++i) y[i] = corner_image_on_target(map, r, i);
   return local_simplex_measure<d>(y);
 }
 

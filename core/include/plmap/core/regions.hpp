@@ -3,12 +3,26 @@
 /// The regions of a map as remote intersections: for mortar and contact methods, the pieces
 /// T1 ∩ Xi^{-1}(T2) over which integrals of products of S1 and S2 functions are exact.
 
+#include <plmap/core/element_transfer.hpp>
 #include <plmap/core/pl_map.hpp>
 
+#include <optional>
 #include <span>
 #include <vector>
 
 namespace plmap {
+
+/// The image of corner i of region r in the local coordinates of the region's S2 element: the
+/// node's image moved there exactly through the shared S2 vertices (the affine map would add
+/// rounding, which matters on sliver regions), or the region's map where the image lies on no
+/// vertex or edge of that element. (Not value_or: that evaluates the map for every corner.)
+template <int d>
+LocalPoint<d> corner_image_on_target(const PlMap<d>& map, Index r, int i) {
+  const MapData<d>& m = map.stored();
+  const Index n = m.region_corners[r][i];
+  const std::optional<LocalPoint<d>> moved = transfer_to_element(map.target(), m.node_image(n), m.region_target[r]);
+  return moved ? *moved : apply<d>(m.region_map[r], m.node_position[n]);
+}
 
 /// One region: a triangle (d = 2) or segment (d = 1) on an S1 element that Xi maps affinely
 /// into one S2 element. Corners are listed in the same order on both sides.
