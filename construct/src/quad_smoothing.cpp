@@ -27,63 +27,6 @@ using Vec2 = Eigen::Vector2d;
 /// snaps what the step kept apart; relative to the element, hence scale free.
 constexpr double clearance = 1e-8;
 
-/// The quadrilateral laid into the plane: A at the origin, B on the positive x axis, C1 above,
-/// C2 below; and the affine maps between each triangle's local coordinates and the plane.
-struct Unfolding {
-  Index e = invalid_index, t1 = invalid_index, t2 = invalid_index;
-  Index a = invalid_index, b = invalid_index, c1 = invalid_index, c2 = invalid_index;
-  Vec2 pa, pb, pc1, pc2;
-  std::array<Vec2, 3> corners1, corners2;  ///< plane positions of each triangle's corners 0, 1, 2
-  double length = 0.0;
-
-  const std::array<Vec2, 3>& corners(Index t) const { return t == t1 ? corners1 : corners2; }
-  Vec2 plane(Index t, const LocalPoint<2>& x) const {
-    const auto& c = corners(t);
-    return c[0] + x.x() * (c[1] - c[0]) + x.y() * (c[2] - c[0]);
-  }
-  LocalPoint<2> local(Index t, const Vec2& p) const {
-    const auto& c = corners(t);
-    Eigen::Matrix2d m;
-    m.col(0) = c[1] - c[0];
-    m.col(1) = c[2] - c[0];
-    return m.inverse() * (p - c[0]);
-  }
-  std::optional<Vec2> vertex(Index v) const {
-    if (v == a) return pa;
-    if (v == b) return pb;
-    if (v == c1) return pc1;
-    if (v == c2) return pc2;
-    return std::nullopt;
-  }
-  /// Plane position of a place in the closed quadrilateral (the caller knows it is there).
-  std::optional<Vec2> place(const Surface<2>& s1, const DomainPlace& p) const {
-    switch (p.kind) {
-      case DomainPlace::Kind::vertex: return vertex(p.where);
-      case DomainPlace::Kind::edge: {
-        const auto ends = s1.edge_vertices(p.where);
-        const auto lo = vertex(ends[0]), hi = vertex(ends[1]);
-        if (!lo || !hi) return std::nullopt;
-        return Vec2(*lo + p.edge_parameter * (*hi - *lo));
-      }
-      case DomainPlace::Kind::element:
-        if (p.where != t1 && p.where != t2) return std::nullopt;
-        return plane(p.where, p.local);
-    }
-    return std::nullopt;
-  }
-};
-
-/// A straight piece of an S2 edge inside the quadrilateral after the merge: from polyline point
-/// `first` to `last` (the points between are crossings of e, dropped).
-struct Piece {
-  Index edge;
-  std::size_t first, last;
-  std::array<int, 2> unknown{-1, -1};  ///< per end: unknown index, or -1 if fixed
-  std::array<Index, 2> vertex{invalid_index, invalid_index};  ///< per end: S2 vertex, if it is one
-  std::array<Vec2, 2> fixed{Vec2::Zero(), Vec2::Zero()};       ///< per fixed end: plane position
-  std::array<double, 2> target_parameter{0.0, 0.0};
-};
-
 /// The lists of T1 and T2 as walking the edited polylines of `relevant` (in that order) would
 /// find them, read off a step's pieces: every segment of a relevant S2 edge in T1 or T2 belongs
 /// to one of its pieces, which after the cut lies in T1, in T2 or (cut) in both (`sides`: bit 0
@@ -91,7 +34,7 @@ struct Piece {
 /// `edge_sides` gets the same per relevant edge (the lists are `relevant` filtered by it).
 /// `position` is scratch indexed by S2 edge.
 void index_quadrilateral_from_pieces(EdgesInElement& index, Index t1, Index t2, const std::vector<Index>& relevant,
-                                     const std::vector<Piece>& pieces, const std::vector<std::uint8_t>& sides,
+                                     const std::vector<QuadPiece>& pieces, const std::vector<std::uint8_t>& sides,
                                      std::vector<Index>& position, std::vector<std::uint8_t>& edge_sides) {
   edge_sides.assign(relevant.size(), 0);
   for (std::size_t i = 0; i < relevant.size(); ++i) position[static_cast<std::size_t>(relevant[i])] = static_cast<Index>(i);
@@ -188,14 +131,27 @@ QuadOutcome QuadSmoother::smooth(Index e, QuadStepRecord* record) {
 }
 
 QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
-  QuadOutcome out;
-  const auto refuse = [&out](const char* why) {
-    out = QuadOutcome{};
-    out.skipped = why;
-    return out;
-  };
-  const auto inc = s1_.edge_elements(e);
+  // the phases of quad_smoothing.hpp; each returns why it refuses the step, or nullptr, and a
+  // refused step changes nothing
   Unfolding u;
+  const char* refused = unfold(e, u);
+  if (refused == nullptr) refused = merge(u);
+  if (refused == nullptr && unknown_vertex_.empty()) return {};
+  if (refused == nullptr) refused = solve_convex_combinations();
+  if (refused == nullptr) refused = place_unknowns(u);
+  if (refused == nullptr) refused = check_no_fold_over();
+  if (refused == nullptr) refused = check_worst_condition(u);
+  if (refused == nullptr) refused = cut_shared_edge(u);
+  if (refused != nullptr) {
+    QuadOutcome out;
+    out.skipped = refused;
+    return out;
+  }
+  return apply(u, record);
+}
+
+const char* QuadSmoother::unfold(Index e, Unfolding& u) const {
+  const auto inc = s1_.edge_elements(e);
   u.e = e;
   u.t1 = inc[0].element;
   u.t2 = inc[1].element;
@@ -206,7 +162,7 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   u.b = e1[(k1 + 1) % 3];
   u.c1 = e1[(k1 + 2) % 3];
   u.c2 = e2[(k2 + 2) % 3];
-  if (u.c1 == u.c2 || e2[k2] != u.b) return refuse("degenerate quadrilateral");
+  if (u.c1 == u.c2 || e2[k2] != u.b) return "degenerate quadrilateral";
   {
     const Eigen::Vector3d wa = s1_.vertex(u.a), wb = s1_.vertex(u.b);
     u.length = (wb - wa).norm();
@@ -226,14 +182,14 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   // the closed quadrilateral stays in it, and Tutte/Floater applies.
   if (orient2d(u.pa, u.pc2, u.pb) <= 0 || orient2d(u.pc2, u.pb, u.pc1) <= 0 || orient2d(u.pb, u.pc1, u.pa) <= 0 ||
       orient2d(u.pc1, u.pa, u.pc2) <= 0)
-    return refuse("non-convex quadrilateral");
+    return "non-convex quadrilateral";
+  return nullptr;
+}
 
-  // ---- merge: the pieces of S2 edges in the quadrilateral, and the unknowns ----
-  // The step's working vectors live per thread: one sweep runs a step per S1 edge, and
-  // allocating them per step was a tenth of the smoothing.
-  // Members, not locals: the per-vertex and per-edge marks of the previous step are cleared
-  // through them (a late coarse quadrilateral has hundreds of unknowns and S2 edges, so looking
-  // them up by a linear search was quadratic).
+const char* QuadSmoother::merge(const Unfolding& u) {
+  // The pieces of S2 edges in the quadrilateral, and the unknowns. The per-vertex and per-edge
+  // marks of the previous step are cleared through its lists (a late coarse quadrilateral has
+  // hundreds of unknowns and S2 edges, so looking them up by a linear search was quadratic).
   for (Index x : relevant_) edge_seen_[static_cast<std::size_t>(x)] = 0;
   for (Index v : unknown_vertex_) unknown_index_[static_cast<std::size_t>(v)] = -1;
   std::vector<Index>& relevant = relevant_;
@@ -243,7 +199,7 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
       if (!edge_seen_[static_cast<std::size_t>(x)]) edge_seen_[static_cast<std::size_t>(x)] = 1, relevant.push_back(x);
   const auto movable = [&](const DomainPlace& p) {
     return (p.kind == DomainPlace::Kind::element && (p.where == u.t1 || p.where == u.t2)) ||
-           (p.kind == DomainPlace::Kind::edge && p.where == e);
+           (p.kind == DomainPlace::Kind::edge && p.where == u.e);
   };
   std::vector<Index>& unknown_vertex = unknown_vertex_;  // S2 vertex of each unknown
   unknown_vertex.clear();
@@ -255,9 +211,9 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     }
     return index;
   };
-  thread_local std::vector<Piece> pieces;
+  std::vector<QuadPiece>& pieces = w_.pieces;
   pieces.clear();
-  thread_local std::vector<char> inside;
+  std::vector<char>& inside = w_.inside;
   for (Index te : relevant) {
     const std::size_t n = polyline_size(g_, te);
     inside.assign(n - 1, 0);
@@ -266,7 +222,7 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
       bool along = false;
       const DomainPlace next = polyline_point(g_, s2_, te, i + 1);
       const Index t = common_element(s1_, here, next, &along);
-      if (along) return refuse("S2 edge along an S1 edge");
+      if (along) return "S2 edge along an S1 edge";
       inside[i] = (t == u.t1 || t == u.t2);
       here = next;
     }
@@ -278,9 +234,9 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
       std::size_t j = i;
       while (j + 1 < n && inside[j]) ++j;  // segments i .. j-1 inside: points i .. j
       for (std::size_t p = i + 1; p < j; ++p)
-        if (g_.crossings[te][p - 1].domain_edge != e) return refuse("S2 edge meets a triangle twice");
-      if (j - i > 2) return refuse("S2 edge crosses the shared edge twice");
-      Piece piece{te, i, j, {-1, -1}, {invalid_index, invalid_index}, {Vec2::Zero(), Vec2::Zero()}, {0.0, 0.0}};
+        if (g_.crossings[te][p - 1].domain_edge != u.e) return "S2 edge meets a triangle twice";
+      if (j - i > 2) return "S2 edge crosses the shared edge twice";
+      QuadPiece piece{te, i, j, {-1, -1}, {invalid_index, invalid_index}, {Vec2::Zero(), Vec2::Zero()}, {0.0, 0.0}};
       for (int end = 0; end < 2; ++end) {
         const std::size_t at = end == 0 ? i : j;
         const DomainPlace place = polyline_point(g_, s2_, te, at);
@@ -290,7 +246,7 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
           piece.unknown[end] = unknown_of(piece.vertex[end]);
         } else {
           const auto p = u.place(s1_, place);
-          if (!p) return refuse("S2 edge leaves the quadrilateral unexpectedly");
+          if (!p) return "S2 edge leaves the quadrilateral unexpectedly";
           piece.fixed[end] = *p;
         }
       }
@@ -298,13 +254,16 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
       i = j;
     }
   }
-  if (unknown_vertex.empty()) return out;
+  return nullptr;
+}
 
-  // ---- the convex-combination system ----
+const char* QuadSmoother::solve_convex_combinations() {
+  const std::vector<QuadPiece>& pieces = w_.pieces;
+  const std::vector<Index>& unknown_vertex = unknown_vertex_;
   const int unknowns = static_cast<int>(unknown_vertex.size());
-  thread_local std::vector<std::vector<std::pair<int, int>>> ring_of;  // (piece, end of the neighbour)
-  thread_local std::vector<std::vector<std::pair<int, int>>> ordered_ring;
-  thread_local std::vector<std::vector<Eigen::Vector3d>> ring_world;
+  auto& ring_of = w_.ring_of;  // (piece, end of the neighbour)
+  auto& ordered_ring = w_.ordered_ring;
+  auto& ring_world = w_.ring_world;
   for (auto* lists : {&ring_of, &ordered_ring}) {
     if (lists->size() < unknown_vertex.size()) lists->resize(unknown_vertex.size());
     for (std::size_t i = 0; i < unknown_vertex.size(); ++i) (*lists)[i].clear();
@@ -317,13 +276,13 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
   for (int i = 0; i < unknowns; ++i) {
     const Index v = unknown_vertex[i];
     const std::vector<Index>* cycle = stars_->ring_edges(v);
-    if (cycle == nullptr || ring_of[i].size() != cycle->size()) return refuse("vertex preimage with an open S2 star");
+    if (cycle == nullptr || ring_of[i].size() != cycle->size()) return "vertex preimage with an open S2 star";
     std::vector<Eigen::Vector3d>& ring = ring_world[i];
     ring.clear();
     bool whole_star = true;  // every ring point an S2 vertex: v's whole star (s2_stars.hpp)
     for (Index te : *cycle) {
       const auto it = std::find_if(ring_of[i].begin(), ring_of[i].end(), [&](const auto& pe) { return pieces[pe.first].edge == te; });
-      if (it == ring_of[i].end()) return refuse("vertex preimage with an open S2 star");
+      if (it == ring_of[i].end()) return "vertex preimage with an open S2 star";
       ordered_ring[i].push_back(*it);
       const auto ends = s2_.edge_vertices(te);
       const double t = pieces[it->first].target_parameter[it->second];
@@ -346,109 +305,128 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
       std::reverse(ring_world[i].begin(), ring_world[i].end());
     }
   }
-  if (!system_.solve()) return refuse("solver");
+  if (!system_.solve()) return "solver";
+  return nullptr;
+}
 
-  // ---- checks ----
-  thread_local std::vector<Vec2> position;
-  thread_local std::vector<DomainPlace> new_place;
-  position.resize(unknown_vertex.size());
-  new_place.resize(unknown_vertex.size());
+const char* QuadSmoother::place_unknowns(const Unfolding& u) {
+  const int unknowns = static_cast<int>(unknown_vertex_.size());
+  w_.position.resize(unknown_vertex_.size());
+  w_.new_place.resize(unknown_vertex_.size());
   for (int i = 0; i < unknowns; ++i) {
-    position[i] = system_.solution(i);
-    const int side = orient2d(u.pa, u.pb, position[i]);
-    if (side == 0) return refuse("node on the shared edge");
+    w_.position[i] = system_.solution(i);
+    const int side = orient2d(u.pa, u.pb, w_.position[i]);
+    if (side == 0) return "node on the shared edge";
     const Index t = side > 0 ? u.t1 : u.t2;
-    const LocalPoint<2> local = u.local(t, position[i]);
+    const LocalPoint<2> local = u.local(t, w_.position[i]);
     const Barycentric<2> b = barycentric_from_local<2>(local);
-    if (!(b.minCoeff() > clearance)) return refuse("node leaves the quadrilateral");
-    new_place[i] = {DomainPlace::Kind::element, t, 0.0, local};
+    if (!(b.minCoeff() > clearance)) return "node leaves the quadrilateral";
+    w_.new_place[i] = {DomainPlace::Kind::element, t, 0.0, local};
   }
-  const auto end_position = [&](const Piece& p, int end) { return p.unknown[end] >= 0 ? position[p.unknown[end]] : p.fixed[end]; };
+  return nullptr;
+}
+
+Eigen::Vector2d QuadSmoother::end_position(const QuadPiece& p, int end) const {
+  return p.unknown[end] >= 0 ? w_.position[p.unknown[end]] : p.fixed[end];
+}
+
+const char* QuadSmoother::check_no_fold_over() {
+  const std::vector<QuadPiece>& pieces = w_.pieces;
   // all pairs of pieces, by a sweep (a late coarse quadrilateral carries hundreds of pieces)
-  thread_local std::vector<PlanarSegment> segments;
-  segments.clear();
-  thread_local std::vector<std::array<int, 2>> segment_ends;
-  segment_ends.clear();
-  for (const Piece& p : pieces) {
-    segments.push_back({end_position(p, 0), end_position(p, 1)});
-    segment_ends.push_back(p.unknown);
+  w_.segments.clear();
+  w_.segment_ends.clear();
+  for (const QuadPiece& p : pieces) {
+    w_.segments.push_back({end_position(p, 0), end_position(p, 1)});
+    w_.segment_ends.push_back(p.unknown);
   }
-  thread_local std::vector<PieceBox> boxes;
   // two spokes of one unknown are left to the winding check below (piece_crossings.hpp)
-  if (pieces_apart_from_shared_ends_meet(segments, segment_ends, boxes)) return refuse("fold-over");
+  if (pieces_apart_from_shared_ends_meet(w_.segments, w_.segment_ends, w_.boxes)) return "fold-over";
+  const int unknowns = static_cast<int>(unknown_vertex_.size());
   for (int i = 0; i < unknowns; ++i) {
     // Each turn from one segment's direction to the next, counter-clockwise, is in (0, 2π]; they
     // add up to 2π times the number of turns that pass the +x direction, so the segments wind
     // once iff exactly one does (decided exactly, where a sum of atan2 angles was 6 % of a step).
     int wraps = 0;
-    const auto& ring = ordered_ring[i];
+    const auto& ring = w_.ordered_ring[i];
     for (std::size_t j = 0; j < ring.size(); ++j) {
-      const Vec2 d0 = end_position(pieces[ring[j].first], ring[j].second) - position[i];
+      const Vec2 d0 = end_position(pieces[ring[j].first], ring[j].second) - w_.position[i];
       const auto& nx = ring[(j + 1) % ring.size()];
-      const Vec2 d1 = end_position(pieces[nx.first], nx.second) - position[i];
-      if (d0 == Vec2::Zero()) return refuse("fold-over");  // a segment of length zero
+      const Vec2 d1 = end_position(pieces[nx.first], nx.second) - w_.position[i];
+      if (d0 == Vec2::Zero()) return "fold-over";  // a segment of length zero
       const int turn = orient2d(Vec2::Zero(), d0, d1);
-      if (turn == 0 && d0.dot(d1) > 0.0) return refuse("fold-over");
+      if (turn == 0 && d0.dot(d1) > 0.0) return "fold-over";
       if (!direction_precedes(d0, d1, turn)) ++wraps;
     }
-    if (wraps != 1) return refuse("fold-over");
+    if (wraps != 1) return "fold-over";
   }
+  return nullptr;
+}
+
+const char* QuadSmoother::check_worst_condition(const Unfolding& u) {
   // The worst spoke triangle (v, neighbour j, neighbour j + 1) against its image: a step that
   // would make it worse is refused, so that sweeps do not trade the quadrilateral's worst piece
   // for a better average (without this, κ max creeps up again after a few sweeps).
+  const std::vector<QuadPiece>& pieces = w_.pieces;
+  const int unknowns = static_cast<int>(unknown_vertex_.size());
   const auto worst_spoke = [&](const std::vector<Vec2>& at) {
     double worst = 1.0;
     for (int i = 0; i < unknowns; ++i) {
-      const auto& ring = ordered_ring[i];
+      const auto& ring = w_.ordered_ring[i];
       const auto end_at = [&](std::pair<int, int> pe) {
-        const Piece& p = pieces[pe.first];
+        const QuadPiece& p = pieces[pe.first];
         return p.unknown[pe.second] >= 0 ? at[p.unknown[pe.second]] : p.fixed[pe.second];
       };
       for (std::size_t j = 0; j < ring.size(); ++j) {
         const std::size_t k = (j + 1) % ring.size();
         worst = std::max(worst, condition({at[i], end_at(ring[j]), end_at(ring[k])},
-                                          {s2_.vertex(unknown_vertex[i]), ring_world[i][j], ring_world[i][k]}));
+                                          {s2_.vertex(unknown_vertex_[i]), w_.ring_world[i][j], w_.ring_world[i][k]}));
       }
     }
     return worst;
   };
-  thread_local std::vector<Vec2> old_position;
-  old_position.resize(unknown_vertex.size());
-  for (int i = 0; i < unknowns; ++i) old_position[i] = *u.place(s1_, g_.vertex[unknown_vertex[i]]);
+  w_.old_position.resize(unknown_vertex_.size());
+  for (int i = 0; i < unknowns; ++i) w_.old_position[i] = *u.place(s1_, g_.vertex[unknown_vertex_[i]]);
   // the old positions' worst is needed only if the new one is above free_condition
-  if (const double worst_new = worst_spoke(position);
-      worst_new > free_condition && worst_new > std::max(worst_spoke(old_position), free_condition))
-    return refuse("would raise the worst condition number");
+  if (const double worst_new = worst_spoke(w_.position);
+      worst_new > free_condition && worst_new > std::max(worst_spoke(w_.old_position), free_condition))
+    return "would raise the worst condition number";
+  return nullptr;
+}
 
-  // new crossings with e
-  thread_local std::vector<std::optional<EdgeCrossing>> cut;
-  cut.assign(pieces.size(), std::nullopt);
+const char* QuadSmoother::cut_shared_edge(const Unfolding& u) {
+  // the new crossings with e
+  const std::vector<QuadPiece>& pieces = w_.pieces;
+  w_.cut.assign(pieces.size(), std::nullopt);
   // per piece: bit 0 if it has a segment in T1 after the cut, bit 1 in T2 (an end off e lies on
   // e's side of its triangle; an end on e is A or B)
-  thread_local std::vector<std::uint8_t> piece_sides;
-  piece_sides.assign(pieces.size(), 0);
+  w_.piece_sides.assign(pieces.size(), 0);
   const bool a_is_smaller = u.a < u.b;
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     const Vec2 s = end_position(pieces[p], 0), t = end_position(pieces[p], 1);
     const int ss = orient2d(u.pa, u.pb, s), st = orient2d(u.pa, u.pb, t);
-    if (ss == 0 && st == 0) return refuse("S2 edge along an S1 edge");
-    for (const int side : {ss, st}) piece_sides[p] |= side > 0 ? 1 : side < 0 ? 2 : 0;
+    if (ss == 0 && st == 0) return "S2 edge along an S1 edge";
+    for (const int side : {ss, st}) w_.piece_sides[p] |= side > 0 ? 1 : side < 0 ? 2 : 0;
     if (ss * st >= 0) continue;
     const double lambda = s.y() / (s.y() - t.y());
     const double along = (s.x() + lambda * (t.x() - s.x())) / u.length;
-    if (!(along > clearance && along < 1.0 - clearance)) return refuse("crossing next to a vertex");
+    if (!(along > clearance && along < 1.0 - clearance)) return "crossing next to a vertex";
     const double tp = pieces[p].target_parameter[0] + lambda * (pieces[p].target_parameter[1] - pieces[p].target_parameter[0]);
-    cut[p] = EdgeCrossing{e, a_is_smaller ? along : 1.0 - along, tp};
+    w_.cut[p] = EdgeCrossing{u.e, a_is_smaller ? along : 1.0 - along, tp};
   }
+  return nullptr;
+}
 
-  // ---- apply ----
+QuadOutcome QuadSmoother::apply(const Unfolding& u, QuadStepRecord* record) {
+  QuadOutcome out;
+  const std::vector<QuadPiece>& pieces = w_.pieces;
+  const int unknowns = static_cast<int>(unknown_vertex_.size());
   for (int i = 0; i < unknowns; ++i) {
-    DomainPlace& old = g_.vertex[unknown_vertex[i]];
-    const double shift = (position[i] - old_position[i]).norm() / u.length;
+    DomainPlace& old = g_.vertex[unknown_vertex_[i]];
+    const double shift = (w_.position[i] - w_.old_position[i]).norm() / u.length;
     if (shift > 0.0) ++out.nodes_moved;
-    if (old.kind != DomainPlace::Kind::element || old.where != new_place[i].where) ++out.nodes_crossed;
+    if (old.kind != DomainPlace::Kind::element || old.where != w_.new_place[i].where) ++out.nodes_crossed;
     out.max_displacement = std::max(out.max_displacement, shift);
-    old = new_place[i];
+    old = w_.new_place[i];
   }
   // Pieces of one S2 edge from the last to the first, so that earlier point indices stay valid:
   // they were collected edge by edge, each edge's by increasing point index, so the pieces in
@@ -457,20 +435,19 @@ QuadOutcome QuadSmoother::step(Index e, QuadStepRecord* record) {
     auto& list = g_.crossings[pieces[p].edge];
     const auto first = list.begin() + static_cast<std::ptrdiff_t>(pieces[p].first);  // crossing index of point first + 1
     list.erase(first, first + static_cast<std::ptrdiff_t>(pieces[p].last - pieces[p].first - 1));
-    if (cut[p]) list.insert(list.begin() + static_cast<std::ptrdiff_t>(pieces[p].first), *cut[p]);
+    if (w_.cut[p]) list.insert(list.begin() + static_cast<std::ptrdiff_t>(pieces[p].first), *w_.cut[p]);
   }
-  thread_local std::vector<std::uint8_t> edge_sides;
-  index_quadrilateral_from_pieces(edges_in_element_, u.t1, u.t2, relevant, pieces, piece_sides, position_in_relevant_,
-                                  edge_sides);
+  index_quadrilateral_from_pieces(edges_in_element_, u.t1, u.t2, relevant_, pieces, w_.piece_sides, position_in_relevant_,
+                                  w_.edge_sides);
   if (record != nullptr) {
     record->wrote = true;
     record->places.clear();
-    for (int i = 0; i < unknowns; ++i) record->places.emplace_back(unknown_vertex[i], new_place[i]);
-    record->relevant = relevant;
-    record->sides = edge_sides;
+    for (int i = 0; i < unknowns; ++i) record->places.emplace_back(unknown_vertex_[i], w_.new_place[i]);
+    record->relevant = relevant_;
+    record->sides = w_.edge_sides;
     record->cuts.clear();
     for (std::size_t p = 0; p < pieces.size(); ++p)
-      if (cut[p]) record->cuts.emplace_back(pieces[p].edge, *cut[p]);
+      if (w_.cut[p]) record->cuts.emplace_back(pieces[p].edge, *w_.cut[p]);
   }
   return out;
 }

@@ -21,6 +21,8 @@
 
 #include "convex_combination_system.hpp"
 #include "preimage_graph.hpp"
+#include "quad_step_workspace.hpp"
+#include "quad_unfolding.hpp"
 #include "s2_stars.hpp"
 
 #include <plmap/strategies/smoothing/smoothing_weights_registry.hpp>
@@ -84,6 +86,18 @@ class QuadSmoother {
 
  private:
   QuadOutcome step(Index e, QuadStepRecord* record);
+  // The phases of a step (see the top of this file). Each returns why it refuses the step, or
+  // nullptr; they hand their results on in w_ and in relevant_ and unknown_vertex_.
+  const char* unfold(Index e, Unfolding& u) const;     ///< 1.
+  const char* merge(const Unfolding& u);               ///< 2. the pieces and the unknowns
+  const char* solve_convex_combinations();             ///< 3.
+  const char* place_unknowns(const Unfolding& u);      ///< 4. inside Q, off e
+  const char* check_no_fold_over();                    ///< 4. no crossing, each ring winds once
+  const char* check_worst_condition(const Unfolding& u);  ///< 4. the worst spoke no worse
+  const char* cut_shared_edge(const Unfolding& u);     ///< 5. the new crossings of e
+  QuadOutcome apply(const Unfolding& u, QuadStepRecord* record);  ///< 5. written into the graph
+  /// Plane position of an end of a piece: the unknown's new position, or the fixed point.
+  Eigen::Vector2d end_position(const QuadPiece& p, int end) const;
   void index_edges(const EdgesInElement* index);
   void index_edge(Index target_edge);
   PreimageGraph& g_;
@@ -100,6 +114,7 @@ class QuadSmoother {
   std::vector<int> unknown_index_;                ///< per S2 vertex: its unknown in the current step, or -1
   std::vector<char> edge_seen_;                   ///< per S2 edge: in relevant_
   std::vector<Index> position_in_relevant_;       ///< per S2 edge in relevant_: its index there
+  QuadStepWorkspace w_;                           ///< of the current step: what its phases hand on
   Index uniform_fallbacks_ = 0;
 };
 
