@@ -106,15 +106,15 @@ bool check_indices(const MapContext<d>& ctx, ViolationSink& sink) {
   return sink.count() == before;
 }
 
+namespace {
+
+/// Neighbour lists: symmetric (with the same edge kind at both ends), no repeats, and in cyclic
+/// (d = 1: increasing) order.
 template <int d>
-void run_structure(const MapContext<d>& ctx, ViolationSink& sink) {
+void check_neighbor_lists(const MapContext<d>& ctx, ViolationSink& sink) {
   const auto& m = ctx.data;
   const auto& map = ctx.map;
-  const Index nt = ctx.element_count();
   const Index nn = static_cast<Index>(m.node_type.size());
-  const double snap = ctx.options.snap_tolerance;
-
-  // ---- neighbour lists: symmetric, no repeats, cyclic order --------------------------------
   for (Index n = 0; n < nn; ++n) {
     const auto nb = map.neighbors(n);
     const Index t = ctx.node_element[n];
@@ -174,8 +174,16 @@ void run_structure(const MapContext<d>& ctx, ViolationSink& sink) {
         });
     }
   }
+}
 
-  // ---- node type agrees with the position; one node per corner -----------------------------
+/// Node types agree with the positions, and an element has at most one node per corner; returns
+/// the corner nodes, (d + 1) per element (invalid_index where there is none).
+template <int d>
+std::vector<Index> check_node_places(const MapContext<d>& ctx, ViolationSink& sink) {
+  const auto& m = ctx.data;
+  const Index nt = ctx.element_count();
+  const Index nn = static_cast<Index>(m.node_type.size());
+  const double snap = ctx.options.snap_tolerance;
   std::vector<Index> corner_node(static_cast<std::size_t>(nt) * (d + 1), invalid_index);
   for (Index n = 0; n < nn; ++n) {
     const Index t = ctx.node_element[n];
@@ -207,84 +215,100 @@ void run_structure(const MapContext<d>& ctx, ViolationSink& sink) {
         slot = n;
     }
   }
+  return corner_node;
+}
 
-  // ---- edge arrays (d = 2) ------------------------------------------------------------------
-  if constexpr (d == 2) {
-    std::vector<int> occurrences(nn, 0);
-    for (Index t = 0; t < nt; ++t) {
-      for (int k = 0; k < 3; ++k) {
-        const auto list = map.edge_nodes(t, k);
-        double previous = -std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < list.size(); ++i) {
-          const Index n = list[i];
-          ++occurrences[n];
-          const NodeType type = m.node_type[n];
-          const int loc = m.node_location[n];
-          const bool belongs = is_at_corner(type) ? (loc == k || loc == (k + 1) % 3)
-                                                  : (is_on_edge(type) && loc == k);
-          if (!belongs)
-            sink.add("edge_array", {t, n}, [&] {
-              return fmt::format("edge array {} of element {} lists node {} ({}, location {}), "
-                                 "which is not on that edge",
-                                 k, t, n, to_string(type), loc);
-            });
-          const double s = edge_parameter(m.node_position[n], k);
-          if (!(s > previous))
-            sink.add("edge_array", {t, n}, [&] {
-              return fmt::format("edge array {} of element {} is not ordered from corner {} to "
-                                 "corner {}: node {} at parameter {:.17g} follows parameter {:.17g}",
-                                 k, t, k, (k + 1) % 3, n, s, previous);
-            });
-          previous = s;
-        }
-        const Index first = corner_node[3 * static_cast<std::size_t>(t) + k];
-        const Index last = corner_node[3 * static_cast<std::size_t>(t) + (k + 1) % 3];
-        if (first != invalid_index && (list.empty() || list.front() != first))
-          sink.add("edge_array", {t, first}, [&] {
-            return fmt::format("edge array {} of element {} does not start at the node {} of "
-                               "corner {}",
-                               k, t, first, k);
+/// The edge arrays (d = 2): each lists the nodes on its edge, ordered from corner k to corner
+/// k + 1, from the one corner node to the other; each node appears as often as its type says.
+void check_edge_arrays(const MapContext<2>& ctx, const std::vector<Index>& corner_node, ViolationSink& sink) {
+  const auto& m = ctx.data;
+  const auto& map = ctx.map;
+  const Index nt = ctx.element_count();
+  const Index nn = static_cast<Index>(m.node_type.size());
+  std::vector<int> occurrences(nn, 0);
+  for (Index t = 0; t < nt; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const auto list = map.edge_nodes(t, k);
+      double previous = -std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        const Index n = list[i];
+        ++occurrences[n];
+        const NodeType type = m.node_type[n];
+        const int loc = m.node_location[n];
+        const bool belongs = is_at_corner(type) ? (loc == k || loc == (k + 1) % 3)
+                                                : (is_on_edge(type) && loc == k);
+        if (!belongs)
+          sink.add("edge_array", {t, n}, [&] {
+            return fmt::format("edge array {} of element {} lists node {} ({}, location {}), "
+                               "which is not on that edge",
+                               k, t, n, to_string(type), loc);
           });
-        if (last != invalid_index && (list.empty() || list.back() != last))
-          sink.add("edge_array", {t, last}, [&] {
-            return fmt::format("edge array {} of element {} does not end at the node {} of "
-                               "corner {}",
-                               k, t, last, (k + 1) % 3);
+        const double s = edge_parameter(m.node_position[n], k);
+        if (!(s > previous))
+          sink.add("edge_array", {t, n}, [&] {
+            return fmt::format("edge array {} of element {} is not ordered from corner {} to "
+                               "corner {}: node {} at parameter {:.17g} follows parameter {:.17g}",
+                               k, t, k, (k + 1) % 3, n, s, previous);
           });
+        previous = s;
       }
-    }
-    for (Index n = 0; n < nn; ++n) {
-      const NodeType type = m.node_type[n];
-      const int expected = is_at_corner(type) ? 2 : is_on_edge(type) ? 1 : 0;
-      if (occurrences[n] != expected)
-        sink.add("edge_array", {ctx.node_element[n], n}, [&] {
-          return fmt::format("node {} ({}) appears {} times in the edge arrays of element {}, "
-                             "expected {}",
-                             n, to_string(type), occurrences[n], ctx.node_element[n], expected);
+      const Index first = corner_node[3 * static_cast<std::size_t>(t) + k];
+      const Index last = corner_node[3 * static_cast<std::size_t>(t) + (k + 1) % 3];
+      if (first != invalid_index && (list.empty() || list.front() != first))
+        sink.add("edge_array", {t, first}, [&] {
+          return fmt::format("edge array {} of element {} does not start at the node {} of "
+                             "corner {}",
+                             k, t, first, k);
+        });
+      if (last != invalid_index && (list.empty() || list.back() != last))
+        sink.add("edge_array", {t, last}, [&] {
+          return fmt::format("edge array {} of element {} does not end at the node {} of "
+                             "corner {}",
+                             k, t, last, (k + 1) % 3);
         });
     }
   }
+  for (Index n = 0; n < nn; ++n) {
+    const NodeType type = m.node_type[n];
+    const int expected = is_at_corner(type) ? 2 : is_on_edge(type) ? 1 : 0;
+    if (occurrences[n] != expected)
+      sink.add("edge_array", {ctx.node_element[n], n}, [&] {
+        return fmt::format("node {} ({}) appears {} times in the edge arrays of element {}, "
+                           "expected {}",
+                           n, to_string(type), occurrences[n], ctx.node_element[n], expected);
+      });
+  }
+}
 
-  // ---- copies on shared corners -------------------------------------------------------------
+/// Two copies of a node on a shared S1 vertex or edge (`where_kind` `where`): the same type and
+/// target, and images within the world tolerance.
+template <int d>
+void compare_copies(const MapContext<d>& ctx, Index a, Index b, Index tb, const char* where_kind, Index where,
+                    ViolationSink& sink) {
+  const auto& m = ctx.data;
+  const auto& map = ctx.map;
   const double world_tol = ctx.world_tolerance_s2;
-  auto compare_copies = [&](Index a, Index b, Index tb, const char* where_kind, Index where) {
-    if (m.node_type[a] != m.node_type[b] || m.node_target[a] != m.node_target[b]) {
-      sink.add("copies_agree", {tb, b}, [&] {
-        return fmt::format("copies {} and {} on S1 {} {} differ: {} with target {} vs {} with "
-                           "target {}",
-                           a, b, where_kind, where, to_string(m.node_type[a]), m.node_target[a],
-                           to_string(m.node_type[b]), m.node_target[b]);
-      });
-      return;
-    }
-    const double dist = (map.node_target_world(a) - map.node_target_world(b)).norm();
-    if (!(dist <= world_tol))
-      sink.add("copies_agree", {tb, b}, [&] {
-        return fmt::format("copies {} and {} on S1 {} {} have images {:.3g} apart (tolerance "
-                           "{:.3g})",
-                           a, b, where_kind, where, dist, world_tol);
-      });
-  };
+  if (m.node_type[a] != m.node_type[b] || m.node_target[a] != m.node_target[b]) {
+    sink.add("copies_agree", {tb, b}, [&] {
+      return fmt::format("copies {} and {} on S1 {} {} differ: {} with target {} vs {} with "
+                         "target {}",
+                         a, b, where_kind, where, to_string(m.node_type[a]), m.node_target[a],
+                         to_string(m.node_type[b]), m.node_target[b]);
+    });
+    return;
+  }
+  const double dist = (map.node_target_world(a) - map.node_target_world(b)).norm();
+  if (!(dist <= world_tol))
+    sink.add("copies_agree", {tb, b}, [&] {
+      return fmt::format("copies {} and {} on S1 {} {} have images {:.3g} apart (tolerance "
+                         "{:.3g})",
+                         a, b, where_kind, where, dist, world_tol);
+    });
+}
+
+/// The copies of a corner node on every element around a shared S1 vertex agree.
+template <int d>
+void check_copies_on_vertices(const MapContext<d>& ctx, const std::vector<Index>& corner_node, ViolationSink& sink) {
   for (Index v = 0; v < ctx.s1.vertex_count(); ++v) {
     const auto elements = ctx.s1.vertex_elements(v);
     if (elements.size() < 2) continue;
@@ -301,50 +325,64 @@ void run_structure(const MapContext<d>& ctx, ViolationSink& sink) {
         });
         continue;
       }
-      if (ref != invalid_index) compare_copies(ref, n, t, "vertex", v);
+      if (ref != invalid_index) compare_copies(ctx, ref, n, t, "vertex", v, sink);
     }
   }
+}
 
-  // ---- copies on shared edges (d = 2) -------------------------------------------------------
-  if constexpr (d == 2) {
-    std::vector<Index> reference, other;
-    auto canonical = [&](const EdgeIncidence& inc, std::vector<Index>& out) {
-      const auto list = map.edge_nodes(inc.element, inc.local_edge);
-      out.assign(list.begin(), list.end());
-      if (!ctx.s1.local_edge_is_forward(inc.element, inc.local_edge))
-        std::reverse(out.begin(), out.end());
-    };
-    for (Index e = 0; e < ctx.s1.edge_count(); ++e) {
-      const auto inc = ctx.s1.edge_elements(e);
-      if (inc.size() < 2) continue;
-      canonical(inc[0], reference);
-      for (std::size_t j = 1; j < inc.size(); ++j) {
-        canonical(inc[j], other);
-        const Index t = inc[j].element;
-        if (other.size() != reference.size()) {
-          sink.add("copies_agree", {t}, [&] {
-            return fmt::format("S1 edge {}: element {} has {} nodes on it, element {} has {}", e,
-                               inc[0].element, reference.size(), t, other.size());
+/// The copies of the nodes on a shared S1 edge (d = 2) agree: as many on each side, at the same
+/// parameters along the edge.
+void check_copies_on_edges(const MapContext<2>& ctx, ViolationSink& sink) {
+  const auto& m = ctx.data;
+  const auto& map = ctx.map;
+  std::vector<Index> reference, other;
+  auto canonical = [&](const EdgeIncidence& inc, std::vector<Index>& out) {
+    const auto list = map.edge_nodes(inc.element, inc.local_edge);
+    out.assign(list.begin(), list.end());
+    if (!ctx.s1.local_edge_is_forward(inc.element, inc.local_edge))
+      std::reverse(out.begin(), out.end());
+  };
+  for (Index e = 0; e < ctx.s1.edge_count(); ++e) {
+    const auto inc = ctx.s1.edge_elements(e);
+    if (inc.size() < 2) continue;
+    canonical(inc[0], reference);
+    for (std::size_t j = 1; j < inc.size(); ++j) {
+      canonical(inc[j], other);
+      const Index t = inc[j].element;
+      if (other.size() != reference.size()) {
+        sink.add("copies_agree", {t}, [&] {
+          return fmt::format("S1 edge {}: element {} has {} nodes on it, element {} has {}", e,
+                             inc[0].element, reference.size(), t, other.size());
+        });
+        continue;
+      }
+      for (std::size_t i = 0; i < other.size(); ++i) {
+        const Index a = reference[i], b = other[i];
+        if (is_at_corner(m.node_type[a]) && is_at_corner(m.node_type[b])) continue;  // compared per vertex
+        const double sa = global_edge_parameter(ctx.s1, inc[0].element, inc[0].local_edge,
+                                                m.node_position[a]);
+        const double sb = global_edge_parameter(ctx.s1, t, inc[j].local_edge, m.node_position[b]);
+        if (!(std::abs(sa - sb) <= ctx.options.local_tolerance))
+          sink.add("copies_agree", {t, b}, [&] {
+            return fmt::format("copies {} and {} on S1 edge {} sit at parameters {:.17g} and "
+                               "{:.17g}",
+                               a, b, e, sa, sb);
           });
-          continue;
-        }
-        for (std::size_t i = 0; i < other.size(); ++i) {
-          const Index a = reference[i], b = other[i];
-          if (is_at_corner(m.node_type[a]) && is_at_corner(m.node_type[b])) continue;  // compared per vertex
-          const double sa = global_edge_parameter(ctx.s1, inc[0].element, inc[0].local_edge,
-                                                  m.node_position[a]);
-          const double sb = global_edge_parameter(ctx.s1, t, inc[j].local_edge, m.node_position[b]);
-          if (!(std::abs(sa - sb) <= ctx.options.local_tolerance))
-            sink.add("copies_agree", {t, b}, [&] {
-              return fmt::format("copies {} and {} on S1 edge {} sit at parameters {:.17g} and "
-                                 "{:.17g}",
-                                 a, b, e, sa, sb);
-            });
-          compare_copies(a, b, t, "edge", e);
-        }
+        compare_copies(ctx, a, b, t, "edge", e, sink);
       }
     }
   }
+}
+
+}  // namespace
+
+template <int d>
+void run_structure(const MapContext<d>& ctx, ViolationSink& sink) {
+  check_neighbor_lists(ctx, sink);
+  const std::vector<Index> corner_node = check_node_places(ctx, sink);
+  if constexpr (d == 2) check_edge_arrays(ctx, corner_node, sink);
+  check_copies_on_vertices(ctx, corner_node, sink);
+  if constexpr (d == 2) check_copies_on_edges(ctx, sink);
 }
 
 template bool check_indices(const MapContext<1>&, ViolationSink&);
