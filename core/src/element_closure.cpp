@@ -149,17 +149,13 @@ bool convex_and_winding_once(std::span<const LocalPoint<2>> points, std::span<co
   return rounds == 1;
 }
 
-bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const ClosureSegment> segments,
-                    std::array<int, 2> boundary_start, ElementClosure& out, ClosureScratch& s) {
-  out.clear();
-  const int nv = static_cast<int>(points.size());
-  const int ne = static_cast<int>(segments.size());
-  const int nh = 2 * ne;
-  if (nv < 3) return false;
-  const LocalPoint<2>* p = points.data();
+namespace {
 
-  // Distinct points (coincident nodes are an error the general path reports): few points are
-  // compared pairwise, many sorted by value (equal points are then neighbours).
+/// No two points coincide (coincident nodes are an error the general path reports): few points
+/// are compared pairwise, many sorted by value (equal points are then neighbours).
+bool points_distinct(std::span<const LocalPoint<2>> points, ClosureScratch& s) {
+  const int nv = static_cast<int>(points.size());
+  const LocalPoint<2>* p = points.data();
   if (nv <= 32) {
     for (int i = 1; i < nv; ++i)
       for (int j = 0; j < i; ++j)
@@ -173,8 +169,18 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
     for (int i = 1; i < nv; ++i)
       if (sorted[i] == sorted[i - 1]) return false;
   }
+  return true;
+}
 
-  // Half-edge h = 2i + r runs from segments[i][r] to segments[i][1 - r]; its twin is h ^ 1.
+/// The half-edges of the segments (h = 2i + r runs from segments[i][r] to segments[i][1 - r]; its
+/// twin is h ^ 1), and around each vertex the half-edges leaving it in counter-clockwise order.
+/// False if a vertex has fewer than two edges or two edges leave one vertex in the same direction.
+bool order_half_edges(std::span<const LocalPoint<2>> points, std::span<const ClosureSegment> segments,
+                      ClosureScratch& s) {
+  const int nv = static_cast<int>(points.size());
+  const int ne = static_cast<int>(segments.size());
+  const int nh = 2 * ne;
+  const LocalPoint<2>* p = points.data();
   s.half_edges.resize(nh);
   ClosureScratch::HalfEdge* he = s.half_edges.data();
   for (int i = 0; i < ne; ++i) {
@@ -224,7 +230,16 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
       if (he[first[i - 1]].upper == he[first[i]].upper && turn(first[i - 1], first[i]) == 0) return false;
     for (int i = 0; i < degree; ++i) he[first[i]].position = out_begin[v] + i;
   }
+  return true;
+}
 
+/// The faces of the plane graph: each half-edge's next one on the face to its left, and its face,
+/// numbered in the order of their first (smallest) half-edge. Returns the number of faces, or -1
+/// if a face does not close.
+int trace_faces(int nh, ClosureScratch& s) {
+  ClosureScratch::HalfEdge* he = s.half_edges.data();
+  const int* out_begin = s.out_begin.data();
+  const int* around = s.out_half_edge.data();
   // The face left of u->v continues with the edge that precedes v->u around v.
   for (int h = 0; h < nh; ++h) {
     const int v = he[h].to;
@@ -241,70 +256,50 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
     do {
       he[h].face = faces;
       h = he[h].next;
-      if (++guard > nh) return false;
+      if (++guard > nh) return -1;
     } while (h != h0);
     s.face_first.push_back(h0);
     ++faces;
   }
-  // A connected plane graph has E - V + 2 faces; fewer means parts floating inside a face.
-  if (faces != ne - nv + 2) return false;
+  return faces;
+}
 
+/// The outer face: the one right of the boundary half-edge (a, b) = boundary_start, which must be
+/// a segment with another face on its left; -1 if it is not.
+int outer_face(std::span<const ClosureSegment> segments, std::array<int, 2> boundary_start, const ClosureScratch& s) {
+  const int ne = static_cast<int>(segments.size());
+  const ClosureScratch::HalfEdge* he = s.half_edges.data();
   int boundary_half_edge = -1;
   for (int i = 0; i < ne && boundary_half_edge < 0; ++i) {
     if (segments[i].a == boundary_start[0] && segments[i].b == boundary_start[1]) boundary_half_edge = 2 * i;
     if (segments[i].b == boundary_start[0] && segments[i].a == boundary_start[1]) boundary_half_edge = 2 * i + 1;
   }
-  if (boundary_half_edge < 0) return false;
+  if (boundary_half_edge < 0) return -1;
   const int outer = he[boundary_half_edge ^ 1].face;
-  if (he[boundary_half_edge].face == outer) return false;
+  if (he[boundary_half_edge].face == outer) return -1;
+  return outer;
+}
 
-  // Renumber the inner faces 0 .. faces - 2 and cut each into triangles. Once the inner faces are
-  // known to tile the element (each a simple counter-clockwise polygon, the outer face its
-  // boundary), the triangles form a triangulation with 2 V - B - 2 triangles (B vertices on the
-  // boundary), and every diagonal lies inside its face, so no side is shared by three triangles.
-  out.triangles.reserve(2 * static_cast<std::size_t>(nv));
-  out.neighbors.reserve(2 * static_cast<std::size_t>(nv));
-  out.graph_sides.reserve(2 * static_cast<std::size_t>(nv));
-  out.face.reserve(2 * static_cast<std::size_t>(nv));
-  s.flips.clear();
-  int face_id = 0;
-  // The polygon of the face being cut, and the owner of each of its sides poly[m] -> poly[m + 1]:
-  // a graph half-edge, or the diagonal of a triangle cut off earlier.
-  std::array<int, largest_face> poly, poly_side;
-  // The sides of a new triangle are paired with what owned them: a graph half-edge (paired with
-  // its twin's triangle once every face is cut) or a diagonal cut earlier in the same face.
-  auto attach = [&](int side, int owner) {
-    const int t = side / 3, i = side % 3;
-    if (owner >= 0) {
-      he[owner].side = side;
-      if (segments[owner >> 1].graph) out.graph_sides[t] = static_cast<std::uint8_t>(out.graph_sides[t] | (1u << i));
-    } else {
-      const int other = -1 - owner;
-      out.neighbors[t][i] = other / 3;
-      out.neighbors[other / 3][other % 3] = t;
-    }
-  };
-  auto add_triangle = [&](int a, int b, int c) {
-    const int t = static_cast<int>(out.triangles.size());
-    out.triangles.push_back({a, b, c});
-    out.neighbors.push_back({-1, -1, -1});
-    out.graph_sides.push_back(0);
-    out.face.push_back(face_id);
-    return t;
-  };
-  // The triangle poly[0..2] that is left of a face (or is the whole face): false if it is not
-  // counter-clockwise, else it closes the face.
-  auto close_face = [&]() {
-    if (orient2d(p[poly[0]], p[poly[1]], p[poly[2]]) <= 0) return false;
-    const int t = add_triangle(poly[0], poly[1], poly[2]);
-    attach(3 * t + 0, poly_side[1]);
-    attach(3 * t + 1, poly_side[2]);
-    attach(3 * t + 2, poly_side[0]);
-    ++face_id;
-    return true;
-  };
-  for (int f = 0; f < faces; ++f) {
-    if (f == outer) continue;
+/// Cuts the inner faces into triangles, one face at a time (cut), into `out`. Once the inner faces
+/// are known to tile the element (each a simple counter-clockwise polygon, the outer face its
+/// boundary), the triangles form a triangulation with 2 V - B - 2 triangles (B vertices on the
+/// boundary), and every diagonal lies inside its face, so no side is shared by three triangles.
+class FaceCutter {
+ public:
+  FaceCutter(std::span<const LocalPoint<2>> points, std::span<const ClosureSegment> segments, ElementClosure& out,
+             ClosureScratch& s)
+      : points_(points), p(points.data()), segments_(segments), he(s.half_edges.data()), out(out), s(s) {
+    const auto nv = static_cast<std::size_t>(points.size());
+    out.triangles.reserve(2 * nv);
+    out.neighbors.reserve(2 * nv);
+    out.graph_sides.reserve(2 * nv);
+    out.face.reserve(2 * nv);
+    s.flips.clear();
+  }
+
+  /// Cuts face f (traced from s.face_first[f]); false if it is not a simple counter-clockwise
+  /// polygon of at most largest_face sides.
+  bool cut(int f) {
     const int h0 = s.face_first[f];
     int k = 0;
     int h = h0;
@@ -318,8 +313,7 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
     if (k < 3) return false;
     if (k == 3) {  // already a triangle (most faces): counter-clockwise is all there is to check
       if (poly[0] == poly[1] || poly[1] == poly[2] || poly[2] == poly[0]) return false;
-      if (!close_face()) return false;
-      continue;
+      return close_face();
     }
     // A vertex twice on one face: dangling edge or pinched face.
     for (int i = 1; i < k; ++i)
@@ -334,7 +328,7 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
       return false;
     // Simple: no two sides meet except consecutive ones at their common vertex. A convex face
     // that winds once is simple, and that is decided in O(k); other faces take the O(k^2) test.
-    const bool convex = k == 3 || convex_and_winding_once(points, std::span<const int>(poly.data(), k));
+    const bool convex = k == 3 || convex_and_winding_once(points_, std::span<const int>(poly.data(), k));
     if (!convex)
       for (int i = 0; i < k; ++i)
         for (int j = i + 1; j < k; ++j)
@@ -387,10 +381,77 @@ bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const Closu
       std::copy(poly.begin() + best + 1, poly.begin() + m, poly.begin() + best);
       std::copy(poly_side.begin() + best + 1, poly_side.begin() + m, poly_side.begin() + best);
     }
-    if (!close_face()) return false;
+    return close_face();
   }
-  out.face_count = face_id;
 
+  int faces_cut() const { return face_id; }
+
+ private:
+  // The sides of a new triangle are paired with what owned them: a graph half-edge (paired with
+  // its twin's triangle once every face is cut) or a diagonal cut earlier in the same face.
+  void attach(int side, int owner) {
+    const int t = side / 3, i = side % 3;
+    if (owner >= 0) {
+      he[owner].side = side;
+      if (segments_[owner >> 1].graph) out.graph_sides[t] = static_cast<std::uint8_t>(out.graph_sides[t] | (1u << i));
+    } else {
+      const int other = -1 - owner;
+      out.neighbors[t][i] = other / 3;
+      out.neighbors[other / 3][other % 3] = t;
+    }
+  }
+  int add_triangle(int a, int b, int c) {
+    const int t = static_cast<int>(out.triangles.size());
+    out.triangles.push_back({a, b, c});
+    out.neighbors.push_back({-1, -1, -1});
+    out.graph_sides.push_back(0);
+    out.face.push_back(face_id);
+    return t;
+  }
+  // The triangle poly[0..2] that is left of a face (or is the whole face): false if it is not
+  // counter-clockwise, else it closes the face.
+  bool close_face() {
+    if (orient2d(p[poly[0]], p[poly[1]], p[poly[2]]) <= 0) return false;
+    const int t = add_triangle(poly[0], poly[1], poly[2]);
+    attach(3 * t + 0, poly_side[1]);
+    attach(3 * t + 1, poly_side[2]);
+    attach(3 * t + 2, poly_side[0]);
+    ++face_id;
+    return true;
+  }
+
+  std::span<const LocalPoint<2>> points_;
+  const LocalPoint<2>* p;
+  std::span<const ClosureSegment> segments_;
+  ClosureScratch::HalfEdge* he;
+  ElementClosure& out;
+  ClosureScratch& s;
+  int face_id = 0;
+  // The polygon of the face being cut, and the owner of each of its sides poly[m] -> poly[m + 1]:
+  // a graph half-edge, or the diagonal of a triangle cut off earlier.
+  std::array<int, largest_face> poly, poly_side;
+};
+
+}  // namespace
+
+bool close_by_faces(std::span<const LocalPoint<2>> points, std::span<const ClosureSegment> segments,
+                    std::array<int, 2> boundary_start, ElementClosure& out, ClosureScratch& s) {
+  out.clear();
+  const int nv = static_cast<int>(points.size());
+  const int ne = static_cast<int>(segments.size());
+  const int nh = 2 * ne;
+  if (nv < 3) return false;
+  if (!points_distinct(points, s) || !order_half_edges(points, segments, s)) return false;
+  const int faces = trace_faces(nh, s);
+  // A connected plane graph has E - V + 2 faces; fewer means parts floating inside a face.
+  if (faces < 0 || faces != ne - nv + 2) return false;
+  const int outer = outer_face(segments, boundary_start, s);
+  if (outer < 0) return false;
+  FaceCutter cutter(points, segments, out, s);
+  for (int f = 0; f < faces; ++f)
+    if (f != outer && !cutter.cut(f)) return false;
+  out.face_count = cutter.faces_cut();
+  const ClosureScratch::HalfEdge* he = s.half_edges.data();
   // Triangles on either side of a graph edge or boundary piece: the twin half-edge's triangle,
   // none where the twin is on the outer face.
   for (int h = 0; h < nh; ++h) {
