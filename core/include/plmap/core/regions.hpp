@@ -7,7 +7,6 @@
 #include <plmap/core/pl_map.hpp>
 
 #include <optional>
-#include <span>
 #include <vector>
 
 namespace plmap {
