@@ -351,11 +351,23 @@ void check_offset_height_fields(bool averaged_normals) {
   assert_same_measure(moved.measures.covered_domain, r.measures.covered_domain, r.measures.domain, what + " moved, S1");
   assert_same_measure(moved.measures.covered_target, r.measures.covered_target, r.measures.target, what + " moved, S2");
 
-  // Newton and Ceres agree
+  // Newton and Ceres agree, unless a face leaves D by a decision on the rays' geometry (a fold, an
+  // occluded sheet, a face whose nodes share no S2 element): there the last bits of the two
+  // solvers' answers can tip a face either way (seed 112, case 7949 of 10,000: one occluded face
+  // more with Newton, 0.4 % of S1), and each map is checked against the rays instead.
   ProjectionOptions ceres = base;
   ceres.solver = "ceres";
   const auto c = project<2>(s1, s2, ceres);
   assert_valid(c, what + " (ceres)");
+  const auto decided_near_folds = [](const ProjectionReport<2>& p) {
+    return p.folded_faces + p.folded_regions_cut + p.occluded_faces + p.unmapped_faces > 0;
+  };
+  const bool against_rays = averaged_normals && (decided_near_folds(r.report) || decided_near_folds(c.report));
+  RC_CLASSIFY(against_rays, "Ceres checked against the rays, not against Newton");
+  if (against_rays) {
+    assert_coverage_against_rays(c, averaged_vertex_normals(*s1), ceres, what + " (ceres)");
+    return;
+  }
   assert_same_measure(c.measures.covered_domain, r.measures.covered_domain, r.measures.domain, what + " ceres, S1");
   assert_same_measure(c.measures.covered_target, r.measures.covered_target, r.measures.target, what + " ceres, S2");
 }
