@@ -2,6 +2,7 @@
 
 #include "finalize_region_maps.hpp"
 #include "map_arrays.hpp"
+#include "weights_by_vertex_identity.hpp"
 
 #include <plmap/core/affine_through.hpp>
 #include <plmap/core/errors.hpp>
@@ -25,21 +26,17 @@ double omitted_weight(std::span<const KeptOmittedWeight> kept, const LocalPoint<
   return it != kept.end() && it->node == n ? it->weight : 1.0 - local.sum();
 }
 
-/// Node n's image in the local coordinates of S2 element t (corners `to`), which contains it: the
-/// value support_local gives from the node's support. The support's vertices are corners of the
-/// image element e, and their weights are node_image_local's two values and the omitted one; a
-/// corner of t that is no corner of e carries no weight (+0.0, as support_local leaves it).
+/// Node n's image in the local coordinates of S2 element t, which contains it: the value
+/// support_local gives from the node's support (its weights are node_image_local's two values
+/// and the omitted one), as the binary map file derives it but for the kept omitted weights.
 LocalPoint<2> image_on(const Surface<2>& s2, const MapData<2>& m, std::span<const KeptOmittedWeight> kept, Index n,
-                       Index t, const ElementCorners<2>& to) {
+                       Index t) {
   const auto i = static_cast<std::size_t>(n);
   const Index e = m.node_image_element[i];
   const LocalPoint<2>& local = m.node_image_local[i];
   if (e == t) return local;
-  const auto& from = s2.element(e);
-  auto weight_of = [&](Index v) {
-    return v == from[0] ? omitted_weight(kept, local, n) : v == from[1] ? local(0) : v == from[2] ? local(1) : 0.0;
-  };
-  return LocalPoint<2>(weight_of(to[1]), weight_of(to[2]));
+  return weights_by_vertex_identity<2>(s2.element(e), s2.element(t), local,
+                                       [&] { return omitted_weight(kept, local, n); });
 }
 
 }  // namespace
@@ -73,11 +70,10 @@ void write_region_maps(const Surface<2>& s2, std::span<const KeptOmittedWeight> 
     for (std::size_t r = begin; r < end; ++r) {
       const auto& corners = m.region_corners[r];
       const Index t = m.region_target[r];
-      const auto& target_corners = s2.element(t);
       std::array<LocalPoint<2>, 3> from, to;
       for (int i = 0; i < 3; ++i) {
         from[i] = m.node_position[static_cast<std::size_t>(corners[i])];
-        to[i] = image_on(s2, m, kept, corners[i], t, target_corners);
+        to[i] = image_on(s2, m, kept, corners[i], t);
       }
       m.region_map[r] = affine_through<2>(from, to);
     }

@@ -93,16 +93,12 @@ class ClosingPass {
     face_counts_.clear();
     graph_elements_.clear();
     kept_omitted_weights_.clear();
-    part_nodes_.clear();
     ElementFailures failed;
     for (Part* p : used) {
       parts_.push_back(std::move(p->data));
       face_counts_.push_back(std::move(p->counts));
       graph_elements_.push_back(std::move(p->graph_elements));
-      if (deferred_region_maps()) {
-        kept_omitted_weights_.push_back(std::move(p->kept_omitted_weights));
-        part_nodes_.push_back(parts_.back().node_type.size());
-      }
+      if (deferred_region_maps()) kept_omitted_weights_.push_back(std::move(p->kept_omitted_weights));
       failed.insert(failed.end(), p->failures.begin(), p->failures.end());
     }
     return failed;
@@ -169,7 +165,8 @@ class ClosingPass {
   /// are copied from a previous map, whose region maps are copied with them.
   bool deferred_region_maps() const { return reuse_ == nullptr; }
   /// The kept omitted weights of the last run (finalize_region_maps.hpp), joined in the order of
-  /// the parts, their nodes numbered as in the joined map.
+  /// the parts, their nodes numbered as in the joined map; to be called before the parts are
+  /// joined (their node counts give the numbers).
   std::vector<KeptOmittedWeight> joined_kept_omitted_weights() {
     std::size_t total = 0, first_node = 0;
     for (const auto& kept : kept_omitted_weights_) total += kept.size();
@@ -178,10 +175,9 @@ class ClosingPass {
     for (std::size_t k = 0; k < kept_omitted_weights_.size(); ++k) {
       for (const KeptOmittedWeight& w : kept_omitted_weights_[k])
         all.push_back({static_cast<Index>(first_node + static_cast<std::size_t>(w.node)), w.weight});
-      first_node += part_nodes_[k];
+      first_node += parts_[k].node_type.size();
     }
     kept_omitted_weights_.clear();
-    part_nodes_.clear();
     return all;
   }
   /// Frees the closure workspaces (slot_of_node alone has an entry per builder node) once the
@@ -341,9 +337,7 @@ class ClosingPass {
   std::vector<MapData<2>> parts_;
   std::vector<FaceCounts> face_counts_;  // per block
   std::vector<std::vector<Index>> graph_elements_;  // per block
-  // per part in element order, with deferred region maps: its kept omitted weights and node count
-  std::vector<std::vector<KeptOmittedWeight>> kept_omitted_weights_;
-  std::vector<std::size_t> part_nodes_;
+  std::vector<std::vector<KeptOmittedWeight>> kept_omitted_weights_;  // per part, with deferred region maps
   const ElementReuse* reuse_;
 };
 
@@ -448,6 +442,8 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   BuilderSegments<2>().swap(in.segments);
   BuilderNodes<2>().swap(in.nodes);
   where.release();
+  std::vector<KeptOmittedWeight> kept;  // (numbered as in the joined map)
+  if (pass.deferred_region_maps()) kept = pass.joined_kept_omitted_weights();
   join_parts(pass.parts(), n1, pass.threads(), m);
   // The arrays sized by bounds are final now: their slack goes before the region maps are written
   // (shrink_stored_form), not after, and so do the originals the copies leave in the heap (on the
@@ -456,7 +452,7 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   give_freed_heap_back();
   assembled.graph_elements = pass.graph_elements();
   if (pass.deferred_region_maps())
-    write_region_maps(in.s2, pass.joined_kept_omitted_weights(), m, pass.threads(), in.options.spare_room);
+    write_region_maps(in.s2, kept, m, pass.threads(), in.options.spare_room);
   return assembled;
 }
 

@@ -10,6 +10,8 @@
 /// stored one and stores the ones that differ ("exceptions"); the reader recomputes, applies the
 /// exceptions and compares the CRC-32 of the result with the writer's. Private to core.
 
+#include "../weights_by_vertex_identity.hpp"
+
 #include <plmap/core/affine_through.hpp>
 #include <plmap/core/pl_map.hpp>
 
@@ -28,15 +30,8 @@ std::optional<LocalPoint<d>> image_on_element(const Surface<d>& s2, const Surfac
     return std::nullopt;
   }
   if (p.element == t) return p.local;
-  const auto& from = s2.element(p.element);
-  const auto& to = s2.element(t);
-  LocalPoint<d> y = LocalPoint<d>::Zero();
-  for (int k = 1; k <= d; ++k) {
-    for (int j = 0; j <= d; ++j) {
-      if (from[j] == to[k]) y(k - 1) = j == 0 ? 1.0 - p.local.sum() : p.local(j - 1);
-    }
-  }
-  return y;
+  return detail::weights_by_vertex_identity<d>(s2.element(p.element), s2.element(t), p.local,
+                                               [&] { return 1.0 - p.local.sum(); });
 }
 
 /// The recomputed affine map of region r, or nullopt if its indices are out of range (the
