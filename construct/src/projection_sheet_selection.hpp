@@ -33,8 +33,9 @@ std::vector<bool> coincident_preimage_losers(const ProjectionContext<d>& ctx,
 
 /// With ProjectionOptions::keep_nearer_sheet: removes the faces of the regions whose images
 /// overlap the image of a nearer region (core/face_removal.hpp), counts them in
-/// report.occluded_faces and occluded_regions, and recomputes `images` (image_measures of `map`)
-/// for the map left.
+/// report.occluded_faces and occluded_regions, and brings `images` (image_measures of `map`) up
+/// to the map left: covered.domain to the last bit, covered.target and per_target to rounding
+/// (the images of the elements the removal changed taken off before it and added back after).
 /// The S2 elements in `split_targets` (FinalizeReport::split_targets) are always compared.
 template <int d>
 void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, unsigned threads,

@@ -204,6 +204,11 @@ double covered_domain_measure(const PlMap<d>& map, unsigned threads) {
 }
 
 template <int d>
+double local_image_measure(const PlMap<d>& map, Index r) {
+  return local_target_measure(map, r);
+}
+
+template <int d>
 CoveredMeasure covered_measure(const PlMap<d>& map) {
   return image_measures(map).covered;
 }
@@ -220,5 +225,7 @@ template ImageMeasures image_measures(const PlMap<1>&, unsigned);
 template ImageMeasures image_measures(const PlMap<2>&, unsigned);
 template double covered_domain_measure(const PlMap<1>&, unsigned);
 template double covered_domain_measure(const PlMap<2>&, unsigned);
+template double local_image_measure(const PlMap<1>&, Index);
+template double local_image_measure(const PlMap<2>&, Index);
 
 }  // namespace plmap

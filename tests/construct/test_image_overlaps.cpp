@@ -10,7 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 using namespace plmap;
@@ -122,12 +124,12 @@ TEST(ImageOverlaps, OneConnectedSheetReachingOverItselfOnAPartlyCoveredElementIs
   EXPECT_EQ(verify_violations(remove_faces(map, std::span<const Index>(farther))), "");
 }
 
-TEST(ImageOverlaps, TheThreadCountDoesNotChangeWhatIsNamed) {
-  // S1: a plane under a narrower plane (two sheets, 10,400 triangles: more than one piece of S1
-  // elements per thread), S2: a plane above both (5,000 triangles: several chunks of S2 elements).
-  // Without the sheet selection both sheets map onto S2 where they overlap.
+/// S1: a plane under a narrower plane (two sheets, 10,400 triangles: more than one piece of S1
+/// elements per thread); the lower sheet's elements come first.
+std::shared_ptr<const Surface<2>> two_stacked_sheets(Index& lower_elements) {
   const auto lower = grid(60, 60, 0.0, 1.0, 0.0, 1.0, 0.0, false, 0.15);
   const auto upper = grid(40, 40, 0.3, 0.7, 0.0, 1.0, 0.4, false, 0.15);
+  lower_elements = lower->element_count();
   std::vector<WorldPoint<2>> v;
   std::vector<ElementCorners<2>> e;
   for (const auto* s : {lower.get(), upper.get()}) {
@@ -139,7 +141,14 @@ TEST(ImageOverlaps, TheThreadCountDoesNotChangeWhatIsNamed) {
       e.push_back(c);
     }
   }
-  const auto s1 = std::make_shared<const Surface<2>>(std::move(v), std::move(e));
+  return std::make_shared<const Surface<2>>(std::move(v), std::move(e));
+}
+
+TEST(ImageOverlaps, TheThreadCountDoesNotChangeWhatIsNamed) {
+  // S1: two stacked sheets, S2: a plane above both (5,000 triangles: several chunks of S2
+  // elements). Without the sheet selection both sheets map onto S2 where they overlap.
+  Index lower_elements = 0;
+  const auto s1 = two_stacked_sheets(lower_elements);
   const auto s2 = grid(50, 50, -0.1, 1.1, -0.1, 1.1, 1.0, true, 0.15);
   const auto r = project<2>(s1, s2, {.keep_nearer_sheet = false});
   const ImageMeasures images = image_measures(r.map);
@@ -148,5 +157,28 @@ TEST(ImageOverlaps, TheThreadCountDoesNotChangeWhatIsNamed) {
   EXPECT_EQ(projection::farther_overlapping_regions(r.map, images, {}, 2), one);
   EXPECT_EQ(projection::farther_overlapping_regions(r.map, images, {}, 3), one);
   // the lower sheet is the farther one: every region named lies on it
-  for (const Index region : one) EXPECT_LT(r.map.node_element(r.map.data().region_corners[region][0]), lower->element_count());
+  for (const Index region : one) EXPECT_LT(r.map.node_element(r.map.data().region_corners[region][0]), lower_elements);
+}
+
+TEST(ImageOverlaps, TheSheetSelectionReportsTheMeasuresOfTheMapItLeaves) {
+  // The sheet selection brings the image measures up to the map without measuring it again: S1's
+  // side to the last bit, S2's side to rounding, the same for every thread count.
+  Index lower_elements = 0;
+  const auto s1 = two_stacked_sheets(lower_elements);
+  const auto s2 = grid(50, 50, -0.1, 1.1, -0.1, 1.1, 1.0, true, 0.15);
+  ProjectionOptions options;
+  options.threads = 1;
+  const auto one = project<2>(s1, s2, options);
+  ASSERT_GT(one.report.occluded_regions, 100);
+  const ImageMeasures measured = image_measures(one.map);
+  EXPECT_EQ(one.measures.covered_domain, measured.covered.domain);
+  EXPECT_NEAR(one.measures.covered_target, measured.covered.target, 1e-12 * measured.covered.target);
+  // the images cover the lower sheet's footprint once (S2 has measure 1.44); what goes beside the
+  // upper sheet's sides, where the lower sheet's regions are only partly hidden, is a thin strip
+  EXPECT_LE(one.measures.covered_target, 1.0 + 1e-9);
+  EXPECT_GT(one.measures.covered_target, 0.97);
+  options.threads = 2;
+  const auto two = project<2>(s1, s2, options);
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(two.measures.covered_target), std::bit_cast<std::uint64_t>(one.measures.covered_target));
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(two.measures.covered_domain), std::bit_cast<std::uint64_t>(one.measures.covered_domain));
 }

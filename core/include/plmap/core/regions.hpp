@@ -74,4 +74,11 @@ ImageMeasures image_measures(const PlMap<d>& map, unsigned threads = 1);
 template <int d>
 double covered_domain_measure(const PlMap<d>& map, unsigned threads = 1);
 
+/// What region r adds to image_measures' per_target entry of its S2 element: d! times the
+/// measure of its image in that element's local coordinates (its corner images moved there as
+/// corner_image_on_target does). A caller that removes a few regions can take these off the
+/// sums, measured while the regions exist, instead of measuring the whole map again.
+template <int d>
+double local_image_measure(const PlMap<d>& map, Index r);
+
 }  // namespace plmap
