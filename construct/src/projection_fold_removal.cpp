@@ -76,7 +76,7 @@ ImageMeasures leave_out_folds(PlMap<d>& map, bool cut_folded_regions, unsigned t
         if (round == 3) cuts.whole.clear();  // (never seen: what is left is cut where it can be)
       }
       RegionClipReport clipping;
-      map = clip_regions(std::move(map), std::span<const RegionClip>(cuts.clips), &clipping);
+      map = clip_regions(std::move(map), std::span<const RegionClip>(cuts.clips), &clipping, threads);
       report.folded_regions_cut = clipping.clipped_regions;
       report.folded_regions += clipping.removed_regions;
     }

@@ -240,5 +240,25 @@ TEST(RegionClipping, RandomCutsOfManyRegionsKeepAValidMapAndExactlyTheirKeptPart
     for (const RegionClip& c : clips)
       lines += fmt::format(" region {} normal ({}, {}) offset {};", c.region, c.normal.x(), c.normal.y(), c.offset);
     ASSERT_EQ(verify_violations(clipped), "") << "round " << round << ":" << lines;
+    // made on three threads (the changed elements in pieces, the arrays side by side): the same
+    // map and report
+    RegionClipReport report3;
+    const PlMap<2> clipped3 = clip_regions(map, std::span<const RegionClip>(clips), &report3, 3);
+    // (the neighbour lists and edge arrays are compared through the stored graph: verify has
+    // derived the full ones on `clipped` by now, not on `clipped3`)
+    const MapData<2>& x = clipped3.stored();
+    const MapData<2>& y = clipped.stored();
+    EXPECT_TRUE(x.node_begin == y.node_begin && x.node_position == y.node_position && x.node_type == y.node_type &&
+                x.node_location == y.node_location && x.node_image_element == y.node_image_element &&
+                x.node_image_local == y.node_image_local && x.node_target == y.node_target &&
+                x.region_begin == y.region_begin && x.region_corners == y.region_corners &&
+                x.region_target == y.region_target && x.region_map == y.region_map && x.start_region == y.start_region &&
+                clipped3.stored_graph() == clipped.stored_graph())
+        << "round " << round;
+    EXPECT_EQ(report3.clipped_regions, report.clipped_regions) << "round " << round;
+    EXPECT_EQ(report3.removed_regions, report.removed_regions) << "round " << round;
+    EXPECT_EQ(report3.split_regions, report.split_regions) << "round " << round;
+    EXPECT_EQ(report3.new_nodes, report.new_nodes) << "round " << round;
+    EXPECT_EQ(report3.changed_elements, report.changed_elements) << "round " << round;
   }
 }

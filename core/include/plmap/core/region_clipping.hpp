@@ -49,9 +49,13 @@ struct RegionClipReport {
 /// strictly on the kept side leaves whole, one with no corner strictly beyond stays whole.
 /// Throws InvalidMapError if a region is out of range or named twice, or if a normal is zero.
 /// Works on the map's stored form: only the elements that change are looked at (their graph
-/// taken from the stored graph or derived from their regions), the others are copied.
-PlMap<2> clip_regions(PlMap<2>&& map, std::span<const RegionClip> clips, RegionClipReport* report = nullptr);
+/// taken from the stored graph or derived from their regions), the others are copied. `threads`:
+/// up to that many threads (0: all the process may use) make the changed elements and move the
+/// arrays; the map is the same for every count.
+PlMap<2> clip_regions(PlMap<2>&& map, std::span<const RegionClip> clips, RegionClipReport* report = nullptr,
+                      unsigned threads = 1);
 /// The same on a copy of `map`.
-PlMap<2> clip_regions(const PlMap<2>& map, std::span<const RegionClip> clips, RegionClipReport* report = nullptr);
+PlMap<2> clip_regions(const PlMap<2>& map, std::span<const RegionClip> clips, RegionClipReport* report = nullptr,
+                      unsigned threads = 1);
 
 }  // namespace plmap
