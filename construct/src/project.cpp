@@ -81,6 +81,9 @@ MapBuilder<d> builder_for(const ProjectionContext<d>& ctx) {
   // room for the cuts of regions across a fold (clip_regions, after finalize): about 1 % more
   // nodes and regions on the femur pair; untouched unless used (BuilderOptions::spare_room)
   if constexpr (d == 2) options.spare_room = 0.02;
+  // the images' measures, which the fold and sheet tests need, taken while finalize writes the
+  // region maps instead of measured afresh (projection_fold_removal.cpp)
+  options.measure_images = true;
   return MapBuilder<d>(ctx.s1_shared, ctx.s2_shared, options);
 }
 

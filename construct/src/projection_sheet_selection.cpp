@@ -2,6 +2,7 @@
 
 #include "projection_sheet_selection.hpp"
 
+#include "image_measures_of_elements.hpp"
 #include "image_overlaps.hpp"
 
 #include <plmap/core/face_removal.hpp>
@@ -85,30 +86,17 @@ void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, unsigned threads,
   // pair had its peak (0.4 MiB above the finished map's): given back first.
   give_freed_heap_back();
   if (farther.empty()) return;
-  // The measures after the removal without measuring every image again (on the armadillo pair
-  // that took 4 % of the projection): S1's side is measured again, which needs no image moved
-  // (covered_domain_measure, the same bits as image_measures). On S2's side only the elements of
-  // the named regions change (the removal takes a named region, or its face, or its element:
-  // face_removal.hpp), so their regions' images are taken off before the removal and what is
-  // left of them is added back after. The result's last bits may differ from a new sum's.
-  std::vector<Index> changed;
-  for (const Index r : farther) changed.push_back(map.node_element(map.stored().region_corners[r][0]));
-  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());  // farther is sorted
-  const auto shift_images_of_changed = [&](double sign) {
-    const MapData<d>& m = map.stored();
-    for (const Index t : changed)
-      for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) {
-        const double image = sign * local_image_measure(map, r);
-        images.per_target[static_cast<std::size_t>(m.region_target[r])] += image;
-        images.covered.target += image * map.target().element_measure(m.region_target[r]);
-      }
-  };
-  shift_images_of_changed(-1.0);
+  // The measures after the removal without measuring every image again
+  // (image_measures_of_elements.hpp): S1's side is measured again without moving any image.
+  std::vector<Index> elements;
+  for (const Index r : farther) elements.push_back(map.node_element(map.stored().region_corners[r][0]));
+  ImageMeasuresOfElements<d> changed(images, std::move(elements));
+  changed.take_off(map);
   FaceRemovalReport removal;
   map = remove_regions(std::move(map), std::span<const Index>(farther), &removal, threads);
   report.occluded_faces = removal.removed_faces;
   report.occluded_regions = removal.removed_regions;
-  shift_images_of_changed(1.0);
+  changed.add_back(map);
   images.covered.domain = covered_domain_measure(map, threads);
 }
 

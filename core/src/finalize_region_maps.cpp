@@ -11,6 +11,7 @@
 #include <plmap/core/parallel_ranges.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -53,8 +54,23 @@ std::optional<double> omitted_weight_to_keep(const Support<2>& s, const LocalPoi
   return omitted;
 }
 
-void write_region_maps(const Surface<2>& s2, std::span<const KeptOmittedWeight> kept, MapData<2>& m, unsigned threads,
-                       double spare_room) {
+namespace {
+
+/// d! times the local measure of the triangle y (as image_measures takes a region's image).
+double local_measure(const std::array<LocalPoint<2>, 3>& y) {
+  const LocalPoint<2> u = y[1] - y[0], v = y[2] - y[0];
+  return std::abs(u(0) * v(1) - u(1) * v(0));
+}
+
+/// The region maps, and with `terms` each region's image term: written to terms->per_region when
+/// that is sized (several threads), else added to terms->per_target in region order (one thread).
+struct ImageTerms {
+  std::vector<double> per_region;
+  std::vector<double>* per_target = nullptr;
+};
+
+void write_maps(const Surface<2>& s2, std::span<const KeptOmittedWeight> kept, MapData<2>& m, unsigned threads,
+                double spare_room, ImageTerms* terms) {
   if (!m.region_map.empty()) throw BuilderError("internal: region maps written twice");
   const std::size_t regions = m.region_target.size();
   m.region_map.reserve(with_spare_room(regions, spare_room));
@@ -76,8 +92,52 @@ void write_region_maps(const Surface<2>& s2, std::span<const KeptOmittedWeight> 
         to[i] = image_on(s2, m, kept, corners[i], t);
       }
       m.region_map[r] = affine_through<2>(from, to);
+      if (terms == nullptr) continue;
+      if (terms->per_region.empty())
+        (*terms->per_target)[static_cast<std::size_t>(t)] += local_measure(to);
+      else
+        terms->per_region[r] = local_measure(to);
     }
   });
+}
+
+}  // namespace
+
+void write_region_maps(const Surface<2>& s2, std::span<const KeptOmittedWeight> kept, MapData<2>& m, unsigned threads,
+                       double spare_room) {
+  write_maps(s2, kept, m, threads, spare_room, nullptr);
+}
+
+ImageMeasures write_region_maps_and_measure(const Surface<2>& s1, const Surface<2>& s2,
+                                            std::span<const KeptOmittedWeight> kept, MapData<2>& m, unsigned threads,
+                                            double spare_room) {
+  ImageMeasures out;
+  assign_on_huge_pages(out.per_target, static_cast<std::size_t>(s2.element_count()), 0.0, threads);
+  ImageTerms terms;
+  terms.per_target = &out.per_target;
+  const bool one_thread = resolve_thread_count(threads) <= 1;
+  if (!one_thread) assign_on_huge_pages(terms.per_region, m.region_target.size(), 0.0, threads);
+  write_maps(s2, kept, m, threads, spare_room, &terms);
+  if (!one_thread) {
+    for (std::size_t r = 0; r < m.region_target.size(); ++r)
+      out.per_target[static_cast<std::size_t>(m.region_target[r])] += terms.per_region[r];
+    std::vector<double>().swap(terms.per_region);
+  }
+  const Index n1 = s1.element_count(), n2 = s2.element_count();
+  // as image_measures: per S1 element its regions' local measures, scaled once, in element order
+  for (Index t = 0; t < n1; ++t) {
+    if (m.region_begin[t] == m.region_begin[t + 1]) continue;
+    double local = 0.0;
+    for (Index r = m.region_begin[t]; r < m.region_begin[t + 1]; ++r) {
+      const auto& c = m.region_corners[r];
+      local += local_measure({m.node_position[c[0]], m.node_position[c[1]], m.node_position[c[2]]});
+    }
+    out.covered.domain += local * s1.element_measure(t);
+  }
+  for (Index t2 = 0; t2 < n2; ++t2)
+    if (out.per_target[static_cast<std::size_t>(t2)] != 0.0)
+      out.covered.target += out.per_target[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
+  return out;
 }
 
 }  // namespace plmap::detail

@@ -19,6 +19,7 @@
 #include "builder_nodes.hpp"
 
 #include <plmap/core/pl_map.hpp>
+#include <plmap/core/regions.hpp>
 #include <plmap/core/surface.hpp>
 
 #include <optional>
@@ -47,5 +48,13 @@ std::optional<double> omitted_weight_to_keep(const Support<2>& s, const LocalPoi
 /// give back; on up to `threads` threads.
 void write_region_maps(const Surface<2>& s2, std::span<const KeptOmittedWeight> kept, MapData<2>& m, unsigned threads,
                        double spare_room = 0.0);
+
+/// write_region_maps, and the regions' image measures on the way (FinalizeReport::images): per S2
+/// element d! times the local measure of the images the maps are made from, summed in region
+/// order (directly on one thread; on several, each region's term first and the sums after, so
+/// that the bits are the same), and the covered measures as image_measures() sums them.
+ImageMeasures write_region_maps_and_measure(const Surface<2>& s1, const Surface<2>& s2,
+                                            std::span<const KeptOmittedWeight> kept, MapData<2>& m, unsigned threads,
+                                            double spare_room = 0.0);
 
 }  // namespace plmap::detail

@@ -451,8 +451,14 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   shrink_stored_form(m, pass.threads(), in.options.spare_room);
   give_freed_heap_back();
   assembled.graph_elements = pass.graph_elements();
-  if (pass.deferred_region_maps())
-    write_region_maps(in.s2, kept, m, pass.threads(), in.options.spare_room);
+  if (pass.deferred_region_maps()) {
+    if (in.options.measure_images) {
+      ImageMeasures images = write_region_maps_and_measure(in.s1, in.s2, kept, m, pass.threads(), in.options.spare_room);
+      if (report) report->images = std::move(images);
+    } else {
+      write_region_maps(in.s2, kept, m, pass.threads(), in.options.spare_room);
+    }
+  }
   return assembled;
 }
 

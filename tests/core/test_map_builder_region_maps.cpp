@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <optional>
 
 using namespace plmap;
 
@@ -65,4 +66,63 @@ TEST(MapBuilderRegionMaps, WrittenAfterTheBuilderEqualTheClosuresOwnForEveryCorn
         EXPECT_TRUE(closed.stored().region_map == deferred.stored().region_map);
         EXPECT_TRUE(closed.stored() == deferred.stored());
       }
+}
+
+TEST(MapBuilderRegionMaps, FinalizeMeasuresTheImagesAsTheFinishedMapGivesThem) {
+  // BuilderOptions::measure_images: the image measures taken while the region maps are written
+  // are image_measures() of the finished map (S1's side to the last bit, S2's side to rounding),
+  // with the same bits on one thread (summed as the maps are written) and on two (each region's
+  // term first, summed after).
+  const std::vector<WorldPoint<2>> corners{P(0, 0), P(1, 0), P(1, 1), P(0, 1)};
+  auto s1 = std::make_shared<const Surface<2>>(corners, std::vector<ElementCorners<2>>{{0, 1, 2}, {0, 2, 3}});
+  for (int r0 = 0; r0 < 3; ++r0)
+    for (const double crossing : {0.3, 0.5, 0.7}) {
+      auto s2 = std::make_shared<const Surface<2>>(
+          corners, std::vector<ElementCorners<2>>{rotated({0, 1, 3}, r0), rotated({1, 2, 3}, (r0 + 1) % 3)});
+      std::array<FinalizeReport, 2> reports;
+      std::array<std::optional<PlMap<2>>, 2> maps;
+      for (unsigned threads : {1u, 2u}) {
+        BuilderOptions options;
+        options.threads = threads;
+        options.measure_images = true;
+        MapBuilder<2> b(s1, s2, options);
+        for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
+        const Index diagonal = s2->find_edge(1, 3);
+        for (Index e = 0; e < s2->edge_count(); ++e) {
+          if (e == diagonal) {
+            const EdgeCrossing c{s1->find_edge(0, 2), crossing, crossing};
+            b.add_edge(e, std::span(&c, 1));
+          } else {
+            b.add_edge(e);
+          }
+        }
+        maps[threads - 1].emplace(std::move(b).finalize(&reports[threads - 1]));
+      }
+      for (int k = 0; k < 2; ++k) {
+        ASSERT_TRUE(reports[k].images.has_value());
+        const ImageMeasures& got = *reports[k].images;
+        const ImageMeasures want = image_measures(*maps[k]);
+        EXPECT_EQ(got.covered.domain, want.covered.domain);
+        EXPECT_NEAR(got.covered.target, want.covered.target, 1e-14);
+        EXPECT_NEAR(got.covered.target, 1.0, 1e-14);  // the unit square, covered once
+        ASSERT_EQ(got.per_target.size(), want.per_target.size());
+        for (std::size_t t2 = 0; t2 < got.per_target.size(); ++t2) EXPECT_NEAR(got.per_target[t2], want.per_target[t2], 1e-14);
+      }
+      EXPECT_EQ(reports[0].images->per_target, reports[1].images->per_target);
+      EXPECT_EQ(reports[0].images->covered.target, reports[1].images->covered.target);
+      // not asked for: not measured
+      MapBuilder<2> plain(s1, s2);
+      for (Index v = 0; v < 4; ++v) plain.add_vertex_preimage_at_vertex(v, v);
+      for (Index e = 0; e < s2->edge_count(); ++e) {
+        if (e == s2->find_edge(1, 3)) {
+          const EdgeCrossing c{s1->find_edge(0, 2), crossing, crossing};
+          plain.add_edge(e, std::span(&c, 1));
+        } else {
+          plain.add_edge(e);
+        }
+      }
+      FinalizeReport report;
+      (void)std::move(plain).finalize(&report);
+      EXPECT_FALSE(report.images.has_value());
+    }
 }

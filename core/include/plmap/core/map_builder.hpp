@@ -26,6 +26,7 @@
 /// Elements are closed in parallel when BuilderOptions::threads asks for it.
 
 #include <plmap/core/pl_map.hpp>
+#include <plmap/core/regions.hpp>
 
 #include <cstdint>
 #include <limits>
@@ -70,6 +71,11 @@ struct BuilderOptions {
   /// then adds nodes and regions in place (clip_regions, core/region_clipping.hpp) needs no second
   /// copy of the arrays, which would raise the peak by the largest of them. 0 (default): none.
   double spare_room = 0.0;
+  /// d = 2: finalize() also measures the finished regions' images (FinalizeReport::images), from
+  /// the images it computes their affine maps from, so that a caller that needs the measures
+  /// (the projection's fold and sheet tests) need not measure the map again. false (default): not
+  /// measured.
+  bool measure_images = false;
 };
 
 /// What finalize() had to leave out.
@@ -120,6 +126,10 @@ struct FinalizeReport {
   /// and nothing inserted between them vouches for the inside (the caller may test it, as the
   /// projection does against its rays).
   std::vector<Index> regions_split_off_outside_faces;
+  /// d = 2, with BuilderOptions::measure_images: image_measures() of the map finalize() returns
+  /// (covered.domain to the last bit; covered.target and per_target to rounding, the images taken
+  /// as the region maps take them). Empty otherwise, and from finalize_reusing.
+  std::optional<ImageMeasures> images;
 };
 
 /// Where the preimage of an S2 edge crosses an S1 edge (d = 2).
