@@ -11,9 +11,9 @@
 #include <plmap/core/parallel_ranges.hpp>
 
 #include <algorithm>
-#include <cmath>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 
 namespace plmap::detail {
