@@ -687,16 +687,46 @@ PlMap<2> rewrite(PlMap<2>&& map, std::map<Index, MadeElement>& made, unsigned th
   }
 
   // The stored graph, in element order: a changed element's new graph where its regions do not
-  // give it back, and the graphs the other elements stored, their indices shifted.
-  StoredGraph graph;
-  detail::GraphDerivationScratch scratch;
+  // give it back, and the graphs the other elements stored, their indices shifted. The
+  // candidates are listed in element order, made in pieces on all threads (each with its own
+  // derivation scratch) and the pieces' graphs joined in order: the same graph for every count.
+  struct Candidate {
+    Index element;
+    const MadeElement* made;  // the changed element, or nullptr: old stored graph `stored`
+    std::size_t stored;
+  };
+  std::vector<Candidate> candidates;
+  candidates.reserve(made.size() + old_stored.element.size());
   auto changed = made.begin();
   for (std::size_t s = 0; changed != made.end() || s < old_stored.element.size();) {
     const Index tc = changed != made.end() ? changed->first : nt;
     const Index ts = s < old_stored.element.size() ? old_stored.element[s] : nt;
     if (tc <= ts) {
-      const Index t = tc;
-      const MadeElement& e = changed->second;
+      candidates.push_back({tc, &changed->second, 0});
+      ++changed;
+      if (ts == tc) ++s;  // its old stored graph is replaced
+    } else {
+      candidates.push_back({ts, nullptr, s++});
+    }
+  }
+  const std::size_t piece_count = 4 * resolve_thread_count(threads);
+  const std::size_t piece_size = std::max<std::size_t>(1, (candidates.size() + piece_count - 1) / piece_count);
+  std::vector<StoredGraph> pieces((candidates.size() + piece_size - 1) / piece_size);
+  parallel_for_pieces_of_size(candidates.size(), piece_size, threads, [&](std::size_t k, std::size_t begin, std::size_t end) {
+    detail::GraphDerivationScratch scratch;
+    for (std::size_t i = begin; i < end; ++i) {
+      const Index t = candidates[i].element;
+      if (candidates[i].made == nullptr) {
+        detail::ElementGraph g = detail::stored_element_graph(old_stored, old_offsets, candidates[i].stored);
+        const Index node_shift = n.node_begin[t] - old_node_begin[t], region_shift = n.region_begin[t] - old_region_begin[t];
+        for (Index& q : g.neighbor) q += node_shift;
+        for (Index& q : g.edge_node) q += node_shift;
+        for (auto& a : g.region_neighbors)
+          for (Index& x : a) x = x == invalid_index ? invalid_index : x + region_shift;
+        detail::append(g, pieces[k]);
+        continue;
+      }
+      const MadeElement& e = *candidates[i].made;
       const Index node_base = n.node_begin[t], region_base = n.region_begin[t];
       detail::ElementGraph g;
       g.element = t;
@@ -714,20 +744,10 @@ PlMap<2> rewrite(PlMap<2>&& map, std::map<Index, MadeElement>& made, unsigned th
         g.region_neighbors.push_back(a);
       }
       const std::optional<detail::ElementGraph> derived = detail::derived_element_graph(n, *target, t, scratch);
-      if (!derived || *derived != g) detail::append(g, graph);
-      ++changed;
-      if (ts == tc) ++s;  // its old stored graph is replaced
-    } else {
-      detail::ElementGraph g = detail::stored_element_graph(old_stored, old_offsets, s);
-      const Index node_shift = n.node_begin[ts] - old_node_begin[ts], region_shift = n.region_begin[ts] - old_region_begin[ts];
-      for (Index& q : g.neighbor) q += node_shift;
-      for (Index& q : g.edge_node) q += node_shift;
-      for (auto& a : g.region_neighbors)
-        for (Index& x : a) x = x == invalid_index ? invalid_index : x + region_shift;
-      detail::append(g, graph);
-      ++s;
+      if (!derived || *derived != g) detail::append(g, pieces[k]);
     }
-  }
+  });
+  StoredGraph graph = detail::join_in_order(pieces);
   PlMap<2> out(std::move(domain), std::move(target), std::move(n), std::move(graph));
   out.set_provenance(provenance);
   return out;
