@@ -24,6 +24,21 @@ ElementCorners<2> rotated(ElementCorners<2> c, int by) {
   return c;
 }
 
+/// The nodes and edges of the square maps below: S1's and S2's corners on each other, S2's
+/// diagonal 1-3 crossing S1's 0-2 at `crossing`.
+void add_square_graph(MapBuilder<2>& b, const Surface<2>& s1, const Surface<2>& s2, double crossing) {
+  for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
+  const Index diagonal = s2.find_edge(1, 3);
+  for (Index e = 0; e < s2.edge_count(); ++e) {
+    if (e == diagonal) {
+      const EdgeCrossing c{s1.find_edge(0, 2), crossing, crossing};
+      b.add_edge(e, std::span(&c, 1));
+    } else {
+      b.add_edge(e);
+    }
+  }
+}
+
 /// S1: the unit square split along diagonal 0-2; S2: split along 1-3 (corners rotated by r0,
 /// r1), its diagonal's preimage crossing S1's at the given parameter of both. With `previous`,
 /// on its surfaces, every element closed again by finalize_reusing.
@@ -38,16 +53,7 @@ PlMap<2> square_map(int r0, int r1, double crossing, int orientation, const PlMa
   BuilderOptions options;
   options.orientation = orientation;
   MapBuilder<2> b(s1, s2, options);
-  for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
-  const Index diagonal = s2->find_edge(1, 3);
-  for (Index e = 0; e < s2->edge_count(); ++e) {
-    if (e == diagonal) {
-      const EdgeCrossing c{s1->find_edge(0, 2), crossing, crossing};
-      b.add_edge(e, std::span(&c, 1));
-    } else {
-      b.add_edge(e);
-    }
-  }
+  add_square_graph(b, *s1, *s2, crossing);
   if (previous == nullptr) return std::move(b).finalize();
   const std::vector<char> none(2, 0);
   return std::move(b).finalize_reusing(*previous, none);
@@ -86,16 +92,7 @@ TEST(MapBuilderRegionMaps, FinalizeMeasuresTheImagesAsTheFinishedMapGivesThem) {
         options.threads = threads;
         options.measure_images = true;
         MapBuilder<2> b(s1, s2, options);
-        for (Index v = 0; v < 4; ++v) b.add_vertex_preimage_at_vertex(v, v);
-        const Index diagonal = s2->find_edge(1, 3);
-        for (Index e = 0; e < s2->edge_count(); ++e) {
-          if (e == diagonal) {
-            const EdgeCrossing c{s1->find_edge(0, 2), crossing, crossing};
-            b.add_edge(e, std::span(&c, 1));
-          } else {
-            b.add_edge(e);
-          }
-        }
+        add_square_graph(b, *s1, *s2, crossing);
         maps[threads - 1].emplace(std::move(b).finalize(&reports[threads - 1]));
       }
       for (int k = 0; k < 2; ++k) {
@@ -112,15 +109,7 @@ TEST(MapBuilderRegionMaps, FinalizeMeasuresTheImagesAsTheFinishedMapGivesThem) {
       EXPECT_EQ(reports[0].images->covered.target, reports[1].images->covered.target);
       // not asked for: not measured
       MapBuilder<2> plain(s1, s2);
-      for (Index v = 0; v < 4; ++v) plain.add_vertex_preimage_at_vertex(v, v);
-      for (Index e = 0; e < s2->edge_count(); ++e) {
-        if (e == s2->find_edge(1, 3)) {
-          const EdgeCrossing c{s1->find_edge(0, 2), crossing, crossing};
-          plain.add_edge(e, std::span(&c, 1));
-        } else {
-          plain.add_edge(e);
-        }
-      }
+      add_square_graph(plain, *s1, *s2, crossing);
       FinalizeReport report;
       (void)std::move(plain).finalize(&report);
       EXPECT_FALSE(report.images.has_value());
