@@ -13,15 +13,26 @@
 #include <plmap/core/regions.hpp>
 
 #include <algorithm>
+#include <span>
 #include <vector>
 
 namespace plmap::projection {
 
+/// The S1 elements of the given regions (any order, repeats kept).
+template <int d>
+std::vector<Index> elements_of_regions(const PlMap<d>& map, std::span<const Index> regions) {
+  std::vector<Index> elements;
+  elements.reserve(regions.size());
+  for (const Index r : regions) elements.push_back(map.node_element(map.stored().region_corners[r][0]));
+  return elements;
+}
+
 template <int d>
 class ImageMeasuresOfElements {
  public:
-  /// For a change of `elements` (any order, repeats allowed) of a map whose measures `images` are.
-  ImageMeasuresOfElements(ImageMeasures& images, std::vector<Index> elements)
+  /// For a change of `elements` (any order, repeats allowed) of a map whose measures `images`
+  /// are; with no measures (nullptr: none are kept), take_off and add_back do nothing.
+  ImageMeasuresOfElements(ImageMeasures* images, std::vector<Index> elements)
       : images_(images), elements_(std::move(elements)) {
     std::sort(elements_.begin(), elements_.end());
     elements_.erase(std::unique(elements_.begin(), elements_.end()), elements_.end());
@@ -34,17 +45,18 @@ class ImageMeasuresOfElements {
 
  private:
   void shift(const PlMap<d>& map, double sign) {
+    if (images_ == nullptr) return;
     const MapData<d>& m = map.stored();
     for (const Index t : elements_)
       for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) {
         const Index t2 = m.region_target[r];
         const double image = sign * local_image_measure(map, r);
-        images_.per_target[static_cast<std::size_t>(t2)] += image;
-        images_.covered.target += image * map.target().element_measure(t2);
+        images_->per_target[static_cast<std::size_t>(t2)] += image;
+        images_->covered.target += image * map.target().element_measure(t2);
       }
   }
 
-  ImageMeasures& images_;
+  ImageMeasures* images_;
   std::vector<Index> elements_;  // sorted, each once
 };
 

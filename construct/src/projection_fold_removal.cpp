@@ -19,15 +19,6 @@ namespace plmap::projection {
 
 namespace {
 
-/// The S1 elements of the given regions.
-template <int d>
-std::vector<Index> elements_of(const PlMap<d>& map, std::span<const Index> regions) {
-  std::vector<Index> elements;
-  elements.reserve(regions.size());
-  for (const Index r : regions) elements.push_back(map.node_element(map.stored().region_corners[r][0]));
-  return elements;
-}
-
 std::vector<Index> clip_regions_named(std::span<const RegionClip> clips) {
   std::vector<Index> regions;
   regions.reserve(clips.size());
@@ -46,9 +37,7 @@ ImageMeasures leave_out_folds(PlMap<d>& map, bool cut_folded_regions, unsigned t
   // not measure them (curves), they are measured once the folds are out.
   std::optional<ImageMeasures> images = std::move(dropped.images);
   dropped.images.reset();
-  const auto removing = [&](std::vector<Index> elements) {
-    return images ? std::optional<ImageMeasuresOfElements<d>>(std::in_place, *images, std::move(elements)) : std::nullopt;
-  };
+  ImageMeasures* kept = images ? &*images : nullptr;
   // What the fold removals and cuts below take is the difference of the covered measures of D.
   const double before_folded = images ? images->covered.domain : covered_domain_measure(map, threads);
   // faces closed on an element where the ray of a ghost node accepted from another element at
@@ -88,10 +77,10 @@ ImageMeasures leave_out_folds(PlMap<d>& map, bool cut_folded_regions, unsigned t
     std::vector<Index> named;
     std::set_union(folded.begin(), folded.end(), unbacked.begin(), unbacked.end(), std::back_inserter(named));
     FaceRemovalReport removal;
-    auto changed = removing(elements_of(map, named));
-    if (changed) changed->take_off(map);
+    ImageMeasuresOfElements<d> changed(kept, elements_of_regions(map, std::span<const Index>(named)));
+    changed.take_off(map);
     map = remove_regions(std::move(map), std::span<const Index>(named), &removal, threads);
-    if (changed) changed->add_back(map);
+    changed.add_back(map);
     report.folded_faces = removal.removed_faces;
     report.unbacked_regions = static_cast<Index>(unbacked.size());
     report.folded_regions = removal.removed_regions - report.unbacked_regions;
@@ -103,10 +92,10 @@ ImageMeasures leave_out_folds(PlMap<d>& map, bool cut_folded_regions, unsigned t
       FoldCuts cuts = fold_cuts(map, directions, focal_free_reach, threads, cut_elements);
       for (int round = 0; !cuts.whole.empty(); ++round) {
         FaceRemovalReport removal;
-        auto changed = removing(elements_of(map, cuts.whole));
-        if (changed) changed->take_off(map);
+        ImageMeasuresOfElements<d> changed(kept, elements_of_regions(map, std::span<const Index>(cuts.whole)));
+        changed.take_off(map);
         map = remove_regions(std::move(map), std::span<const Index>(cuts.whole), &removal, threads);
-        if (changed) changed->add_back(map);
+        changed.add_back(map);
         report.folded_faces += removal.removed_faces;
         report.folded_regions += removal.removed_regions;
         cuts = fold_cuts(map, directions, focal_free_reach, threads, cut_elements);
@@ -114,13 +103,13 @@ ImageMeasures leave_out_folds(PlMap<d>& map, bool cut_folded_regions, unsigned t
       }
       RegionClipReport clipping;
       // the cut regions' elements, and those across an S1 edge where a cut may end
-      std::vector<Index> around = elements_of(map, clip_regions_named(cuts.clips));
+      std::vector<Index> around = elements_of_regions(map, std::span<const Index>(clip_regions_named(cuts.clips)));
       for (std::size_t i = 0, n = around.size(); i < n; ++i)
         for_each_neighbour(map.domain(), around[i], [&](Index u) { around.push_back(u); });
-      auto changed = removing(std::move(around));
-      if (changed) changed->take_off(map);
+      ImageMeasuresOfElements<d> changed(kept, std::move(around));
+      changed.take_off(map);
       map = clip_regions(std::move(map), std::span<const RegionClip>(cuts.clips), &clipping, threads);
-      if (changed) changed->add_back(map);
+      changed.add_back(map);
       report.folded_regions_cut = clipping.clipped_regions;
       report.folded_regions += clipping.removed_regions;
     }

@@ -88,9 +88,7 @@ void keep_nearer_sheet(PlMap<d>& map, ImageMeasures& images, unsigned threads,
   if (farther.empty()) return;
   // The measures after the removal without measuring every image again
   // (image_measures_of_elements.hpp): S1's side is measured again without moving any image.
-  std::vector<Index> elements;
-  for (const Index r : farther) elements.push_back(map.node_element(map.stored().region_corners[r][0]));
-  ImageMeasuresOfElements<d> changed(images, std::move(elements));
+  ImageMeasuresOfElements<d> changed(&images, elements_of_regions(map, std::span<const Index>(farther)));
   changed.take_off(map);
   FaceRemovalReport removal;
   map = remove_regions(std::move(map), std::span<const Index>(farther), &removal, threads);

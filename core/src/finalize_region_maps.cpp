@@ -1,6 +1,7 @@
 // finalize(), phase 5: the regions' affine maps (finalize_region_maps.hpp).
 
 #include "finalize_region_maps.hpp"
+#include "local_simplex_measure.hpp"
 #include "map_arrays.hpp"
 #include "weights_by_vertex_identity.hpp"
 
@@ -13,7 +14,6 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cmath>
 #include <cstdint>
 
 namespace plmap::detail {
@@ -56,12 +56,6 @@ std::optional<double> omitted_weight_to_keep(const Support<2>& s, const LocalPoi
 
 namespace {
 
-/// d! times the local measure of the triangle y (as image_measures takes a region's image).
-double local_measure(const std::array<LocalPoint<2>, 3>& y) {
-  const LocalPoint<2> u = y[1] - y[0], v = y[2] - y[0];
-  return std::abs(u(0) * v(1) - u(1) * v(0));
-}
-
 /// The region maps, and with `terms` each region's image term: written to terms->per_region when
 /// that is sized (several threads), else added to terms->per_target in region order (one thread).
 struct ImageTerms {
@@ -94,9 +88,9 @@ void write_maps(const Surface<2>& s2, std::span<const KeptOmittedWeight> kept, M
       m.region_map[r] = affine_through<2>(from, to);
       if (terms == nullptr) continue;
       if (terms->per_region.empty())
-        (*terms->per_target)[static_cast<std::size_t>(t)] += local_measure(to);
+        (*terms->per_target)[static_cast<std::size_t>(t)] += local_simplex_measure<2>(to);
       else
-        terms->per_region[r] = local_measure(to);
+        terms->per_region[r] = local_simplex_measure<2>(to);
     }
   });
 }
@@ -130,7 +124,7 @@ ImageMeasures write_region_maps_and_measure(const Surface<2>& s1, const Surface<
     double local = 0.0;
     for (Index r = m.region_begin[t]; r < m.region_begin[t + 1]; ++r) {
       const auto& c = m.region_corners[r];
-      local += local_measure({m.node_position[c[0]], m.node_position[c[1]], m.node_position[c[2]]});
+      local += local_simplex_measure<2>({m.node_position[c[0]], m.node_position[c[1]], m.node_position[c[2]]});
     }
     out.covered.domain += local * s1.element_measure(t);
   }

@@ -5,6 +5,7 @@
 #include <plmap/core/regions.hpp>
 #include <plmap/core/scaled_geometry.hpp>
 
+#include "local_simplex_measure.hpp"
 
 #include <Eigen/Geometry>
 
@@ -63,17 +64,7 @@ std::vector<RemoteIntersection<d>> remote_intersections(const PlMap<d>& map) {
   return out;
 }
 
-/// d! times the measure of a simplex given in local coordinates: its world measure is this times
-/// the measure of its element (the reference element has measure 1/d!).
-template <int d>
-double local_simplex_measure(const std::array<LocalPoint<d>, d + 1>& x) {
-  if constexpr (d == 1) {
-    return std::abs(x[1](0) - x[0](0));
-  } else {
-    const LocalPoint<2> u = x[1] - x[0], v = x[2] - x[0];
-    return std::abs(u(0) * v(1) - u(1) * v(0));
-  }
-}
+using detail::local_simplex_measure;
 
 /// d! times the measure of region r in its element's local coordinates.
 template <int d>
