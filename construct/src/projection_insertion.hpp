@@ -52,8 +52,11 @@ class ProjectionInsertion {
   /// d = 2, end_on_rim: the rim of D where S2 leaves the admissible band of distances (passes
   /// behind S1, or beyond the distance limit), traced across S1 from the rim nodes where pieces
   /// ended (projection_rim.cpp): per pair of an S1 element and an S2 triangle whose level sets
-  /// of a bound meet along it, a rim edge between the two ends of their intersection. Runs
-  /// after every edge is inserted, before release_used_points.
+  /// of a bound meet along it, a rim edge between the two ends of their intersection. The
+  /// tracing runs on this thread, the tests whether each segment bounds D (folds, a nearer
+  /// sheet) on all threads, and the nodes and edges are entered in the tracing's order: the rim
+  /// is the same for every thread count. Runs after every edge is inserted, before
+  /// release_used_points.
   void insert_rim(ProjectionReport<d>& report);
 
   /// d = 2, end_on_rim: the points where the rim traced so far crosses S2 edges that no walk
@@ -150,6 +153,9 @@ class ProjectionInsertion {
   /// rim that no piece ends on (a band crossed by S2 edges whose vertices all lie outside it, or
   /// an island beyond it whose S2 edges all dip in from outside) is traced from there.
   void seed_rim_at_straddling_edges(std::vector<RimPair>& pending) const;
+  /// Where insert_rim's tracing starts: on the first call the straddling edges' pairs, then the
+  /// pairs of the rim seeds not traced from yet.
+  std::vector<RimPair> rim_tracing_starts();
   /// Seeds traced from already (insert_rim runs again after the rim walks, from the new ones),
   /// and the (S1 element, S2 triangle) pairs per level traced so far.
   std::size_t rim_seeds_traced_ = 0;

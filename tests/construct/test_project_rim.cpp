@@ -70,3 +70,22 @@ TEST_P(ProjectRim, WithoutTheRimDEndsAtTheLastS1Edges) {
 // the rim through S1 elements at three places (x0 = 0.5 would run along S1 edges, where D ends
 // exactly without a rim)
 INSTANTIATE_TEST_SUITE_P(RimPositions, ProjectRim, ::testing::Values(0.43, 0.57, 0.37));
+
+TEST(ProjectRimThreads, TheRimIsTheSameForEveryThreadCount) {
+  // The tracing runs on one thread and the segments are judged in chunks on all of them
+  // (projection_rim.cpp): a rim of a hundred and more segments, several chunks, gives the same map,
+  // node for node, on one, two and three threads.
+  const auto s1 = grid(48, 48, 0.0, 1.0, 0.0, 1.0, 0.0);
+  const auto s2 = transformed<2>(*grid(30, 30, -0.1, 1.1, -0.1, 1.1, 0.0, true, 0.2), [](const WorldPoint<2>& p) {
+    return WorldPoint<2>(p.x(), p.y(), 0.25 * (p.x() - 0.43));  // tilted_plane(0.43), finer
+  });
+  const auto a = project<2>(s1, s2, {.threads = 1});
+  EXPECT_EQ(verify_violations(a.map), "");
+  ASSERT_GT(a.report.rim_edges, 128);  // more than two chunks of 64 segments
+  for (const unsigned threads : {2u, 3u}) {
+    const auto b = project<2>(s1, s2, {.threads = threads});
+    EXPECT_TRUE(a.map.data() == b.map.data()) << threads << " threads";
+    EXPECT_EQ(a.report.rim_edges, b.report.rim_edges);
+    EXPECT_EQ(a.report.rim_nodes, b.report.rim_nodes);
+  }
+}
