@@ -202,16 +202,22 @@ std::optional<PlMap<2>> remove_faces_in_stored_form(PlMap<2>& map, std::span<con
         g = std::move(changed[candidates[i].index]);
         renumber_regions(removed, renumbered, old_region_begin[candidates[i].index], g);
       } else {
-        // no region of it goes, so only the region numbers shift
+        // no region of it goes, so only the region numbers shift, and with them the derivation's:
+        // where the old graph was known to be needed, it still is
         g = stored_element_graph(old_graph, offsets, candidates[i].index);
         for (auto& across : g.region_neighbors)
           for (Index& q : across) q = q == invalid_index ? invalid_index : renumbered[static_cast<std::size_t>(q)];
+        if (old_graph.known_minimal) {
+          append(g, kept[k]);
+          continue;
+        }
       }
       const std::optional<ElementGraph> derived = derived_element_graph(m, *target_ptr, g.element, scratch);
       if (!derived || *derived != g) append(g, kept[k]);
     }
   });
   StoredGraph graph = join_in_order(kept);
+  graph.known_minimal = true;  // every graph kept was derived and compared, now or before
   return PlMap<2>(std::move(domain), std::move(target_ptr), std::move(released.first), std::move(graph));
 }
 

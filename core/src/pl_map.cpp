@@ -271,6 +271,7 @@ void PlMap<d>::keep_only_underived_graph() {
       for (Index r = rb; r < re; ++r) kept.region_neighbors.push_back(m.region_neighbors[r]);
     }
     for_each_graph_array(m, [](auto& v) { release(v); });
+    kept.known_minimal = true;  // every element was compared above
     check_stored_graph();
     shrink_stored_graph(kept);
   }

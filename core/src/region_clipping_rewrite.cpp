@@ -171,6 +171,8 @@ PlMap<2> rewrite_with_made_elements(PlMap<2>&& map, std::map<Index, MadeElement>
     }
   });
   StoredGraph graph = join_in_order(pieces);
+  // the changed elements' graphs were compared with their derivation; the others kept as they were
+  graph.known_minimal = old_stored.known_minimal;
   PlMap<2> out(std::move(domain), std::move(target), std::move(n), std::move(graph));
   out.set_provenance(provenance);
   return out;

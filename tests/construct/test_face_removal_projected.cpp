@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 using namespace plmap;
@@ -81,4 +82,28 @@ TEST(FaceRemovalProjected, ARegionStrictlyInsideItsElementTakesItsFace) {
     inner_in_larger_face += by_faces.removed_regions > 1;
   }
   EXPECT_GT(inner_in_larger_face, 0);
+}
+
+TEST(FaceRemovalProjected, RemovalsLeaveOnlyTheGraphsTheRegionsDoNotGiveBack) {
+  // A projected map stores some graphs its regions would give back (the builder does not derive
+  // them to find out); the first removal drops those, and a later removal then looks again only
+  // at the elements that lose regions (StoredGraph::known_minimal). After each, the stored graph
+  // is the one a map handed the full arrays keeps.
+  const auto s1 = test::grid(12, 12, 0.0, 1.0, 0.0, 1.0, 0.0, false, 0.15);
+  const auto s2 = test::grid(5, 4, 0.3, 1.3, 0.2, 1.2, 0.1, true, 0.2);
+  PlMap<2> map = project<2>(s1, s2, {.normal_check = TargetNormalCheck::facing, .keep_nearer_sheet = false}).map;
+  const auto minimal = [](const PlMap<2>& m) { return PlMap<2>(m.domain_ptr(), m.target_ptr(), m.data()).stored_graph(); };
+  ASSERT_FALSE(map.stored_graph().known_minimal);
+  ASSERT_GT(map.elements_with_stored_graph(), minimal(map).element.size());  // the case this test is for
+  std::mt19937 random(23);
+  for (int round = 0; round < 6 && map.region_count() > 8; ++round) {
+    std::vector<Index> named(1 + round % 3);
+    for (Index& g : named) g = static_cast<Index>(random() % static_cast<unsigned>(map.region_count()));
+    std::sort(named.begin(), named.end());
+    named.erase(std::unique(named.begin(), named.end()), named.end());
+    map = remove_regions(std::move(map), std::span<const Index>(named), nullptr, 1 + round % 3);
+    EXPECT_TRUE(map.stored_graph().known_minimal) << "round " << round;
+    EXPECT_TRUE(map.stored_graph() == minimal(map)) << "round " << round;
+    EXPECT_EQ(test::verify_violations(map), "") << "round " << round;
+  }
 }

@@ -115,7 +115,17 @@ struct StoredGraph {
   std::vector<Index> edge_node_count;  ///< three per element
   std::vector<Index> edge_node;
   std::vector<std::array<Index, 3>> region_neighbors;  ///< per region of these elements
-  friend bool operator==(const StoredGraph&, const StoredGraph&) = default;
+  /// Whether it is known that every element here needs its graph (its regions do not give it
+  /// back), so that a change of other elements need not derive these again (remove_regions,
+  /// clip_regions). False where nobody checked: MapBuilder hands over some graphs that the
+  /// regions would give back (the first removal drops them), and a file does not record it.
+  /// What is known of the graph, not part of it: == does not compare it.
+  bool known_minimal = false;
+  friend bool operator==(const StoredGraph& a, const StoredGraph& b) {
+    return a.element == b.element && a.neighbor_count == b.neighbor_count && a.neighbor == b.neighbor &&
+           a.neighbor_edge_kind == b.neighbor_edge_kind && a.edge_node_count == b.edge_node_count &&
+           a.edge_node == b.edge_node && a.region_neighbors == b.region_neighbors;
+  }
 };
 
 template <int d>
