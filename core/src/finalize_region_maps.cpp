@@ -76,7 +76,9 @@ void write_maps(const Surface<2>& s2, std::span<const KeptOmittedWeight> kept, M
   // runs, docs/benchmarks.md), and doing so on all threads keeps it from being a serial phase of
   // its own (parallel_first_touch.hpp).
   populate_in_parallel(m.region_map.data(), regions * sizeof(m.region_map[0]), threads);
-  parallel_for_chunks(regions, 16384, threads, [&](std::size_t begin, std::size_t end) {
+  // (chunks of 4096 regions: they only balance the threads, each region's map and term being its
+  // own; with 16384 the 41k regions of the bones pair were three chunks for two threads)
+  parallel_for_chunks(regions, 4096, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t r = begin; r < end; ++r) {
       const auto& corners = m.region_corners[r];
       const Index t = m.region_target[r];

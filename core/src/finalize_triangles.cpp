@@ -399,15 +399,20 @@ AssembledMap finalize_triangles(BuilderContents<2>& in, FinalizeReport* report, 
   for (int round = 0; !failed.empty(); ++round) {
     // failed.front() is the smallest element that failed
     if (!drop || round == 16) std::rethrow_exception(failed.front().second);
+    // rim edges on a failed element go (a conflict with a rim edge costs the rim there, not an
+    // S2 edge's stretch), and so do the stretches of S2 edges in conflict among themselves or
+    // with a node: both in the same round, which closes every element again. What goes is found
+    // on all threads (from the buckets, which the round's drops do not change), and dropped in
+    // element order.
+    std::vector<ElementConflicts> conflicts(failed.size());
+    parallel_for_chunks(failed.size(), 8, in.options.threads, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) conflicts[i] = conflicts_on_element(in, where, failed[i].first);
+    });
     bool any = false;
     std::vector<Index> failed_elements;
-    for (const auto& [t, error] : failed) {
-      failed_elements.push_back(t);
-      // rim edges on a failed element go (a conflict with a rim edge costs the rim there, not an
-      // S2 edge's stretch), and so do the stretches of S2 edges in conflict among themselves or
-      // with a node: both in the same round, which closes every element again
-      any = drop_rim_edges_on_element(in, where, t, dropped) || any;
-      for (Index e : conflicting_edges(in, where, t)) any = drop_stretch_on_element(in, where, e, t, dropped) || any;
+    for (std::size_t i = 0; i < failed.size(); ++i) {
+      failed_elements.push_back(failed[i].first);
+      any = drop_conflicts_on_element(in, where, failed[i].first, conflicts[i], dropped) || any;
     }
     if (!any) std::rethrow_exception(failed.front().second);
     // rim nodes whose rim went with it go too (their images would spoil the faces around them)
