@@ -13,9 +13,11 @@ for r in $(seq 1 "$rounds"); do
       name=${b%%=*}; bin=${b#*=}
       for T in 1 2; do
         load=$(cut -d' ' -f1 /proc/loadavg)
-        s=$(PLMAP_TRACE=1 /usr/bin/time -f "%U %S %M" -o time.txt "$bin" project "$inputs/${c}_s1.off" "$inputs/${c}_s2.off" \
-              -o "out-$name-$c-$T.plmapb" --threads "$T" --json --no-progress 2> "$tag-$name-$c-$T-$r.txt" |
-            python3 -c "import json, sys; print(json.load(sys.stdin)['seconds'])")
+        # the summary goes to a file and is read after the run: a python reading the pipe would
+        # start beside the measured process and take a CPU from its first phases
+        PLMAP_TRACE=1 /usr/bin/time -f "%U %S %M" -o time.txt "$bin" project "$inputs/${c}_s1.off" "$inputs/${c}_s2.off" \
+          -o "out-$name-$c-$T.plmapb" --threads "$T" --json --no-progress > summary.json 2> "$tag-$name-$c-$T-$r.txt"
+        s=$(python3 -c "import json; print(json.load(open('summary.json'))['seconds'])")
         echo "$r $c $name T$T load $load seconds $s user,sys,maxrss_kB $(cat time.txt)" | tee -a "$tag-log.txt"
       done
     done
