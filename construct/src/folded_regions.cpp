@@ -121,7 +121,10 @@ FoldCuts fold_cuts(const PlMap<2>& map, std::span<const WorldPoint<2>> direction
   std::vector<std::optional<RegionClip>> planned(folded.size());
   parallel_for_chunks(folded.size(), 16, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      const auto [r, mask] = folded[i];
+      // (named, not a structured binding: the lambda below captures r, which clang before
+      // C++20's capture rule for bindings refuses)
+      const Index r = folded[i].first;
+      const unsigned mask = folded[i].second;
       if (mask == 7u) continue;  // every corner folded: the region leaves whole
       const auto& c = m.region_corners[r];
       const Index t = map.node_element(c[0]);
