@@ -113,7 +113,7 @@ void walk_and_insert_edges(const ProjectionContext<d>& ctx, const ProjectionStat
         insertion.insert_planned_edges(static_cast<Index>(begin), static_cast<Index>(end), planned[slot], buffers,
                                        report);
         inserting += seconds_since(t1);
-        if (end % (4 * static_cast<std::size_t>(edge_plan_block)) == 0 || end == static_cast<std::size_t>(n2e))
+        if (end % (16 * static_cast<std::size_t>(edge_plan_block)) == 0 || end == static_cast<std::size_t>(n2e))
           report_progress(ctx.options.progress, "S2 edges", static_cast<Index>(end), n2e);  // every 4096 edges
       });
   report.seconds.insertion += inserting;

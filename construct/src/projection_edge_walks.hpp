@@ -93,8 +93,10 @@ struct PlannedEdge {
 
 /// S2 edges planned per block (see walk_and_insert_edges in project.cpp): small enough that the
 /// blocks spread evenly over the threads and that the plans of the blocks in flight take little
-/// memory.
-inline constexpr Index edge_plan_block = 1024;
+/// memory. (With 1024 the bones pair of the peer benchmark, 8,600 S2 edges, was nine blocks of
+/// about 4 ms, and one thread planned the last alone: 256 took its two-thread run from 97 to
+/// 95 ms. A plan does not depend on its block, so the maps are the same.)
+inline constexpr Index edge_plan_block = 256;
 
 /// Points where S2 edges cross S1's boundary (d = 2: a boundary edge, d = 1: a boundary vertex
 /// with a ghost image), by S2 edge, each edge's sorted by the edge parameter; walks start there
