@@ -119,20 +119,10 @@ ImageMeasures write_region_maps_and_measure(const Surface<2>& s1, const Surface<
       out.per_target[static_cast<std::size_t>(m.region_target[r])] += terms.per_region[r];
     std::vector<double>().swap(terms.per_region);
   }
-  const Index n1 = s1.element_count(), n2 = s2.element_count();
-  // as image_measures: per S1 element its regions' local measures, scaled once, in element order
-  for (Index t = 0; t < n1; ++t) {
-    if (m.region_begin[t] == m.region_begin[t + 1]) continue;
-    double local = 0.0;
-    for (Index r = m.region_begin[t]; r < m.region_begin[t + 1]; ++r) {
-      const auto& c = m.region_corners[r];
-      local += local_simplex_measure<2>({m.node_position[c[0]], m.node_position[c[1]], m.node_position[c[2]]});
-    }
-    out.covered.domain += local * s1.element_measure(t);
-  }
-  for (Index t2 = 0; t2 < n2; ++t2)
-    if (out.per_target[static_cast<std::size_t>(t2)] != 0.0)
-      out.covered.target += out.per_target[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
+  // as image_measures sums them: per S1 element with regions, in element order
+  for (Index t = 0; t < s1.element_count(); ++t)
+    if (m.region_begin[t] != m.region_begin[t + 1]) out.covered.domain += element_regions_measure(m, s1, t);
+  out.covered.target = covered_target_measure(out.per_target, s2);
   return out;
 }
 

@@ -66,15 +66,6 @@ std::vector<RemoteIntersection<d>> remote_intersections(const PlMap<d>& map) {
 
 using detail::local_simplex_measure;
 
-/// d! times the measure of region r in its element's local coordinates.
-template <int d>
-double local_domain_measure(const PlMap<d>& map, Index r) {
-  const auto& m = map.stored();
-  std::array<LocalPoint<d>, d + 1> x;
-  for (int i = 0; i <= d; ++i) x[i] = m.node_position[m.region_corners[r][i]];
-  return local_simplex_measure<d>(x);
-}
-
 /// d! times the measure of region r's image in its S2 element's local coordinates (the image
 /// corners moved onto that element exactly, as remote_intersection does).
 template <int d>
@@ -100,9 +91,7 @@ struct ImageMeasureTerms {
 
 template <int d>
 double domain_part(const PlMap<d>& map, Index t) {
-  double local = 0.0;
-  for (Index r = map.regions_begin(t); r < map.regions_end(t); ++r) local += local_domain_measure(map, r);
-  return local * map.domain().element_measure(t);
+  return detail::element_regions_measure(map.stored(), map.domain(), t);
 }
 
 /// The terms of element t: its regions' target measures and its scaled domain measure.
@@ -132,9 +121,7 @@ ImageMeasures sum_terms(const PlMap<d>& map, unsigned threads, const ImageMeasur
       out.per_target[static_cast<std::size_t>(m.region_target[r])] += terms.region_target[static_cast<std::size_t>(r)];
     out.covered.domain += terms.element_domain[static_cast<std::size_t>(t)];
   }
-  for (Index t2 = 0; t2 < n2; ++t2)
-    if (out.per_target[static_cast<std::size_t>(t2)] != 0.0)
-      out.covered.target += out.per_target[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
+  out.covered.target = detail::covered_target_measure(out.per_target, s2);
   return out;
 }
 
@@ -168,9 +155,7 @@ ImageMeasures image_measures(const PlMap<d>& map, unsigned threads) {
       out.per_target[static_cast<std::size_t>(m.region_target[r])] += local_target_measure(map, r);
     out.covered.domain += domain_part(map, t);
   }
-  for (Index t2 = 0; t2 < n2; ++t2)
-    if (out.per_target[static_cast<std::size_t>(t2)] != 0.0)
-      out.covered.target += out.per_target[static_cast<std::size_t>(t2)] * s2.element_measure(t2);
+  out.covered.target = detail::covered_target_measure(out.per_target, s2);
   return out;
 }
 

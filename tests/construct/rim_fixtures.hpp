@@ -15,11 +15,12 @@ namespace plmap::test {
 /// the height of S2 above S1.
 inline std::shared_ptr<const Surface<2>> flat_square() { return grid(10, 10, 0.0, 1.0, 0.0, 1.0, 0.0); }
 
-/// S2: a jittered 7 x 7 grid over [-0.1, 1.1]^2 facing S1, on the plane z = 0.25 (x - x0): in
-/// front of S1 for x > x0, behind it for x < x0, its height mu(x) = 0.25 (x - x0). Its rims (the
-/// lines where mu reaches a bound) cross S1 elements and S2 triangles alike.
-inline std::shared_ptr<const Surface<2>> tilted_plane(double x0) {
-  return transformed<2>(*grid(7, 7, -0.1, 1.1, -0.1, 1.1, 0.0, true, 0.2), [x0](const WorldPoint<2>& p) {
+/// S2: a jittered `cells` x `cells` grid over [-0.1, 1.1]^2 facing S1, on the plane
+/// z = 0.25 (x - x0): in front of S1 for x > x0, behind it for x < x0, its height
+/// mu(x) = 0.25 (x - x0). Its rims (the lines where mu reaches a bound) cross S1 elements and S2
+/// triangles alike.
+inline std::shared_ptr<const Surface<2>> tilted_plane(double x0, int cells = 7) {
+  return transformed<2>(*grid(cells, cells, -0.1, 1.1, -0.1, 1.1, 0.0, true, 0.2), [x0](const WorldPoint<2>& p) {
     return WorldPoint<2>(p.x(), p.y(), 0.25 * (p.x() - x0));
   });
 }

@@ -76,9 +76,7 @@ TEST(ProjectRimThreads, TheRimIsTheSameForEveryThreadCount) {
   // (projection_rim.cpp): a rim of a hundred and more segments, several chunks, gives the same map,
   // node for node, on one, two and three threads.
   const auto s1 = grid(48, 48, 0.0, 1.0, 0.0, 1.0, 0.0);
-  const auto s2 = transformed<2>(*grid(30, 30, -0.1, 1.1, -0.1, 1.1, 0.0, true, 0.2), [](const WorldPoint<2>& p) {
-    return WorldPoint<2>(p.x(), p.y(), 0.25 * (p.x() - 0.43));  // tilted_plane(0.43), finer
-  });
+  const auto s2 = tilted_plane(0.43, 30);
   const auto a = project<2>(s1, s2, {.threads = 1});
   EXPECT_EQ(verify_violations(a.map), "");
   ASSERT_GT(a.report.rim_edges, 128);  // more than two chunks of 64 segments
